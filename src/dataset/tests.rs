@@ -1,0 +1,254 @@
+//! Validation tests: each problem the loader must catch, with its line and column.
+
+use super::*;
+
+const HEADER: &str = "xray,finger,j1,j2,j3\n";
+
+fn load(text: &str) -> Result<Dataset, DataError> {
+    Dataset::from_bytes("t.csv", text.as_bytes())
+}
+
+fn problems(text: &str) -> Vec<Problem> {
+    load(text).expect_err("expected a data error").problems
+}
+
+/// Asserts exactly one problem at (line, column) whose message contains `needle`.
+fn one(text: &str, line: u64, column: Option<usize>, needle: &str) {
+    let p = problems(text);
+    assert_eq!(p.len(), 1, "{p:#?}");
+    assert_eq!(p[0].line, Some(line), "{p:#?}");
+    assert_eq!(p[0].column, column, "{p:#?}");
+    assert!(
+        p[0].message.contains(needle),
+        "{:?} lacks {needle:?}",
+        p[0].message
+    );
+}
+
+#[test]
+fn reads_the_paper_table() {
+    let d = Dataset::load(Path::new("data/measurements.csv")).unwrap();
+    assert_eq!(d.rows.len(), 25);
+    assert_eq!(d.xray_count(), 5);
+    let first = &d.rows[0];
+    assert_eq!(&*first.xray, "1a");
+    assert_eq!(first.finger, Finger::Index);
+    // Table 1, Figure 1a, grooming: 339.96 188.83 169.67 (as printed).
+    assert_eq!(first.segments(), &[339.96, 188.83, 169.67]);
+    assert_eq!(first.meta.unit.as_deref(), Some("image units"));
+    assert_eq!(d.rows_of(Finger::Thumb).count(), 5);
+    assert!(d.rows_of(Finger::Thumb).all(|r| r.segments().len() == 2));
+    assert_eq!(d.sha256.len(), 64);
+}
+
+#[test]
+fn accepts_bom_crlf_quotes_blank_lines_and_aliases() {
+    let text = "\u{feff}XRay,Finger,J1,J2,J3\r\n\"a\",Grooming,\"1.5\",2,3\r\n\r\nb,PINKY,1,2,3\r\nc,thumb,1,2,\r\n\r\n\r\n";
+    let d = load(text).unwrap();
+    assert_eq!(d.rows.len(), 3);
+    assert_eq!(d.rows[0].finger, Finger::Index);
+    assert_eq!(d.rows[0].lengths[0], 1.5);
+    assert_eq!(d.rows[1].finger, Finger::Little);
+    assert_eq!(d.rows[1].line, 4);
+    assert_eq!(d.rows[2].segments(), &[1.0, 2.0]);
+}
+
+#[test]
+fn missing_header_column() {
+    let p = problems("xray,finger,j1,j2\na,thumb,1,2\n");
+    assert_eq!(p.len(), 1);
+    assert_eq!(p[0].line, Some(1));
+    assert!(p[0].message.contains("'j3'"));
+}
+
+#[test]
+fn unknown_header_column_and_duplicate_column() {
+    let p = problems("xray,finger,j1,j2,j3,colour,j1\na,index,1,2,3,red,1\n");
+    assert_eq!(p.len(), 2, "{p:#?}");
+    assert_eq!(p[0].column, Some(6));
+    assert!(p[0].message.contains("unknown column 'colour'"));
+    assert_eq!(p[1].column, Some(7));
+    assert!(p[1].message.contains("twice"));
+}
+
+#[test]
+fn unknown_finger() {
+    one(
+        &format!("{HEADER}a,toe,1,2,3\n"),
+        2,
+        Some(2),
+        "unknown finger 'toe'",
+    );
+}
+
+#[test]
+fn non_numeric_and_empty_lengths() {
+    one(
+        &format!("{HEADER}a,index,abc,2,3\n"),
+        2,
+        Some(3),
+        "is not a number",
+    );
+    one(&format!("{HEADER}a,index,1,,3\n"), 2, Some(4), "is empty");
+    one(
+        &format!("{HEADER}a,index,1,2,\n"),
+        2,
+        Some(5),
+        "three segments",
+    );
+}
+
+#[test]
+fn non_positive_lengths() {
+    one(&format!("{HEADER}a,index,0,2,3\n"), 2, Some(3), "is zero");
+    one(&format!("{HEADER}a,index,1,-2,3\n"), 2, Some(4), "negative");
+}
+
+#[test]
+fn nan_infinity_and_overflow() {
+    one(&format!("{HEADER}a,index,NaN,2,3\n"), 2, Some(3), "NaN");
+    one(
+        &format!("{HEADER}a,index,1,inf,3\n"),
+        2,
+        Some(4),
+        "infinite",
+    );
+    one(
+        &format!("{HEADER}a,index,1,2,-Infinity\n"),
+        2,
+        Some(5),
+        "infinite",
+    );
+    one(
+        &format!("{HEADER}a,index,1e400,2,3\n"),
+        2,
+        Some(3),
+        "too large",
+    );
+    one(
+        &format!("{HEADER}a,index,1e308,1e308,3\n"),
+        2,
+        None,
+        "add up to more than",
+    );
+}
+
+#[test]
+fn decimal_comma_gets_a_hint() {
+    one(
+        &format!("{HEADER}a,index,\"339,96\",2,3\n"),
+        2,
+        Some(3),
+        "write it with a point: 339.96",
+    );
+}
+
+#[test]
+fn thumb_with_j3() {
+    one(
+        &format!("{HEADER}a,thumb,1,2,3\n"),
+        2,
+        Some(5),
+        "leave j3 empty",
+    );
+}
+
+#[test]
+fn duplicate_xray_finger() {
+    one(
+        &format!("{HEADER}a,index,1,2,3\nb,index,1,2,3\na,grooming,1,2,3\n"),
+        4,
+        None,
+        "already has a index row on line 2",
+    );
+}
+
+#[test]
+fn empty_file_and_header_only() {
+    for text in ["", "\n\n", "\u{feff}"] {
+        let p = problems(text);
+        assert_eq!(p.len(), 1);
+        assert!(p[0].message.contains("is empty"), "{p:?}");
+        assert_eq!(p[0].line, None);
+    }
+    let p = problems(HEADER);
+    assert!(p[0].message.contains("no data rows"));
+}
+
+#[test]
+fn non_utf8_bytes() {
+    let mut bytes = HEADER.as_bytes().to_vec();
+    bytes.extend_from_slice(b"a,index,1,2,3\nb\xff,index,1,2,3\n");
+    let p = Dataset::from_bytes("t.csv", &bytes).unwrap_err().problems;
+    assert_eq!(p.len(), 1);
+    assert_eq!((p[0].line, p[0].column), (Some(3), Some(1)));
+    assert!(p[0].message.contains("not UTF-8"));
+}
+
+#[test]
+fn utf16_is_refused_whole() {
+    let bytes = b"\xFF\xFEx\0r\0a\0y\0";
+    let p = Dataset::from_bytes("t.csv", bytes).unwrap_err().problems;
+    assert!(p[0].message.contains("UTF-16"));
+}
+
+#[test]
+fn field_count_mismatch() {
+    one(
+        &format!("{HEADER}a,index,339,96,2,3\n"),
+        2,
+        None,
+        "has 6 fields",
+    );
+    one(&format!("{HEADER}a,index,1,2\n"), 2, None, "has 4 fields");
+}
+
+#[test]
+fn all_problems_are_reported_together() {
+    let text = format!(
+        "{HEADER}a,toe,1,2,3\nb,index,x,2,3\nc,thumb,1,2,3\nd,index,1,2,3\nd,index,1,2,3\n"
+    );
+    let p = problems(&text);
+    let lines: Vec<u64> = p.iter().filter_map(|p| p.line).collect();
+    assert_eq!(lines, vec![2, 3, 4, 6]);
+    let shown = load(&text).unwrap_err().to_string();
+    assert!(shown.starts_with("4 problems in t.csv:"), "{shown}");
+    assert!(
+        shown.contains("t.csv:3:3: j1: 'x' is not a number"),
+        "{shown}"
+    );
+}
+
+#[test]
+fn metadata_is_validated_and_consistent_per_xray() {
+    let h = "xray,finger,j1,j2,j3,sex,age,side\n";
+    one(
+        &format!("{h}a,index,1,2,3,f,abc,left\n"),
+        2,
+        Some(7),
+        "not an age",
+    );
+    one(
+        &format!("{h}a,index,1,2,3,f,30,up\n"),
+        2,
+        Some(8),
+        "not a side",
+    );
+    one(
+        &format!("{h}a,index,1,2,3,f,30,left\na,ring,1,2,3,m,30,left\n"),
+        3,
+        Some(6),
+        "line 2 gives 'female'",
+    );
+    let d = load(&format!("{h}a,index,1,2,3,F,30,R\n")).unwrap();
+    assert_eq!(d.rows[0].meta.sex.as_deref(), Some("female"));
+    assert_eq!(d.rows[0].meta.side.as_deref(), Some("right"));
+    assert_eq!(d.rows[0].meta.age, Some(30.0));
+}
+
+#[test]
+fn long_values_are_shortened_in_messages() {
+    let long = "x".repeat(1_000_000);
+    let p = problems(&format!("{HEADER}a,index,{long},2,3\n"));
+    assert!(p[0].message.len() < 200, "{}", p[0].message.len());
+}

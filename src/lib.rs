@@ -1,0 +1,12 @@
+//! phalanx: statistics of finger-joint positions from hand X-ray measurements.
+//!
+//! Reproduces Chaudhry, You, Jin and Zhang, "Statistical Analysis of Joint
+//! Determination for Skeleton Driven Animation of Human Hands", and goes beyond it.
+//! Modules depend one way: [`dataset`] (ingest, validate) -> [`analysis`]
+//! (statistics, bootstrap, claims) -> [`report`] (views, plots, writers).
+
+pub mod analysis;
+pub mod cli;
+pub mod dataset;
+pub mod error;
+pub mod report;
