@@ -1,1 +1,427 @@
-//! Stats.
+//! Statistics of finger-segment proportions: the paper's and beyond.
+//!
+//! For each finger and X-ray: the total J = sum J_k (eq. 1) and the relative
+//! values J~k = J_k / J (eq. 2). For each quantity over the X-rays: the paper's
+//! mean (eq. 5), min and max (eq. 7) and range (eq. 9), then SD, SE, median, CV,
+//! Student-t, bootstrap percentile and BCa intervals of the mean, and a
+//! prediction interval for one new X-ray. Knows nothing of files or rendering.
+
+pub mod bootstrap;
+pub mod claims;
+pub mod coverage;
+pub mod describe;
+pub mod rng;
+
+use crate::dataset::{Dataset, Finger, Row};
+use bootstrap::{Plan, Sorted};
+use serde::{Serialize, Serializer};
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// The default seed: the paper's publication date, 2013-01-01, as a number.
+pub const DEFAULT_SEED: u64 = 20_130_101;
+/// Default number of bootstrap resamples.
+pub const DEFAULT_RESAMPLES: usize = 10_000;
+/// Default confidence level of every interval.
+pub const DEFAULT_CONFIDENCE: f64 = 0.95;
+
+/// Settings of an analysis.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Settings {
+    /// Bootstrap resamples asked for (fewer are used when exact enumeration is cheaper).
+    pub resamples: usize,
+    pub seed: u64,
+    /// Confidence level of every interval, in (0, 1).
+    pub confidence: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            resamples: DEFAULT_RESAMPLES,
+            seed: DEFAULT_SEED,
+            confidence: DEFAULT_CONFIDENCE,
+        }
+    }
+}
+
+impl Settings {
+    /// Checks the settings, explaining what is wrong.
+    pub fn validate(&self) -> Result<(), String> {
+        if !(self.confidence > 0.0 && self.confidence < 1.0) {
+            return Err(format!(
+                "confidence must lie strictly between 0 and 1 (e.g. 0.95), got {}",
+                self.confidence
+            ));
+        }
+        if self.resamples == 0 {
+            return Err("resamples must be at least 1 (default 10000)".into());
+        }
+        Ok(())
+    }
+}
+
+/// A closed interval `[low, high]`; serialised as a two-element array.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Interval {
+    pub low: f64,
+    pub high: f64,
+}
+
+impl Interval {
+    pub fn new(low: f64, high: f64) -> Interval {
+        Interval { low, high }
+    }
+
+    /// A zero-width interval at `x`.
+    pub fn point(x: f64) -> Interval {
+        Interval { low: x, high: x }
+    }
+
+    /// high - low.
+    pub fn width(&self) -> f64 {
+        self.high - self.low
+    }
+
+    /// True when `low <= x <= high`.
+    pub fn contains(&self, x: f64) -> bool {
+        self.low <= x && x <= self.high
+    }
+
+    /// The interval multiplied by a non-negative factor.
+    pub fn scaled(&self, k: f64) -> Interval {
+        Interval::new(self.low * k, self.high * k)
+    }
+}
+
+impl Serialize for Interval {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        [self.low, self.high].serialize(s)
+    }
+}
+
+/// A quantity measured once per X-ray of a finger.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Quantity {
+    /// J~1 = J1 / J.
+    RelJ1,
+    /// J~2 = J2 / J.
+    RelJ2,
+    /// J~3 = J3 / J (not for the thumb).
+    RelJ3,
+    /// J, the total length in data units.
+    Total,
+}
+
+impl Quantity {
+    /// Every quantity, in output order.
+    pub const ALL: [Quantity; 4] = [
+        Quantity::RelJ1,
+        Quantity::RelJ2,
+        Quantity::RelJ3,
+        Quantity::Total,
+    ];
+
+    /// The quantities of a finger.
+    pub fn of(finger: Finger) -> &'static [Quantity] {
+        match finger {
+            Finger::Thumb => &[Quantity::RelJ1, Quantity::RelJ2, Quantity::Total],
+            _ => &Quantity::ALL,
+        }
+    }
+
+    /// Machine name (`rel_j1`, ..., `total`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::RelJ1 => "rel_j1",
+            Quantity::RelJ2 => "rel_j2",
+            Quantity::RelJ3 => "rel_j3",
+            Quantity::Total => "total",
+        }
+    }
+
+    /// Parses a machine name.
+    pub fn parse(text: &str) -> Option<Quantity> {
+        Quantity::ALL
+            .into_iter()
+            .find(|q| q.name() == text.trim().to_ascii_lowercase())
+    }
+
+    /// Name for people, in the paper's notation.
+    pub fn label(self) -> &'static str {
+        match self {
+            Quantity::RelJ1 => "J~1 = J1/J",
+            Quantity::RelJ2 => "J~2 = J2/J",
+            Quantity::RelJ3 => "J~3 = J3/J",
+            Quantity::Total => "J (total length)",
+        }
+    }
+
+    /// True for the relative (unitless) quantities.
+    pub fn is_relative(self) -> bool {
+        self != Quantity::Total
+    }
+
+    /// The value of this quantity for one measurement row.
+    pub fn of_row(self, row: &Row) -> f64 {
+        let total = row.total();
+        match self {
+            Quantity::RelJ1 => row.lengths[0] / total,
+            Quantity::RelJ2 => row.lengths[1] / total,
+            Quantity::RelJ3 => row.lengths[2] / total,
+            Quantity::Total => total,
+        }
+    }
+}
+
+impl Serialize for Quantity {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+/// The derived values of one X-ray for one finger (eqs. 1-2).
+#[derive(Debug, Clone, Serialize)]
+pub struct XrayValues {
+    pub xray: Arc<str>,
+    /// J1, J2[, J3] in data units.
+    pub lengths: Vec<f64>,
+    /// J = sum of the lengths (eq. 1).
+    pub total: f64,
+    /// J~k = J_k / J for every segment (eq. 2).
+    pub relative: Vec<f64>,
+}
+
+/// Every statistic of one quantity over the X-rays of a finger.
+#[derive(Debug, Clone, Serialize)]
+pub struct QuantityStats {
+    pub name: Quantity,
+    pub n: usize,
+    /// Eq. (5).
+    pub mean: f64,
+    /// Sample SD (n - 1); null for n = 1.
+    pub sd: Option<f64>,
+    /// SD / sqrt(n); null for n = 1.
+    pub se: Option<f64>,
+    pub median: f64,
+    /// Eq. (7).
+    pub min: f64,
+    /// Eq. (7).
+    pub max: f64,
+    /// Eq. (9): max - min.
+    pub range: f64,
+    /// SD / mean; null for n = 1.
+    pub cv: Option<f64>,
+    pub ci_t: Option<Interval>,
+    pub ci_percentile: Option<Interval>,
+    pub ci_bca: Option<Interval>,
+    /// Prediction interval for one new X-ray.
+    pub pi: Option<Interval>,
+    /// Why an interval is null or collapsed, when it is.
+    pub notes: Vec<String>,
+}
+
+/// The analysis of one finger.
+#[derive(Debug, Clone, Serialize)]
+pub struct FingerAnalysis {
+    pub finger: Finger,
+    /// Number of X-rays with this finger.
+    pub n: usize,
+    pub xrays: Vec<XrayValues>,
+    pub quantities: Vec<QuantityStats>,
+    /// How the bootstrap distribution was obtained.
+    pub bootstrap: Plan,
+}
+
+impl FingerAnalysis {
+    /// The statistics of one quantity, if the finger has it.
+    pub fn quantity(&self, q: Quantity) -> Option<&QuantityStats> {
+        self.quantities.iter().find(|s| s.name == q)
+    }
+}
+
+/// The analysis of a whole dataset.
+#[derive(Debug, Clone)]
+pub struct Analysis {
+    pub settings: Settings,
+    /// Fingers present in the data, thumb first.
+    pub fingers: Vec<FingerAnalysis>,
+}
+
+impl Analysis {
+    /// The analysis of one finger, if the data has it.
+    pub fn finger(&self, f: Finger) -> Option<&FingerAnalysis> {
+        self.fingers.iter().find(|a| a.finger == f)
+    }
+}
+
+/// The values of every quantity of a finger, one column per quantity.
+fn columns(finger: Finger, xrays: &[XrayValues]) -> Vec<Vec<f64>> {
+    Quantity::of(finger)
+        .iter()
+        .map(|q| {
+            xrays
+                .iter()
+                .map(|x| match q {
+                    Quantity::Total => x.total,
+                    Quantity::RelJ1 => x.relative[0],
+                    Quantity::RelJ2 => x.relative[1],
+                    Quantity::RelJ3 => x.relative[2],
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Analyses a dataset. Fingers whose X-rays are the same share every bootstrap
+/// resample (the X-ray is the unit resampled). Cost: O(B n q) for B resamples.
+pub fn analyse(data: &Dataset, settings: &Settings) -> Analysis {
+    // X-rays in order of first appearance, so fingers of the same X-rays line up.
+    let mut order: HashMap<&str, usize> = HashMap::new();
+    for r in &data.rows {
+        let next = order.len();
+        order.entry(&r.xray).or_insert(next);
+    }
+    let mut per_finger: Vec<(Finger, Vec<XrayValues>)> = Vec::new();
+    for f in Finger::ALL {
+        let mut rows: Vec<&Row> = data.rows_of(f).collect();
+        if rows.is_empty() {
+            continue;
+        }
+        rows.sort_by_key(|r| order[&*r.xray]);
+        let xrays = rows.iter().map(|r| xray_values(r)).collect();
+        per_finger.push((f, xrays));
+    }
+    // Group fingers by their X-ray sequence; each group shares one bootstrap.
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for (i, (_, xs)) in per_finger.iter().enumerate() {
+        let same = |g: &Vec<usize>| {
+            let ys = &per_finger[g[0]].1;
+            ys.len() == xs.len() && ys.iter().zip(xs).all(|(a, b)| a.xray == b.xray)
+        };
+        match groups.iter_mut().find(|g| same(g)) {
+            Some(g) => g.push(i),
+            None => groups.push(vec![i]),
+        }
+    }
+    let mut results: Vec<Option<FingerAnalysis>> = vec![None; per_finger.len()];
+    for group in &groups {
+        let cols: Vec<Vec<Vec<f64>>> = group
+            .iter()
+            .map(|&i| columns(per_finger[i].0, &per_finger[i].1))
+            .collect();
+        let flat: Vec<&[f64]> = cols.iter().flatten().map(Vec::as_slice).collect();
+        let key = per_finger[group[0]].0.index() as u64;
+        let dist = bootstrap::resample_means(&flat, settings.resamples, settings.seed, key);
+        let mut offset = 0;
+        for (&i, fcols) in group.iter().zip(&cols) {
+            let (finger, xrays) = &per_finger[i];
+            let quantities = Quantity::of(*finger)
+                .iter()
+                .zip(fcols)
+                .enumerate()
+                .map(|(k, (&q, col))| {
+                    quantity_stats(q, col, &dist.means[offset + k], &dist.weights, settings)
+                })
+                .collect();
+            offset += fcols.len();
+            results[i] = Some(FingerAnalysis {
+                finger: *finger,
+                n: xrays.len(),
+                xrays: xrays.clone(),
+                quantities,
+                bootstrap: dist.plan,
+            });
+        }
+    }
+    Analysis {
+        settings: *settings,
+        fingers: results.into_iter().flatten().collect(),
+    }
+}
+
+/// Eqs. (1)-(2) for one row.
+pub fn xray_values(row: &Row) -> XrayValues {
+    let lengths = row.segments().to_vec();
+    let total = row.total();
+    let relative = lengths.iter().map(|l| l / total).collect();
+    XrayValues {
+        xray: row.xray.clone(),
+        lengths,
+        total,
+        relative,
+    }
+}
+
+/// Every statistic of one quantity, given its values and its bootstrap distribution.
+///
+/// Degenerate cases: with n = 1 every interval and SD-based statistic is null
+/// (no spread can be estimated); with zero spread every interval collapses to
+/// the common value. Each case leaves a note.
+pub fn quantity_stats(
+    name: Quantity,
+    values: &[f64],
+    boot: &[f64],
+    weights: &[f64],
+    settings: &Settings,
+) -> QuantityStats {
+    let n = values.len();
+    let c = settings.confidence;
+    let mean = describe::mean(values).unwrap_or(0.0);
+    let (min, max) = describe::min_max(values).unwrap_or((mean, mean));
+    let median = describe::median(values).unwrap_or(mean);
+    // Values equal up to rounding (e.g. 4/10 and 2/5) count as zero spread.
+    let zero_spread = n >= 2 && (max - min) <= 1e-12 * mean.abs();
+    let sd = if zero_spread {
+        Some(0.0)
+    } else {
+        describe::sd(values)
+    };
+    let se = sd.map(|s| s / (n as f64).sqrt());
+    let cv = sd.map(|s| s / mean);
+    let mut notes = Vec::new();
+    let (ci_t, ci_percentile, ci_bca, pi);
+    if n < 2 {
+        notes.push("n = 1: no spread can be estimated, so every interval is null".into());
+        (ci_t, ci_percentile, ci_bca, pi) = (None, None, None, None);
+    } else if zero_spread {
+        notes.push(
+            "every X-ray gives the same value: every interval collapses to that value".into(),
+        );
+        let p = Some(Interval::point(mean));
+        (ci_t, ci_percentile, ci_bca, pi) = (p, p, p, p);
+    } else {
+        let s = sd.unwrap_or(0.0);
+        ci_t = describe::t_interval(mean, s, n, c);
+        pi = describe::prediction_interval(mean, s, n, c);
+        let sorted = Sorted::new(boot, weights);
+        ci_percentile = Some(bootstrap::percentile_interval(&sorted, c));
+        ci_bca = match bootstrap::bca_interval(&sorted, values, mean, c) {
+            Ok(i) => Some(i),
+            Err(reason) => {
+                notes.push(reason.to_string());
+                None
+            }
+        };
+    }
+    QuantityStats {
+        name,
+        n,
+        mean,
+        sd,
+        se,
+        median,
+        min,
+        max,
+        range: max - min,
+        cv,
+        ci_t,
+        ci_percentile,
+        ci_bca,
+        pi,
+        notes,
+    }
+}
+
+#[cfg(test)]
+mod tests;

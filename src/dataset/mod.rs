@@ -5,6 +5,7 @@
 //! thumb. [`Dataset::load`] reads a whole file and either returns every row or
 //! a [`DataError`] listing every problem in the file with its line and column.
 
+pub mod claims;
 pub mod csvinput;
 pub mod error;
 pub mod finger;

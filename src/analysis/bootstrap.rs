@@ -1,0 +1,422 @@
+//! Bootstrap of means: exact enumeration for small samples, seeded resampling otherwise.
+//!
+//! The unit resampled is the X-ray: one resample is a vector of counts
+//! `c_1..c_n` (how often each X-ray is drawn, summing to n), and every quantity
+//! observed on those X-rays gets the resampled mean `sum_i c_i x_i / n` from the
+//! same counts. With n X-rays there are only C(2n-1, n) distinct count vectors
+//! (126 for n = 5), each with multinomial probability `n! / prod(c_i!) / n^n`;
+//! when that number is no larger than the resamples asked for, all of them are
+//! enumerated with their weights (exact and deterministic) instead of drawn.
+
+use super::Interval;
+use super::describe::{normal_cdf, normal_quantile};
+use super::rng;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// Resamples per random stream. Chunk `k` always holds resamples
+/// `64k .. 64k+63` and draws from stream `k`, whatever the thread count.
+pub const CHUNK: usize = 64;
+
+/// How the bootstrap distribution was obtained.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(tag = "method", rename_all = "lowercase")]
+pub enum Plan {
+    /// Every distinct resample enumerated with its multinomial weight.
+    Exact { distinct: usize },
+    /// `resamples` resamples drawn at random.
+    Random { resamples: usize },
+}
+
+impl Plan {
+    /// Exact enumeration when C(2n-1, n) <= `requested`, random draws otherwise.
+    pub fn choose(n: usize, requested: usize) -> Plan {
+        match distinct_resamples(n, requested) {
+            Some(distinct) => Plan::Exact { distinct },
+            None => Plan::Random {
+                resamples: requested,
+            },
+        }
+    }
+
+    /// Number of points in the bootstrap distribution.
+    pub fn len(self) -> usize {
+        match self {
+            Plan::Exact { distinct } => distinct,
+            Plan::Random { resamples } => resamples,
+        }
+    }
+
+    /// True when the plan has no resamples.
+    pub fn is_empty(self) -> bool {
+        self.len() == 0
+    }
+
+    /// A sentence for outputs.
+    pub fn describe(self) -> String {
+        match self {
+            Plan::Exact { distinct } => format!(
+                "exact: all {distinct} distinct resamples enumerated with their multinomial weights"
+            ),
+            Plan::Random { resamples } => format!("random: {resamples} seeded resamples"),
+        }
+    }
+}
+
+/// C(2n-1, n), the number of distinct resamples of n units, when it is at most `limit`.
+pub fn distinct_resamples(n: usize, limit: usize) -> Option<usize> {
+    if n == 0 {
+        return None;
+    }
+    // C(2n-1, n) = prod_{i=1..n} (n-1+i)/i, exact at every step.
+    let mut c: u128 = 1;
+    for i in 1..=n as u128 {
+        c = c * (n as u128 - 1 + i) / i;
+        if c > limit as u128 {
+            return None;
+        }
+    }
+    Some(c as usize)
+}
+
+/// The bootstrap distribution of the means of several quantities measured on the same units.
+#[derive(Debug, Clone)]
+pub struct Distribution {
+    pub plan: Plan,
+    /// Probability of each point (sums to 1).
+    pub weights: Vec<f64>,
+    /// `means[q][j]`: the mean of quantity `q` in resample `j`.
+    pub means: Vec<Vec<f64>>,
+}
+
+/// Bootstraps the means of `columns` (each of the same length n >= 1).
+///
+/// `key` separates independent groups under one seed. Cost: O(m n q) for m
+/// resamples and q quantities; memory O(m q).
+pub fn resample_means(columns: &[&[f64]], requested: usize, seed: u64, key: u64) -> Distribution {
+    let n = columns.first().map_or(0, |c| c.len());
+    let plan = Plan::choose(n, requested.max(1));
+    match plan {
+        Plan::Exact { distinct } => exact(columns, n, distinct),
+        Plan::Random { resamples } => random(columns, n, resamples, seed, key),
+    }
+}
+
+/// Mean of each column under counts `c` (summing to n).
+#[inline]
+fn weighted_means(columns: &[&[f64]], counts: &[u32], n: usize, out: &mut [f64]) {
+    for (o, col) in out.iter_mut().zip(columns) {
+        let s: f64 = counts
+            .iter()
+            .zip(col.iter())
+            .map(|(&c, &x)| f64::from(c) * x)
+            .sum();
+        *o = s / n as f64;
+    }
+}
+
+fn exact(columns: &[&[f64]], n: usize, distinct: usize) -> Distribution {
+    let ln_fact: Vec<f64> = (0..=n)
+        .scan(0.0f64, |acc, k| {
+            if k > 0 {
+                *acc += (k as f64).ln();
+            }
+            Some(*acc)
+        })
+        .collect();
+    let ln_norm = ln_fact[n] - n as f64 * (n as f64).ln();
+    let mut weights = Vec::with_capacity(distinct);
+    let mut means = vec![Vec::with_capacity(distinct); columns.len()];
+    let mut row = vec![0.0; columns.len()];
+    let mut counts = vec![0u32; n];
+    compositions(n, &mut counts, |c| {
+        let ln_w = ln_norm - c.iter().map(|&k| ln_fact[k as usize]).sum::<f64>();
+        weights.push(ln_w.exp());
+        weighted_means(columns, c, n, &mut row);
+        for (m, v) in means.iter_mut().zip(&row) {
+            m.push(*v);
+        }
+    });
+    // Normalise away rounding so the weights sum to 1.
+    let total: f64 = weights.iter().sum();
+    weights.iter_mut().for_each(|w| *w /= total);
+    Distribution {
+        plan: Plan::Exact { distinct },
+        weights,
+        means,
+    }
+}
+
+/// Calls `visit` with every vector of n non-negative counts summing to n
+/// (Nijenhuis and Wilf's NEXCOM), in a fixed order. O(1) amortised per vector.
+fn compositions(n: usize, r: &mut [u32], mut visit: impl FnMut(&[u32])) {
+    let k = r.len();
+    let n32 = n as u32;
+    r.iter_mut().for_each(|c| *c = 0);
+    r[0] = n32;
+    let (mut t, mut h) = (n32, 0usize);
+    visit(r);
+    while r[k - 1] != n32 {
+        if t > 1 {
+            h = 0;
+        }
+        h += 1;
+        t = r[h - 1];
+        r[h - 1] = 0;
+        r[0] = t - 1;
+        r[h] += 1;
+        visit(r);
+    }
+}
+
+fn random(columns: &[&[f64]], n: usize, resamples: usize, seed: u64, key: u64) -> Distribution {
+    let q = columns.len();
+    let chunks = resamples.div_ceil(CHUNK);
+    let n32 = u32::try_from(n).unwrap_or(u32::MAX);
+    let per_chunk: Vec<Vec<f64>> = (0..chunks)
+        .into_par_iter()
+        .map_init(
+            || (vec![0u32; n], vec![0.0f64; q]),
+            |(counts, row), k| {
+                let mut rng = rng::stream(seed, key, k as u64);
+                let len = CHUNK.min(resamples - k * CHUNK);
+                let mut out = Vec::with_capacity(len * q);
+                for _ in 0..len {
+                    counts.iter_mut().for_each(|c| *c = 0);
+                    for _ in 0..n {
+                        counts[rng::index(&mut rng, n32) as usize] += 1;
+                    }
+                    weighted_means(columns, counts, n, row);
+                    out.extend_from_slice(row);
+                }
+                out
+            },
+        )
+        .collect();
+    let mut means = vec![Vec::with_capacity(resamples); q];
+    for chunk in &per_chunk {
+        for row in chunk.chunks_exact(q) {
+            for (m, v) in means.iter_mut().zip(row) {
+                m.push(*v);
+            }
+        }
+    }
+    Distribution {
+        plan: Plan::Random { resamples },
+        weights: vec![1.0 / resamples as f64; resamples],
+        means,
+    }
+}
+
+/// A weighted bootstrap distribution of one statistic, sorted for quantiles.
+pub struct Sorted {
+    values: Vec<f64>,
+    cumulative: Vec<f64>,
+}
+
+impl Sorted {
+    /// Sorts `values` (with `weights`) ascending. O(m log m).
+    pub fn new(values: &[f64], weights: &[f64]) -> Sorted {
+        let mut order: Vec<usize> = (0..values.len()).collect();
+        order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+        let mut acc = 0.0;
+        let mut cumulative = Vec::with_capacity(values.len());
+        let mut sorted = Vec::with_capacity(values.len());
+        for i in order {
+            acc += weights[i];
+            cumulative.push(acc);
+            sorted.push(values[i]);
+        }
+        Sorted {
+            values: sorted,
+            cumulative,
+        }
+    }
+
+    /// The weighted quantile: the smallest value whose cumulative weight reaches `p`
+    /// (the inverse of the weighted empirical distribution function).
+    pub fn quantile(&self, p: f64) -> f64 {
+        let p = p.clamp(0.0, 1.0);
+        let i = self.cumulative.partition_point(|&c| c < p - 1e-12);
+        self.values[i.min(self.values.len() - 1)]
+    }
+
+    /// P*(value < x) + P*(value = x) / 2, ties within a relative 1e-12.
+    pub fn mid_rank(&self, x: f64) -> f64 {
+        let tol = 1e-12 * x.abs().max(1e-300);
+        let below = self.values.partition_point(|&v| v < x - tol);
+        let upto = self.values.partition_point(|&v| v <= x + tol);
+        let at = |i: usize| if i == 0 { 0.0 } else { self.cumulative[i - 1] };
+        at(below) + (at(upto) - at(below)) / 2.0
+    }
+}
+
+/// Percentile interval: the (1-c)/2 and (1+c)/2 weighted quantiles.
+pub fn percentile_interval(dist: &Sorted, confidence: f64) -> Interval {
+    let alpha = 1.0 - confidence;
+    Interval::new(dist.quantile(alpha / 2.0), dist.quantile(1.0 - alpha / 2.0))
+}
+
+/// Bias-corrected and accelerated (BCa) interval of a mean (Efron 1987).
+///
+/// Bias correction z0 = Phi^-1(P*(theta* < theta) + P*(theta* = theta)/2);
+/// acceleration a = sum d^3 / (6 (sum d^2)^(3/2)) from the jackknife, where for
+/// a mean the leave-one-out estimates are (S - x_i)/(n-1), so d_i is
+/// proportional to x_i - mean: O(n), no refits. The interval is the weighted
+/// quantiles at Phi(z0 + (z0 + z)/(1 - a (z0 + z))) for z = -/+ z_{(1+c)/2}.
+/// Errs with a reason when the correction is undefined.
+pub fn bca_interval(
+    dist: &Sorted,
+    sample: &[f64],
+    estimate: f64,
+    confidence: f64,
+) -> Result<Interval, &'static str> {
+    let n = sample.len();
+    if n < 2 {
+        return Err("BCa needs at least 2 X-rays for the jackknife");
+    }
+    let p0 = dist.mid_rank(estimate);
+    if p0 <= 0.0 || p0 >= 1.0 {
+        return Err("BCa undefined: every resample falls on one side of the estimate");
+    }
+    let z0 = normal_quantile(p0);
+    let (mut s2, mut s3) = (0.0, 0.0);
+    for &x in sample {
+        let d = (x - estimate) / (n - 1) as f64;
+        s2 += d * d;
+        s3 += d * d * d;
+    }
+    if s2 == 0.0 {
+        return Err("BCa undefined: every X-ray gives the same value");
+    }
+    let a = s3 / (6.0 * s2.powf(1.5));
+    let z = normal_quantile(1.0 - (1.0 - confidence) / 2.0);
+    let adjust = |zq: f64| -> Option<f64> {
+        let num = z0 + zq;
+        let den = 1.0 - a * num;
+        (den > 0.0).then(|| normal_cdf(z0 + num / den))
+    };
+    match (adjust(-z), adjust(z)) {
+        (Some(lo), Some(hi)) if lo.is_finite() && hi.is_finite() => {
+            Ok(Interval::new(dist.quantile(lo), dist.quantile(hi)))
+        }
+        _ => Err("BCa undefined: acceleration too large for this confidence level"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_distinct_resamples() {
+        // C(2n-1, n): 1, 3, 10, 35, 126, 462, 1716, 6435, 24310 (OEIS A001700).
+        let expect = [1, 3, 10, 35, 126, 462, 1716, 6435, 24310];
+        for (n, &e) in (1..=9).zip(&expect) {
+            assert_eq!(distinct_resamples(n, usize::MAX), Some(e));
+        }
+        assert_eq!(distinct_resamples(9, 10_000), None);
+        assert_eq!(Plan::choose(5, 10_000), Plan::Exact { distinct: 126 });
+        assert_eq!(Plan::choose(5, 125), Plan::Random { resamples: 125 });
+        assert_eq!(Plan::choose(40, 10_000), Plan::Random { resamples: 10_000 });
+    }
+
+    #[test]
+    fn enumeration_visits_every_composition_once_with_weights_summing_to_one() {
+        for n in 1..=7 {
+            let xs: Vec<f64> = (0..n).map(|i| i as f64).collect();
+            let d = resample_means(&[&xs], usize::MAX, 0, 0);
+            assert_eq!(d.weights.len(), distinct_resamples(n, usize::MAX).unwrap());
+            let total: f64 = d.weights.iter().sum();
+            assert!((total - 1.0).abs() < 1e-12);
+            // The exact bootstrap mean of the mean is the sample mean, and its variance
+            // is (1/n) * population variance / ... : E*[mean*] = mean, Var* = s_pop^2 / n.
+            let m: f64 = d.weights.iter().zip(&d.means[0]).map(|(w, v)| w * v).sum();
+            let sample_mean = xs.iter().sum::<f64>() / n as f64;
+            assert!((m - sample_mean).abs() < 1e-12);
+            let var: f64 = d
+                .weights
+                .iter()
+                .zip(&d.means[0])
+                .map(|(w, v)| w * (v - m).powi(2))
+                .sum();
+            let pop_var = xs.iter().map(|x| (x - sample_mean).powi(2)).sum::<f64>() / n as f64;
+            assert!((var - pop_var / n as f64).abs() < 1e-12, "n={n}");
+        }
+    }
+
+    #[test]
+    fn n_equals_two_by_hand() {
+        // x = (1, 3): resamples (2,0) -> 1 w 1/4, (1,1) -> 2 w 1/2, (0,2) -> 3 w 1/4.
+        let d = resample_means(&[&[1.0, 3.0]], 100, 0, 0);
+        let mut pairs: Vec<(f64, f64)> = d.means[0]
+            .iter()
+            .copied()
+            .zip(d.weights.iter().copied())
+            .collect();
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        assert_eq!(pairs, vec![(1.0, 0.25), (2.0, 0.5), (3.0, 0.25)]);
+        let s = Sorted::new(&d.means[0], &d.weights);
+        assert_eq!(s.quantile(0.25), 1.0);
+        assert_eq!(s.quantile(0.2501), 2.0);
+        assert_eq!(s.quantile(0.75), 2.0);
+        assert_eq!(s.quantile(0.76), 3.0);
+        assert!((s.mid_rank(2.0) - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn random_plan_is_thread_count_independent_and_seeded() {
+        let xs: Vec<f64> = (0..50).map(|i| (i as f64).sqrt()).collect();
+        let run = |threads: usize, seed: u64| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| resample_means(&[&xs], 1000, seed, 3).means)
+        };
+        let one = run(1, 9);
+        assert_eq!(one, run(2, 9));
+        assert_eq!(one, run(3, 9));
+        assert_ne!(one, run(1, 10));
+        assert_eq!(one[0].len(), 1000);
+    }
+
+    #[test]
+    fn random_bootstrap_se_matches_theory() {
+        // Var*(mean*) = s_pop^2 / n exactly; 4000 resamples estimate it within ~5%.
+        let xs: Vec<f64> = (0..30).map(|i| ((i * 7) % 11) as f64).collect();
+        let d = resample_means(&[&xs], 4000, 1, 0);
+        let n = xs.len() as f64;
+        let m = xs.iter().sum::<f64>() / n;
+        let pop_var = xs.iter().map(|x| (x - m).powi(2)).sum::<f64>() / n;
+        let bm = d.means[0].iter().sum::<f64>() / 4000.0;
+        let bv = d.means[0].iter().map(|v| (v - bm).powi(2)).sum::<f64>() / 3999.0;
+        assert!(
+            (bv / (pop_var / n) - 1.0).abs() < 0.1,
+            "{bv} vs {}",
+            pop_var / n
+        );
+    }
+
+    #[test]
+    fn bca_equals_percentile_for_symmetric_sample() {
+        // Symmetric sample: a = 0 and, for the exact distribution, z0 = 0,
+        // so BCa reduces to the percentile interval.
+        let xs = [1.0, 2.0, 3.0, 4.0, 5.0];
+        let d = resample_means(&[&xs], 10_000, 0, 0);
+        let s = Sorted::new(&d.means[0], &d.weights);
+        let p = percentile_interval(&s, 0.95);
+        let b = bca_interval(&s, &xs, 3.0, 0.95).unwrap();
+        assert_eq!(p, b);
+        assert!(p.low < 3.0 && p.high > 3.0);
+    }
+
+    #[test]
+    fn bca_refuses_degenerate_input() {
+        let xs = [2.0, 2.0, 2.0];
+        let d = resample_means(&[&xs], 10_000, 0, 0);
+        let s = Sorted::new(&d.means[0], &d.weights);
+        assert!(bca_interval(&s, &xs, 2.0, 0.95).is_err());
+        assert!(bca_interval(&s, &[2.0], 2.0, 0.95).is_err());
+    }
+}
