@@ -1,3 +1,5 @@
+//! The `phalanx` command: see `phalanx --help`.
+
 fn main() {
-    println!("Hello, world!");
+    std::process::exit(phalanx::cli::main());
 }

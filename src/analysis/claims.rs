@@ -349,20 +349,21 @@ fn table_digit(claim: &Claim, claims: &Claims, rows: &[&Row]) -> Option<String> 
         .iter()
         .filter(|c| c.finger == claim.finger && c.xray.as_deref() == Some(x))
         .collect();
+    let agree_all = |rows: &[&Row], c: &Claim| {
+        compute(c, rows, false).is_some_and(|y| agrees(y, c.stated, c.decimals))
+            || compute(c, rows, true).is_some_and(|y| agrees(y, c.stated, c.decimals))
+    };
+    let before = siblings.iter().filter(|c| agree_all(&[*row], c)).count();
     let mut best: Option<(usize, usize, f64)> = None;
     for k in 0..claim.finger.segments() {
         for v in one_digit_edits(row.lengths[k]) {
             let mut edited = (*row).clone();
             edited.lengths[k] = v;
             let fixed = [&edited];
-            let ok = |c: &Claim| {
-                compute(c, &fixed, false).is_some_and(|y| agrees(y, c.stated, c.decimals))
-                    || compute(c, &fixed, true).is_some_and(|y| agrees(y, c.stated, c.decimals))
-            };
-            if !ok(claim) {
+            if !agree_all(&fixed, claim) {
                 continue;
             }
-            let score = siblings.iter().filter(|c| ok(c)).count();
+            let score = siblings.iter().filter(|c| agree_all(&fixed, c)).count();
             if best.is_none_or(|(s, _, _)| score > s) {
                 best = Some((score, k, v));
             }
@@ -370,13 +371,12 @@ fn table_digit(claim: &Claim, claims: &Claims, rows: &[&Row]) -> Option<String> 
     }
     let (score, k, v) = best?;
     Some(format!(
-        "Table 1 prints j{} = {} for the {} finger of X-ray {x}; with {} (one digit changed) this and {} of the {} claims about that finger agree: Table 1 and the text disagree in that digit",
+        "Table 1 prints j{} = {} for the {} finger of X-ray {x}; with {} instead (one digit changed), {score} of the paper's {} claims about it agree instead of {before}: Table 1 and the text disagree in that digit",
         k + 1,
         fmt(row.lengths[k], 2),
         claim.finger,
         fmt(v, 2),
-        score.saturating_sub(1),
-        siblings.len().saturating_sub(1)
+        siblings.len(),
     ))
 }
 

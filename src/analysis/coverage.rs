@@ -105,6 +105,51 @@ pub fn simulate(n: usize, mean: f64, sd: f64, s: &CoverageSettings) -> Option<Co
     })
 }
 
+/// The simulated coverage for one quantity of one finger.
+#[derive(Debug, Clone, Serialize)]
+pub struct QuantityCoverage {
+    pub finger: crate::dataset::Finger,
+    pub quantity: super::Quantity,
+    pub n: usize,
+    /// `None` when coverage cannot be simulated (n < 2 or zero spread); see `note`.
+    pub coverage: Option<Coverage>,
+    pub note: Option<String>,
+}
+
+/// Simulates coverage for every quantity of an analysis. Quantities of equal n
+/// share one simulation (coverage depends on n alone; see the module docs).
+pub fn of_analysis(a: &super::Analysis, s: &CoverageSettings) -> Vec<QuantityCoverage> {
+    let mut by_n: std::collections::BTreeMap<usize, Option<Coverage>> = Default::default();
+    let mut out = Vec::new();
+    for f in &a.fingers {
+        for q in &f.quantities {
+            let sd = q.sd.unwrap_or(0.0);
+            let (coverage, note) = if q.n < 2 {
+                (None, Some("n = 1: no model can be fitted".to_string()))
+            } else if sd.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                (
+                    None,
+                    Some("zero spread: every interval collapses".to_string()),
+                )
+            } else {
+                let c = by_n
+                    .entry(q.n)
+                    .or_insert_with(|| simulate(q.n, q.mean, sd, s))
+                    .clone();
+                (c, None)
+            };
+            out.push(QuantityCoverage {
+                finger: f.finger,
+                quantity: q.name,
+                n: q.n,
+                coverage,
+                note,
+            });
+        }
+    }
+    out
+}
+
 fn one_simulation(
     xs: &[f64],
     new: f64,

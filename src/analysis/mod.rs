@@ -10,6 +10,7 @@ pub mod bootstrap;
 pub mod claims;
 pub mod coverage;
 pub mod describe;
+pub mod placement;
 pub mod rng;
 
 use crate::dataset::{Dataset, Finger, Row};
@@ -240,9 +241,35 @@ impl FingerAnalysis {
     }
 }
 
+/// What an analysis was computed from: enough to cite the dataset, not its rows.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct DatasetInfo {
+    /// The path as given.
+    pub path: String,
+    /// SHA-256 of the file, lower-case hex.
+    pub sha256: String,
+    /// Distinct X-rays.
+    pub xrays: usize,
+    /// Measurement rows (X-ray x finger).
+    pub rows: usize,
+}
+
+impl DatasetInfo {
+    /// Summarises a dataset.
+    pub fn of(data: &Dataset) -> DatasetInfo {
+        DatasetInfo {
+            path: data.path.clone(),
+            sha256: data.sha256.clone(),
+            xrays: data.xray_count(),
+            rows: data.rows.len(),
+        }
+    }
+}
+
 /// The analysis of a whole dataset.
 #[derive(Debug, Clone)]
 pub struct Analysis {
+    pub dataset: DatasetInfo,
     pub settings: Settings,
     /// Fingers present in the data, thumb first.
     pub fingers: Vec<FingerAnalysis>,
@@ -335,6 +362,7 @@ pub fn analyse(data: &Dataset, settings: &Settings) -> Analysis {
         }
     }
     Analysis {
+        dataset: DatasetInfo::of(data),
         settings: *settings,
         fingers: results.into_iter().flatten().collect(),
     }

@@ -1,0 +1,221 @@
+//! Joint placement for a model finger of known total length (the paper's worked example).
+//!
+//! Measured from the finger's root joint (MCP), for a model finger of total
+//! length L: the second joint (PIP) lies at J~1 L, the third (DIP) at
+//! (J~1 + J~2) L = (1 - J~3) L, and the tip at L; for the thumb the IP joint lies
+//! at J~1 L. Every statistic of a position is the corresponding statistic of a
+//! relative value under the affine map x -> a + b x (b = +L or -L). The mean and
+//! all four intervals are equivariant under such maps (for b < 0 the ends swap),
+//! so no new resampling is needed.
+
+use super::{Analysis, Interval, Quantity, QuantityStats};
+use crate::dataset::Finger;
+use serde::Serialize;
+
+/// A joint of a finger, from root to tip.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Joint {
+    /// Metacarpophalangeal: the finger's root, at 0.
+    #[serde(rename = "MCP")]
+    Mcp,
+    /// Proximal interphalangeal (index to little).
+    #[serde(rename = "PIP")]
+    Pip,
+    /// Distal interphalangeal (index to little).
+    #[serde(rename = "DIP")]
+    Dip,
+    /// Interphalangeal joint of the thumb.
+    #[serde(rename = "IP")]
+    Ip,
+    /// The fingertip, at L.
+    #[serde(rename = "tip")]
+    Tip,
+}
+
+impl Joint {
+    /// Short name (MCP, PIP, DIP, IP, tip).
+    pub fn name(self) -> &'static str {
+        match self {
+            Joint::Mcp => "MCP",
+            Joint::Pip => "PIP",
+            Joint::Dip => "DIP",
+            Joint::Ip => "IP",
+            Joint::Tip => "tip",
+        }
+    }
+
+    /// The joints of a finger between root and tip, whose positions are estimated.
+    pub fn inner(finger: Finger) -> &'static [Joint] {
+        match finger {
+            Finger::Thumb => &[Joint::Ip],
+            _ => &[Joint::Pip, Joint::Dip],
+        }
+    }
+}
+
+/// A statistic carried into model units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Placed {
+    pub mean: f64,
+    pub min: f64,
+    pub max: f64,
+    pub range: f64,
+    /// SD in model units; null for n = 1.
+    pub sd: Option<f64>,
+    pub ci_t: Option<Interval>,
+    pub ci_percentile: Option<Interval>,
+    pub ci_bca: Option<Interval>,
+    pub pi: Option<Interval>,
+}
+
+impl Placed {
+    /// The statistics of `offset + scale * x`, from those of x. O(1).
+    pub fn affine(s: &QuantityStats, offset: f64, scale: f64) -> Placed {
+        let map = |x: f64| offset + scale * x;
+        let iv = |i: Option<Interval>| {
+            i.map(|i| {
+                let (a, b) = (map(i.low), map(i.high));
+                Interval::new(a.min(b), a.max(b))
+            })
+        };
+        let (a, b) = (map(s.min), map(s.max));
+        Placed {
+            mean: map(s.mean),
+            min: a.min(b),
+            max: a.max(b),
+            range: (b - a).abs(),
+            sd: s.sd.map(|sd| sd * scale.abs()),
+            ci_t: iv(s.ci_t),
+            ci_percentile: iv(s.ci_percentile),
+            ci_bca: iv(s.ci_bca),
+            pi: iv(s.pi),
+        }
+    }
+}
+
+/// Where one joint lies from the root, in model units.
+#[derive(Debug, Clone, Serialize)]
+pub struct JointPosition {
+    pub joint: Joint,
+    pub position: Placed,
+}
+
+/// One segment's length in model units.
+#[derive(Debug, Clone, Serialize)]
+pub struct SegmentLength {
+    /// `j1`, `j2` or `j3`.
+    pub segment: &'static str,
+    pub length: Placed,
+}
+
+/// Joint positions and segment lengths for one model finger.
+#[derive(Debug, Clone, Serialize)]
+pub struct FingerPlacement {
+    pub finger: Finger,
+    /// The model finger's total length L (root joint to tip).
+    pub length: f64,
+    /// X-rays the statistics come from.
+    pub n: usize,
+    /// The inner joints, root to tip (PIP, DIP; or IP for the thumb).
+    pub joints: Vec<JointPosition>,
+    pub segments: Vec<SegmentLength>,
+}
+
+/// Places the joints of `finger` for a model finger of total length `length`.
+/// `None` when the data has no such finger.
+pub fn place(a: &Analysis, finger: Finger, length: f64) -> Option<FingerPlacement> {
+    let fa = a.finger(finger)?;
+    let rel = |q| fa.quantity(q);
+    let mut joints = Vec::new();
+    for &j in Joint::inner(finger) {
+        let position = match j {
+            Joint::Pip | Joint::Ip => Placed::affine(rel(Quantity::RelJ1)?, 0.0, length),
+            // (J~1 + J~2) L = L - J~3 L.
+            Joint::Dip => Placed::affine(rel(Quantity::RelJ3)?, length, -length),
+            Joint::Mcp | Joint::Tip => continue,
+        };
+        joints.push(JointPosition { joint: j, position });
+    }
+    let segments = [Quantity::RelJ1, Quantity::RelJ2, Quantity::RelJ3]
+        .iter()
+        .zip(["j1", "j2", "j3"])
+        .filter_map(|(&q, name)| {
+            rel(q).map(|s| SegmentLength {
+                segment: name,
+                length: Placed::affine(s, 0.0, length),
+            })
+        })
+        .collect();
+    Some(FingerPlacement {
+        finger,
+        length,
+        n: fa.n,
+        joints,
+        segments,
+    })
+}
+
+/// Places every finger of the data at the same model length.
+pub fn place_all(a: &Analysis, length: f64) -> Vec<FingerPlacement> {
+    a.fingers
+        .iter()
+        .filter_map(|f| place(a, f.finger, length))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::{Settings, analyse};
+    use crate::dataset::Dataset;
+    use std::path::Path;
+
+    fn paper() -> Analysis {
+        let d = Dataset::load(Path::new("data/measurements.csv")).unwrap();
+        analyse(&d, &Settings::default())
+    }
+
+    #[test]
+    fn worked_example_with_the_corrected_mean() {
+        // The paper: mean 494.6 (misprint; 0.4846 x 1000 = 484.6), max 504.7, min 472.8, range 31.9
+        // (from rounded values; unrounded 31.96).
+        let p = place(&paper(), Finger::Index, 1000.0).unwrap();
+        let pip = &p.joints[0];
+        assert_eq!(pip.joint, Joint::Pip);
+        assert_eq!(format!("{:.1}", pip.position.mean), "484.6");
+        assert_eq!(format!("{:.1}", pip.position.max), "504.7");
+        assert_eq!(format!("{:.1}", pip.position.min), "472.8");
+        assert_eq!(format!("{:.1}", pip.position.range), "32.0");
+        assert_eq!(p.segments.len(), 3);
+    }
+
+    #[test]
+    fn dip_is_one_minus_j3_and_intervals_flip() {
+        let a = paper();
+        let p = place(&a, Finger::Middle, 100.0).unwrap();
+        let j3 = a
+            .finger(Finger::Middle)
+            .unwrap()
+            .quantity(Quantity::RelJ3)
+            .unwrap();
+        let dip = &p.joints[1].position;
+        assert!((dip.mean - 100.0 * (1.0 - j3.mean)).abs() < 1e-9);
+        assert!((dip.max - 100.0 * (1.0 - j3.min)).abs() < 1e-9);
+        let ci = dip.ci_bca.unwrap();
+        let src = j3.ci_bca.unwrap();
+        assert!((ci.low - 100.0 * (1.0 - src.high)).abs() < 1e-9);
+        assert!(ci.low < dip.mean && dip.mean < ci.high);
+        // The mean DIP equals the sum of the mean J~1 and J~2 positions.
+        let s: f64 = p.segments[..2].iter().map(|s| s.length.mean).sum();
+        assert!((dip.mean - s).abs() < 1e-9);
+    }
+
+    #[test]
+    fn thumb_has_one_inner_joint() {
+        let p = place(&paper(), Finger::Thumb, 50.0).unwrap();
+        assert_eq!(p.joints.len(), 1);
+        assert_eq!(p.joints[0].joint, Joint::Ip);
+        assert_eq!(p.segments.len(), 2);
+        assert_eq!(place_all(&paper(), 1.0).len(), 5);
+    }
+}

@@ -1,0 +1,98 @@
+//! CSV output of the statistics: one row per finger and quantity, full precision.
+
+use crate::analysis::{Analysis, Interval};
+use crate::error::Error;
+
+/// Header of the statistics CSV.
+pub const STATS_COLUMNS: [&str; 22] = [
+    "finger",
+    "quantity",
+    "n",
+    "mean",
+    "sd",
+    "se",
+    "median",
+    "min",
+    "max",
+    "range",
+    "cv",
+    "ci_t_low",
+    "ci_t_high",
+    "ci_percentile_low",
+    "ci_percentile_high",
+    "ci_bca_low",
+    "ci_bca_high",
+    "pi_low",
+    "pi_high",
+    "bootstrap",
+    "confidence",
+    "notes",
+];
+
+/// Neutralises a text cell against spreadsheet formula injection: a cell that
+/// starts with `=`, `+`, `-`, `@`, tab or carriage return gets a leading `'`.
+pub fn safe_cell(text: &str) -> String {
+    if text.starts_with(['=', '+', '-', '@', '\t', '\r']) {
+        format!("'{text}")
+    } else {
+        text.to_string()
+    }
+}
+
+fn f(x: Option<f64>) -> String {
+    x.filter(|v| v.is_finite())
+        .map_or_else(String::new, |v| v.to_string())
+}
+
+fn lo_hi(i: Option<Interval>) -> [String; 2] {
+    [f(i.map(|i| i.low)), f(i.map(|i| i.high))]
+}
+
+/// The statistics as CSV bytes; empty cells where a value is null.
+pub fn stats(a: &Analysis) -> Result<Vec<u8>, Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let err = |e| Error::render("cannot write CSV", e);
+    w.write_record(STATS_COLUMNS).map_err(err)?;
+    for fa in &a.fingers {
+        let method = match fa.bootstrap {
+            crate::analysis::bootstrap::Plan::Exact { .. } => "exact",
+            crate::analysis::bootstrap::Plan::Random { .. } => "random",
+        };
+        for q in &fa.quantities {
+            let mut rec = vec![
+                fa.finger.name().to_string(),
+                q.name.name().to_string(),
+                q.n.to_string(),
+                f(Some(q.mean)),
+                f(q.sd),
+                f(q.se),
+                f(Some(q.median)),
+                f(Some(q.min)),
+                f(Some(q.max)),
+                f(Some(q.range)),
+                f(q.cv),
+            ];
+            for i in [q.ci_t, q.ci_percentile, q.ci_bca, q.pi] {
+                rec.extend(lo_hi(i));
+            }
+            rec.push(method.to_string());
+            rec.push(a.settings.confidence.to_string());
+            rec.push(safe_cell(&q.notes.join("; ")));
+            w.write_record(&rec).map_err(err)?;
+        }
+    }
+    w.into_inner()
+        .map_err(|e| Error::render("cannot write CSV", e.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formulas_are_neutralised() {
+        assert_eq!(safe_cell("=HYPERLINK(\"x\")"), "'=HYPERLINK(\"x\")");
+        assert_eq!(safe_cell("@SUM(A1)"), "'@SUM(A1)");
+        assert_eq!(safe_cell("plain"), "plain");
+    }
+}

@@ -1,0 +1,57 @@
+//! Number formatting shared by every output: the one place numbers become text.
+
+use crate::analysis::{Interval, Quantity};
+
+/// Decimals for a quantity: 4 for relative values (as the paper prints them), 2 for lengths.
+pub fn decimals(q: Quantity) -> usize {
+    if q.is_relative() { 4 } else { 2 }
+}
+
+/// `x` with `d` decimals; "n/a" for a non-finite value (never printed as NaN).
+pub fn num(x: f64, d: usize) -> String {
+    if x.is_finite() {
+        // Avoid "-0.0000" for tiny negatives.
+        let s = format!("{x:.d$}");
+        if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
+            s[1..].to_string()
+        } else {
+            s
+        }
+    } else {
+        "n/a".to_string()
+    }
+}
+
+/// An optional number; "n/a" when absent.
+pub fn opt(x: Option<f64>, d: usize) -> String {
+    x.map_or_else(|| "n/a".to_string(), |x| num(x, d))
+}
+
+/// An interval as `[low, high]`; "n/a" when absent.
+pub fn interval(i: Option<Interval>, d: usize) -> String {
+    match i {
+        Some(i) => format!("[{}, {}]", num(i.low, d), num(i.high, d)),
+        None => "n/a".to_string(),
+    }
+}
+
+/// A proportion as a percentage with one decimal.
+pub fn percent(p: f64) -> String {
+    format!("{}%", num(100.0 * p, 1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formats() {
+        assert_eq!(num(0.48464, 4), "0.4846");
+        assert_eq!(num(-0.00001, 4), "0.0000");
+        assert_eq!(num(f64::NAN, 2), "n/a");
+        assert_eq!(interval(Some(Interval::new(0.1, 0.25)), 2), "[0.10, 0.25]");
+        assert_eq!(interval(None, 2), "n/a");
+        assert_eq!(percent(0.8312), "83.1%");
+        assert_eq!(opt(None, 3), "n/a");
+    }
+}

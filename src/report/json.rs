@@ -1,0 +1,111 @@
+//! JSON documents: the documented machine interface (`schema_version` 1).
+
+use crate::analysis::claims::{CheckSummary, ClaimResult};
+use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
+use crate::analysis::{Analysis, DatasetInfo, FingerAnalysis, Settings, rng};
+use crate::error::Error;
+use serde::Serialize;
+
+/// Version of every JSON document phalanx writes; bumped on any incompatible change.
+pub const SCHEMA_VERSION: u32 = 1;
+
+/// The settings block of every JSON document.
+#[derive(Serialize)]
+pub struct SettingsView<'a> {
+    pub resamples: usize,
+    pub seed: u64,
+    pub confidence: f64,
+    pub rng: &'a str,
+    pub phalanx_version: &'a str,
+}
+
+impl SettingsView<'static> {
+    /// The settings block for analysis settings.
+    pub fn of(s: &Settings) -> Self {
+        SettingsView {
+            resamples: s.resamples,
+            seed: s.seed,
+            confidence: s.confidence,
+            rng: rng::RNG_NAME,
+            phalanx_version: env!("CARGO_PKG_VERSION"),
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct StatsDocument<'a> {
+    schema_version: u32,
+    dataset: &'a DatasetInfo,
+    settings: SettingsView<'static>,
+    fingers: &'a [FingerAnalysis],
+}
+
+fn to_bytes(value: &impl Serialize) -> Result<Vec<u8>, Error> {
+    let mut out =
+        serde_json::to_vec_pretty(value).map_err(|e| Error::render("cannot serialise JSON", e))?;
+    out.push(b'\n');
+    Ok(out)
+}
+
+/// The statistics document of `phalanx stats --format json` and `reports/stats.json`.
+pub fn stats(a: &Analysis) -> Result<Vec<u8>, Error> {
+    to_bytes(&StatsDocument {
+        schema_version: SCHEMA_VERSION,
+        dataset: &a.dataset,
+        settings: SettingsView::of(&a.settings),
+        fingers: &a.fingers,
+    })
+}
+
+#[derive(Serialize)]
+struct CheckDocument<'a> {
+    schema_version: u32,
+    dataset: &'a DatasetInfo,
+    claims_file: &'a str,
+    summary: CheckSummary,
+    claims: &'a [ClaimResult],
+}
+
+/// The document of `phalanx check --format json`.
+pub fn check(
+    dataset: &DatasetInfo,
+    claims_file: &str,
+    results: &[ClaimResult],
+) -> Result<Vec<u8>, Error> {
+    to_bytes(&CheckDocument {
+        schema_version: SCHEMA_VERSION,
+        dataset,
+        claims_file,
+        summary: CheckSummary::of(results),
+        claims: results,
+    })
+}
+
+#[derive(Serialize)]
+struct CoverageDocument<'a> {
+    schema_version: u32,
+    dataset: &'a DatasetInfo,
+    settings: &'a CoverageSettings,
+    rng: &'a str,
+    model: &'a str,
+    quantities: &'a [QuantityCoverage],
+}
+
+/// What the coverage simulation assumes, for outputs.
+pub const COVERAGE_MODEL: &str = "normal model N(mean, sd^2) fitted to each quantity; n values drawn per simulated dataset; confidence intervals checked against the model mean, the prediction interval against one further draw";
+
+/// The document of `phalanx coverage --format json`.
+pub fn coverage(
+    dataset: &DatasetInfo,
+    s: &CoverageSettings,
+    q: &[QuantityCoverage],
+) -> Result<Vec<u8>, Error> {
+    to_bytes(&CoverageDocument {
+        schema_version: SCHEMA_VERSION,
+        dataset,
+        settings: s,
+        rng: rng::RNG_NAME,
+        model: COVERAGE_MODEL,
+        quantities: q,
+    })
+}

@@ -1,0 +1,164 @@
+//! Terminal tables for `stats`, `check` and `coverage`.
+
+use super::format::{decimals, interval, num, opt, percent};
+use crate::analysis::Analysis;
+use crate::analysis::claims::{CheckSummary, ClaimResult};
+use crate::analysis::coverage::QuantityCoverage;
+use comfy_table::{CellAlignment, ContentArrangement, Table, presets};
+
+fn table(header: &[&str], right_from: usize) -> Table {
+    let mut t = Table::new();
+    t.load_style(presets::ASCII_MARKDOWN)
+        .set_content_arrangement(ContentArrangement::Disabled)
+        .set_header(header.to_vec());
+    for i in right_from..header.len() {
+        if let Some(c) = t.column_mut(i) {
+            c.set_cell_alignment(CellAlignment::Right);
+        }
+    }
+    t
+}
+
+/// The statistics of every finger, 4 decimals for relative values as in the paper.
+pub fn stats(a: &Analysis) -> String {
+    let c = percent(a.settings.confidence);
+    let mut out = format!(
+        "phalanx statistics of {} ({} X-rays, {} rows); confidence {c}, seed {}\n",
+        a.dataset.path, a.dataset.xrays, a.dataset.rows, a.settings.seed
+    );
+    for f in &a.fingers {
+        out.push_str(&format!(
+            "\n{} - n = {}; bootstrap {}\n",
+            f.finger.display_name(),
+            f.n,
+            f.bootstrap.describe()
+        ));
+        let mut t = table(
+            &[
+                "quantity",
+                "mean",
+                "min",
+                "max",
+                "range",
+                "sd",
+                "se",
+                "t CI",
+                "percentile CI",
+                "BCa CI",
+                "prediction",
+            ],
+            1,
+        );
+        for q in &f.quantities {
+            let d = decimals(q.name);
+            t.add_row(vec![
+                q.name.label().to_string(),
+                num(q.mean, d),
+                num(q.min, d),
+                num(q.max, d),
+                num(q.range, d),
+                opt(q.sd, d),
+                opt(q.se, d),
+                interval(q.ci_t, d),
+                interval(q.ci_percentile, d),
+                interval(q.ci_bca, d),
+                interval(q.pi, d),
+            ]);
+        }
+        out.push_str(&t.to_string());
+        out.push('\n');
+        for q in &f.quantities {
+            for n in &q.notes {
+                out.push_str(&format!("note ({}): {n}\n", q.name.name()));
+            }
+        }
+    }
+    out
+}
+
+/// The claim-by-claim check, then a summary line.
+pub fn check(results: &[ClaimResult]) -> String {
+    let mut t = table(&["claim", "where", "stated", "computed", "verdict"], 2);
+    for r in results {
+        let computed = match r.computed_rounded {
+            Some(x) if r.verdict == crate::analysis::claims::Verdict::MatchesRounded => {
+                format!(
+                    "{} (rounded: {})",
+                    num(r.computed, r.decimals + 2),
+                    num(x, r.decimals)
+                )
+            }
+            _ => num(r.computed, r.decimals + 2),
+        };
+        t.add_row(vec![
+            r.id.clone(),
+            r.location.clone(),
+            r.stated_text.clone(),
+            computed,
+            r.verdict.label().to_string(),
+        ]);
+    }
+    if let Some(c) = t.column_mut(4) {
+        c.set_cell_alignment(CellAlignment::Left);
+    }
+    let mut out = t.to_string();
+    out.push('\n');
+    let explained: Vec<&ClaimResult> = results.iter().filter(|r| r.cause.is_some()).collect();
+    if !explained.is_empty() {
+        out.push_str("\nWhy the disagreements:\n");
+        for r in explained {
+            out.push_str(&format!(
+                "- {} ({}): {}\n",
+                r.id,
+                r.refers_to,
+                r.cause.as_deref().unwrap_or("")
+            ));
+            if let Some(note) = r.erratum_note.as_deref().filter(|n| !n.is_empty()) {
+                out.push_str(&format!("  recorded erratum: {note}\n"));
+            }
+        }
+    }
+    let s = CheckSummary::of(results);
+    out.push_str(&format!(
+        "\n{} claims: {} match, {} match from rounded values, {} known errata, {} new mismatches\n",
+        s.claims, s.matches, s.matches_rounded, s.known_errata, s.mismatches
+    ));
+    out
+}
+
+/// The simulated coverage of each interval method, per finger and quantity.
+pub fn coverage(rows: &[QuantityCoverage], confidence: f64) -> String {
+    let mut t = table(
+        &[
+            "finger",
+            "quantity",
+            "n",
+            "t",
+            "percentile",
+            "BCa",
+            "prediction",
+        ],
+        2,
+    );
+    let mut sims = 0;
+    for r in rows {
+        let mut row = vec![
+            r.finger.name().to_string(),
+            r.quantity.name().to_string(),
+            r.n.to_string(),
+        ];
+        match &r.coverage {
+            Some(c) => {
+                sims = c.sims;
+                row.extend(c.methods.iter().map(|m| percent(m.coverage)));
+            }
+            None => row.extend(std::iter::repeat_n(r.note.clone().unwrap_or_default(), 4)),
+        }
+        t.add_row(row);
+    }
+    format!(
+        "Simulated coverage of nominal {} intervals ({sims} simulated datasets per sample size; normal model fitted to each quantity).\n\
+         Confidence intervals are checked against the model mean; the prediction interval against one new draw.\n{t}\n",
+        percent(confidence)
+    )
+}
