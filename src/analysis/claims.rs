@@ -219,10 +219,10 @@ fn diagnose(claim: &Claim, claims: &Claims, rows: &[&Row]) -> String {
     if let Some(cause) = carried_over(claim, claims) {
         return cause;
     }
-    if claim.statistic != Statistic::Value {
-        if let Some(cause) = against_own_values(claim, claims) {
-            return cause;
-        }
+    if claim.statistic != Statistic::Value
+        && let Some(cause) = against_own_values(claim, claims)
+    {
+        return cause;
     }
     if let Some(cause) = table_digit(claim, claims, rows) {
         return cause;
@@ -315,10 +315,9 @@ fn one_digit_edits(x: f64) -> Vec<f64> {
             if let Some(v) = String::from_utf8(t)
                 .ok()
                 .and_then(|s| s.parse::<f64>().ok())
+                && v > 0.0
             {
-                if v > 0.0 {
-                    out.push(v);
-                }
+                out.push(v);
             }
         }
     }

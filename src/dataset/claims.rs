@@ -253,17 +253,17 @@ impl Claims {
                     "is empty, but a 'value' claim is about one X-ray; name it".into(),
                 );
             }
-            if let (Some(f), Some(s)) = (finger, subject) {
-                if s.segment().is_some_and(|k| k >= f.segments()) {
-                    bad(
-                        5,
-                        format!(
-                            "the {f} has no {}; it has {} segments",
-                            s.name(),
-                            f.segments()
-                        ),
-                    );
-                }
+            if let (Some(f), Some(s)) = (finger, subject)
+                && s.segment().is_some_and(|k| k >= f.segments())
+            {
+                bad(
+                    5,
+                    format!(
+                        "the {f} has no {}; it has {} segments",
+                        s.name(),
+                        f.segments()
+                    ),
+                );
             }
             if matches!(subject, Some(Subject::Length(_)))
                 && statistic.is_some_and(|s| s != Statistic::Value)
@@ -369,20 +369,20 @@ impl Claims {
                         data.path, c.finger
                     ),
                 ));
-            } else if let Some(x) = &c.xray {
-                if !rows.contains(&(x.as_str(), c.finger)) {
-                    problems.push(Problem::field(
-                        c.line,
-                        5,
-                        "xray",
-                        format!(
-                            "the dataset {} has no {} row for X-ray {}",
-                            data.path,
-                            c.finger,
-                            quote(x)
-                        ),
-                    ));
-                }
+            } else if let Some(x) = &c.xray
+                && !rows.contains(&(x.as_str(), c.finger))
+            {
+                problems.push(Problem::field(
+                    c.line,
+                    5,
+                    "xray",
+                    format!(
+                        "the dataset {} has no {} row for X-ray {}",
+                        data.path,
+                        c.finger,
+                        quote(x)
+                    ),
+                ));
             }
         }
         if problems.is_empty() {

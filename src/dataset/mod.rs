@@ -141,11 +141,14 @@ pub fn parse_length(text: &str) -> Result<f64, String> {
                 ))
             }
         }
-        Ok(v) if v == 0.0 => Err("is zero; a segment length must be positive".into()),
-        Ok(v) if v < 0.0 => Err(format!(
-            "{} is negative; a segment length must be positive",
-            quote(text)
-        )),
+        Ok(v) if v <= 0.0 => Err(if v == 0.0 {
+            "is zero; a segment length must be positive".to_string()
+        } else {
+            format!(
+                "{} is negative; a segment length must be positive",
+                quote(text)
+            )
+        }),
         Ok(v) => Ok(v),
         Err(_) => {
             let comma = text.replacen(',', ".", 1);
