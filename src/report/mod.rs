@@ -6,4 +6,5 @@
 pub mod csv_out;
 pub mod format;
 pub mod json;
+pub mod plots;
 pub mod text;
