@@ -79,6 +79,57 @@ pub enum Command {
         #[arg(long, value_enum, default_value_t = TextFormat::Table)]
         format: TextFormat,
     },
+    /// Render the HTML and Markdown report with SVG plots, and stats.json
+    #[command(
+        after_help = "Writes DIR/index.html (self-contained), DIR/report.md, DIR/plots/*.svg and DIR/stats.json.\n\
+                            Files are replaced atomically; a failed run leaves the previous report as it was.\n\n\
+                            Examples:\n  phalanx report\n  phalanx report --out /tmp/site --model-length 87.5 --format html\n  phalanx report --templates my_templates/"
+    )]
+    Report(ReportArgs),
+}
+
+/// Options of `phalanx report`.
+#[derive(Args, Debug, Clone)]
+pub struct ReportArgs {
+    #[command(flatten)]
+    pub data: DataArgs,
+    /// The claims file checked in the "Reproducing the paper" section
+    #[arg(long, value_name = "PATH", default_value = DEFAULT_CLAIMS)]
+    pub claims: PathBuf,
+    /// Output directory
+    #[arg(long, value_name = "DIR", default_value = "reports")]
+    pub out: PathBuf,
+    #[command(flatten)]
+    pub boot: BootArgs,
+    /// Total length of the model finger for the joint-placement section, in model units
+    #[arg(long, value_name = "L", default_value_t = 1000.0, value_parser = parse_length)]
+    pub model_length: f64,
+    /// Formats to write, comma-separated
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [ReportFormat::Html, ReportFormat::Md, ReportFormat::Json])]
+    pub format: Vec<ReportFormat>,
+    /// Directory with report.html.tera and/or report.md.tera overriding the built-in templates
+    #[arg(long, value_name = "DIR")]
+    pub templates: Option<PathBuf>,
+    /// Add the generation time (UTC) to the provenance; the report is then no longer reproducible byte for byte
+    #[arg(long)]
+    pub timestamp: bool,
+    /// Simulated datasets for the coverage section
+    #[arg(long, default_value_t = 4000, value_parser = clap::value_parser!(u64).range(1..))]
+    pub sims: u64,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReportFormat {
+    Html,
+    Md,
+    Json,
+}
+
+fn parse_length(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(l) if l.is_finite() && l > 0.0 => Ok(l),
+        _ => Err(format!("'{text}' is not a positive length; give e.g. 1000")),
+    }
 }
 
 /// The dataset to read.
@@ -227,7 +278,63 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
             print(&bytes)?;
             Ok(0)
         }
+        Command::Report(args) => {
+            report_command(&args)?;
+            Ok(0)
+        }
     }
+}
+
+/// `phalanx report`: analyse, check, simulate, render everything in memory, then write.
+fn report_command(args: &ReportArgs) -> Result<(), Error> {
+    let settings = args.boot.settings();
+    settings.validate().map_err(Error::Usage)?;
+    let templates = match &args.templates {
+        Some(dir) => report::render::Templates::from_dir(dir)?,
+        None => report::render::Templates::builtin()?,
+    };
+    let dataset = Dataset::load(&args.data.data)?;
+    let claims = Claims::load(&args.claims)?;
+    claims.check_against(&dataset)?;
+    let results = claims::check(&claims, &dataset);
+    let a = analysis::analyse(&dataset, &settings);
+    drop(dataset);
+    let cov_settings = CoverageSettings {
+        sims: args.sims as usize,
+        resamples: settings.resamples,
+        seed: settings.seed,
+        confidence: settings.confidence,
+    };
+    let cov = coverage::of_analysis(&a, &cov_settings);
+    let placements = analysis::placement::place_all(&a, args.model_length);
+    let timestamp = args
+        .timestamp
+        .then(|| humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string());
+    let inputs = report::view::ReportInputs {
+        analysis: &a,
+        claims_file: &claims.path,
+        claims: &results,
+        coverage_settings: &cov_settings,
+        coverage: &cov,
+        placements: &placements,
+        model_length: args.model_length,
+        timestamp,
+    };
+    let formats = report::Formats {
+        html: args.format.contains(&ReportFormat::Html),
+        markdown: args.format.contains(&ReportFormat::Md),
+        json: args.format.contains(&ReportFormat::Json),
+    };
+    let files = report::render(&inputs, formats, &templates)?;
+    report::writer::write_all(&args.out, &files)?;
+    let names: Vec<String> = files.iter().map(|f| f.path.display().to_string()).collect();
+    eprintln!(
+        "phalanx: wrote {} files to {}: {}",
+        files.len(),
+        args.out.display(),
+        names.join(", ")
+    );
+    Ok(())
 }
 
 /// Loads a dataset and analyses it.

@@ -1,0 +1,599 @@
+//! View data: finished results turned into display strings for the templates.
+//!
+//! Templates never compute or format numbers; everything they show is a string
+//! here. Built from analysis results only, never from raw measurement rows.
+
+use super::format::{decimals, interval, num, opt, percent};
+use super::plots::{Plot, PlotKind};
+use crate::analysis::bootstrap::Plan;
+use crate::analysis::claims::{CheckSummary, ClaimResult, Verdict};
+use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
+use crate::analysis::placement::FingerPlacement;
+use crate::analysis::{Analysis, Quantity, rng};
+use crate::dataset::Finger;
+use serde::Serialize;
+
+/// Most X-rays listed row by row in the data tables; the rest are summarised.
+pub const MAX_LISTED_XRAYS: usize = 100;
+
+/// Everything a report shows, ready to print.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReportView {
+    pub title: String,
+    pub provenance: Vec<Item>,
+    pub settings: SettingsText,
+    pub table1: Table1View,
+    pub derived: Vec<DerivedFinger>,
+    pub stats: Vec<StatsFinger>,
+    pub claims: ClaimsView,
+    pub placement: PlacementView,
+    pub coverage: CoverageView,
+    pub plots: Vec<PlotView>,
+}
+
+/// A label and its value.
+#[derive(Debug, Clone, Serialize)]
+pub struct Item {
+    pub label: String,
+    pub value: String,
+}
+
+fn item(label: &str, value: impl Into<String>) -> Item {
+    Item {
+        label: label.to_string(),
+        value: value.into(),
+    }
+}
+
+/// Settings as the prose of the report quotes them.
+#[derive(Debug, Clone, Serialize)]
+pub struct SettingsText {
+    /// e.g. "95%".
+    pub confidence: String,
+    pub resamples: String,
+    pub seed: String,
+    pub rng: String,
+    /// e.g. "5".
+    pub xrays: String,
+    /// How the bootstrap was done, per distinct plan (e.g. "exact: all 126 ...").
+    pub bootstrap: String,
+    pub model_length: String,
+    /// Why the intervals are wide at this n (the t quantile against the normal one).
+    pub width_reason: String,
+}
+
+/// Table 1 of the paper: one row per X-ray, J1..J3 per finger.
+#[derive(Debug, Clone, Serialize)]
+pub struct Table1View {
+    /// Column groups: finger display names with their segment headers.
+    pub groups: Vec<Table1Group>,
+    pub rows: Vec<Table1Row>,
+    /// Set when only the first [`MAX_LISTED_XRAYS`] X-rays are listed.
+    pub truncated: Option<String>,
+    pub unit: String,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Table1Group {
+    pub finger: String,
+    pub segments: Vec<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Table1Row {
+    pub xray: String,
+    /// Every length, group by group; "-" where the X-ray lacks that finger.
+    pub cells: Vec<String>,
+}
+
+/// Eqs. (1)-(4) per X-ray for one finger.
+#[derive(Debug, Clone, Serialize)]
+pub struct DerivedFinger {
+    pub finger: String,
+    pub id: String,
+    /// Headers of the relative columns: "J~1", "J~2"[, "J~3"].
+    pub relative_headers: Vec<String>,
+    pub rows: Vec<DerivedRow>,
+    pub truncated: Option<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct DerivedRow {
+    pub xray: String,
+    pub total: String,
+    pub relative: Vec<String>,
+}
+
+/// The statistics table of one finger.
+#[derive(Debug, Clone, Serialize)]
+pub struct StatsFinger {
+    pub finger: String,
+    pub id: String,
+    pub n: String,
+    pub bootstrap: String,
+    pub rows: Vec<StatsRow>,
+    pub notes: Vec<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct StatsRow {
+    pub quantity: String,
+    pub mean: String,
+    pub min: String,
+    pub max: String,
+    pub range: String,
+    pub sd: String,
+    pub se: String,
+    pub median: String,
+    pub cv: String,
+    pub ci_t: String,
+    pub ci_percentile: String,
+    pub ci_bca: String,
+    pub pi: String,
+}
+
+/// The claim-by-claim check.
+#[derive(Debug, Clone, Serialize)]
+pub struct ClaimsView {
+    pub file: String,
+    pub summary: String,
+    pub rows: Vec<ClaimRow>,
+    /// Claims that disagree, with their causes.
+    pub misprints: Vec<ClaimRow>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct ClaimRow {
+    pub id: String,
+    pub location: String,
+    pub refers_to: String,
+    pub stated: String,
+    pub computed: String,
+    pub verdict: String,
+    /// CSS class: `match`, `rounded`, `erratum`, `mismatch`.
+    pub class: String,
+    pub cause: String,
+    pub erratum_note: String,
+}
+
+/// Joint placement for a model of the report's length.
+#[derive(Debug, Clone, Serialize)]
+pub struct PlacementView {
+    pub length: String,
+    pub joints: Vec<PlacementRow>,
+    pub segments: Vec<PlacementRow>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct PlacementRow {
+    pub finger: String,
+    /// Joint (PIP, DIP, IP) or segment (J1, J2, J3).
+    pub what: String,
+    pub mean: String,
+    pub min: String,
+    pub max: String,
+    pub range: String,
+    pub ci_t: String,
+    pub ci_percentile: String,
+    pub ci_bca: String,
+    pub pi: String,
+}
+
+/// Simulated coverage per method.
+#[derive(Debug, Clone, Serialize)]
+pub struct CoverageView {
+    pub sims: String,
+    /// What the simulation says, in words, per distinct n.
+    pub summary: String,
+    pub rows: Vec<CoverageRow>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct CoverageRow {
+    pub finger: String,
+    pub quantity: String,
+    pub n: String,
+    pub t: String,
+    pub percentile: String,
+    pub bca: String,
+    pub prediction: String,
+}
+
+/// One plot: inline SVG for HTML, a file link for Markdown.
+#[derive(Debug, Clone, Serialize)]
+pub struct PlotView {
+    pub id: String,
+    pub kind: PlotKind,
+    pub title: String,
+    pub description: String,
+    /// Path relative to the report directory, e.g. `plots/hand.svg`.
+    pub file: String,
+    pub svg: String,
+}
+
+/// Everything a report is built from.
+pub struct ReportInputs<'a> {
+    pub analysis: &'a Analysis,
+    pub claims_file: &'a str,
+    pub claims: &'a [ClaimResult],
+    pub coverage_settings: &'a CoverageSettings,
+    pub coverage: &'a [QuantityCoverage],
+    pub placements: &'a [FingerPlacement],
+    pub model_length: f64,
+    /// Added to the provenance only when asked for (`--timestamp`).
+    pub timestamp: Option<String>,
+}
+
+/// Builds the view of a whole report.
+pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
+    let a = inputs.analysis;
+    let settings = settings_text(inputs);
+    let mut provenance = vec![
+        item("Dataset", a.dataset.path.clone()),
+        item("SHA-256", a.dataset.sha256.clone()),
+        item("X-rays", a.dataset.xrays.to_string()),
+        item("Measurement rows", a.dataset.rows.to_string()),
+        item("Claims file", inputs.claims_file),
+        item("phalanx version", env!("CARGO_PKG_VERSION")),
+        item("Seed", a.settings.seed.to_string()),
+        item("Resamples asked for", a.settings.resamples.to_string()),
+        item("Bootstrap", settings.bootstrap.clone()),
+        item("Confidence", settings.confidence.clone()),
+        item("Random number generator", rng::RNG_NAME),
+    ];
+    if let Some(t) = &inputs.timestamp {
+        provenance.push(item("Generated", t.clone()));
+    }
+    ReportView {
+        title: "phalanx: finger joint statistics from hand X-rays".into(),
+        provenance,
+        settings,
+        table1: table1(a),
+        derived: a.fingers.iter().map(derived).collect(),
+        stats: a.fingers.iter().map(stats).collect(),
+        claims: claims(inputs.claims_file, inputs.claims),
+        placement: placement(inputs.placements, inputs.model_length),
+        coverage: coverage(inputs.coverage_settings, inputs.coverage),
+        plots: plots.iter().map(plot).collect(),
+    }
+}
+
+fn settings_text(inputs: &ReportInputs<'_>) -> SettingsText {
+    let a = inputs.analysis;
+    let mut plans: Vec<String> = a.fingers.iter().map(|f| f.bootstrap.describe()).collect();
+    plans.dedup();
+    SettingsText {
+        confidence: percent_plain(a.settings.confidence),
+        resamples: a.settings.resamples.to_string(),
+        seed: a.settings.seed.to_string(),
+        rng: rng::RNG_NAME.to_string(),
+        xrays: a.dataset.xrays.to_string(),
+        bootstrap: plans.join("; "),
+        model_length: length_text(inputs.model_length),
+        width_reason: width_reason(a),
+    }
+}
+
+/// "With n = 5 the 95% t quantile is 2.78 (4 degrees of freedom), not the normal 1.96."
+fn width_reason(a: &Analysis) -> String {
+    let n = a.fingers.iter().map(|f| f.n).min().unwrap_or(0);
+    let c = a.settings.confidence;
+    match crate::analysis::describe::t_quantile(c, n.saturating_sub(1)) {
+        Some(t) => format!(
+            "With n = {n} the {} t quantile is {} ({} degrees of freedom), not the normal {}.",
+            percent_plain(c),
+            num(t, 2),
+            n - 1,
+            num(
+                crate::analysis::describe::normal_quantile(1.0 - (1.0 - c) / 2.0),
+                2
+            )
+        ),
+        None => format!("With n = {n} no interval can be estimated."),
+    }
+}
+
+/// A confidence level as "95%" (no decimals when whole).
+fn percent_plain(c: f64) -> String {
+    let p = 100.0 * c;
+    if (p - p.round()).abs() < 1e-9 {
+        format!("{}%", p.round() as i64)
+    } else {
+        percent(c)
+    }
+}
+
+fn length_text(l: f64) -> String {
+    if l.fract() == 0.0 && l.abs() < 1e15 {
+        format!("{}", l as i64)
+    } else {
+        l.to_string()
+    }
+}
+
+/// The paper's finger order in Table 1: grooming (index), middle, ring, little, thumb.
+const TABLE1_ORDER: [Finger; 5] = [
+    Finger::Index,
+    Finger::Middle,
+    Finger::Ring,
+    Finger::Little,
+    Finger::Thumb,
+];
+
+fn truncation(total: usize) -> Option<String> {
+    (total > MAX_LISTED_XRAYS).then(|| {
+        format!(
+            "The first {MAX_LISTED_XRAYS} of {total} X-rays are listed; the statistics use all of them."
+        )
+    })
+}
+
+fn table1(a: &Analysis) -> Table1View {
+    let fingers: Vec<_> = TABLE1_ORDER.iter().filter_map(|&f| a.finger(f)).collect();
+    let groups = fingers
+        .iter()
+        .map(|f| Table1Group {
+            finger: f.finger.display_name().to_string(),
+            segments: (1..=f.finger.segments()).map(|k| format!("J{k}")).collect(),
+        })
+        .collect();
+    // X-rays in order of first appearance across the fingers.
+    let mut ids: Vec<&str> = Vec::new();
+    let mut seen = std::collections::HashSet::new();
+    for f in &fingers {
+        for x in &f.xrays {
+            if seen.insert(&*x.xray) {
+                ids.push(&x.xray);
+            }
+        }
+    }
+    let lookup: Vec<std::collections::HashMap<&str, &[f64]>> = fingers
+        .iter()
+        .map(|f| {
+            f.xrays
+                .iter()
+                .map(|x| (&*x.xray, x.lengths.as_slice()))
+                .collect()
+        })
+        .collect();
+    let rows = ids
+        .iter()
+        .take(MAX_LISTED_XRAYS)
+        .map(|id| Table1Row {
+            xray: id.to_string(),
+            cells: fingers
+                .iter()
+                .zip(&lookup)
+                .flat_map(|(f, map)| match map.get(id) {
+                    Some(ls) => ls.iter().map(|l| num(*l, 2)).collect::<Vec<_>>(),
+                    None => vec!["-".to_string(); f.finger.segments()],
+                })
+                .collect(),
+        })
+        .collect();
+    Table1View {
+        groups,
+        rows,
+        truncated: truncation(ids.len()),
+        unit: "image units (pixels of the X-ray images, not millimetres)".into(),
+    }
+}
+
+fn derived(f: &crate::analysis::FingerAnalysis) -> DerivedFinger {
+    DerivedFinger {
+        finger: f.finger.display_name().to_string(),
+        id: f.finger.name().to_string(),
+        relative_headers: (1..=f.finger.segments())
+            .map(|k| format!("J~{k}"))
+            .collect(),
+        rows: f
+            .xrays
+            .iter()
+            .take(MAX_LISTED_XRAYS)
+            .map(|x| DerivedRow {
+                xray: x.xray.to_string(),
+                total: num(x.total, 2),
+                relative: x.relative.iter().map(|r| num(*r, 4)).collect(),
+            })
+            .collect(),
+        truncated: truncation(f.xrays.len()),
+    }
+}
+
+fn plan_text(p: Plan) -> String {
+    p.describe()
+}
+
+fn stats(f: &crate::analysis::FingerAnalysis) -> StatsFinger {
+    let rows = f
+        .quantities
+        .iter()
+        .map(|q| {
+            let d = decimals(q.name);
+            StatsRow {
+                quantity: q.name.label().to_string(),
+                mean: num(q.mean, d),
+                min: num(q.min, d),
+                max: num(q.max, d),
+                range: num(q.range, d),
+                sd: opt(q.sd, d),
+                se: opt(q.se, d),
+                median: num(q.median, d),
+                cv: q.cv.map_or_else(|| "n/a".to_string(), percent),
+                ci_t: interval(q.ci_t, d),
+                ci_percentile: interval(q.ci_percentile, d),
+                ci_bca: interval(q.ci_bca, d),
+                pi: interval(q.pi, d),
+            }
+        })
+        .collect();
+    let notes = f
+        .quantities
+        .iter()
+        .flat_map(|q| {
+            q.notes
+                .iter()
+                .map(move |n| format!("{}: {n}", q.name.label()))
+        })
+        .collect();
+    StatsFinger {
+        finger: f.finger.display_name().to_string(),
+        id: f.finger.name().to_string(),
+        n: f.n.to_string(),
+        bootstrap: plan_text(f.bootstrap),
+        rows,
+        notes,
+    }
+}
+
+fn claims(file: &str, results: &[ClaimResult]) -> ClaimsView {
+    let rows: Vec<ClaimRow> = results
+        .iter()
+        .map(|r| {
+            let computed = match (r.verdict, r.computed_rounded) {
+                (Verdict::MatchesRounded, Some(x)) => format!(
+                    "{} (from rounded values: {})",
+                    num(r.computed, r.decimals + 2),
+                    num(x, r.decimals)
+                ),
+                _ => num(r.computed, r.decimals + 2),
+            };
+            ClaimRow {
+                id: r.id.clone(),
+                location: r.location.clone(),
+                refers_to: r.refers_to.clone(),
+                stated: r.stated_text.clone(),
+                computed,
+                verdict: r.verdict.label().to_string(),
+                class: match r.verdict {
+                    Verdict::Matches => "match",
+                    Verdict::MatchesRounded => "rounded",
+                    Verdict::KnownErratum => "erratum",
+                    Verdict::Mismatch => "mismatch",
+                }
+                .to_string(),
+                cause: r.cause.clone().unwrap_or_default(),
+                erratum_note: r.erratum_note.clone().unwrap_or_default(),
+            }
+        })
+        .collect();
+    let s = CheckSummary::of(results);
+    ClaimsView {
+        file: file.to_string(),
+        summary: format!(
+            "{} claims: {} match, {} match from rounded values (as the paper computes), {} known errata, {} new mismatches.",
+            s.claims, s.matches, s.matches_rounded, s.known_errata, s.mismatches
+        ),
+        misprints: rows
+            .iter()
+            .filter(|r| !r.cause.is_empty())
+            .cloned()
+            .collect(),
+        rows,
+    }
+}
+
+fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
+    let row = |finger: Finger, what: &str, p: &crate::analysis::placement::Placed| PlacementRow {
+        finger: finger.display_name().to_string(),
+        what: what.to_string(),
+        mean: num(p.mean, 1),
+        min: num(p.min, 1),
+        max: num(p.max, 1),
+        range: num(p.range, 1),
+        ci_t: interval(p.ci_t, 1),
+        ci_percentile: interval(p.ci_percentile, 1),
+        ci_bca: interval(p.ci_bca, 1),
+        pi: interval(p.pi, 1),
+    };
+    PlacementView {
+        length: length_text(length),
+        joints: ps
+            .iter()
+            .flat_map(|p| {
+                p.joints
+                    .iter()
+                    .map(move |j| row(p.finger, j.joint.name(), &j.position))
+            })
+            .collect(),
+        segments: ps
+            .iter()
+            .flat_map(|p| {
+                p.segments
+                    .iter()
+                    .map(move |s| row(p.finger, &s.segment.to_uppercase(), &s.length))
+            })
+            .collect(),
+    }
+}
+
+fn coverage(s: &CoverageSettings, rows: &[QuantityCoverage]) -> CoverageView {
+    let mut sentences = Vec::new();
+    let mut done = std::collections::BTreeSet::new();
+    for r in rows {
+        let Some(c) = &r.coverage else { continue };
+        if !done.insert(c.n) {
+            continue;
+        }
+        let get = |m: &str| {
+            c.methods
+                .iter()
+                .find(|x| x.method == m)
+                .map_or_else(|| "n/a".to_string(), |x| percent(x.coverage))
+        };
+        sentences.push(format!(
+            "At n = {}, the t interval covers the mean {} of the time, the bootstrap percentile interval {} and BCa {}, against a nominal {}; the prediction interval holds {} of new X-rays.",
+            c.n,
+            get("t"),
+            get("percentile"),
+            get("bca"),
+            percent_plain(s.confidence),
+            get("prediction")
+        ));
+    }
+    let summary = if sentences.is_empty() {
+        "Coverage could not be simulated for this data (fewer than 2 X-rays or no spread)."
+            .to_string()
+    } else {
+        sentences.push("Where the bootstrap falls short, prefer the t interval for the mean and the prediction interval for a new hand.".into());
+        sentences.join(" ")
+    };
+    CoverageView {
+        sims: s.sims.to_string(),
+        summary,
+        rows: rows
+            .iter()
+            .filter(|r| r.quantity != Quantity::Total)
+            .map(|r| {
+                let get = |m: &str| match &r.coverage {
+                    Some(c) => c
+                        .methods
+                        .iter()
+                        .find(|x| x.method == m)
+                        .map_or_else(|| "n/a".to_string(), |x| percent(x.coverage)),
+                    None => r.note.clone().unwrap_or_else(|| "n/a".to_string()),
+                };
+                CoverageRow {
+                    finger: r.finger.display_name().to_string(),
+                    quantity: r.quantity.label().to_string(),
+                    n: r.n.to_string(),
+                    t: get("t"),
+                    percentile: get("percentile"),
+                    bca: get("bca"),
+                    prediction: get("prediction"),
+                }
+            })
+            .collect(),
+    }
+}
+
+fn plot(p: &Plot) -> PlotView {
+    PlotView {
+        id: p.id.clone(),
+        kind: p.kind,
+        title: p.title.clone(),
+        description: p.description.clone(),
+        file: format!("plots/{}.svg", p.id),
+        svg: p.svg.clone(),
+    }
+}
