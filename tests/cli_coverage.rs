@@ -1,0 +1,114 @@
+//! `phalanx coverage` through the binary: the simulated coverage of each
+//! interval method at the paper's n = 5.
+
+mod common;
+
+use common::*;
+use serde_json::Value;
+
+fn coverage_json(wd: &Workdir, extra: &[&str]) -> Value {
+    let mut args = vec!["coverage", "--format", "json"];
+    args.extend(extra);
+    wd.run(&args).ok().json()
+}
+
+/// The coverage of `method` in one quantity's entry.
+#[track_caller]
+fn method<'a>(q: &'a Value, name: &str) -> &'a Value {
+    q["coverage"]["methods"]
+        .as_array()
+        .unwrap_or_else(|| panic!("no methods: {q}"))
+        .iter()
+        .find(|m| m["method"] == name)
+        .unwrap_or_else(|| panic!("no method {name}: {q}"))
+}
+
+#[test]
+fn t_intervals_cover_and_percentile_intervals_undercover_at_n_5() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let doc = coverage_json(&wd, &["--sims", "2000"]);
+    assert_eq!(doc["schema_version"], 1);
+    assert_eq!(doc["settings"]["sims"], 2000);
+    assert_eq!(doc["settings"]["confidence"], 0.95);
+    let qs = doc["quantities"].as_array().unwrap();
+    assert_eq!(qs.len(), 19, "3 thumb + 4 x 4 finger quantities");
+    let mut relative = 0;
+    for q in qs {
+        let what = format!("{} {}", q["finger"], q["quantity"]);
+        assert_eq!(q["n"], 5, "{what}");
+        assert_eq!(q["coverage"]["sims"], 2000, "{what}");
+        assert_eq!(q["coverage"]["bootstrap"]["method"], "exact", "{what}");
+        for m in q["coverage"]["methods"].as_array().unwrap() {
+            let p = num(&m["coverage"]);
+            assert!((0.0..=1.0).contains(&p), "{what}: {m}");
+            assert_eq!(m["nominal"], 0.95);
+            assert_close(
+                num(&m["mc_se"]),
+                (p * (1.0 - p) / 2000.0).sqrt(),
+                1e-12,
+                &what,
+            );
+        }
+        if q["quantity"] == "total" {
+            continue;
+        }
+        relative += 1;
+        let t = num(&method(q, "t")["coverage"]);
+        assert!((0.93..=0.97).contains(&t), "{what}: t coverage {t}");
+        let pct = num(&method(q, "percentile")["coverage"]);
+        assert!(pct < 0.90, "{what}: percentile coverage {pct}");
+        let pi = num(&method(q, "prediction")["coverage"]);
+        assert!(
+            (0.92..=0.98).contains(&pi),
+            "{what}: prediction coverage {pi}"
+        );
+    }
+    assert_eq!(relative, 14);
+}
+
+#[test]
+fn coverage_is_reproducible_and_seeded() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let args = ["coverage", "--format", "json", "--sims", "300"];
+    let a = wd.run(&args).ok().stdout.clone();
+    let b = wd.run(&args).ok().stdout.clone();
+    assert_eq!(a, b);
+    let mut other = args.to_vec();
+    other.extend(["--seed", "7"]);
+    let c = wd.run(&other).ok().json();
+    let a: Value = serde_json::from_str(&a).unwrap();
+    assert_ne!(
+        a["quantities"], c["quantities"],
+        "the seed changes the simulation"
+    );
+}
+
+#[test]
+fn coverage_of_degenerate_samples_is_explained_not_simulated() {
+    let wd = Workdir::new();
+    wd.write("one.csv", format!("{HEADER}\n1a,index,1,2,3\n"));
+    let doc = coverage_json(&wd, &["--data", "one.csv", "--sims", "10"]);
+    for q in doc["quantities"].as_array().unwrap() {
+        assert!(q["coverage"].is_null(), "{q}");
+        assert!(q["note"].is_string(), "{q}");
+    }
+    wd.run(&["coverage", "--data", "one.csv", "--sims", "10"])
+        .ok()
+        .stdout_has("n = 1");
+}
+
+#[test]
+fn coverage_table_lists_every_quantity() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let run = wd.run(&["coverage", "--sims", "200"]);
+    run.ok().stdout_has("200 simulated datasets");
+    let rows = run
+        .stdout
+        .lines()
+        .filter(|l| l.starts_with("| ") && l.contains('%'))
+        .count();
+    assert_eq!(rows, 19, "{}", run.stdout);
+}
