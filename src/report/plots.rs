@@ -1,8 +1,30 @@
 //! SVG plots of finished results (plotters). Each plot is a pure function
 //! returning SVG text; drawing errors become [`Error`]s with context, never panics.
+//!
+//! Every SVG is self-contained and deterministic (same input, same bytes): a
+//! white background, integer pixel coordinates, no clock, no random ids. Its
+//! root `<svg>` has `role="img"`, `aria-labelledby="<id>-title"` and
+//! `aria-describedby="<id>-desc"`; its first children are that `<title>` and
+//! `<desc>`, ids prefixed by the plot's id so several plots can share a page.
+//!
+//! Fonts: plotters is built without a font backend (neither `ttf` nor
+//! `ab_glyph`), so it lays text out with its built-in size estimate and never
+//! reads a font file or asks the system for fonts. Text is written as SVG
+//! `<text>` in the generic family `sans-serif`; the viewer picks the face.
+//! Plotters' SVG backend XML-escapes text and attribute values itself, so text
+//! is handed to it unescaped; the `<title>` and `<desc>`, written by this
+//! module, are escaped by it (see `draw::escape`).
+
+mod draw;
+mod finger;
+mod forest;
+mod hand;
+#[cfg(test)]
+mod tests;
 
 use crate::analysis::placement::FingerPlacement;
 use crate::analysis::{Analysis, FingerAnalysis};
+use crate::dataset::Finger;
 use crate::error::Error;
 use serde::Serialize;
 
@@ -33,18 +55,28 @@ pub struct Plot {
 }
 
 /// Per-finger plot: each X-ray's relative values as points, the mean and its intervals.
-pub fn finger_plot(_f: &FingerAnalysis, _confidence: f64) -> Result<Plot, Error> {
-    Err(Error::render("finger plot", "not yet implemented"))
+///
+/// One panel per relative quantity (J~1, J~2[, J~3]) with its own x axis. Up to
+/// 12 X-rays each point is labelled with its X-ray id; up to 2000 the points are
+/// spread vertically by a fixed sequence; beyond, a histogram keeps the SVG small.
+/// Id `finger-<name>`.
+pub fn finger_plot(f: &FingerAnalysis, confidence: f64) -> Result<Plot, Error> {
+    finger::plot(f, confidence)
 }
 
 /// Hand diagram: the fingers as segments, each joint's mean position with range and prediction band.
-pub fn hand_diagram(_placements: &[FingerPlacement], _confidence: f64) -> Result<Plot, Error> {
-    Err(Error::render("hand diagram", "not yet implemented"))
+///
+/// Every finger is drawn upright at its model length, root joint (MCP) at 0 and
+/// tip at L; distances are in model units. Id `hand`.
+pub fn hand_diagram(placements: &[FingerPlacement], confidence: f64) -> Result<Plot, Error> {
+    hand::plot(placements, confidence)
 }
 
 /// Forest plot of every quantity's intervals side by side.
-pub fn forest_plot(_a: &Analysis) -> Result<Plot, Error> {
-    Err(Error::render("forest plot", "not yet implemented"))
+///
+/// One row per finger and relative quantity, one shared x axis (relative value). Id `forest`.
+pub fn forest_plot(a: &Analysis) -> Result<Plot, Error> {
+    forest::plot(a)
 }
 
 /// Every plot of a report, in display order: one per finger, the hand diagram, the forest plot.
@@ -56,4 +88,13 @@ pub fn all(a: &Analysis, placements: &[FingerPlacement]) -> Result<Vec<Plot>, Er
     plots.push(hand_diagram(placements, a.settings.confidence)?);
     plots.push(forest_plot(a)?);
     Ok(plots)
+}
+
+/// "the thumb", "the index finger (the paper's 'grooming' finger)", "the ring finger".
+fn finger_phrase(f: Finger) -> String {
+    match f {
+        Finger::Thumb => "the thumb".to_string(),
+        Finger::Index => "the index finger (the paper's 'grooming' finger)".to_string(),
+        other => format!("the {} finger", other.name()),
+    }
 }

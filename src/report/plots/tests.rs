@@ -1,0 +1,401 @@
+//! Tests of the plots on the paper's data and on synthetic extremes.
+
+use super::*;
+use crate::analysis::bootstrap::Plan;
+use crate::analysis::placement::place_all;
+use crate::analysis::{
+    DatasetInfo, Quantity, Settings, XrayValues, analyse, describe, quantity_stats,
+};
+use crate::dataset::Dataset;
+use std::path::Path;
+use std::sync::Arc;
+
+const SCRIPT: &str = "<script>alert(1)</script>";
+
+fn paper_csv() -> String {
+    std::fs::read_to_string("data/measurements.csv").unwrap()
+}
+
+fn paper() -> Analysis {
+    let d = Dataset::load(Path::new("data/measurements.csv")).unwrap();
+    analyse(&d, &Settings::default())
+}
+
+fn analysis_of(csv: &str) -> Analysis {
+    let d = Dataset::from_bytes("test.csv", csv.as_bytes()).unwrap();
+    analyse(&d, &Settings::default())
+}
+
+fn count(svg: &str, needle: &str) -> usize {
+    svg.matches(needle).count()
+}
+
+/// Checks that `svg` is well-formed XML as far as the SVG backend can produce
+/// it: tags nest and close, `&` only starts an entity, no stray `<` or `>`.
+fn assert_well_formed(svg: &str) {
+    let mut stack: Vec<&str> = Vec::new();
+    let mut rest = svg;
+    while let Some(start) = rest.find('<') {
+        assert_text(&rest[..start]);
+        let end = rest[start..].find('>').expect("unclosed tag") + start;
+        let tag = &rest[start + 1..end];
+        assert!(!tag.contains('<'), "'<' inside a tag: {tag}");
+        if let Some(name) = tag.strip_prefix('/') {
+            assert_eq!(stack.pop(), Some(name), "mismatched </{name}>");
+        } else if !tag.ends_with('/') {
+            stack.push(tag.split_whitespace().next().unwrap());
+        }
+        assert_attributes(tag);
+        rest = &rest[end + 1..];
+    }
+    assert_text(rest);
+    assert!(stack.is_empty(), "unclosed elements: {stack:?}");
+}
+
+/// Text content: no `>` and only known entities.
+fn assert_text(text: &str) {
+    assert!(!text.contains('>'), "stray '>' in {text:?}");
+    for (i, _) in text.match_indices('&') {
+        let entity = &text[i..];
+        assert!(
+            ["&amp;", "&lt;", "&gt;", "&quot;", "&apos;"]
+                .iter()
+                .any(|e| entity.starts_with(e)),
+            "bad entity at {entity:?}"
+        );
+    }
+}
+
+/// Attribute values are quoted and carry no raw `"` or `&`.
+fn assert_attributes(tag: &str) {
+    assert_eq!(count(tag, "\"") % 2, 0, "unbalanced quotes in {tag}");
+    for value in tag.split('"').skip(1).step_by(2) {
+        assert_text(value);
+    }
+}
+
+/// The accessibility contract: root `role="img"` labelled by a first-child
+/// `<title>` and `<desc>` whose ids start with the plot id.
+fn assert_accessible(p: &Plot) {
+    let svg = &p.svg;
+    assert!(svg.starts_with("<svg "), "{}", &svg[..40]);
+    assert!(svg.trim_end().ends_with("</svg>"));
+    assert_well_formed(svg);
+    let root_end = svg.find('>').unwrap();
+    let root = &svg[..root_end];
+    assert!(root.contains(" role=\"img\""));
+    assert!(root.contains(&format!(" aria-labelledby=\"{}-title\"", p.id)));
+    assert!(root.contains(&format!(" aria-describedby=\"{}-desc\"", p.id)));
+    assert_eq!(count(svg, "<title"), 1);
+    assert_eq!(count(svg, "<desc"), 1);
+    let after = svg[root_end + 1..].trim_start();
+    let title = format!("<title id=\"{}-title\">", p.id);
+    assert!(after.starts_with(&title), "title is not the first child");
+    let after_title = after[after.find("</title>").unwrap() + 8..].trim_start();
+    assert!(after_title.starts_with(&format!("<desc id=\"{}-desc\">", p.id)));
+    assert!(!p.title.is_empty() && !p.description.is_empty());
+}
+
+#[test]
+fn every_plot_of_the_paper_is_accessible_well_formed_svg() {
+    let a = paper();
+    let plots = all(&a, &place_all(&a, 1000.0)).unwrap();
+    let ids: Vec<&str> = plots.iter().map(|p| p.id.as_str()).collect();
+    assert_eq!(
+        ids,
+        [
+            "finger-thumb",
+            "finger-index",
+            "finger-middle",
+            "finger-ring",
+            "finger-little",
+            "hand",
+            "forest"
+        ]
+    );
+    for p in &plots {
+        assert_accessible(p);
+        // The title is drawn in the picture as well.
+        assert!(p.svg.contains(&draw::escape(&p.title)), "{}", p.id);
+        assert!(p.svg.len() < 100_000, "{} is {} bytes", p.id, p.svg.len());
+    }
+    let kinds: Vec<PlotKind> = plots.iter().map(|p| p.kind).collect();
+    assert_eq!(kinds[0], PlotKind::Finger);
+    assert_eq!(kinds[5..], [PlotKind::Hand, PlotKind::Forest]);
+}
+
+#[test]
+fn finger_plot_has_one_marker_per_xray_and_quantity() {
+    let a = paper();
+    for f in &a.fingers {
+        let p = finger_plot(f, 0.95).unwrap();
+        let quantities = if f.finger == Finger::Thumb { 2 } else { 3 };
+        // One circle per X-ray and quantity, and the legend's.
+        assert_eq!(count(&p.svg, "<circle"), f.n * quantities + 1, "{}", p.id);
+        // Every X-ray's id labels its point in every panel.
+        assert_eq!(count(&p.svg, "\n1a\n</text>"), quantities);
+        for label in [
+            "J~1 = J1/J: relative value (fraction of the finger&apos;s total length J, unitless)",
+            "J~2 = J2/J: relative value",
+            "X-rays\n</text>",
+            "n = 5 X-rays.",
+            "t CI\n",
+            "percentile CI\n",
+            "BCa CI\n",
+            "prediction\n",
+            "one X-ray",
+            "mean",
+            "95% CI of the mean (Student t)",
+            "95% CI (bootstrap percentile)",
+            "95% CI (bootstrap BCa)",
+            "95% prediction interval (one new X-ray)",
+        ] {
+            assert!(p.svg.contains(label), "{} lacks {label:?}", p.id);
+        }
+        let has_j3 = p.svg.contains("J~3 = J3/J: relative value");
+        assert_eq!(has_j3, f.finger != Finger::Thumb);
+    }
+}
+
+#[test]
+fn finger_plot_describes_every_value_and_interval() {
+    let a = paper();
+    let p = finger_plot(a.finger(Finger::Index).unwrap(), 0.95).unwrap();
+    assert_eq!(p.id, "finger-index");
+    assert!(
+        p.title
+            .contains("index finger (the paper's 'grooming' finger)")
+    );
+    for text in [
+        "J~1 = J1/J: mean 0.4846",
+        "1d: J~1 0.5047",
+        "BCa CI [",
+        "from 5 X-rays",
+    ] {
+        assert!(p.description.contains(text), "{text}");
+    }
+    // The plain-text description is escaped once inside the SVG.
+    assert!(
+        p.svg
+            .contains("the paper&apos;s &apos;grooming&apos; finger")
+    );
+    assert!(!p.svg.contains("&amp;apos;"));
+}
+
+#[test]
+fn hand_diagram_marks_every_joint_with_range_and_prediction() {
+    let a = paper();
+    let p = hand_diagram(&place_all(&a, 1000.0), 0.95).unwrap();
+    assert_eq!((p.id.as_str(), p.kind), ("hand", PlotKind::Hand));
+    // One mean diamond per inner joint (1 thumb + 4 x 2), and the legend's.
+    assert_eq!(count(&p.svg, "<polygon"), 9 + 1);
+    // Root and tip of five fingers, and the legend's joint.
+    assert_eq!(count(&p.svg, "<circle"), 10 + 1);
+    // The worked example: index PIP at 484.6 of 1000.
+    for label in [
+        "PIP 484.6",
+        "IP ",
+        "DIP ",
+        "MCP\n",
+        "tip\n",
+        "distance from the root joint MCP (model units)",
+        "finger (each drawn at the model length L = 1000)",
+        "root (MCP) and tip",
+        "mean joint position",
+        "observed range (min to max)",
+        "95% prediction interval (one new hand)",
+        "Joint positions on a model hand (L = 1000 model units)",
+    ] {
+        assert!(p.svg.contains(label), "lacks {label:?}");
+    }
+    for finger in ["thumb", "index", "middle", "ring", "little"] {
+        assert!(p.svg.contains(&format!("\n{finger}\n</text>")), "{finger}");
+    }
+    assert!(
+        p.description
+            .contains("index (5 X-rays): PIP at mean 484.6 (observed 472.8 to 504.7")
+    );
+}
+
+#[test]
+fn forest_plot_has_a_row_per_relative_quantity() {
+    let a = paper();
+    let p = forest_plot(&a).unwrap();
+    assert_eq!((p.id.as_str(), p.kind), ("forest", PlotKind::Forest));
+    // 2 thumb rows + 4 x 3: one mean diamond each, and the legend's.
+    assert_eq!(count(&p.svg, "<polygon"), 14 + 1);
+    for label in [
+        "thumb J~1",
+        "thumb J~2",
+        "index J~3",
+        "little J~3",
+        "relative value J~k = Jk/J (fraction of the finger&apos;s total length J, unitless)",
+        "finger and segment",
+        "95% CI (bootstrap BCa)",
+        "95% prediction interval (one new X-ray)",
+    ] {
+        assert!(p.svg.contains(label), "lacks {label:?}");
+    }
+    assert!(!p.svg.contains("thumb J~3"));
+    assert!(p.description.contains("index J~1 = J1/J: mean 0.4846"));
+}
+
+#[test]
+fn user_text_is_escaped_exactly_once() {
+    let csv = paper_csv()
+        .replace("\n1a,", &format!("\n{SCRIPT},"))
+        .replace("\n1b,", "\n\"O'Brien & \"\"Co\"\"\",");
+    let a = analysis_of(&csv);
+    let plots = all(&a, &place_all(&a, 1000.0)).unwrap();
+    for p in &plots {
+        assert_accessible(p);
+        assert!(!p.svg.contains("<script"), "{}", p.id);
+        assert!(!p.svg.contains("&amp;lt;") && !p.svg.contains("&amp;amp;"));
+    }
+    let index = &plots[1];
+    assert!(index.description.contains(SCRIPT));
+    // Whole in the description, clipped in the point labels.
+    assert!(index.svg.contains("&lt;script&gt;alert(1)&lt;/script&gt;"));
+    assert!(
+        index
+            .svg
+            .contains("\n&lt;script&gt;alert(1\u{2026}\n</text>")
+    );
+    assert!(index.svg.contains("O&apos;Brien &amp; &quot;Co&quot;"));
+}
+
+#[test]
+fn renders_are_byte_identical() {
+    let render = || {
+        let a = paper();
+        let p = all(&a, &place_all(&a, 1000.0)).unwrap();
+        p.into_iter().map(|p| p.svg).collect::<Vec<_>>()
+    };
+    assert_eq!(render(), render());
+}
+
+/// A middle finger of `n` synthetic X-rays, without running the bootstrap.
+fn synthetic(n: usize) -> FingerAnalysis {
+    let xrays: Vec<XrayValues> = (0..n)
+        .map(|i| {
+            let t = i as f64;
+            let lengths = vec![
+                40.0 + 3.0 * (0.37 * t).sin(),
+                25.0 + 2.0 * (0.71 * t).cos(),
+                20.0 + (1.13 * t).sin(),
+            ];
+            let total: f64 = lengths.iter().sum();
+            XrayValues {
+                xray: Arc::from(format!("x{i}")),
+                relative: lengths.iter().map(|l| l / total).collect(),
+                lengths,
+                total,
+            }
+        })
+        .collect();
+    let settings = Settings::default();
+    let quantities = Quantity::of(Finger::Middle)
+        .iter()
+        .map(|&q| {
+            let values: Vec<f64> = xrays
+                .iter()
+                .map(|x| match q {
+                    Quantity::RelJ1 => x.relative[0],
+                    Quantity::RelJ2 => x.relative[1],
+                    Quantity::RelJ3 => x.relative[2],
+                    Quantity::Total => x.total,
+                })
+                .collect();
+            // A stand-in bootstrap distribution: means of 64 interleaved subsamples.
+            let boot: Vec<f64> = (0..64)
+                .map(|k| {
+                    let sub: Vec<f64> = values.iter().skip(k).step_by(64).copied().collect();
+                    describe::mean(&sub).unwrap_or(0.0)
+                })
+                .collect();
+            quantity_stats(q, &values, &boot, &[1.0 / 64.0; 64], &settings)
+        })
+        .collect();
+    FingerAnalysis {
+        finger: Finger::Middle,
+        n,
+        xrays,
+        quantities,
+        bootstrap: Plan::Random { resamples: 64 },
+    }
+}
+
+#[test]
+fn a_hundred_thousand_xrays_give_a_small_histogram() {
+    let f = synthetic(100_000);
+    let p = finger_plot(&f, 0.95).unwrap();
+    assert_accessible(&p);
+    assert!(p.svg.len() < 200_000, "{} bytes", p.svg.len());
+    assert_eq!(count(&p.svg, "<circle"), 0);
+    assert!(p.svg.contains("X-rays per bin (histogram)"));
+    assert!(p.svg.contains("n = 100000 X-rays."));
+    assert!(!p.description.contains("x99999"));
+    assert_eq!(p.svg, finger_plot(&f, 0.95).unwrap().svg);
+}
+
+#[test]
+fn points_are_drawn_one_by_one_up_to_the_limit() {
+    let f = synthetic(finger::POINTS_MAX);
+    let p = finger_plot(&f, 0.9).unwrap();
+    assert_accessible(&p);
+    assert_eq!(count(&p.svg, "<circle"), 3 * finger::POINTS_MAX + 1);
+    assert!(p.svg.len() < 1_000_000, "{} bytes", p.svg.len());
+    assert!(p.svg.contains("90% CI (bootstrap BCa)"));
+    // Past the labelled limit, points carry no ids.
+    assert!(!p.svg.contains("\nx7\n</text>"));
+}
+
+#[test]
+fn a_single_xray_draws_without_intervals() {
+    let csv = "xray,finger,j1,j2,j3\nonly,index,40,25,20\nonly,thumb,30,25,\n";
+    let a = analysis_of(csv);
+    let plots = all(&a, &place_all(&a, 50.0)).unwrap();
+    assert_eq!(plots.len(), 4);
+    for p in &plots {
+        assert_accessible(p);
+    }
+    assert!(plots[0].svg.contains("not available (n = 1)"));
+    assert!(plots[2].svg.contains("L = 50 model units"));
+    assert!(plots[3].svg.contains("no intervals (n = 1)"));
+    assert!(plots[0].description.contains("from 1 X-ray."));
+}
+
+#[test]
+fn empty_and_non_finite_inputs_render_without_panicking() {
+    let hand = hand_diagram(&[], 0.95).unwrap();
+    assert_accessible(&hand);
+    assert!(hand.svg.contains("no finger in the data"));
+    let mut a = paper();
+    a.fingers.clear();
+    a.dataset = DatasetInfo {
+        xrays: 0,
+        rows: 0,
+        ..a.dataset
+    };
+    let forest = forest_plot(&a).unwrap();
+    assert_accessible(&forest);
+    assert!(forest.svg.contains("no finger in the data"));
+    let mut f = synthetic(20);
+    f.xrays[3].relative[0] = f64::NAN;
+    f.quantities[0].mean = f64::INFINITY;
+    f.quantities[1].ci_t = None;
+    let p = finger_plot(&f, 0.95).unwrap();
+    assert_accessible(&p);
+}
+
+#[test]
+fn escape_handles_every_special_character() {
+    assert_eq!(
+        draw::escape("a<b>&\"c\"'d'\u{1}"),
+        "a&lt;b&gt;&amp;&quot;c&quot;&apos;d&apos; "
+    );
+    assert_eq!(draw::level(0.95), "95%");
+    assert_eq!(draw::level(0.975), "97.5%");
+    assert_eq!(draw::short(1000.0, 4), "1000");
+    assert_eq!(draw::clip("abcdef", 4), "abc\u{2026}");
+}
