@@ -102,7 +102,7 @@ pub struct ReportArgs {
     #[command(flatten)]
     pub boot: BootArgs,
     /// Total length of the model finger for the joint-placement section, in model units
-    #[arg(long, value_name = "L", default_value_t = 1000.0, value_parser = parse_length)]
+    #[arg(long, value_name = "L", default_value_t = 1000.0, value_parser = parse_length, allow_negative_numbers = true)]
     pub model_length: f64,
     /// Formats to write, comma-separated
     #[arg(long, value_enum, value_delimiter = ',', default_values_t = [ReportFormat::Html, ReportFormat::Md, ReportFormat::Json])]
@@ -150,7 +150,7 @@ pub struct BootArgs {
     #[arg(long, value_name = "S", default_value_t = analysis::DEFAULT_SEED)]
     pub seed: u64,
     /// Confidence level of every interval, strictly between 0 and 1
-    #[arg(long, value_name = "C", default_value_t = analysis::DEFAULT_CONFIDENCE, value_parser = parse_confidence)]
+    #[arg(long, value_name = "C", default_value_t = analysis::DEFAULT_CONFIDENCE, value_parser = parse_confidence, allow_negative_numbers = true)]
     pub confidence: f64,
 }
 
@@ -272,7 +272,7 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
             };
             let rows = coverage::of_analysis(&a, &s);
             let bytes = match format {
-                TextFormat::Table => report::text::coverage(&rows, s.confidence).into_bytes(),
+                TextFormat::Table => report::text::coverage(&rows, &s).into_bytes(),
                 TextFormat::Json => report::json::coverage(&a.dataset, &s, &rows)?,
             };
             print(&bytes)?;

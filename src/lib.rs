@@ -6,6 +6,7 @@
 //! (statistics, bootstrap, claims) -> [`report`] (views, plots, writers).
 
 pub mod analysis;
+pub mod atomic;
 pub mod cli;
 pub mod dataset;
 pub mod error;

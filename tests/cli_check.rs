@@ -239,7 +239,7 @@ fn claims_about_an_xray_the_dataset_lacks() {
 }
 
 #[test]
-#[ignore = "bug: Claims::check_against hard-codes columns 4 (finger) and 5 (xray); a claims file with reordered columns gets wrong column numbers"]
+
 fn dataset_mismatch_problems_use_the_real_column() {
     let wd = Workdir::new();
     wd.copy_paper_data();
@@ -254,7 +254,7 @@ fn dataset_mismatch_problems_use_the_real_column() {
 }
 
 #[test]
-#[ignore = "bug: the printed precision of a stated value in exponent notation counts the exponent (`4.846e-1` is taken as 6 decimals, not 4, so check exits 1)"]
+
 fn exponent_notation_keeps_its_precision() {
     let wd = Workdir::new();
     wd.copy_paper_data();

@@ -175,14 +175,14 @@ fn duplicate_xray_and_finger() {
     // Aliases count: 'grooming' is the index finger.
     let run = one_problem(
         &with_bad_line3("1a,grooming,1,2,3"),
-        "m.csv:3: ",
+        "m.csv:3:1: xray: ",
         "duplicate row",
     );
     run.stderr_has("X-ray '1a'").stderr_has("on line 2");
 }
 
 #[test]
-#[ignore = "bug: the duplicate-row problem has no column and field (prints `m.csv:3: duplicate row ...`, not `m.csv:3:1: xray: ...`)"]
+
 fn duplicate_row_names_its_column() {
     one_problem(
         &with_bad_line3("1a,index,1,2,3"),
@@ -276,7 +276,7 @@ xray,finger,j1,j2,j3
         "bad.csv:4:3: j1: ",
         "bad.csv:6:5: j3: ",
         "bad.csv:7:5: j3: ",
-        "bad.csv:8: ",
+        "bad.csv:8:1: xray: ",
         "bad.csv:9:4: j2: ",
         "bad.csv:9:5: j3: ",
     ];
@@ -320,7 +320,7 @@ fn line_numbers_survive_bom_crlf_blank_lines_and_quoted_newlines() {
 }
 
 #[test]
-#[ignore = "bug: with CR-only line ends (old Mac) every problem is reported on line 1"]
+
 fn line_numbers_with_cr_only_line_ends() {
     one_problem(
         b"xray,finger,j1,j2,j3\r1a,index,1,2,3\r1b,index,x,2,3\r",
@@ -330,7 +330,7 @@ fn line_numbers_with_cr_only_line_ends() {
 }
 
 #[test]
-#[ignore = "bug: a non-UTF-8 field's problem lacks the field name (prints `m.csv:2:2: is not UTF-8`, not `m.csv:2:2: finger: ...`)"]
+
 fn non_utf8_problem_names_its_field() {
     one_problem(
         b"xray,finger,j1,j2,j3\n1a,ind\xFFex,1,2,3\n",

@@ -12,6 +12,7 @@ pub mod coverage;
 pub mod describe;
 pub mod placement;
 pub mod rng;
+pub mod tracking;
 
 use crate::dataset::{Dataset, Finger, Row};
 use bootstrap::{Plan, Sorted};

@@ -142,6 +142,19 @@ pub struct Claim {
 pub struct Claims {
     pub path: String,
     pub claims: Vec<Claim>,
+    /// 1-based column of each of [`CLAIM_COLUMNS`] in the file.
+    pub columns: Vec<usize>,
+}
+
+/// Decimal places a number is printed to: `0.0319` -> 4, `31.9` -> 1,
+/// `4.846e-1` -> 4 (mantissa decimals minus the exponent), never below 0.
+pub fn printed_decimals(text: &str) -> usize {
+    let (mantissa, exponent) = match text.find(['e', 'E']) {
+        Some(i) => (&text[..i], text[i + 1..].parse::<i64>().unwrap_or(0)),
+        None => (text, 0),
+    };
+    let digits = mantissa.split_once('.').map_or(0, |(_, d)| d.len()) as i64;
+    (digits - exponent).max(0) as usize
 }
 
 impl Claims {
@@ -303,7 +316,7 @@ impl Claims {
                     None
                 }
             };
-            let decimals = stated_text.split_once('.').map_or(0, |(_, d)| d.len());
+            let decimals = printed_decimals(&stated_text);
             let erratum = match get(9).unwrap_or("").to_ascii_lowercase().as_str() {
                 "" | "no" => None,
                 "yes" => Some(get(10).unwrap_or("").to_string()),
@@ -339,10 +352,16 @@ impl Claims {
         if records == 0 && problems.is_empty() {
             problems.push(Problem::file("has a header but no claims"));
         }
+        problems.sort_by_key(|p| (p.line.unwrap_or(0), p.column.unwrap_or(0)));
         if problems.is_empty() {
             Ok(Claims {
                 path: label.to_string(),
                 claims,
+                columns: header
+                    .positions
+                    .iter()
+                    .map(|p| p.map_or(0, |p| p + 1))
+                    .collect(),
             })
         } else {
             Err(DataError {
@@ -362,7 +381,7 @@ impl Claims {
             if !fingers.contains(&c.finger) {
                 problems.push(Problem::field(
                     c.line,
-                    4,
+                    self.columns.get(3).copied().unwrap_or(0),
                     "finger",
                     format!(
                         "the dataset {} has no {} rows; fix the claim or the --data path",
@@ -374,7 +393,7 @@ impl Claims {
             {
                 problems.push(Problem::field(
                     c.line,
-                    5,
+                    self.columns.get(4).copied().unwrap_or(0),
                     "xray",
                     format!(
                         "the dataset {} has no {} row for X-ray {}",
@@ -393,5 +412,20 @@ impl Claims {
                 problems,
             })
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::printed_decimals;
+
+    #[test]
+    fn decimals_as_printed() {
+        assert_eq!(printed_decimals("0.0319"), 4);
+        assert_eq!(printed_decimals("31.9"), 1);
+        assert_eq!(printed_decimals("5"), 0);
+        assert_eq!(printed_decimals("4.846e-1"), 4);
+        assert_eq!(printed_decimals("4.846E2"), 1);
+        assert_eq!(printed_decimals("5e3"), 0);
     }
 }

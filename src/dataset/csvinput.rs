@@ -115,9 +115,13 @@ impl<'a> CsvScan<'a> {
         while start < self.bytes.len() && matches!(self.bytes[start], b'\r' | b'\n') {
             start += 1;
         }
-        let newlines = self.bytes[self.cursor.0..start]
-            .iter()
-            .filter(|&&b| b == b'\n')
+        // A line ends at LF, at CRLF (counted at its LF), or at a lone CR (old Mac files).
+        let newlines = (self.cursor.0..start)
+            .filter(|&i| match self.bytes[i] {
+                b'\n' => true,
+                b'\r' => self.bytes.get(i + 1) != Some(&b'\n'),
+                _ => false,
+            })
             .count() as u64;
         self.cursor = (start, self.cursor.1 + newlines);
         self.cursor.1

@@ -5,10 +5,12 @@
 //! thumb. [`Dataset::load`] reads a whole file and either returns every row or
 //! a [`DataError`] listing every problem in the file with its line and column.
 
+pub mod append;
 pub mod claims;
 pub mod csvinput;
 pub mod error;
 pub mod finger;
+pub mod history;
 
 pub use error::{DataError, Problem};
 pub use finger::Finger;
@@ -72,6 +74,8 @@ pub struct Dataset {
     pub path: String,
     /// SHA-256 of the file's bytes, lower-case hex.
     pub sha256: String,
+    /// Column names of the header, lower-case, in file order.
+    pub columns: Vec<String>,
     /// Rows in file order.
     pub rows: Vec<Row>,
 }
@@ -86,10 +90,11 @@ impl Dataset {
     /// Validates the bytes of a measurement file; `label` names it in errors.
     pub fn from_bytes(label: &str, bytes: &[u8]) -> Result<Dataset, DataError> {
         let sha256 = sha256_hex(bytes);
-        let rows = parse_rows(label, bytes)?;
+        let (columns, rows) = parse_rows(label, bytes)?;
         Ok(Dataset {
             path: label.to_string(),
             sha256,
+            columns,
             rows,
         })
     }
@@ -213,11 +218,15 @@ struct XrayMeta {
     unit: Option<Arc<str>>,
 }
 
-fn parse_rows(label: &str, bytes: &[u8]) -> Result<Vec<Row>, DataError> {
+fn parse_rows(label: &str, bytes: &[u8]) -> Result<(Vec<String>, Vec<Row>), DataError> {
     let mut problems = Vec::new();
     let mut scan = CsvScan::new(label, bytes)?;
+    let mut header_line = 0;
     let header = match scan.next_record(&mut problems) {
-        Some(rec) => Header::parse(&rec, &REQUIRED_COLUMNS, &OPTIONAL_COLUMNS, &mut problems),
+        Some(rec) => {
+            header_line = rec.line;
+            Header::parse(&rec, &REQUIRED_COLUMNS, &OPTIONAL_COLUMNS, &mut problems)
+        }
         None => {
             problems.push(Problem::file(
                 "has no header line; start it with xray,finger,j1,j2,j3",
@@ -258,8 +267,10 @@ fn parse_rows(label: &str, bytes: &[u8]) -> Result<Vec<Row>, DataError> {
         if let Some(row) = parse_row(&rec, &header, &mut interner, &mut problems) {
             match seen.entry((row.xray.clone(), row.finger)) {
                 Entry::Occupied(first) => {
-                    problems.push(Problem::line(
+                    problems.push(Problem::field(
                         row.line,
+                        header.positions[XRAY].map_or(0, |p| p + 1),
+                        "xray",
                         format!(
                             "duplicate row: X-ray {} already has a {} row on line {}; remove one or correct the X-ray id",
                             quote(&row.xray),
@@ -282,8 +293,16 @@ fn parse_rows(label: &str, bytes: &[u8]) -> Result<Vec<Row>, DataError> {
             "has a header but no data rows; add one row per X-ray and finger",
         ));
     }
+    // Byte-level problems (non-UTF-8, NUL) know their column; name its field.
+    for p in &mut problems {
+        if let (None, Some(c), Some(l)) = (&p.field, p.column, p.line)
+            && l > header_line
+        {
+            p.field = header.names.get(c - 1).filter(|n| !n.is_empty()).cloned();
+        }
+    }
     if problems.is_empty() {
-        Ok(rows)
+        Ok((header.names, rows))
     } else {
         problems.sort_by_key(|p| (p.line.unwrap_or(0), p.column.unwrap_or(0)));
         Err(DataError {

@@ -158,8 +158,18 @@ fn duplicate_xray_finger() {
     one(
         &format!("{HEADER}a,index,1,2,3\nb,index,1,2,3\na,grooming,1,2,3\n"),
         4,
-        None,
+        Some(1),
         "already has a index row on line 2",
+    );
+}
+
+#[test]
+fn cr_only_line_ends_count_lines() {
+    one(
+        "xray,finger,j1,j2,j3\r\ra,index,1,2,3\rb,index,x,2,3\r",
+        4,
+        Some(3),
+        "not a number",
     );
 }
 
@@ -182,6 +192,7 @@ fn non_utf8_bytes() {
     let p = Dataset::from_bytes("t.csv", &bytes).unwrap_err().problems;
     assert_eq!(p.len(), 1);
     assert_eq!((p[0].line, p[0].column), (Some(3), Some(1)));
+    assert_eq!(p[0].field.as_deref(), Some("xray"));
     assert!(p[0].message.contains("not UTF-8"));
 }
 

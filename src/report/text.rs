@@ -3,7 +3,7 @@
 use super::format::{decimals, interval, num, opt, percent};
 use crate::analysis::Analysis;
 use crate::analysis::claims::{CheckSummary, ClaimResult};
-use crate::analysis::coverage::QuantityCoverage;
+use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
 use comfy_table::{CellAlignment, ContentArrangement, Table, presets};
 
 fn table(header: &[&str], right_from: usize) -> Table {
@@ -88,6 +88,7 @@ pub fn check(results: &[ClaimResult]) -> String {
                     num(x, r.decimals)
                 )
             }
+            _ if r.decimals == 0 && r.computed.fract() == 0.0 => num(r.computed, 0),
             _ => num(r.computed, r.decimals + 2),
         };
         t.add_row(vec![
@@ -127,7 +128,7 @@ pub fn check(results: &[ClaimResult]) -> String {
 }
 
 /// The simulated coverage of each interval method, per finger and quantity.
-pub fn coverage(rows: &[QuantityCoverage], confidence: f64) -> String {
+pub fn coverage(rows: &[QuantityCoverage], settings: &CoverageSettings) -> String {
     let mut t = table(
         &[
             "finger",
@@ -140,7 +141,6 @@ pub fn coverage(rows: &[QuantityCoverage], confidence: f64) -> String {
         ],
         2,
     );
-    let mut sims = 0;
     for r in rows {
         let mut row = vec![
             r.finger.name().to_string(),
@@ -148,10 +148,7 @@ pub fn coverage(rows: &[QuantityCoverage], confidence: f64) -> String {
             r.n.to_string(),
         ];
         match &r.coverage {
-            Some(c) => {
-                sims = c.sims;
-                row.extend(c.methods.iter().map(|m| percent(m.coverage)));
-            }
+            Some(c) => row.extend(c.methods.iter().map(|m| percent(m.coverage))),
             None => row.extend(std::iter::repeat_n(r.note.clone().unwrap_or_default(), 4)),
         }
         t.add_row(row);
@@ -159,6 +156,7 @@ pub fn coverage(rows: &[QuantityCoverage], confidence: f64) -> String {
     format!(
         "Simulated coverage of nominal {} intervals ({sims} simulated datasets per sample size; normal model fitted to each quantity).\n\
          Confidence intervals are checked against the model mean; the prediction interval against one new draw.\n{t}\n",
-        percent(confidence)
+        percent(settings.confidence),
+        sims = settings.sims
     )
 }

@@ -456,6 +456,8 @@ fn claims(file: &str, results: &[ClaimResult]) -> ClaimsView {
                     num(r.computed, r.decimals + 2),
                     num(x, r.decimals)
                 ),
+                // Counts (printed without decimals) stay whole numbers.
+                _ if r.decimals == 0 && r.computed.fract() == 0.0 => num(r.computed, 0),
                 _ => num(r.computed, r.decimals + 2),
             };
             ClaimRow {

@@ -1,7 +1,7 @@
 //! The one place that writes report files: all or nothing, each file atomically.
 
+use crate::atomic;
 use crate::error::Error;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// A rendered output file: its path relative to the output directory, and its bytes.
@@ -37,21 +37,12 @@ pub fn write_all(dir: &Path, files: &[OutputFile]) -> Result<(), Error> {
     let mut staged = Vec::with_capacity(files.len());
     for f in files {
         let target = dir.join(&f.path);
-        let parent = target.parent().unwrap_or(dir).to_path_buf();
-        std::fs::create_dir_all(&parent).map_err(write_err(&parent))?;
-        let mut tmp = tempfile::Builder::new()
-            .prefix(".phalanx-")
-            .suffix(".tmp")
-            .tempfile_in(&parent)
-            .map_err(write_err(&target))?;
-        tmp.write_all(&f.bytes).map_err(write_err(&target))?;
-        tmp.as_file().sync_all().map_err(write_err(&target))?;
+        let tmp = atomic::stage(&target, &f.bytes).map_err(write_err(&target))?;
         staged.push((tmp, target));
     }
     let mut written: Vec<PathBuf> = Vec::new();
     for (tmp, target) in staged {
-        tmp.persist(&target)
-            .map_err(|e| write_err(&target)(e.error))?;
+        atomic::commit(tmp, &target).map_err(write_err(&target))?;
         written.push(target);
     }
     remove_stale_plots(&written)?;

@@ -1,0 +1,269 @@
+//! Tracking a growing dataset: snapshots, changes between them, outlier flags,
+//! and how many X-rays a target precision needs.
+
+use super::{Analysis, Interval, Quantity, describe, xray_values};
+use crate::dataset::Row;
+use crate::dataset::history::{FingerCount, QuantityRecord, Snapshot, SnapshotSettings};
+use serde::Serialize;
+
+fn pair(i: Option<Interval>) -> Option<[f64; 2]> {
+    i.map(|i| [i.low, i.high])
+}
+
+/// The history record of an analysis.
+pub fn snapshot(a: &Analysis, time: String, event: &str) -> Snapshot {
+    Snapshot {
+        time,
+        event: event.to_string(),
+        dataset: a.dataset.path.clone(),
+        sha256: a.dataset.sha256.clone(),
+        xrays: a.dataset.xrays,
+        fingers: a
+            .fingers
+            .iter()
+            .map(|f| FingerCount {
+                finger: f.finger.name().to_string(),
+                n: f.n,
+            })
+            .collect(),
+        settings: SnapshotSettings {
+            resamples: a.settings.resamples,
+            seed: a.settings.seed,
+            confidence: a.settings.confidence,
+        },
+        quantities: a
+            .fingers
+            .iter()
+            .flat_map(|f| {
+                f.quantities.iter().map(move |q| QuantityRecord {
+                    finger: f.finger.name().to_string(),
+                    quantity: q.name.name().to_string(),
+                    n: q.n,
+                    mean: q.mean,
+                    sd: q.sd,
+                    ci_t: pair(q.ci_t),
+                    ci_percentile: pair(q.ci_percentile),
+                    ci_bca: pair(q.ci_bca),
+                    pi: pair(q.pi),
+                })
+            })
+            .collect(),
+    }
+}
+
+/// How one quantity moved between two snapshots.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Change {
+    pub finger: String,
+    pub quantity: String,
+    pub n_before: usize,
+    pub n_after: usize,
+    pub mean_before: f64,
+    pub mean_after: f64,
+    /// mean_after - mean_before.
+    pub mean_shift: f64,
+    /// Width of the t interval before and after; null where undefined.
+    pub ci_width_before: Option<f64>,
+    pub ci_width_after: Option<f64>,
+}
+
+/// Changes of every quantity present in both snapshots, in the order of `after`.
+pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
+    after
+        .quantities
+        .iter()
+        .filter_map(|q| {
+            let b = before
+                .quantities
+                .iter()
+                .find(|p| p.finger == q.finger && p.quantity == q.quantity)?;
+            let width = |i: Option<[f64; 2]>| i.map(|[lo, hi]| hi - lo);
+            Some(Change {
+                finger: q.finger.clone(),
+                quantity: q.quantity.clone(),
+                n_before: b.n,
+                n_after: q.n,
+                mean_before: b.mean,
+                mean_after: q.mean,
+                mean_shift: q.mean - b.mean,
+                ci_width_before: width(b.ci_t),
+                ci_width_after: width(q.ci_t),
+            })
+        })
+        .collect()
+}
+
+/// Largest n [`xrays_needed`] searches.
+pub const MAX_NEEDED: usize = 100_000_000;
+
+/// The smallest number of X-rays n >= 2 whose t interval half-width
+/// t_{(1+c)/2, n-1} * sd / sqrt(n) is at most `target`, taking the SD as known.
+/// `None` when more than [`MAX_NEEDED`] would be needed or the input is unusable.
+/// Cost: O(log n) quantile evaluations (bisection on a monotone function).
+pub fn xrays_needed(sd: f64, target: f64, confidence: f64) -> Option<usize> {
+    if !(sd.is_finite() && target.is_finite() && target > 0.0 && sd >= 0.0) {
+        return None;
+    }
+    let half =
+        |n: usize| describe::t_quantile(confidence, n - 1).map(|t| t * sd / (n as f64).sqrt());
+    if half(2)? <= target {
+        return Some(2);
+    }
+    if half(MAX_NEEDED)? > target {
+        return None;
+    }
+    // half(n) decreases in n: bisect for the first n with half(n) <= target.
+    let (mut lo, mut hi) = (2usize, MAX_NEEDED);
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if half(mid)? <= target {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Some(hi)
+}
+
+/// A new row's value that falls outside what the current data predicts.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Flag {
+    pub xray: String,
+    pub finger: String,
+    pub quantity: String,
+    pub value: f64,
+    /// The prediction interval it falls outside.
+    pub interval: [f64; 2],
+    /// Why this is flagged and what may be wrong, in words.
+    pub reason: String,
+}
+
+/// Compares a new row's relative values with the prediction intervals of the
+/// current analysis: a value outside is flagged as a likely measurement or
+/// typing error, with a hint when one length 10 times too large or too small
+/// explains it (a misplaced decimal point).
+pub fn flag_row(a: &Analysis, row: &Row) -> Vec<Flag> {
+    let Some(fa) = a.finger(row.finger) else {
+        return Vec::new();
+    };
+    let inside = |r: &Row| {
+        let x = xray_values(r);
+        Quantity::of(r.finger)
+            .iter()
+            .filter(|q| q.is_relative())
+            .enumerate()
+            .all(|(k, q)| {
+                fa.quantity(*q)
+                    .and_then(|s| s.pi)
+                    .is_none_or(|pi| pi.contains(x.relative[k]))
+            })
+    };
+    let hint = (0..row.finger.segments())
+        .flat_map(|k| [(k, 10.0), (k, 0.1)])
+        .find(|&(k, factor)| {
+            let mut fixed = row.clone();
+            fixed.lengths[k] *= factor;
+            inside(&fixed)
+        })
+        .map(|(k, factor)| {
+            format!(
+                "; j{} looks 10 times too {} (a misplaced decimal point?)",
+                k + 1,
+                if factor < 1.0 { "large" } else { "small" }
+            )
+        })
+        .unwrap_or_default();
+    let x = xray_values(row);
+    Quantity::of(row.finger)
+        .iter()
+        .filter(|q| q.is_relative())
+        .enumerate()
+        .filter_map(|(k, &q)| {
+            let s = fa.quantity(q)?;
+            let pi = s.pi?;
+            let v = x.relative[k];
+            (!pi.contains(v)).then(|| Flag {
+                xray: row.xray.to_string(),
+                finger: row.finger.name().to_string(),
+                quantity: q.name().to_string(),
+                value: v,
+                interval: [pi.low, pi.high],
+                reason: format!(
+                    "{} {} of X-ray '{}' is {:.4}, outside the {}% prediction interval [{:.4}, {:.4}] of the current {} X-rays: a likely measurement or typing error{hint}",
+                    row.finger,
+                    q.label(),
+                    row.xray,
+                    v,
+                    (100.0 * a.settings.confidence).round(),
+                    pi.low,
+                    pi.high,
+                    s.n
+                ),
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::{Settings, analyse};
+    use crate::dataset::Dataset;
+    use std::path::Path;
+
+    fn paper() -> (Dataset, Analysis) {
+        let d = Dataset::load(Path::new("data/measurements.csv")).unwrap();
+        let a = analyse(&d, &Settings::default());
+        (d, a)
+    }
+
+    #[test]
+    fn needed_xrays_by_hand() {
+        // sd 0.0131 (index J~1), target 0.005, 95%: the normal approximation gives
+        // (1.96 * 0.0131 / 0.005)^2 = 26.4; with t quantiles n = 29 (scipy: t.ppf(.975, 28) * 0.0131 / sqrt(29)
+        // = 0.00498, t.ppf(.975, 27) * 0.0131 / sqrt(28) = 0.00508).
+        assert_eq!(xrays_needed(0.0131, 0.005, 0.95), Some(29));
+        assert_eq!(xrays_needed(0.0, 0.005, 0.95), Some(2));
+        assert_eq!(xrays_needed(1.0, 1e-9, 0.95), None);
+        assert_eq!(xrays_needed(f64::NAN, 0.005, 0.95), None);
+    }
+
+    #[test]
+    fn a_tenfold_typo_is_flagged_with_a_hint() {
+        let (_, a) = paper();
+        let text = "xray,finger,j1,j2,j3\nnew,index,3399.6,188.83,169.67\nok,index,340,189,170\n";
+        let d = Dataset::from_bytes("n.csv", text.as_bytes()).unwrap();
+        let flags = flag_row(&a, &d.rows[0]);
+        assert!(!flags.is_empty());
+        assert!(
+            flags[0].reason.contains("j1 looks 10 times too large"),
+            "{}",
+            flags[0].reason
+        );
+        assert!(flag_row(&a, &d.rows[1]).is_empty());
+    }
+
+    #[test]
+    fn snapshot_and_changes() {
+        let (d, a) = paper();
+        let s1 = snapshot(&a, "t1".into(), "snapshot");
+        assert_eq!(s1.quantities.len(), 19);
+        assert_eq!(s1.xrays, 5);
+        let mut d2 = d.clone();
+        let extra =
+            Dataset::from_bytes("n.csv", b"xray,finger,j1,j2,j3\nz,index,350,190,170\n").unwrap();
+        d2.rows.extend(extra.rows);
+        let s2 = snapshot(&analyse(&d2, &Settings::default()), "t2".into(), "add");
+        let c = changes(&s1, &s2);
+        assert_eq!(c.len(), 19);
+        let idx = c
+            .iter()
+            .find(|c| c.finger == "index" && c.quantity == "rel_j1")
+            .unwrap();
+        assert_eq!((idx.n_before, idx.n_after), (5, 6));
+        let expect = (0.484636 * 5.0 + 350.0 / 710.0) / 6.0 - 0.484636;
+        assert!((idx.mean_shift - expect).abs() < 1e-5, "{}", idx.mean_shift);
+        let thumb = c.iter().find(|c| c.finger == "thumb").unwrap();
+        assert_eq!(thumb.mean_shift, 0.0);
+    }
+}

@@ -1,0 +1,79 @@
+//! Atomic file replacement: the one mechanism behind every file phalanx writes.
+//!
+//! A file is written in full to a temporary file beside its target, synced, and
+//! renamed over the target, so a reader (or a crash) sees the old or the new
+//! content, never a mix.
+
+use std::io::Write;
+use std::path::Path;
+use tempfile::NamedTempFile;
+
+/// Writes `bytes` to a synced temporary file in the directory of `target`
+/// (created if missing). Rename it into place with [`commit`].
+pub fn stage(target: &Path, bytes: &[u8]) -> std::io::Result<NamedTempFile> {
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    std::fs::create_dir_all(dir)?;
+    let mut tmp = tempfile::Builder::new()
+        .prefix(".phalanx-")
+        .suffix(".tmp")
+        .tempfile_in(dir)?;
+    tmp.write_all(bytes)?;
+    // Temporary files are private (0600); the result gets the target's
+    // permissions, or the usual 0644 for a new file, so reports can be served.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(target).map_or(0o644, |m| m.permissions().mode());
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(mode))?;
+    }
+    tmp.as_file().sync_all()?;
+    Ok(tmp)
+}
+
+/// Renames a staged file over `target` and syncs the directory so the rename is durable.
+pub fn commit(staged: NamedTempFile, target: &Path) -> std::io::Result<()> {
+    staged.persist(target).map_err(|e| e.error)?;
+    if let Some(dir) = target.parent().filter(|d| !d.as_os_str().is_empty()) {
+        // Directory fsync is best effort: not every platform or file system allows it.
+        if let Ok(d) = std::fs::File::open(dir) {
+            let _ = d.sync_all();
+        }
+    }
+    Ok(())
+}
+
+/// Replaces `target` with `bytes` atomically.
+pub fn replace(target: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    commit(stage(target, bytes)?, target)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn replaces_content_and_leaves_no_temporary_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("a.csv");
+        std::fs::write(&p, "old").unwrap();
+        replace(&p, b"new").unwrap();
+        assert_eq!(std::fs::read_to_string(&p).unwrap(), "new");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let fresh = dir.path().join("b.csv");
+            replace(&fresh, b"x").unwrap();
+            let mode = std::fs::metadata(&fresh).unwrap().permissions().mode() & 0o777;
+            assert_eq!(mode, 0o644);
+            std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o600)).unwrap();
+            replace(&p, b"newer").unwrap();
+            let mode = std::fs::metadata(&p).unwrap().permissions().mode() & 0o777;
+            assert_eq!(mode, 0o600, "the target's permissions are kept");
+        }
+    }
+}

@@ -1,0 +1,292 @@
+//! Appending new X-rays to a dataset file: validated, locked, atomic.
+//!
+//! The existing bytes are kept as they are (only a missing final line end is
+//! added); new rows go after them in the file's own column order. The caller
+//! holds a [`DatasetLock`] from reading to replacing the file, so concurrent
+//! additions serialise instead of losing each other's rows.
+
+use super::csvinput::quote;
+use super::{DataError, Dataset, Problem, Row};
+use std::collections::HashMap;
+use std::fs::{File, OpenOptions};
+use std::path::{Path, PathBuf};
+
+/// An exclusive advisory lock on a dataset (on `<dataset>.lock` beside it,
+/// since the dataset itself is replaced by rename). Released when dropped.
+pub struct DatasetLock {
+    _file: File,
+    pub path: PathBuf,
+}
+
+impl DatasetLock {
+    /// Blocks until the lock on `data` is ours.
+    pub fn acquire(data: &Path) -> std::io::Result<DatasetLock> {
+        let mut name = data.as_os_str().to_owned();
+        name.push(".lock");
+        let path = PathBuf::from(name);
+        let file = OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&path)?;
+        file.lock()?;
+        Ok(DatasetLock { _file: file, path })
+    }
+}
+
+/// Parses new rows given on the command line as one CSV row; problems name the
+/// option they came from instead of a line.
+pub fn single_row(fields: &[(&str, String)]) -> Result<Dataset, DataError> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let header: Vec<&str> = fields.iter().map(|(k, _)| *k).collect();
+    let values: Vec<&str> = fields.iter().map(|(_, v)| v.as_str()).collect();
+    let bytes = w
+        .write_record(&header)
+        .and_then(|_| w.write_record(&values))
+        .map_err(|e| e.to_string())
+        .and_then(|_| w.into_inner().map_err(|e| e.to_string()))
+        .map_err(|e| DataError::whole_file("<command line>", e))?;
+    Dataset::from_bytes("<command line>", &bytes).map_err(|mut e| {
+        for p in &mut e.problems {
+            p.line = None;
+            p.column = None;
+            if let Some(f) = p.field.take() {
+                p.message = format!("--{}: {}", option_of(&f), p.message);
+            }
+        }
+        e
+    })
+}
+
+/// The `add` option a column comes from.
+fn option_of(column: &str) -> &str {
+    match column {
+        "j1" | "j2" | "j3" => "lengths",
+        other => other,
+    }
+}
+
+/// Formats a length so that it parses back to the same `f64`.
+fn length_text(x: f64) -> String {
+    format!("{x}")
+}
+
+/// One field of a row, by column name.
+fn field_of(row: &Row, column: &str) -> String {
+    let s = |v: &Option<std::sync::Arc<str>>| v.as_deref().unwrap_or("").to_string();
+    match column {
+        "xray" => row.xray.to_string(),
+        "finger" => row.finger.name().to_string(),
+        "j1" => length_text(row.lengths[0]),
+        "j2" => length_text(row.lengths[1]),
+        "j3" if row.finger.segments() == 3 => length_text(row.lengths[2]),
+        "sex" => s(&row.meta.sex),
+        "age" => row.meta.age.map_or_else(String::new, |a| a.to_string()),
+        "side" => s(&row.meta.side),
+        "source" => s(&row.meta.source),
+        "unit" => s(&row.meta.unit),
+        _ => String::new(),
+    }
+}
+
+/// The bytes of the dataset with `new` appended, after checking that the new rows
+/// fit it: no (X-ray, finger) already present, the same sex/age/side/unit as
+/// existing rows of the same X-ray, and no metadata for a column the file lacks.
+/// Problems name the new rows' lines in `new.path`.
+pub fn appended_bytes(
+    current_bytes: &[u8],
+    current: &Dataset,
+    new: &Dataset,
+) -> Result<Vec<u8>, DataError> {
+    let mut problems = Vec::new();
+    let existing: HashMap<(&str, super::Finger), &Row> = current
+        .rows
+        .iter()
+        .map(|r| ((&*r.xray, r.finger), r))
+        .collect();
+    let mut by_xray: HashMap<&str, &Row> = HashMap::new();
+    for r in &current.rows {
+        by_xray.entry(&r.xray).or_insert(r);
+    }
+    for r in &new.rows {
+        if let Some(old) = existing.get(&(&*r.xray, r.finger)) {
+            problems.push(Problem::line(
+                r.line,
+                format!(
+                    "X-ray {} already has a {} row in {} (line {}); existing rows are never replaced. Use another X-ray id, or edit the dataset by hand",
+                    quote(&r.xray),
+                    r.finger,
+                    current.path,
+                    old.line
+                ),
+            ));
+        }
+        if let Some(old) = by_xray.get(&*r.xray) {
+            for (name, ours, theirs) in [
+                ("sex", field_of(r, "sex"), field_of(old, "sex")),
+                ("age", field_of(r, "age"), field_of(old, "age")),
+                ("side", field_of(r, "side"), field_of(old, "side")),
+                ("unit", field_of(r, "unit"), field_of(old, "unit")),
+            ] {
+                if ours != theirs {
+                    problems.push(Problem::line(
+                        r.line,
+                        format!(
+                            "{name} is {} but {} line {} gives {} for the same X-ray {}; one hand has one value",
+                            if ours.is_empty() { "empty".into() } else { quote(&ours) },
+                            current.path,
+                            old.line,
+                            if theirs.is_empty() { "empty".into() } else { quote(&theirs) },
+                            quote(&r.xray)
+                        ),
+                    ));
+                }
+            }
+        }
+        for col in super::OPTIONAL_COLUMNS {
+            if !current.columns.iter().any(|c| c == col) && !field_of(r, col).is_empty() {
+                problems.push(Problem::line(
+                    r.line,
+                    format!(
+                        "gives a {col}, but {} has no '{col}' column; add the column to its header first or leave {col} empty",
+                        current.path
+                    ),
+                ));
+            }
+        }
+    }
+    if !problems.is_empty() {
+        return Err(DataError {
+            file: new.path.clone(),
+            problems,
+        });
+    }
+    let mut out = current_bytes.to_vec();
+    if !out.is_empty() && !out.ends_with(b"\n") {
+        out.extend_from_slice(if current_bytes.contains(&b'\r') {
+            b"\r\n"
+        } else {
+            b"\n"
+        });
+    }
+    let mut w = csv::WriterBuilder::new()
+        .terminator(if current_bytes.windows(2).any(|p| p == b"\r\n") {
+            csv::Terminator::CRLF
+        } else {
+            csv::Terminator::Any(b'\n')
+        })
+        .from_writer(Vec::new());
+    for r in &new.rows {
+        let rec: Vec<String> = current.columns.iter().map(|c| field_of(r, c)).collect();
+        w.write_record(&rec)
+            .map_err(|e| DataError::whole_file(&new.path, e.to_string()))?;
+    }
+    let tail = w
+        .into_inner()
+        .map_err(|e| DataError::whole_file(&new.path, e.to_string()))?;
+    out.extend_from_slice(&tail);
+    // Safety net: the result must load as a valid dataset.
+    Dataset::from_bytes(&current.path, &out)?;
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ds(label: &str, text: &str) -> Dataset {
+        Dataset::from_bytes(label, text.as_bytes()).unwrap()
+    }
+
+    const OLD: &str = "xray,finger,j1,j2,j3,sex\na,index,4,3,3,f\na,thumb,4,3,,f\n";
+
+    #[test]
+    fn appends_in_the_file_column_order_keeping_old_bytes() {
+        let cur = ds("d.csv", OLD);
+        let new = ds("n.csv", "finger,xray,j2,j1,j3,sex\nring,b,2.5,5.25,2,m\n");
+        let out = appended_bytes(OLD.as_bytes(), &cur, &new).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(text.starts_with(OLD));
+        assert_eq!(&text[OLD.len()..], "b,ring,5.25,2.5,2,male\n");
+    }
+
+    #[test]
+    fn adds_a_missing_final_line_end_and_keeps_crlf() {
+        let old = "xray,finger,j1,j2,j3\r\na,index,4,3,3";
+        let cur = ds("d.csv", old);
+        let new = ds("n.csv", "xray,finger,j1,j2,j3\nb,index,1,2,3\n");
+        let out = String::from_utf8(appended_bytes(old.as_bytes(), &cur, &new).unwrap()).unwrap();
+        assert_eq!(out, format!("{old}\r\nb,index,1,2,3\r\n"));
+    }
+
+    #[test]
+    fn refuses_duplicates_conflicts_and_unknown_columns_naming_the_new_line() {
+        let cur = ds("d.csv", OLD);
+        let new = ds(
+            "n.csv",
+            "xray,finger,j1,j2,j3,sex,age\na,index,1,2,3,f,\nc,ring,1,2,3,,40\n",
+        );
+        let e = appended_bytes(OLD.as_bytes(), &cur, &new).unwrap_err();
+        assert_eq!(e.file, "n.csv");
+        let lines: Vec<u64> = e.problems.iter().filter_map(|p| p.line).collect();
+        assert_eq!(lines, vec![2, 3], "{e}");
+        assert!(
+            e.problems[0]
+                .message
+                .contains("already has a index row in d.csv (line 2)")
+        );
+        assert!(e.problems[1].message.contains("no 'age' column"));
+        let new = ds(
+            "n.csv",
+            "xray,finger,j1,j2,j3,sex\nb,ring,1,2,3,f\na,ring,1,2,3,m\n",
+        );
+        let e = appended_bytes(OLD.as_bytes(), &cur, &new).unwrap_err();
+        assert_eq!(e.problems.len(), 1, "{e}");
+        assert_eq!(e.problems[0].line, Some(3));
+        assert!(
+            e.problems[0]
+                .message
+                .contains("sex is 'male' but d.csv line 2 gives 'female'")
+        );
+    }
+
+    #[test]
+    fn single_row_errors_name_the_option() {
+        let e = single_row(&[
+            ("xray", "z".into()),
+            ("finger", "index".into()),
+            ("j1", "1".into()),
+            ("j2", "abc".into()),
+            ("j3", "3".into()),
+        ])
+        .unwrap_err();
+        assert_eq!(e.problems.len(), 1);
+        assert_eq!(e.problems[0].line, None);
+        assert!(
+            e.problems[0]
+                .message
+                .starts_with("--lengths: 'abc' is not a number"),
+            "{e}"
+        );
+        let ok = single_row(&[
+            ("xray", "z".into()),
+            ("finger", "thumb".into()),
+            ("j1", "1".into()),
+            ("j2", "2".into()),
+            ("j3", String::new()),
+        ])
+        .unwrap();
+        assert_eq!(ok.rows[0].segments(), &[1.0, 2.0]);
+    }
+
+    #[test]
+    fn the_lock_is_exclusive() {
+        let dir = tempfile::tempdir().unwrap();
+        let data = dir.path().join("d.csv");
+        let held = DatasetLock::acquire(&data).unwrap();
+        let f = OpenOptions::new().write(true).open(&held.path).unwrap();
+        assert!(f.try_lock().is_err(), "a second lock was granted");
+        drop(held);
+        assert!(f.try_lock().is_ok());
+    }
+}

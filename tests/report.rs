@@ -1,0 +1,273 @@
+//! Report tests: snapshots of the Markdown and the view data, HTML structure,
+//! escaping, atomicity of a failed run and byte-identical reruns.
+
+use phalanx::analysis::coverage::{self, CoverageSettings};
+use phalanx::analysis::{self, Settings, claims, placement};
+use phalanx::dataset::Dataset;
+use phalanx::dataset::claims::Claims;
+use phalanx::report::render::Templates;
+use phalanx::report::view::{self, ReportInputs};
+use phalanx::report::writer::OutputFile;
+use phalanx::report::{self, Formats, plots};
+use scraper::{Html, Selector};
+use std::path::Path;
+
+/// Renders the report of `data` (bytes) with the paper's claims, in memory.
+fn render_bytes(data: &[u8]) -> (Vec<OutputFile>, view::ReportView) {
+    let dataset = Dataset::from_bytes("data/measurements.csv", data).unwrap();
+    let claims = Claims::load(Path::new("data/paper_claims.csv")).unwrap();
+    let results = claims::check(&claims, &dataset);
+    let a = analysis::analyse(&dataset, &Settings::default());
+    let cs = CoverageSettings {
+        sims: 400,
+        resamples: 10_000,
+        seed: 1,
+        confidence: 0.95,
+    };
+    let cov = coverage::of_analysis(&a, &cs);
+    let places = placement::place_all(&a, 1000.0);
+    let inputs = ReportInputs {
+        analysis: &a,
+        claims_file: "data/paper_claims.csv",
+        claims: &results,
+        coverage_settings: &cs,
+        coverage: &cov,
+        placements: &places,
+        model_length: 1000.0,
+        timestamp: None,
+    };
+    let files = report::render(&inputs, Formats::ALL, &Templates::builtin().unwrap()).unwrap();
+    let plots = plots::all(&a, &places).unwrap();
+    (files, view::build(&inputs, &plots))
+}
+
+fn paper_bytes() -> Vec<u8> {
+    std::fs::read("data/measurements.csv").unwrap()
+}
+
+fn file<'a>(files: &'a [OutputFile], name: &str) -> &'a str {
+    let f = files
+        .iter()
+        .find(|f| f.path == Path::new(name))
+        .unwrap_or_else(|| panic!("no {name}"));
+    std::str::from_utf8(&f.bytes).unwrap()
+}
+
+#[test]
+fn markdown_snapshot() {
+    let (files, _) = render_bytes(&paper_bytes());
+    insta::assert_snapshot!("report_md", file(&files, "report.md"));
+}
+
+#[test]
+fn view_snapshot() {
+    let (_, mut v) = render_bytes(&paper_bytes());
+    // The SVG text is checked by the plot tests; keep the view snapshot about the strings shown.
+    for p in &mut v.plots {
+        p.svg = format!("<{} bytes of SVG>", p.svg.len());
+    }
+    insta::assert_json_snapshot!("report_view", v);
+}
+
+#[test]
+fn html_holds_every_table_and_a_plot_of_each_kind() {
+    let (files, _) = render_bytes(&paper_bytes());
+    let html = Html::parse_document(file(&files, "index.html"));
+    let sel = |s: &str| Selector::parse(s).unwrap();
+    let tables = [
+        "table1",
+        "derived-thumb",
+        "derived-index",
+        "derived-middle",
+        "derived-ring",
+        "derived-little",
+        "stats-thumb",
+        "stats-index",
+        "stats-middle",
+        "stats-ring",
+        "stats-little",
+        "claims-table",
+        "placement-joints",
+        "placement-segments",
+        "coverage-table",
+    ];
+    for id in tables {
+        let t = html
+            .select(&sel(&format!("table#{id}")))
+            .next()
+            .unwrap_or_else(|| panic!("table {id} missing"));
+        assert!(
+            t.select(&sel("caption")).next().is_some(),
+            "{id} has no caption"
+        );
+        assert!(t.select(&sel("tbody tr")).count() >= 1, "{id} is empty");
+        assert!(
+            t.select(&sel("th[scope]")).count() >= 2,
+            "{id} lacks header scopes"
+        );
+    }
+    assert_eq!(html.select(&sel("table")).count(), tables.len());
+    // Table 1 rows: 5 X-rays, 14 lengths each, the first as printed.
+    let rows: Vec<_> = html.select(&sel("table#table1 tbody tr")).collect();
+    assert_eq!(rows.len(), 5);
+    let cells: Vec<String> = rows[0]
+        .select(&sel("td"))
+        .map(|c| c.text().collect())
+        .collect();
+    assert_eq!(cells.len(), 14);
+    assert_eq!(&cells[..3], ["339.96", "188.83", "169.67"]);
+    // Claims: 30 rows.
+    assert_eq!(html.select(&sel("table#claims-table tbody tr")).count(), 30);
+    for id in [
+        "plot-finger-thumb",
+        "plot-finger-index",
+        "plot-hand",
+        "plot-forest",
+    ] {
+        let fig = html
+            .select(&sel(&format!("figure#{id}")))
+            .next()
+            .unwrap_or_else(|| panic!("figure {id} missing"));
+        let svg = fig
+            .select(&sel("svg"))
+            .next()
+            .unwrap_or_else(|| panic!("{id}: no svg"));
+        assert!(
+            svg.select(&sel("title")).next().is_some(),
+            "{id}: no <title>"
+        );
+        assert!(svg.select(&sel("desc")).next().is_some(), "{id}: no <desc>");
+    }
+    // Self-contained: no scripts, no external resources.
+    assert_eq!(html.select(&sel("script")).count(), 0);
+    assert_eq!(html.select(&sel("link[href], img[src], iframe")).count(), 0);
+    let text = file(&files, "index.html");
+    assert!(
+        !text.contains("src=\"http") && !text.contains("url(http"),
+        "external resource"
+    );
+    assert!(text.contains("prefers-color-scheme: dark"));
+}
+
+#[test]
+fn paper_numbers_appear_in_the_report() {
+    let (files, _) = render_bytes(&paper_bytes());
+    let md = file(&files, "report.md");
+    // Corrected worked example: PIP of the index at 484.6 (the paper misprints 494.6).
+    assert!(
+        md.contains(
+            "| index (the paper's 'grooming' finger) | PIP | 484.6 | 472.8 | 504.7 | 32.0 |"
+        ),
+        "{md}"
+    );
+    assert!(md.contains("give mean 0.4846, not 0.4946"));
+    assert!(md.contains("30 claims: 20 match, 2 match from rounded values"));
+    let json = file(&files, "stats.json");
+    let v: serde_json::Value = serde_json::from_str(json).unwrap();
+    assert_eq!(v["schema_version"], 1);
+    assert_eq!(v["fingers"].as_array().unwrap().len(), 5);
+}
+
+#[test]
+fn data_derived_strings_are_escaped() {
+    let mut data = paper_bytes();
+    data.extend_from_slice(
+        b"\"<script>alert(1)</script>\",index,300,200,180,,,right,\"=HYPERLINK(\"\"http://x\"\")|a\nb\",image units\n",
+    );
+    let (files, _) = render_bytes(&data);
+    let html = file(&files, "index.html");
+    assert!(
+        !html.contains("<script>alert(1)</script>"),
+        "raw script tag in HTML"
+    );
+    assert!(html.contains("&lt;script&gt;alert(1)&lt;&#x2F;script&gt;"));
+    let md = file(&files, "report.md");
+    assert!(!md.contains("<script>"), "raw script tag in Markdown");
+    assert!(md.contains("&lt;script&gt;alert(1)&lt;/script&gt;"));
+    for f in &files {
+        if f.path.extension().is_some_and(|e| e == "svg") {
+            let s = std::str::from_utf8(&f.bytes).unwrap();
+            assert!(!s.contains("<script>"), "{}", f.path.display());
+        }
+    }
+    // Parsed, the X-ray id is text in a row header, not an element.
+    let doc = Html::parse_document(html);
+    let sel = Selector::parse("table#derived-index tbody th").unwrap();
+    let ids: Vec<String> = doc.select(&sel).map(|e| e.text().collect()).collect();
+    assert!(
+        ids.contains(&"<script>alert(1)</script>".to_string()),
+        "{ids:?}"
+    );
+}
+
+#[test]
+fn two_renders_are_byte_identical() {
+    let (a, _) = render_bytes(&paper_bytes());
+    let (b, _) = render_bytes(&paper_bytes());
+    assert_eq!(a, b);
+    assert!(
+        a.len() >= 3 + 7,
+        "index.html, report.md, stats.json and 7 plots"
+    );
+}
+
+fn phalanx() -> assert_cmd::Command {
+    assert_cmd::Command::cargo_bin("phalanx").unwrap()
+}
+
+fn snapshot_dir(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut out = Vec::new();
+    for sub in ["", "plots"] {
+        let d = dir.join(sub);
+        let Ok(entries) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            if e.path().is_file() {
+                out.push((
+                    format!("{sub}/{}", e.file_name().to_string_lossy()),
+                    std::fs::read(e.path()).unwrap(),
+                ));
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn a_failed_run_leaves_the_previous_report_untouched_and_reruns_are_identical() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("site");
+    let run = |data: &str| {
+        phalanx()
+            .args(["report", "--sims", "200", "--out"])
+            .arg(&out)
+            .args(["--data", data])
+            .output()
+            .unwrap()
+    };
+    let ok = run("data/measurements.csv");
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    let first = snapshot_dir(&out);
+    assert!(first.iter().any(|(n, _)| n == "/index.html"));
+    assert!(first.iter().filter(|(n, _)| n.ends_with(".svg")).count() >= 7);
+
+    let again = run("data/measurements.csv");
+    assert!(again.status.success());
+    assert_eq!(snapshot_dir(&out), first, "a rerun changed the report");
+
+    let bad = tmp.path().join("bad.csv");
+    std::fs::write(&bad, "xray,finger,j1,j2,j3\na,index,1,x,3\n").unwrap();
+    let failed = run(bad.to_str().unwrap());
+    assert_eq!(failed.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&failed.stderr);
+    assert!(stderr.contains("bad.csv:2:4: j2:"), "{stderr}");
+    let missing = run(tmp.path().join("nope.csv").to_str().unwrap());
+    assert_eq!(missing.status.code(), Some(2));
+    assert_eq!(snapshot_dir(&out), first, "a failed run touched the report");
+}
