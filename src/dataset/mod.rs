@@ -221,12 +221,11 @@ struct XrayMeta {
 fn parse_rows(label: &str, bytes: &[u8]) -> Result<(Vec<String>, Vec<Row>), DataError> {
     let mut problems = Vec::new();
     let mut scan = CsvScan::new(label, bytes)?;
-    let mut header_line = 0;
-    let header = match scan.next_record(&mut problems) {
-        Some(rec) => {
-            header_line = rec.line;
-            Header::parse(&rec, &REQUIRED_COLUMNS, &OPTIONAL_COLUMNS, &mut problems)
-        }
+    let (header_line, header) = match scan.next_record(&mut problems) {
+        Some(rec) => (
+            rec.line,
+            Header::parse(&rec, &REQUIRED_COLUMNS, &OPTIONAL_COLUMNS, &mut problems),
+        ),
         None => {
             problems.push(Problem::file(
                 "has no header line; start it with xray,finger,j1,j2,j3",
