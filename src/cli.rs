@@ -1,12 +1,14 @@
 //! Command-line interface: parses arguments and hands work to the library.
 
+use crate::analysis::Quantity;
 use crate::analysis::claims::{self, CheckSummary};
 use crate::analysis::coverage::{self, CoverageSettings};
 use crate::analysis::{self, Analysis, Settings};
-use crate::dataset::Dataset;
 use crate::dataset::claims::Claims;
+use crate::dataset::{Dataset, Finger};
 use crate::error::{EXIT_DATA, EXIT_FAILURE, Error};
 use crate::report;
+use crate::workflow;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -86,6 +88,112 @@ pub enum Command {
                             Examples:\n  phalanx report\n  phalanx report --out /tmp/site --model-length 87.5 --format html\n  phalanx report --templates my_templates/"
     )]
     Report(ReportArgs),
+    /// Add new X-rays to the dataset (validated, locked, atomic) and record a snapshot
+    #[command(
+        after_help = "New rows pass every check of the dataset and may not repeat an (xray, finger) already there; \
+                            on any problem nothing is added. A value outside the current prediction interval is flagged \
+                            as a likely measurement or typing error: a warning, or a refusal with --strict.\n\n\
+                            Examples:\n  phalanx add new_xrays.csv\n  phalanx add --xray 2a --finger index --lengths 352.1,201.4,178.0 --sex female --age 34\n  phalanx add --strict --xray 2a --finger thumb --lengths 270.1,233.9"
+    )]
+    Add(AddArgs),
+    /// Record a snapshot of the current statistics in the history (after editing the data by hand)
+    #[command(
+        after_help = "Examples:\n  phalanx snapshot\n  phalanx snapshot --data lab/hands.csv"
+    )]
+    Snapshot {
+        #[command(flatten)]
+        data: DataArgs,
+        #[command(flatten)]
+        history: HistoryArgs,
+        #[command(flatten)]
+        boot: BootArgs,
+    },
+    /// Show how the statistics moved, snapshot by snapshot
+    #[command(
+        after_help = "Examples:\n  phalanx history\n  phalanx history --finger index --quantity rel_j1\n  phalanx history --format json"
+    )]
+    History {
+        #[command(flatten)]
+        data: DataArgs,
+        #[command(flatten)]
+        history: HistoryArgs,
+        /// Only this finger (thumb, index, middle, ring, little, or an alias)
+        #[arg(long, value_parser = parse_finger)]
+        finger: Option<Finger>,
+        /// Only this quantity (rel_j1, rel_j2, rel_j3, total)
+        #[arg(long, value_parser = parse_quantity)]
+        quantity: Option<Quantity>,
+        /// Output format
+        #[arg(long, value_enum, default_value_t = TextFormat::Table)]
+        format: TextFormat,
+    },
+}
+
+/// The history file.
+#[derive(Args, Debug, Clone)]
+pub struct HistoryArgs {
+    /// History file (JSON Lines); default: history.jsonl beside the dataset
+    #[arg(long = "history", value_name = "PATH")]
+    pub path: Option<PathBuf>,
+}
+
+impl HistoryArgs {
+    /// The history file for a dataset.
+    pub fn resolve(&self, data: &Path) -> PathBuf {
+        self.path
+            .clone()
+            .unwrap_or_else(|| crate::dataset::history::default_path(data))
+    }
+}
+
+/// Options of `phalanx add`.
+#[derive(Args, Debug, Clone)]
+pub struct AddArgs {
+    /// CSV file of new rows, in the dataset's format (with a header)
+    #[arg(value_name = "FILE.csv", conflicts_with_all = ["xray", "finger", "lengths"])]
+    pub file: Option<PathBuf>,
+    /// X-ray id of one new row
+    #[arg(long, requires_all = ["finger", "lengths"])]
+    pub xray: Option<String>,
+    /// Finger of the new row
+    #[arg(long, requires_all = ["xray", "lengths"])]
+    pub finger: Option<String>,
+    /// Segment lengths J1,J2[,J3] of the new row (J3 not for the thumb)
+    #[arg(long, value_name = "J1,J2[,J3]", requires_all = ["xray", "finger"], allow_hyphen_values = true)]
+    pub lengths: Option<String>,
+    /// Sex of the hand (female, male, ...)
+    #[arg(long)]
+    pub sex: Option<String>,
+    /// Age in years
+    #[arg(long)]
+    pub age: Option<String>,
+    /// left or right
+    #[arg(long)]
+    pub side: Option<String>,
+    /// Where the measurement comes from
+    #[arg(long)]
+    pub source: Option<String>,
+    /// Unit of the lengths
+    #[arg(long)]
+    pub unit: Option<String>,
+    /// Refuse rows flagged as likely errors instead of warning
+    #[arg(long)]
+    pub strict: bool,
+    #[command(flatten)]
+    pub data: DataArgs,
+    #[command(flatten)]
+    pub history: HistoryArgs,
+    #[command(flatten)]
+    pub boot: BootArgs,
+}
+
+fn parse_finger(text: &str) -> Result<Finger, String> {
+    Finger::parse(text).ok_or_else(|| format!("unknown finger '{text}'; use {}", Finger::ACCEPTED))
+}
+
+fn parse_quantity(text: &str) -> Result<Quantity, String> {
+    Quantity::parse(text)
+        .ok_or_else(|| format!("unknown quantity '{text}'; use rel_j1, rel_j2, rel_j3 or total"))
 }
 
 /// Options of `phalanx report`.
@@ -282,7 +390,110 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
             report_command(&args)?;
             Ok(0)
         }
+        Command::Add(args) => add_command(&args),
+        Command::Snapshot {
+            data,
+            history,
+            boot,
+        } => {
+            let path = history.resolve(&data.data);
+            let snap = workflow::snapshot(&data.data, &path, &boot.settings())?;
+            print(
+                format!(
+                    "snapshot of {} ({} X-rays, sha256 {}) appended to {}\n",
+                    snap.dataset,
+                    snap.xrays,
+                    &snap.sha256[..12.min(snap.sha256.len())],
+                    path.display()
+                )
+                .as_bytes(),
+            )?;
+            Ok(0)
+        }
+        Command::History {
+            data,
+            history,
+            finger,
+            quantity,
+            format,
+        } => {
+            let path = history.resolve(&data.data);
+            let snaps = crate::dataset::history::read(&path)?;
+            let bytes = match format {
+                TextFormat::Table => {
+                    report::text::history(&path, &snaps, finger, quantity).into_bytes()
+                }
+                TextFormat::Json => report::json::history(&snaps, finger, quantity)?,
+            };
+            print(&bytes)?;
+            Ok(0)
+        }
     }
+}
+
+/// `phalanx add`: new rows from a file or from options.
+fn add_command(args: &AddArgs) -> Result<i32, Error> {
+    let rows = match (&args.file, &args.xray, &args.finger, &args.lengths) {
+        (Some(f), ..) => workflow::NewRows::File(f.clone()),
+        (None, Some(x), Some(f), Some(l)) => {
+            let mut parts: Vec<String> = l.split(',').map(|p| p.trim().to_string()).collect();
+            if parts.len() < 2 || parts.len() > 3 {
+                return Err(Error::Usage(format!(
+                    "--lengths '{l}': give 2 (thumb) or 3 (other fingers) comma-separated lengths, e.g. 352.1,201.4,178.0"
+                )));
+            }
+            parts.resize(3, String::new());
+            let opt = |v: &Option<String>| v.clone().unwrap_or_default();
+            let mut fields = vec![
+                ("xray", x.clone()),
+                ("finger", f.clone()),
+                ("j1", parts[0].clone()),
+                ("j2", parts[1].clone()),
+                ("j3", parts[2].clone()),
+            ];
+            for (name, v) in [
+                ("sex", &args.sex),
+                ("age", &args.age),
+                ("side", &args.side),
+                ("source", &args.source),
+                ("unit", &args.unit),
+            ] {
+                if v.is_some() {
+                    fields.push((name, opt(v)));
+                }
+            }
+            workflow::NewRows::Fields(fields)
+        }
+        _ => {
+            return Err(Error::Usage(
+                "give a CSV file of new rows, or --xray, --finger and --lengths for one row (see phalanx add --help)".into(),
+            ));
+        }
+    };
+    let history = args.history.resolve(&args.data.data);
+    let outcome = workflow::add(&workflow::AddRequest {
+        data: args.data.data.clone(),
+        history: history.clone(),
+        rows,
+        strict: args.strict,
+        settings: args.boot.settings(),
+    })?;
+    for f in &outcome.flags {
+        eprintln!("warning: {}", f.reason);
+    }
+    print(
+        format!(
+            "added {} row{} to {}: {} -> {} X-rays; snapshot appended to {}\n",
+            outcome.added,
+            if outcome.added == 1 { "" } else { "s" },
+            args.data.data.display(),
+            outcome.xrays_before,
+            outcome.xrays_after,
+            history.display()
+        )
+        .as_bytes(),
+    )?;
+    Ok(0)
 }
 
 /// `phalanx report`: analyse, check, simulate, render everything in memory, then write.

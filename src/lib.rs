@@ -11,3 +11,4 @@ pub mod cli;
 pub mod dataset;
 pub mod error;
 pub mod report;
+pub mod workflow;

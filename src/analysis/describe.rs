@@ -46,6 +46,14 @@ pub fn median(xs: &[f64]) -> Option<f64> {
 /// Degrees of freedom above which the t quantile comes from its expansion in 1/df.
 const T_EXPANSION_DF: usize = 1_000;
 
+/// Median absolute deviation from the median, scaled by 1.4826 to estimate the
+/// SD of normal data. `None` for no values. O(n log n).
+pub fn mad(xs: &[f64]) -> Option<f64> {
+    let m = median(xs)?;
+    let dev: Vec<f64> = xs.iter().map(|x| (x - m).abs()).collect();
+    Some(1.4826 * median(&dev)?)
+}
+
 /// Two-sided Student-t quantile t_{1-(1-c)/2, df}. `None` when `df` < 1.
 ///
 /// Up to 1,000 degrees of freedom from `statrs`; above, from the Cornish-Fisher
@@ -120,6 +128,8 @@ mod tests {
         assert!((sd(&xs).unwrap() - (32.0f64 / 7.0).sqrt()).abs() < 1e-15);
         assert_eq!(median(&xs), Some(4.5));
         assert_eq!(median(&[3.0, 1.0, 2.0]), Some(2.0));
+        // Deviations from the median 4.5: 2.5 .5 .5 .5 .5 .5 2.5 4.5 -> median 0.5.
+        assert!((mad(&xs).unwrap() - 1.4826 * 0.5).abs() < 1e-12);
         assert_eq!(min_max(&xs), Some((2.0, 9.0)));
         assert_eq!(sd(&[1.0]), None);
         assert_eq!(mean(&[]), None);

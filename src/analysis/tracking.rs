@@ -132,38 +132,72 @@ pub struct Flag {
     pub finger: String,
     pub quantity: String,
     pub value: f64,
-    /// The prediction interval it falls outside.
-    pub interval: [f64; 2],
+    /// The current prediction interval (null when n < 2).
+    pub interval: Option<[f64; 2]>,
     /// Why this is flagged and what may be wrong, in words.
     pub reason: String,
 }
 
-/// Compares a new row's relative values with the prediction intervals of the
-/// current analysis: a value outside is flagged as a likely measurement or
-/// typing error, with a hint when one length 10 times too large or too small
-/// explains it (a misplaced decimal point).
+/// Robust z-score above which a value is flagged whatever the prediction interval says.
+pub const ROBUST_Z: f64 = 5.0;
+
+/// Why a value is unusual, if it is: outside the prediction interval of the
+/// current data, or more than [`ROBUST_Z`] robust SDs (1.4826 MAD) from the
+/// median. The robust rule still works after an earlier outlier has widened
+/// the prediction interval; it needs at least 5 X-rays.
+fn unusual(v: f64, pi: Option<Interval>, values: &[f64]) -> Option<String> {
+    if let Some(pi) = pi.filter(|pi| !pi.contains(v)) {
+        return Some(format!(
+            "outside the prediction interval [{:.4}, {:.4}]",
+            pi.low, pi.high
+        ));
+    }
+    if values.len() < 5 {
+        return None;
+    }
+    let (m, s) = (describe::median(values)?, describe::mad(values)?);
+    let z = (v - m).abs() / s;
+    (s > 0.0 && z > ROBUST_Z)
+        .then(|| format!("{z:.1} robust SDs from the median {m:.4} (more than {ROBUST_Z})"))
+}
+
+/// Compares a new row's relative values with the current analysis (see
+/// [`unusual`]): an unusual value is flagged as a likely measurement or typing
+/// error, with a hint when one length 10 times too large or too small explains
+/// it (a misplaced decimal point).
 pub fn flag_row(a: &Analysis, row: &Row) -> Vec<Flag> {
     let Some(fa) = a.finger(row.finger) else {
         return Vec::new();
     };
-    let inside = |r: &Row| {
+    let relative: Vec<Quantity> = Quantity::of(row.finger)
+        .iter()
+        .copied()
+        .filter(|q| q.is_relative())
+        .collect();
+    let columns: Vec<Vec<f64>> = (0..relative.len())
+        .map(|k| fa.xrays.iter().map(|x| x.relative[k]).collect())
+        .collect();
+    let check = |r: &Row| -> Vec<(usize, String)> {
         let x = xray_values(r);
-        Quantity::of(r.finger)
+        relative
             .iter()
-            .filter(|q| q.is_relative())
             .enumerate()
-            .all(|(k, q)| {
-                fa.quantity(*q)
-                    .and_then(|s| s.pi)
-                    .is_none_or(|pi| pi.contains(x.relative[k]))
+            .filter_map(|(k, q)| {
+                let pi = fa.quantity(*q).and_then(|s| s.pi);
+                unusual(x.relative[k], pi, &columns[k]).map(|why| (k, why))
             })
+            .collect()
     };
+    let found = check(row);
+    if found.is_empty() {
+        return Vec::new();
+    }
     let hint = (0..row.finger.segments())
         .flat_map(|k| [(k, 10.0), (k, 0.1)])
         .find(|&(k, factor)| {
             let mut fixed = row.clone();
             fixed.lengths[k] *= factor;
-            inside(&fixed)
+            check(&fixed).is_empty()
         })
         .map(|(k, factor)| {
             format!(
@@ -174,32 +208,26 @@ pub fn flag_row(a: &Analysis, row: &Row) -> Vec<Flag> {
         })
         .unwrap_or_default();
     let x = xray_values(row);
-    Quantity::of(row.finger)
-        .iter()
-        .filter(|q| q.is_relative())
-        .enumerate()
-        .filter_map(|(k, &q)| {
-            let s = fa.quantity(q)?;
-            let pi = s.pi?;
-            let v = x.relative[k];
-            (!pi.contains(v)).then(|| Flag {
+    found
+        .into_iter()
+        .map(|(k, why)| {
+            let q = relative[k];
+            let pi = fa.quantity(q).and_then(|s| s.pi);
+            Flag {
                 xray: row.xray.to_string(),
                 finger: row.finger.name().to_string(),
                 quantity: q.name().to_string(),
-                value: v,
-                interval: [pi.low, pi.high],
+                value: x.relative[k],
+                interval: pi.map(|p| [p.low, p.high]),
                 reason: format!(
-                    "{} {} of X-ray '{}' is {:.4}, outside the {}% prediction interval [{:.4}, {:.4}] of the current {} X-rays: a likely measurement or typing error{hint}",
+                    "{} {} of X-ray '{}' is {:.4}, {why} of the current {} X-rays: a likely measurement or typing error{hint}",
                     row.finger,
                     q.label(),
                     row.xray,
-                    v,
-                    (100.0 * a.settings.confidence).round(),
-                    pi.low,
-                    pi.high,
-                    s.n
+                    x.relative[k],
+                    fa.n
                 ),
-            })
+            }
         })
         .collect()
 }
@@ -241,6 +269,44 @@ mod tests {
             flags[0].reason
         );
         assert!(flag_row(&a, &d.rows[1]).is_empty());
+    }
+
+    #[test]
+    fn the_robust_rule_catches_a_second_typo_after_a_first() {
+        // After one tenfold typo is added, the prediction interval is wide enough to let
+        // a second one through; the median/MAD rule still flags it.
+        let (d, _) = paper();
+        let mut bad = d.clone();
+        let extra = Dataset::from_bytes(
+            "n.csv",
+            b"xray,finger,j1,j2,j3\nz,ring,3584,226.47,191.09\n",
+        )
+        .unwrap();
+        bad.rows.extend(extra.rows.clone());
+        let a = analyse(&bad, &Settings::default());
+        let second = Dataset::from_bytes(
+            "n.csv",
+            b"xray,finger,j1,j2,j3\ny,ring,3729.8,226.72,212.12\n",
+        )
+        .unwrap();
+        let pi = a
+            .finger(crate::dataset::Finger::Ring)
+            .unwrap()
+            .quantity(Quantity::RelJ1)
+            .unwrap()
+            .pi
+            .unwrap();
+        assert!(
+            pi.contains(second.rows[0].lengths[0] / second.rows[0].total()),
+            "premise: inside the PI"
+        );
+        let flags = flag_row(&a, &second.rows[0]);
+        assert!(!flags.is_empty());
+        assert!(
+            flags[0].reason.contains("robust SDs from the median"),
+            "{}",
+            flags[0].reason
+        );
     }
 
     #[test]

@@ -2,7 +2,9 @@
 
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
-use crate::analysis::{Analysis, DatasetInfo, FingerAnalysis, Settings, rng};
+use crate::analysis::{Analysis, DatasetInfo, FingerAnalysis, Quantity, Settings, rng};
+use crate::dataset::Finger;
+use crate::dataset::history::{QuantityRecord, Snapshot};
 use crate::error::Error;
 use serde::Serialize;
 
@@ -107,5 +109,86 @@ pub fn coverage(
         rng: rng::RNG_NAME,
         model: COVERAGE_MODEL,
         quantities: q,
+    })
+}
+
+/// The (finger, quantity) pairs present in a history, in first-seen order,
+/// narrowed to one finger and/or quantity.
+pub fn selected(
+    snaps: &[Snapshot],
+    finger: Option<Finger>,
+    quantity: Option<Quantity>,
+) -> Vec<(String, String)> {
+    let mut out: Vec<(String, String)> = Vec::new();
+    for s in snaps {
+        for r in &s.quantities {
+            let keep = finger.is_none_or(|f| f.name() == r.finger)
+                && quantity.is_none_or(|q| q.name() == r.quantity);
+            let key = (r.finger.clone(), r.quantity.clone());
+            if keep && !out.contains(&key) {
+                out.push(key);
+            }
+        }
+    }
+    out
+}
+
+#[derive(Serialize)]
+struct HistorySeries<'a> {
+    finger: &'a str,
+    quantity: &'a str,
+    points: Vec<HistoryPoint<'a>>,
+}
+
+#[derive(Serialize)]
+struct HistoryPoint<'a> {
+    snapshot: usize,
+    time: &'a str,
+    event: &'a str,
+    sha256: &'a str,
+    record: &'a QuantityRecord,
+}
+
+/// The document of `phalanx history --format json`: one series per finger and quantity.
+pub fn history(
+    snaps: &[Snapshot],
+    finger: Option<Finger>,
+    quantity: Option<Quantity>,
+) -> Result<Vec<u8>, Error> {
+    let keys = selected(snaps, finger, quantity);
+    let series: Vec<HistorySeries<'_>> = keys
+        .iter()
+        .map(|(f, q)| HistorySeries {
+            finger: f,
+            quantity: q,
+            points: snaps
+                .iter()
+                .enumerate()
+                .filter_map(|(i, s)| {
+                    let record = s
+                        .quantities
+                        .iter()
+                        .find(|r| &r.finger == f && &r.quantity == q)?;
+                    Some(HistoryPoint {
+                        snapshot: i + 1,
+                        time: &s.time,
+                        event: &s.event,
+                        sha256: &s.sha256,
+                        record,
+                    })
+                })
+                .collect(),
+        })
+        .collect();
+    #[derive(Serialize)]
+    struct Doc<'a> {
+        schema_version: u32,
+        snapshots: usize,
+        series: Vec<HistorySeries<'a>>,
+    }
+    to_bytes(&Doc {
+        schema_version: SCHEMA_VERSION,
+        snapshots: snaps.len(),
+        series,
     })
 }

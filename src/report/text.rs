@@ -1,9 +1,11 @@
 //! Terminal tables for `stats`, `check` and `coverage`.
 
 use super::format::{decimals, interval, num, opt, percent};
-use crate::analysis::Analysis;
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
+use crate::analysis::{Analysis, Quantity};
+use crate::dataset::Finger;
+use crate::dataset::history::Snapshot;
 use comfy_table::{CellAlignment, ContentArrangement, Table, presets};
 
 fn table(header: &[&str], right_from: usize) -> Table {
@@ -159,4 +161,73 @@ pub fn coverage(rows: &[QuantityCoverage], settings: &CoverageSettings) -> Strin
         percent(settings.confidence),
         sims = settings.sims
     )
+}
+
+/// The history of each selected quantity, snapshot by snapshot.
+pub fn history(
+    path: &std::path::Path,
+    snaps: &[Snapshot],
+    finger: Option<Finger>,
+    quantity: Option<Quantity>,
+) -> String {
+    if snaps.is_empty() {
+        return format!(
+            "No snapshots in {} yet: 'phalanx add' records one per addition, 'phalanx snapshot' one on demand.\n",
+            path.display()
+        );
+    }
+    let mut out = format!("{} snapshots in {}\n", snaps.len(), path.display());
+    for (f, q) in super::json::selected(snaps, finger, quantity) {
+        let d = Quantity::parse(&q).map_or(4, decimals);
+        let label = Quantity::parse(&q).map_or(q.clone(), |x| x.label().to_string());
+        out.push_str(&format!("\n{f} {label}\n"));
+        let mut t = table(
+            &[
+                "#",
+                "time",
+                "event",
+                "n",
+                "mean",
+                "sd",
+                "t CI",
+                "CI width",
+                "mean shift",
+            ],
+            3,
+        );
+        let mut previous: Option<f64> = None;
+        for (i, s) in snaps.iter().enumerate() {
+            let Some(r) = s
+                .quantities
+                .iter()
+                .find(|r| r.finger == f && r.quantity == q)
+            else {
+                continue;
+            };
+            let ci = r
+                .ci_t
+                .map(|[lo, hi]| crate::analysis::Interval::new(lo, hi));
+            t.add_row(vec![
+                (i + 1).to_string(),
+                s.time.clone(),
+                s.event.clone(),
+                r.n.to_string(),
+                num(r.mean, d),
+                opt(r.sd, d),
+                interval(ci, d),
+                opt(ci.map(|c| c.width()), d),
+                previous.map_or_else(|| "-".to_string(), |p| format!("{:+.*}", d, r.mean - p)),
+            ]);
+            previous = Some(r.mean);
+        }
+        if let Some(c) = t.column_mut(1) {
+            c.set_cell_alignment(CellAlignment::Left);
+        }
+        if let Some(c) = t.column_mut(2) {
+            c.set_cell_alignment(CellAlignment::Left);
+        }
+        out.push_str(&t.to_string());
+        out.push('\n');
+    }
+    out
 }

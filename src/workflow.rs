@@ -1,0 +1,132 @@
+//! Multi-step operations on the dataset files: adding X-rays and taking snapshots.
+//!
+//! `add` holds the dataset's lock from reading to replacing the file, so two
+//! additions at the same time both land; the dataset is replaced atomically,
+//! so a killed run leaves the old or the new file, never a torn one; on any
+//! problem nothing is written.
+
+use crate::analysis::tracking::{self, Flag};
+use crate::analysis::{self, Settings};
+use crate::dataset::append::{self, DatasetLock};
+use crate::dataset::history::{self, Snapshot};
+use crate::dataset::{DataError, Dataset, Problem, csvinput};
+use crate::error::Error;
+use std::path::{Path, PathBuf};
+
+/// Where new rows come from.
+pub enum NewRows {
+    /// A CSV file in the dataset's format (with its own header).
+    File(PathBuf),
+    /// One row given as options: (column, value) pairs.
+    Fields(Vec<(&'static str, String)>),
+}
+
+/// What `add` is asked to do.
+pub struct AddRequest {
+    pub data: PathBuf,
+    pub history: PathBuf,
+    pub rows: NewRows,
+    /// Refuse rows whose relative values fall outside the prediction intervals.
+    pub strict: bool,
+    pub settings: Settings,
+}
+
+/// What `add` did.
+#[derive(Debug)]
+pub struct AddOutcome {
+    pub added: usize,
+    pub xrays_before: usize,
+    pub xrays_after: usize,
+    /// Values outside the current prediction intervals (warnings unless strict).
+    pub flags: Vec<Flag>,
+    pub snapshot: Snapshot,
+}
+
+/// The current UTC time, RFC 3339, for history records.
+pub fn now() -> String {
+    humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
+}
+
+fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
+    move |source| Error::Write {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// Adds new rows to a dataset, then appends a snapshot to its history.
+pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
+    req.settings.validate().map_err(Error::Usage)?;
+    let new = match &req.rows {
+        NewRows::File(p) => Dataset::load(p)?,
+        NewRows::Fields(fields) => append::single_row(fields)?,
+    };
+    csvinput::read_input(&req.data)?; // a missing dataset is reported before any lock file is made
+    let _lock = DatasetLock::acquire(&req.data).map_err(io_err(&req.data))?;
+    let current_bytes = csvinput::read_input(&req.data)?;
+    let label = req.data.display().to_string();
+    let current = Dataset::from_bytes(&label, &current_bytes)?;
+    let from_options = matches!(req.rows, NewRows::Fields(_));
+    let bytes = append::appended_bytes(&current_bytes, &current, &new).map_err(|mut e| {
+        if from_options {
+            e.problems.iter_mut().for_each(|p| p.line = None);
+        }
+        e
+    })?;
+    let before = analysis::analyse(&current, &req.settings);
+    let flags: Vec<Flag> = new
+        .rows
+        .iter()
+        .flat_map(|r| tracking::flag_row(&before, r))
+        .collect();
+    if req.strict && !flags.is_empty() {
+        let problems = new
+            .rows
+            .iter()
+            .flat_map(|r| {
+                flags
+                    .iter()
+                    .filter(move |f| f.xray == *r.xray && f.finger == r.finger.name())
+                    .map(move |f| {
+                        Problem::line(r.line, format!("refused (--strict): {}", f.reason))
+                    })
+            })
+            .map(|mut p| {
+                if from_options {
+                    p.line = None;
+                }
+                p
+            })
+            .collect();
+        return Err(DataError {
+            file: new.path.clone(),
+            problems,
+        }
+        .into());
+    }
+    crate::atomic::replace(&req.data, &bytes).map_err(io_err(&req.data))?;
+    let after = Dataset::from_bytes(&label, &bytes)?;
+    let a = analysis::analyse(&after, &req.settings);
+    let snapshot = tracking::snapshot(&a, now(), "add");
+    history::append(&req.history, &snapshot).map_err(io_err(&req.history))?;
+    Ok(AddOutcome {
+        added: new.rows.len(),
+        xrays_before: current.xray_count(),
+        xrays_after: after.xray_count(),
+        flags,
+        snapshot,
+    })
+}
+
+/// Appends a snapshot of the dataset's current statistics to its history
+/// (for data edited by hand). Holds the dataset's lock while it reads.
+pub fn snapshot(data: &Path, history_path: &Path, settings: &Settings) -> Result<Snapshot, Error> {
+    settings.validate().map_err(Error::Usage)?;
+    csvinput::read_input(data)?;
+    let _lock = DatasetLock::acquire(data).map_err(io_err(data))?;
+    let dataset = Dataset::load(data)?;
+    let a = analysis::analyse(&dataset, settings);
+    let snap = tracking::snapshot(&a, now(), "snapshot");
+    history::append(history_path, &snap).map_err(io_err(history_path))?;
+    Ok(snap)
+}
