@@ -38,6 +38,8 @@ pub enum PlotKind {
     Hand,
     /// Every quantity's intervals side by side.
     Forest,
+    /// One finger's means with their confidence band against the number of X-rays.
+    Tracking,
 }
 
 /// One rendered plot.
@@ -77,6 +79,33 @@ pub fn hand_diagram(placements: &[FingerPlacement], confidence: f64) -> Result<P
 /// One row per finger and relative quantity, one shared x axis (relative value). Id `forest`.
 pub fn forest_plot(a: &Analysis) -> Result<Plot, Error> {
     forest::plot(a)
+}
+
+/// One snapshot of one quantity: the number of X-rays, the mean, its t interval.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrackPoint {
+    pub xrays: usize,
+    pub mean: f64,
+    pub ci: Option<(f64, f64)>,
+}
+
+/// The history of one relative quantity of a finger, in snapshot order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TrackSeries {
+    /// Display label, e.g. "J~1 = J1/J".
+    pub label: String,
+    pub points: Vec<TrackPoint>,
+}
+
+/// Tracking plot of one finger (id `tracking-<finger>`): for each relative quantity,
+/// the mean against the number of X-rays with its t confidence band.
+pub fn tracking_plot(
+    finger: crate::dataset::Finger,
+    series: &[TrackSeries],
+    confidence: f64,
+) -> Result<Plot, Error> {
+    let _ = (finger, series, confidence);
+    Err(Error::render("tracking plot", "not yet drawn"))
 }
 
 /// Every plot of a report, in display order: one per finger, the hand diagram, the forest plot.
