@@ -3,6 +3,7 @@
 use crate::analysis::Quantity;
 use crate::analysis::claims::{self, CheckSummary};
 use crate::analysis::coverage::{self, CoverageSettings};
+use crate::analysis::groups::{GroupBy, analyse_groups};
 use crate::analysis::{self, Analysis, Settings};
 use crate::dataset::claims::Claims;
 use crate::dataset::{Dataset, Finger};
@@ -46,6 +47,8 @@ pub enum Command {
         data: DataArgs,
         #[command(flatten)]
         boot: BootArgs,
+        #[command(flatten)]
+        groups: GroupArgs,
         /// Output format
         #[arg(long, value_enum, default_value_t = StatsFormat::Table)]
         format: StatsFormat,
@@ -127,6 +130,39 @@ pub enum Command {
         #[arg(long, value_enum, default_value_t = TextFormat::Table)]
         format: TextFormat,
     },
+}
+
+/// Grouping of X-rays (the paper's future work: statistics by sex and age).
+#[derive(Args, Debug, Clone)]
+pub struct GroupArgs {
+    /// Also compute every statistic per group of X-rays
+    #[arg(long, value_enum, value_name = "COLUMN")]
+    pub group_by: Option<GroupColumn>,
+    /// Age band edges for --group-by age, ascending
+    #[arg(long, value_name = "EDGES", value_delimiter = ',', default_values_t = crate::analysis::groups::DEFAULT_AGE_BINS, allow_negative_numbers = true)]
+    pub age_bins: Vec<f64>,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GroupColumn {
+    Sex,
+    Age,
+    Side,
+}
+
+impl GroupArgs {
+    /// The grouping asked for, validated.
+    pub fn group_by(&self) -> Result<Option<GroupBy>, Error> {
+        Ok(match self.group_by {
+            None => None,
+            Some(GroupColumn::Sex) => Some(GroupBy::Sex),
+            Some(GroupColumn::Side) => Some(GroupBy::Side),
+            Some(GroupColumn::Age) => {
+                crate::analysis::groups::validate_age_bins(&self.age_bins).map_err(Error::Usage)?;
+                Some(GroupBy::Age(self.age_bins.clone()))
+            }
+        })
+    }
 }
 
 /// The history file.
@@ -224,6 +260,22 @@ pub struct ReportArgs {
     /// Simulated datasets for the coverage section
     #[arg(long, default_value_t = 4000, value_parser = clap::value_parser!(u64).range(1..))]
     pub sims: u64,
+    #[command(flatten)]
+    pub history: HistoryArgs,
+    #[command(flatten)]
+    pub groups: GroupArgs,
+    /// Target half-width of the confidence interval of a relative mean, for "X-rays needed"
+    #[arg(long, value_name = "W", default_value_t = 0.005, value_parser = parse_target)]
+    pub target: f64,
+}
+
+fn parse_target(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 => Ok(t),
+        _ => Err(format!(
+            "'{text}' is not a positive half-width; give e.g. 0.005"
+        )),
+    }
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -330,12 +382,22 @@ pub fn main() -> i32 {
 /// Runs one parsed command; returns the exit status on success.
 pub fn run(cli: Cli) -> Result<i32, Error> {
     match cli.command {
-        Command::Stats { data, boot, format } => {
-            let a = load_and_analyse(&data.data, &boot.settings())?;
+        Command::Stats {
+            data,
+            boot,
+            groups,
+            format,
+        } => {
+            let settings = boot.settings();
+            settings.validate().map_err(Error::Usage)?;
+            let by = groups.group_by()?;
+            let dataset = Dataset::load(&data.data)?;
+            let a = analysis::analyse(&dataset, &settings);
+            let groups = by.map_or_else(Vec::new, |by| analyse_groups(&dataset, &by, &settings));
             let bytes = match format {
-                StatsFormat::Table => report::text::stats(&a).into_bytes(),
-                StatsFormat::Json => report::json::stats(&a)?,
-                StatsFormat::Csv => report::csv_out::stats(&a)?,
+                StatsFormat::Table => report::text::stats_with_groups(&a, &groups).into_bytes(),
+                StatsFormat::Json => report::json::stats(&a, &groups)?,
+                StatsFormat::Csv => report::csv_out::stats(&a, &groups)?,
             };
             print(&bytes)?;
             Ok(0)
@@ -504,7 +566,11 @@ fn report_command(args: &ReportArgs) -> Result<(), Error> {
         Some(dir) => report::render::Templates::from_dir(dir)?,
         None => report::render::Templates::builtin()?,
     };
+    let by = args.groups.group_by()?;
     let dataset = Dataset::load(&args.data.data)?;
+    let groups = by.map_or_else(Vec::new, |by| analyse_groups(&dataset, &by, &settings));
+    let history_path = args.history.resolve(&args.data.data);
+    let history = crate::dataset::history::read(&history_path)?;
     let claims = Claims::load(&args.claims)?;
     claims.check_against(&dataset)?;
     let results = claims::check(&claims, &dataset);
@@ -530,6 +596,10 @@ fn report_command(args: &ReportArgs) -> Result<(), Error> {
         placements: &placements,
         model_length: args.model_length,
         timestamp,
+        history_file: &history_path.display().to_string(),
+        history: &history,
+        target: args.target,
+        groups: &groups,
     };
     let formats = report::Formats {
         html: args.format.contains(&ReportFormat::Html),

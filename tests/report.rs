@@ -35,6 +35,10 @@ fn render_bytes(data: &[u8]) -> (Vec<OutputFile>, view::ReportView) {
         placements: &places,
         model_length: 1000.0,
         timestamp: None,
+        history_file: "data/history.jsonl",
+        history: &[],
+        target: 0.005,
+        groups: &[],
     };
     let files = report::render(&inputs, Formats::ALL, &Templates::builtin().unwrap()).unwrap();
     let plots = plots::all(&a, &places).unwrap();
@@ -90,6 +94,7 @@ fn html_holds_every_table_and_a_plot_of_each_kind() {
         "placement-joints",
         "placement-segments",
         "coverage-table",
+        "tracking-needed",
     ];
     for id in tables {
         let t = html

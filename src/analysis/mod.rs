@@ -10,6 +10,7 @@ pub mod bootstrap;
 pub mod claims;
 pub mod coverage;
 pub mod describe;
+pub mod groups;
 pub mod placement;
 pub mod rng;
 pub mod tracking;

@@ -93,6 +93,36 @@ pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
         .collect()
 }
 
+/// One quantity's history: (X-rays, mean, t interval) per snapshot, in order.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct QuantityHistory {
+    pub finger: String,
+    pub quantity: String,
+    pub points: Vec<(usize, f64, Option<[f64; 2]>)>,
+}
+
+/// The history of every quantity present in the snapshots, in first-seen order.
+pub fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
+    let mut out: Vec<QuantityHistory> = Vec::new();
+    for s in snaps {
+        for q in &s.quantities {
+            let point = (q.n, q.mean, q.ci_t);
+            match out
+                .iter_mut()
+                .find(|h| h.finger == q.finger && h.quantity == q.quantity)
+            {
+                Some(h) => h.points.push(point),
+                None => out.push(QuantityHistory {
+                    finger: q.finger.clone(),
+                    quantity: q.quantity.clone(),
+                    points: vec![point],
+                }),
+            }
+        }
+    }
+    out
+}
+
 /// Largest n [`xrays_needed`] searches.
 pub const MAX_NEEDED: usize = 100_000_000;
 

@@ -1,5 +1,6 @@
 //! CSV output of the statistics: one row per finger and quantity, full precision.
 
+use crate::analysis::groups::Group;
 use crate::analysis::{Analysis, Interval};
 use crate::error::Error;
 
@@ -48,18 +49,46 @@ fn lo_hi(i: Option<Interval>) -> [String; 2] {
     [f(i.map(|i| i.low)), f(i.map(|i| i.high))]
 }
 
-/// The statistics as CSV bytes; empty cells where a value is null.
-pub fn stats(a: &Analysis) -> Result<Vec<u8>, Error> {
+/// The statistics as CSV bytes; empty cells where a value is null. With groups
+/// (`--group-by`), two leading columns `group_by` and `group` name each row's
+/// group (`all` for the whole dataset).
+pub fn stats(a: &Analysis, groups: &[Group]) -> Result<Vec<u8>, Error> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let err = |e| Error::render("cannot write CSV", e);
-    w.write_record(STATS_COLUMNS).map_err(err)?;
+    let by = groups.first().map(|g| g.by);
+    let mut header: Vec<&str> = Vec::new();
+    if by.is_some() {
+        header.extend(["group_by", "group"]);
+    }
+    header.extend(STATS_COLUMNS);
+    w.write_record(&header).map_err(err)?;
+    let mut sets: Vec<(&str, &Analysis)> = vec![("all", a)];
+    sets.extend(groups.iter().map(|g| (g.label.as_str(), &g.analysis)));
+    for (label, a) in sets {
+        let lead: Vec<String> = match by {
+            Some(b) => vec![b.to_string(), safe_cell(label)],
+            None => Vec::new(),
+        };
+        write_analysis(&mut w, a, &lead)?;
+    }
+    w.into_inner()
+        .map_err(|e| Error::render("cannot write CSV", e.to_string()))
+}
+
+fn write_analysis(
+    w: &mut csv::Writer<Vec<u8>>,
+    a: &Analysis,
+    lead: &[String],
+) -> Result<(), Error> {
+    let err = |e| Error::render("cannot write CSV", e);
     for fa in &a.fingers {
         let method = match fa.bootstrap {
             crate::analysis::bootstrap::Plan::Exact { .. } => "exact",
             crate::analysis::bootstrap::Plan::Random { .. } => "random",
         };
         for q in &fa.quantities {
-            let mut rec = vec![
+            let mut rec = lead.to_vec();
+            rec.extend([
                 fa.finger.name().to_string(),
                 q.name.name().to_string(),
                 q.n.to_string(),
@@ -71,7 +100,7 @@ pub fn stats(a: &Analysis) -> Result<Vec<u8>, Error> {
                 f(Some(q.max)),
                 f(Some(q.range)),
                 f(q.cv),
-            ];
+            ]);
             for i in [q.ci_t, q.ci_percentile, q.ci_bca, q.pi] {
                 rec.extend(lo_hi(i));
             }
@@ -81,8 +110,7 @@ pub fn stats(a: &Analysis) -> Result<Vec<u8>, Error> {
             w.write_record(&rec).map_err(err)?;
         }
     }
-    w.into_inner()
-        .map_err(|e| Error::render("cannot write CSV", e.to_string()))
+    Ok(())
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
+use crate::analysis::groups::{Group, GroupSummary};
 use crate::analysis::{Analysis, DatasetInfo, FingerAnalysis, Quantity, Settings, rng};
 use crate::dataset::Finger;
 use crate::dataset::history::{QuantityRecord, Snapshot};
@@ -40,6 +41,15 @@ struct StatsDocument<'a> {
     dataset: &'a DatasetInfo,
     settings: SettingsView<'static>,
     fingers: &'a [FingerAnalysis],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    groups: Option<GroupsDocument<'a>>,
+}
+
+/// Statistics per group (`--group-by`).
+#[derive(Serialize)]
+struct GroupsDocument<'a> {
+    by: &'a str,
+    groups: Vec<GroupSummary<'a>>,
 }
 
 fn to_bytes(value: &impl Serialize) -> Result<Vec<u8>, Error> {
@@ -49,13 +59,18 @@ fn to_bytes(value: &impl Serialize) -> Result<Vec<u8>, Error> {
     Ok(out)
 }
 
-/// The statistics document of `phalanx stats --format json` and `reports/stats.json`.
-pub fn stats(a: &Analysis) -> Result<Vec<u8>, Error> {
+/// The statistics document of `phalanx stats --format json` and `reports/stats.json`;
+/// with `groups` (from `--group-by`) it gains a `groups` key.
+pub fn stats(a: &Analysis, groups: &[Group]) -> Result<Vec<u8>, Error> {
     to_bytes(&StatsDocument {
         schema_version: SCHEMA_VERSION,
         dataset: &a.dataset,
         settings: SettingsView::of(&a.settings),
         fingers: &a.fingers,
+        groups: groups.first().map(|g| GroupsDocument {
+            by: g.by,
+            groups: groups.iter().map(Group::summary).collect(),
+        }),
     })
 }
 

@@ -46,7 +46,8 @@ pub fn render(
 ) -> Result<Vec<OutputFile>, Error> {
     let mut files = Vec::new();
     if formats.html || formats.markdown {
-        let plots = plots::all(inputs.analysis, inputs.placements)?;
+        let mut plots = plots::all(inputs.analysis, inputs.placements)?;
+        plots.extend(tracking_plots(inputs)?);
         let view = view::build(inputs, &plots);
         if formats.html {
             files.push(OutputFile::new("index.html", templates.html(&view)?));
@@ -62,7 +63,49 @@ pub fn render(
         }
     }
     if formats.json {
-        files.push(OutputFile::new("stats.json", json::stats(inputs.analysis)?));
+        files.push(OutputFile::new(
+            "stats.json",
+            json::stats(inputs.analysis, inputs.groups)?,
+        ));
     }
     Ok(files)
+}
+
+/// One tracking plot per finger with history, in the analysis's finger order.
+fn tracking_plots(inputs: &ReportInputs<'_>) -> Result<Vec<plots::Plot>, Error> {
+    use crate::analysis::Quantity;
+    if inputs.history.is_empty() {
+        return Ok(Vec::new());
+    }
+    let histories = crate::analysis::tracking::histories(inputs.history);
+    let mut out = Vec::new();
+    for f in &inputs.analysis.fingers {
+        let series: Vec<plots::TrackSeries> = histories
+            .iter()
+            .filter(|h| h.finger == f.finger.name())
+            .filter_map(|h| {
+                let q = Quantity::parse(&h.quantity).filter(|q| q.is_relative())?;
+                Some(plots::TrackSeries {
+                    label: q.label().to_string(),
+                    points: h
+                        .points
+                        .iter()
+                        .map(|&(xrays, mean, ci)| plots::TrackPoint {
+                            xrays,
+                            mean,
+                            ci: ci.map(|[lo, hi]| (lo, hi)),
+                        })
+                        .collect(),
+                })
+            })
+            .collect();
+        if !series.is_empty() {
+            out.push(plots::tracking_plot(
+                f.finger,
+                &series,
+                inputs.analysis.settings.confidence,
+            )?);
+        }
+    }
+    Ok(out)
 }

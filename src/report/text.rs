@@ -78,6 +78,30 @@ pub fn stats(a: &Analysis) -> String {
     out
 }
 
+/// The statistics of the whole dataset, then of each group (`--group-by`).
+pub fn stats_with_groups(a: &Analysis, groups: &[crate::analysis::groups::Group]) -> String {
+    let mut out = stats(a);
+    for g in groups {
+        out.push_str(&format!(
+            "\n==== {} = {} ({} X-ray{}) ====\n",
+            g.by,
+            g.label,
+            g.xrays,
+            if g.xrays == 1 { "" } else { "s" }
+        ));
+        if let Some(n) = &g.note {
+            out.push_str(&format!("note: {n}\n"));
+        }
+        // Skip the group's own title line (the dataset line repeats the overall one).
+        let body = stats(&g.analysis);
+        out.push_str(
+            body.split_once('\n')
+                .map_or(body.as_str(), |(_, rest)| rest),
+        );
+    }
+    out
+}
+
 /// The claim-by-claim check, then a summary line.
 pub fn check(results: &[ClaimResult]) -> String {
     let mut t = table(&["claim", "where", "stated", "computed", "verdict"], 2);

@@ -8,9 +8,11 @@ use super::plots::{Plot, PlotKind};
 use crate::analysis::bootstrap::Plan;
 use crate::analysis::claims::{CheckSummary, ClaimResult, Verdict};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
+use crate::analysis::groups::Group;
 use crate::analysis::placement::FingerPlacement;
 use crate::analysis::{Analysis, Quantity, rng};
 use crate::dataset::Finger;
+use crate::dataset::history::Snapshot;
 use serde::Serialize;
 
 /// Most X-rays listed row by row in the data tables; the rest are summarised.
@@ -28,7 +30,65 @@ pub struct ReportView {
     pub claims: ClaimsView,
     pub placement: PlacementView,
     pub coverage: CoverageView,
+    pub tracking: TrackingView,
+    /// Set when the report is grouped (`--group-by`).
+    pub groups: Option<GroupsView>,
     pub plots: Vec<PlotView>,
+}
+
+/// Statistics per group of X-rays.
+#[derive(Debug, Clone, Serialize)]
+pub struct GroupsView {
+    /// The column grouped on.
+    pub by: String,
+    pub groups: Vec<GroupView>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct GroupView {
+    pub label: String,
+    pub id: String,
+    pub xrays: String,
+    pub note: Option<String>,
+    pub stats: Vec<StatsFinger>,
+}
+
+/// How the statistics moved as X-rays were added.
+#[derive(Debug, Clone, Serialize)]
+pub struct TrackingView {
+    pub file: String,
+    pub snapshots: String,
+    /// Set when there is nothing to compare yet.
+    pub note: Option<String>,
+    /// The two snapshots compared, e.g. "snapshot 3 (2026-..., 6 X-rays) against snapshot 2 (...)".
+    pub compared: String,
+    pub changes: Vec<ChangeRow>,
+    pub target: String,
+    pub needed: Vec<NeededRow>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct ChangeRow {
+    pub finger: String,
+    pub quantity: String,
+    pub n: String,
+    pub mean_before: String,
+    pub mean_after: String,
+    pub shift: String,
+    pub width_before: String,
+    pub width_after: String,
+    pub width_change: String,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct NeededRow {
+    pub finger: String,
+    pub quantity: String,
+    pub n: String,
+    pub sd: String,
+    pub half_width: String,
+    pub needed: String,
+    pub more: String,
 }
 
 /// A label and its value.
@@ -222,6 +282,13 @@ pub struct ReportInputs<'a> {
     pub model_length: f64,
     /// Added to the provenance only when asked for (`--timestamp`).
     pub timestamp: Option<String>,
+    /// The history file and its snapshots, for the Tracking section.
+    pub history_file: &'a str,
+    pub history: &'a [Snapshot],
+    /// Target half-width of the confidence interval of a relative mean.
+    pub target: f64,
+    /// Statistics per group (`--group-by`); empty when not grouped.
+    pub groups: &'a [Group],
 }
 
 /// Builds the view of a whole report.
@@ -254,6 +321,8 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         claims: claims(inputs.claims_file, inputs.claims),
         placement: placement(inputs.placements, inputs.model_length),
         coverage: coverage(inputs.coverage_settings, inputs.coverage),
+        tracking: tracking(inputs),
+        groups: groups_view(inputs.groups),
         plots: plots.iter().map(plot).collect(),
     }
 }
@@ -598,4 +667,135 @@ fn plot(p: &Plot) -> PlotView {
         file: format!("plots/{}.svg", p.id),
         svg: p.svg.clone(),
     }
+}
+
+fn signed(x: f64, d: usize) -> String {
+    let s = format!("{x:+.d$}");
+    // "+0.0000" and "-0.0000" both read as no change.
+    if s[1..].chars().all(|c| c == '0' || c == '.') {
+        format!("{:.d$}", 0.0)
+    } else {
+        s
+    }
+}
+
+fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
+    let a = inputs.analysis;
+    let snaps = inputs.history;
+    let c = a.settings.confidence;
+    let describe_snap = |i: usize| {
+        let s = &snaps[i];
+        format!(
+            "snapshot {} ({}, {}, {} X-rays)",
+            i + 1,
+            s.time,
+            s.event,
+            s.xrays
+        )
+    };
+    let (note, compared, changes) = if snaps.len() < 2 {
+        (
+            Some(format!(
+                "{} snapshot(s) in {}: changes appear once there are two. 'phalanx add' records one per addition; 'phalanx snapshot' one on demand.",
+                snaps.len(),
+                inputs.history_file
+            )),
+            String::new(),
+            Vec::new(),
+        )
+    } else {
+        let (b, e) = (snaps.len() - 2, snaps.len() - 1);
+        let rows = crate::analysis::tracking::changes(&snaps[b], &snaps[e])
+            .into_iter()
+            .filter(|ch| ch.quantity != "total")
+            .map(|ch| {
+                let d = 4;
+                let label = Quantity::parse(&ch.quantity)
+                    .map_or(ch.quantity.clone(), |q| q.label().to_string());
+                ChangeRow {
+                    finger: Finger::parse(&ch.finger)
+                        .map_or(ch.finger.clone(), |f| f.display_name().to_string()),
+                    quantity: label,
+                    n: format!("{} -> {}", ch.n_before, ch.n_after),
+                    mean_before: num(ch.mean_before, d),
+                    mean_after: num(ch.mean_after, d),
+                    shift: signed(ch.mean_shift, d),
+                    width_before: opt(ch.ci_width_before, d),
+                    width_after: opt(ch.ci_width_after, d),
+                    width_change: match (ch.ci_width_before, ch.ci_width_after) {
+                        (Some(x), Some(y)) => signed(y - x, d),
+                        _ => "n/a".to_string(),
+                    },
+                }
+            })
+            .collect();
+        (
+            None,
+            format!("{} against {}", describe_snap(e), describe_snap(b)),
+            rows,
+        )
+    };
+    let needed = a
+        .fingers
+        .iter()
+        .flat_map(|f| {
+            f.quantities
+                .iter()
+                .filter(|q| q.name.is_relative())
+                .map(move |q| {
+                    let need = q.sd.and_then(|sd| {
+                        crate::analysis::tracking::xrays_needed(sd, inputs.target, c)
+                    });
+                    NeededRow {
+                        finger: f.finger.display_name().to_string(),
+                        quantity: q.name.label().to_string(),
+                        n: q.n.to_string(),
+                        sd: opt(q.sd, 4),
+                        half_width: opt(q.ci_t.map(|i| i.width() / 2.0), 4),
+                        needed: need.map_or_else(|| "n/a".to_string(), |n| n.to_string()),
+                        more: match need {
+                            Some(n) if n <= q.n => "reached".to_string(),
+                            Some(n) => format!("{} more", n - q.n),
+                            None => "n/a".to_string(),
+                        },
+                    }
+                })
+        })
+        .collect();
+    TrackingView {
+        file: inputs.history_file.to_string(),
+        snapshots: snaps.len().to_string(),
+        note,
+        compared,
+        changes,
+        target: num(inputs.target, 4),
+        needed,
+    }
+}
+
+fn groups_view(groups: &[Group]) -> Option<GroupsView> {
+    let by = groups.first()?.by;
+    Some(GroupsView {
+        by: by.to_string(),
+        groups: groups
+            .iter()
+            .enumerate()
+            .map(|(i, g)| GroupView {
+                label: g.label.clone(),
+                id: format!("group-{}", i + 1),
+                xrays: g.xrays.to_string(),
+                note: g.note.clone(),
+                stats: g
+                    .analysis
+                    .fingers
+                    .iter()
+                    .map(|f| {
+                        let mut v = stats(f);
+                        v.id = format!("group-{}-{}", i + 1, v.id);
+                        v
+                    })
+                    .collect(),
+            })
+            .collect(),
+    })
 }

@@ -1,0 +1,207 @@
+//! Statistics by group of hands: by sex, age band or side (the paper's future work).
+
+use super::{Analysis, Settings, analyse};
+use crate::dataset::Dataset;
+use serde::Serialize;
+
+/// What to group X-rays by.
+#[derive(Debug, Clone, PartialEq)]
+pub enum GroupBy {
+    Sex,
+    Side,
+    /// Age bands from these ascending edges: [e0, e1), [e1, e2), ..., [e_last, inf).
+    Age(Vec<f64>),
+}
+
+/// Default age bands: children, young adults, adults, older adults.
+pub const DEFAULT_AGE_BINS: [f64; 4] = [0.0, 18.0, 40.0, 65.0];
+
+impl GroupBy {
+    /// The metadata column grouped on.
+    pub fn name(&self) -> &'static str {
+        match self {
+            GroupBy::Sex => "sex",
+            GroupBy::Side => "side",
+            GroupBy::Age(_) => "age",
+        }
+    }
+
+    /// The group label of a row's metadata; "unknown" when the value is missing.
+    fn label(&self, meta: &crate::dataset::Meta) -> String {
+        let unknown = || "unknown".to_string();
+        match self {
+            GroupBy::Sex => meta.sex.as_deref().map_or_else(unknown, str::to_string),
+            GroupBy::Side => meta.side.as_deref().map_or_else(unknown, str::to_string),
+            GroupBy::Age(edges) => meta.age.map_or_else(unknown, |a| age_band(a, edges)),
+        }
+    }
+}
+
+/// The band of an age: "18-40" for [18, 40), "65+" for the last, "under 0" below the first.
+fn age_band(age: f64, edges: &[f64]) -> String {
+    let fmt = |x: f64| {
+        if x.fract() == 0.0 {
+            format!("{}", x as i64)
+        } else {
+            x.to_string()
+        }
+    };
+    match edges.iter().rposition(|&e| age >= e) {
+        None => format!(
+            "under {}",
+            edges.first().map_or_else(String::new, |&e| fmt(e))
+        ),
+        Some(i) if i + 1 == edges.len() => format!("{}+", fmt(edges[i])),
+        Some(i) => format!("{}-{}", fmt(edges[i]), fmt(edges[i + 1])),
+    }
+}
+
+/// Checks age band edges: at least one, finite, strictly increasing.
+pub fn validate_age_bins(edges: &[f64]) -> Result<(), String> {
+    if edges.is_empty() {
+        return Err("--age-bins needs at least one edge, e.g. 0,18,40,65".into());
+    }
+    if edges.iter().any(|e| !e.is_finite()) || edges.windows(2).any(|w| w[0] >= w[1]) {
+        return Err(format!(
+            "--age-bins must be finite and strictly increasing, e.g. 0,18,40,65 (got {edges:?})"
+        ));
+    }
+    Ok(())
+}
+
+/// The statistics of one group.
+#[derive(Debug, Clone)]
+pub struct Group {
+    /// The column grouped on (`sex`, `age`, `side`).
+    pub by: &'static str,
+    pub label: String,
+    pub xrays: usize,
+    pub analysis: Analysis,
+    /// Set for groups too small for intervals.
+    pub note: Option<String>,
+}
+
+/// Fewest X-rays a group needs for spreads and intervals.
+pub const MIN_GROUP: usize = 2;
+
+/// Splits the X-rays into groups and analyses each, in order of first
+/// appearance in the file. Each group's bootstrap uses its own seed,
+/// `seed + 0x9E3779B97F4A7C15 * (group index + 1)` (wrapping), so groups do not
+/// share random streams. Groups with fewer than [`MIN_GROUP`] X-rays are kept,
+/// with a note.
+pub fn analyse_groups(data: &Dataset, by: &GroupBy, settings: &Settings) -> Vec<Group> {
+    let mut labels: Vec<String> = Vec::new();
+    let mut subsets: Vec<Dataset> = Vec::new();
+    for row in &data.rows {
+        let label = by.label(&row.meta);
+        let i = match labels.iter().position(|l| *l == label) {
+            Some(i) => i,
+            None => {
+                labels.push(label);
+                subsets.push(Dataset {
+                    path: data.path.clone(),
+                    sha256: data.sha256.clone(),
+                    columns: data.columns.clone(),
+                    rows: Vec::new(),
+                });
+                labels.len() - 1
+            }
+        };
+        subsets[i].rows.push(row.clone());
+    }
+    labels
+        .into_iter()
+        .zip(subsets)
+        .enumerate()
+        .map(|(i, (label, subset))| {
+            let seed = settings
+                .seed
+                .wrapping_add(0x9E37_79B9_7F4A_7C15u64.wrapping_mul(i as u64 + 1));
+            let analysis = analyse(&subset, &Settings { seed, ..*settings });
+            let xrays = subset.xray_count();
+            let note = (xrays < MIN_GROUP).then(|| {
+                format!(
+                    "only {xrays} X-ray: no spread or interval can be estimated; add X-rays of this group"
+                )
+            });
+            Group {
+                by: by.name(),
+                label,
+                xrays,
+                analysis,
+                note,
+            }
+        })
+        .collect()
+}
+
+/// One group as it appears in JSON.
+#[derive(Serialize)]
+pub struct GroupSummary<'a> {
+    pub group: &'a str,
+    pub xrays: usize,
+    pub seed: u64,
+    pub note: Option<&'a str>,
+    pub fingers: &'a [super::FingerAnalysis],
+}
+
+impl Group {
+    /// The JSON view of this group.
+    pub fn summary(&self) -> GroupSummary<'_> {
+        GroupSummary {
+            group: &self.label,
+            xrays: self.xrays,
+            seed: self.analysis.settings.seed,
+            note: self.note.as_deref(),
+            fingers: &self.analysis.fingers,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn data() -> Dataset {
+        let text = "xray,finger,j1,j2,j3,sex,age,side\n\
+                    a,index,4,3,3,f,30,left\na,thumb,4,3,,f,30,left\n\
+                    b,index,5,3,3,m,70,right\n\
+                    c,index,6,3,3,f,17,right\n\
+                    d,index,6,3.5,3,,,\n";
+        Dataset::from_bytes("g.csv", text.as_bytes()).unwrap()
+    }
+
+    #[test]
+    fn groups_have_the_right_sizes() {
+        let g = analyse_groups(&data(), &GroupBy::Sex, &Settings::default());
+        let sizes: Vec<(&str, usize)> = g.iter().map(|g| (g.label.as_str(), g.xrays)).collect();
+        assert_eq!(sizes, vec![("female", 2), ("male", 1), ("unknown", 1)]);
+        assert!(g[0].note.is_none());
+        assert!(g[1].note.as_deref().unwrap().contains("only 1 X-ray"));
+        // The female group: index n = 2 (a, c), thumb n = 1 (a).
+        let f = &g[0].analysis;
+        assert_eq!(f.finger(crate::dataset::Finger::Index).unwrap().n, 2);
+        assert_eq!(f.finger(crate::dataset::Finger::Thumb).unwrap().n, 1);
+        assert_ne!(g[0].analysis.settings.seed, g[1].analysis.settings.seed);
+    }
+
+    #[test]
+    fn age_bands() {
+        let g = analyse_groups(
+            &data(),
+            &GroupBy::Age(DEFAULT_AGE_BINS.to_vec()),
+            &Settings::default(),
+        );
+        let labels: Vec<&str> = g.iter().map(|g| g.label.as_str()).collect();
+        assert_eq!(labels, vec!["18-40", "65+", "0-18", "unknown"]);
+        assert_eq!(age_band(-1.0, &[0.0, 10.0]), "under 0");
+        assert_eq!(age_band(10.0, &[0.0, 10.0]), "10+");
+        assert!(validate_age_bins(&[0.0, 18.0, 18.0]).is_err());
+        assert!(validate_age_bins(&[]).is_err());
+        let sides = analyse_groups(&data(), &GroupBy::Side, &Settings::default());
+        assert_eq!(
+            sides.iter().map(|g| g.xrays).collect::<Vec<_>>(),
+            vec![1, 2, 1]
+        );
+    }
+}
