@@ -32,7 +32,7 @@ fn t_intervals_cover_and_percentile_intervals_undercover_at_n_5() {
     assert_eq!(doc["settings"]["sims"], 2000);
     assert_eq!(doc["settings"]["confidence"], 0.95);
     let qs = doc["quantities"].as_array().unwrap();
-    assert_eq!(qs.len(), 19, "3 thumb + 4 x 4 finger quantities");
+    assert_eq!(qs.len(), 28, "4 thumb + 4 x 6 finger quantities");
     let mut relative = 0;
     for q in qs {
         let what = format!("{} {}", q["finger"], q["quantity"]);
@@ -64,7 +64,7 @@ fn t_intervals_cover_and_percentile_intervals_undercover_at_n_5() {
             "{what}: prediction coverage {pi}"
         );
     }
-    assert_eq!(relative, 14);
+    assert_eq!(relative, 23, "14 relative values and 9 ratios");
 }
 
 #[test]
@@ -110,5 +110,5 @@ fn coverage_table_lists_every_quantity() {
         .lines()
         .filter(|l| l.starts_with("| ") && l.contains('%'))
         .count();
-    assert_eq!(rows, 19, "{}", run.stdout);
+    assert_eq!(rows, 28, "{}", run.stdout);
 }

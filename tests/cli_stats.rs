@@ -125,9 +125,20 @@ fn json_has_the_documented_schema() {
         let qs = f["quantities"].as_array().unwrap();
         let qnames: Vec<&str> = qs.iter().map(|q| q["name"].as_str().unwrap()).collect();
         if name == "thumb" {
-            assert_eq!(qnames, ["rel_j1", "rel_j2", "total"]);
+            assert_eq!(qnames, ["rel_j1", "rel_j2", "ratio_j2_j1", "total"]);
         } else {
-            assert_eq!(qnames, ["rel_j1", "rel_j2", "rel_j3", "total"], "{name}");
+            assert_eq!(
+                qnames,
+                [
+                    "rel_j1",
+                    "rel_j2",
+                    "rel_j3",
+                    "ratio_j2_j1",
+                    "ratio_j3_j2",
+                    "total"
+                ],
+                "{name}"
+            );
         }
         for q in qs {
             let what = format!("{name} {}", q["name"]);
@@ -175,7 +186,7 @@ fn json_has_the_documented_schema() {
         // The relative values of a finger add up to 1, and so do their means.
         let rel_mean_sum: f64 = qs
             .iter()
-            .filter(|q| q["name"] != "total")
+            .filter(|q| q["name"].as_str().is_some_and(|n| n.starts_with("rel_")))
             .map(|q| num(&q["mean"]))
             .sum();
         assert_close(rel_mean_sum, 1.0, 1e-12, name);
@@ -425,7 +436,7 @@ fn relative_statistics_are_scale_invariant() {
             }
         }
     }
-    assert_eq!(compared, 19 * (scalars.len() + 8));
+    assert_eq!(compared, 28 * (scalars.len() + 8));
 }
 
 #[test]
@@ -455,7 +466,7 @@ fn csv_format_has_one_row_per_finger_and_quantity() {
     }
     let col = |name: &str| header.iter().position(|h| h == name).unwrap();
     let records: Vec<csv::StringRecord> = rdr.records().map(|r| r.unwrap()).collect();
-    assert_eq!(records.len(), 19, "3 thumb + 4 x 4 finger rows");
+    assert_eq!(records.len(), 28, "4 thumb + 4 x 6 finger rows");
     let pairs: Vec<(String, String)> = records
         .iter()
         .map(|r| (r[col("finger")].to_string(), r[col("quantity")].to_string()))
@@ -463,9 +474,16 @@ fn csv_format_has_one_row_per_finger_and_quantity() {
     let mut want = Vec::new();
     for f in FINGERS {
         let qs: &[&str] = if f == "thumb" {
-            &["rel_j1", "rel_j2", "total"]
+            &["rel_j1", "rel_j2", "ratio_j2_j1", "total"]
         } else {
-            &["rel_j1", "rel_j2", "rel_j3", "total"]
+            &[
+                "rel_j1",
+                "rel_j2",
+                "rel_j3",
+                "ratio_j2_j1",
+                "ratio_j3_j2",
+                "total",
+            ]
         };
         want.extend(qs.iter().map(|q| (f.to_string(), q.to_string())));
     }
@@ -488,7 +506,7 @@ fn csv_format_has_one_row_per_finger_and_quantity() {
         assert_eq!(&r[col("bootstrap")], "exact", "{what}");
         assert_eq!(&r[col("confidence")], "0.95", "{what}");
     }
-    let index_rel1 = &records[3];
+    let index_rel1 = &records[4];
     assert_eq!(&index_rel1[col("finger")], "index");
     assert_close(
         index_rel1[col("mean")].parse().unwrap(),

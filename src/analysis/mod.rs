@@ -112,23 +112,34 @@ pub enum Quantity {
     RelJ2,
     /// J~3 = J3 / J (not for the thumb).
     RelJ3,
+    /// J2 / J1, the ratio of adjacent segments (needs no fingertip).
+    RatioJ2J1,
+    /// J3 / J2 (not for the thumb).
+    RatioJ3J2,
     /// J, the total length in data units.
     Total,
 }
 
 impl Quantity {
     /// Every quantity, in output order.
-    pub const ALL: [Quantity; 4] = [
+    pub const ALL: [Quantity; 6] = [
         Quantity::RelJ1,
         Quantity::RelJ2,
         Quantity::RelJ3,
+        Quantity::RatioJ2J1,
+        Quantity::RatioJ3J2,
         Quantity::Total,
     ];
 
     /// The quantities of a finger.
     pub fn of(finger: Finger) -> &'static [Quantity] {
         match finger {
-            Finger::Thumb => &[Quantity::RelJ1, Quantity::RelJ2, Quantity::Total],
+            Finger::Thumb => &[
+                Quantity::RelJ1,
+                Quantity::RelJ2,
+                Quantity::RatioJ2J1,
+                Quantity::Total,
+            ],
             _ => &Quantity::ALL,
         }
     }
@@ -139,6 +150,8 @@ impl Quantity {
             Quantity::RelJ1 => "rel_j1",
             Quantity::RelJ2 => "rel_j2",
             Quantity::RelJ3 => "rel_j3",
+            Quantity::RatioJ2J1 => "ratio_j2_j1",
+            Quantity::RatioJ3J2 => "ratio_j3_j2",
             Quantity::Total => "total",
         }
     }
@@ -156,12 +169,19 @@ impl Quantity {
             Quantity::RelJ1 => "J~1 = J1/J",
             Quantity::RelJ2 => "J~2 = J2/J",
             Quantity::RelJ3 => "J~3 = J3/J",
+            Quantity::RatioJ2J1 => "J2/J1",
+            Quantity::RatioJ3J2 => "J3/J2",
             Quantity::Total => "J (total length)",
         }
     }
 
-    /// True for the relative (unitless) quantities.
+    /// True for the relative values J~k (fractions of the total length).
     pub fn is_relative(self) -> bool {
+        matches!(self, Quantity::RelJ1 | Quantity::RelJ2 | Quantity::RelJ3)
+    }
+
+    /// True for every quantity without a unit (relative values and ratios).
+    pub fn is_unitless(self) -> bool {
         self != Quantity::Total
     }
 
@@ -172,6 +192,8 @@ impl Quantity {
             Quantity::RelJ1 => row.lengths[0] / total,
             Quantity::RelJ2 => row.lengths[1] / total,
             Quantity::RelJ3 => row.lengths[2] / total,
+            Quantity::RatioJ2J1 => row.lengths[1] / row.lengths[0],
+            Quantity::RatioJ3J2 => row.lengths[2] / row.lengths[1],
             Quantity::Total => total,
         }
     }
@@ -296,6 +318,8 @@ fn columns(finger: Finger, xrays: &[XrayValues]) -> Vec<Vec<f64>> {
                     Quantity::RelJ1 => x.relative[0],
                     Quantity::RelJ2 => x.relative[1],
                     Quantity::RelJ3 => x.relative[2],
+                    Quantity::RatioJ2J1 => x.lengths[1] / x.lengths[0],
+                    Quantity::RatioJ3J2 => x.lengths[2] / x.lengths[1],
                 })
                 .collect()
         })

@@ -212,7 +212,7 @@ fn scaling_every_length_changes_no_relative_statistic() {
     );
     for (fa, fb) in a.fingers.iter().zip(&b.fingers) {
         for (qa, qb) in fa.quantities.iter().zip(&fb.quantities) {
-            let k = if qa.name.is_relative() { 1.0 } else { 3.7 };
+            let k = if qa.name.is_unitless() { 1.0 } else { 3.7 };
             let tol = 1e-12 * k * qa.mean.abs().max(1.0);
             assert!(close(qa.mean * k, qb.mean, tol), "{:?}", qa.name);
             assert!(close(qa.sd.unwrap() * k, qb.sd.unwrap(), tol));

@@ -343,7 +343,7 @@ mod tests {
     fn snapshot_and_changes() {
         let (d, a) = paper();
         let s1 = snapshot(&a, "t1".into(), "snapshot");
-        assert_eq!(s1.quantities.len(), 19);
+        assert_eq!(s1.quantities.len(), 28); // thumb 4 + 4 fingers x 6
         assert_eq!(s1.xrays, 5);
         let mut d2 = d.clone();
         let extra =
@@ -351,7 +351,7 @@ mod tests {
         d2.rows.extend(extra.rows);
         let s2 = snapshot(&analyse(&d2, &Settings::default()), "t2".into(), "add");
         let c = changes(&s1, &s2);
-        assert_eq!(c.len(), 19);
+        assert_eq!(c.len(), 28);
         let idx = c
             .iter()
             .find(|c| c.finger == "index" && c.quantity == "rel_j1")

@@ -2,9 +2,9 @@
 
 use crate::analysis::{Interval, Quantity};
 
-/// Decimals for a quantity: 4 for relative values (as the paper prints them), 2 for lengths.
+/// Decimals for a quantity: 4 for relative values and ratios (as the paper prints them), 2 for lengths.
 pub fn decimals(q: Quantity) -> usize {
-    if q.is_relative() { 4 } else { 2 }
+    if q.is_unitless() { 4 } else { 2 }
 }
 
 /// `x` with `d` decimals; "n/a" for a non-finite value (never printed as NaN).
