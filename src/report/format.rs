@@ -7,6 +7,15 @@ pub fn decimals(q: Quantity) -> usize {
     if q.is_unitless() { 4 } else { 2 }
 }
 
+/// Decimals for positions in a model of total length `l`: about five significant
+/// digits, at least one decimal (1000 -> 1, as the paper's worked example; 7.9 -> 4).
+pub fn length_decimals(l: f64) -> usize {
+    if !(l.is_finite() && l > 0.0) {
+        return 1;
+    }
+    (4 - l.log10().floor() as i64).clamp(1, 6) as usize
+}
+
 /// `x` with `d` decimals; "n/a" for a non-finite value (never printed as NaN).
 pub fn num(x: f64, d: usize) -> String {
     if x.is_finite() {
@@ -53,5 +62,10 @@ mod tests {
         assert_eq!(interval(None, 2), "n/a");
         assert_eq!(percent(0.8312), "83.1%");
         assert_eq!(opt(None, 3), "n/a");
+        assert_eq!(length_decimals(1000.0), 1);
+        assert_eq!(length_decimals(7.9), 4);
+        assert_eq!(length_decimals(87.5), 3);
+        assert_eq!(length_decimals(1e9), 1);
+        assert_eq!(length_decimals(0.001), 6);
     }
 }

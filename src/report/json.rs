@@ -207,3 +207,23 @@ pub fn history(
         series,
     })
 }
+
+/// The document of `phalanx place --format json`.
+pub fn placement(
+    a: &Analysis,
+    ps: &[crate::analysis::placement::FingerPlacement],
+) -> Result<Vec<u8>, Error> {
+    #[derive(Serialize)]
+    struct Doc<'a> {
+        schema_version: u32,
+        dataset: &'a DatasetInfo,
+        settings: SettingsView<'static>,
+        placements: &'a [crate::analysis::placement::FingerPlacement],
+    }
+    to_bytes(&Doc {
+        schema_version: SCHEMA_VERSION,
+        dataset: &a.dataset,
+        settings: SettingsView::of(&a.settings),
+        placements: ps,
+    })
+}

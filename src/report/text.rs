@@ -255,3 +255,61 @@ pub fn history(
     }
     out
 }
+
+/// Joint positions and segment lengths of model fingers, one table each.
+pub fn placement(ps: &[crate::analysis::placement::FingerPlacement], confidence: f64) -> String {
+    let c = percent(confidence);
+    let mut out = String::new();
+    for p in ps {
+        out.push_str(&format!(
+            "{} - model length {} (from {} X-rays); positions from the root joint (MCP at 0, tip at {})\n",
+            p.finger.display_name(),
+            p.length,
+            p.n,
+            p.length
+        ));
+        let mut t = table(
+            &[
+                "",
+                "mean",
+                "min",
+                "max",
+                "range",
+                &format!("t CI {c}"),
+                "percentile CI",
+                "BCa CI",
+                "prediction",
+            ],
+            1,
+        );
+        let rows = p
+            .joints
+            .iter()
+            .map(|j| (format!("{} joint", j.joint.name()), &j.position))
+            .chain(
+                p.segments
+                    .iter()
+                    .map(|s| (format!("segment {}", s.segment.to_uppercase()), &s.length)),
+            );
+        let d = super::format::length_decimals(p.length);
+        for (what, v) in rows {
+            t.add_row(vec![
+                what,
+                num(v.mean, d),
+                num(v.min, d),
+                num(v.max, d),
+                num(v.range, d),
+                interval(v.ci_t, d),
+                interval(v.ci_percentile, d),
+                interval(v.ci_bca, d),
+                interval(v.pi, d),
+            ]);
+        }
+        if let Some(col) = t.column_mut(0) {
+            col.set_cell_alignment(CellAlignment::Left);
+        }
+        out.push_str(&t.to_string());
+        out.push_str("\n\n");
+    }
+    out
+}

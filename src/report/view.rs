@@ -565,17 +565,18 @@ fn claims(file: &str, results: &[ClaimResult]) -> ClaimsView {
 }
 
 fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
+    let d = super::format::length_decimals(length);
     let row = |finger: Finger, what: &str, p: &crate::analysis::placement::Placed| PlacementRow {
         finger: finger.display_name().to_string(),
         what: what.to_string(),
-        mean: num(p.mean, 1),
-        min: num(p.min, 1),
-        max: num(p.max, 1),
-        range: num(p.range, 1),
-        ci_t: interval(p.ci_t, 1),
-        ci_percentile: interval(p.ci_percentile, 1),
-        ci_bca: interval(p.ci_bca, 1),
-        pi: interval(p.pi, 1),
+        mean: num(p.mean, d),
+        min: num(p.min, d),
+        max: num(p.max, d),
+        range: num(p.range, d),
+        ci_t: interval(p.ci_t, d),
+        ci_percentile: interval(p.ci_percentile, d),
+        ci_bca: interval(p.ci_bca, d),
+        pi: interval(p.pi, d),
     };
     PlacementView {
         length: length_text(length),
