@@ -1,0 +1,1284 @@
+//! Tracking a growing dataset through the binary: `phalanx add` (statistics of
+//! the larger dataset, refusals that change nothing, concurrent additions,
+//! SIGKILL in the middle of an addition, typo flags), `snapshot` and `history`,
+//! and `stats --group-by`.
+
+mod common;
+
+use common::*;
+use serde_json::Value;
+use std::path::Path;
+use std::process::{Command as StdCommand, Stdio};
+use std::time::{Duration, Instant};
+
+/// The binary, for tests that spawn several processes or kill them.
+const BIN: &str = env!("CARGO_BIN_EXE_phalanx");
+/// The default dataset and history paths, relative to a [`Workdir`].
+const DATA: &str = "data/measurements.csv";
+const HISTORY: &str = "data/history.jsonl";
+
+/// A small deterministic generator (Knuth's MMIX LCG), so every run of the
+/// crash test sleeps and measures the same way.
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self) -> u64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        self.0 >> 33
+    }
+
+    /// Uniform in [0, 1).
+    fn unit(&mut self) -> f64 {
+        self.next() as f64 / (1u64 << 31) as f64
+    }
+
+    /// A length with one decimal in [lo, lo + span/10), as its shortest text.
+    fn length(&mut self, lo: f64, span: u64) -> String {
+        format!("{}", lo + (self.next() % span) as f64 / 10.0)
+    }
+}
+
+/// The bytes of `name` in the work directory, or `None` when it does not exist.
+fn read_opt(wd: &Workdir, name: &str) -> Option<Vec<u8>> {
+    std::fs::read(wd.path().join(name)).ok()
+}
+
+/// Every line of a history file parsed as JSON (an absent file is empty).
+/// Fails on a torn or unparsable line or a missing final line end.
+#[track_caller]
+fn history_at(path: &Path) -> Vec<Value> {
+    let Ok(bytes) = std::fs::read(path) else {
+        return Vec::new();
+    };
+    let text = String::from_utf8(bytes).expect("the history is UTF-8");
+    assert!(
+        text.is_empty() || text.ends_with('\n'),
+        "the history's last line is torn:\n{text}"
+    );
+    text.lines()
+        .enumerate()
+        .map(|(i, l)| {
+            serde_json::from_str(l)
+                .unwrap_or_else(|e| panic!("history line {} is not JSON ({e}): {l}", i + 1))
+        })
+        .collect()
+}
+
+fn history(wd: &Workdir) -> Vec<Value> {
+    history_at(&wd.path().join(HISTORY))
+}
+
+/// Names of `.phalanx-*.tmp` files left in a directory.
+fn temp_files(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .expect("read dir")
+        .map(|e| {
+            e.expect("dir entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .filter(|n| n.starts_with(".phalanx-") && n.ends_with(".tmp"))
+        .collect()
+}
+
+/// Asserts two JSON documents are equal, numbers within 1e-12; reports the
+/// path of the first difference.
+#[track_caller]
+fn assert_json_close(a: &Value, b: &Value, path: &str) {
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
+            let tol = 1e-12;
+            assert!((x - y).abs() <= tol, "{path}: {x} != {y}");
+        }
+        (Value::Array(x), Value::Array(y)) => {
+            assert_eq!(x.len(), y.len(), "{path}: lengths differ");
+            for (i, (x, y)) in x.iter().zip(y).enumerate() {
+                assert_json_close(x, y, &format!("{path}[{i}]"));
+            }
+        }
+        (Value::Object(x), Value::Object(y)) => {
+            let kx: Vec<&String> = x.keys().collect();
+            let ky: Vec<&String> = y.keys().collect();
+            assert_eq!(kx, ky, "{path}: keys differ");
+            for (k, v) in x {
+                assert_json_close(v, &y[k], &format!("{path}.{k}"));
+            }
+        }
+        _ => assert_eq!(a, b, "{path}"),
+    }
+}
+
+/// The X-ray count of a stats document.
+fn xrays(doc: &Value) -> u64 {
+    doc["dataset"]["xrays"].as_u64().expect("dataset.xrays")
+}
+
+// ---------------------------------------------------------------------------
+// 1. add, then stats: the statistics of the larger dataset
+// ---------------------------------------------------------------------------
+
+/// New rows added from a file, and one from options with metadata.
+const NEW_FILE: &str = "xray,finger,j1,j2,j3\n\
+    2a,index,352.1,201.4,178.0\n\
+    2a,middle,391.5,250.2,190.7\n\
+    2a,ring,370.3,230.9,205.4\n\
+    2a,little,290.2,170.4,175.8\n\
+    2a,thumb,268.4,236.1,\n\
+    2b,index,345.9,193.3,176.2\n\
+    2b,thumb,262.7,240.5,\n";
+
+/// The same rows as the dataset's columns would hold them, typed by hand.
+const NEW_ROWS_IN_DATASET: &str = "2a,index,352.1,201.4,178.0,,,,,\n\
+    2a,middle,391.5,250.2,190.7,,,,,\n\
+    2a,ring,370.3,230.9,205.4,,,,,\n\
+    2a,little,290.2,170.4,175.8,,,,,\n\
+    2a,thumb,268.4,236.1,,,,,,\n\
+    2b,index,345.9,193.3,176.2,,,,,\n\
+    2b,thumb,262.7,240.5,,,,,,\n\
+    2c,index,361.2,199.9,181.3,female,34,left,,\n";
+
+#[test]
+fn add_then_stats_equals_stats_of_the_concatenated_file() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.write("new.csv", NEW_FILE);
+    wd.run(&["add", "new.csv"])
+        .ok()
+        .stdout_has("added 7 rows to data/measurements.csv: 5 -> 7 X-rays");
+    wd.run(&[
+        "add",
+        "--xray",
+        "2c",
+        "--finger",
+        "index",
+        "--lengths",
+        "361.2,199.9,181.3",
+        "--sex",
+        "female",
+        "--age",
+        "34",
+        "--side",
+        "left",
+    ])
+    .ok()
+    .stdout_has("added 1 row to data/measurements.csv: 7 -> 8 X-rays");
+
+    let data = wd.read(DATA);
+    assert!(
+        data.starts_with(&paper_data()),
+        "the existing bytes were not kept"
+    );
+    let mut cat = paper_data();
+    cat.extend_from_slice(NEW_ROWS_IN_DATASET.as_bytes());
+    wd.write("cat.csv", &cat);
+
+    // At most 8 X-rays per finger: every bootstrap is exact enumeration, so
+    // percentile and BCa intervals are comparable too, not only t intervals.
+    for extra in [&[][..], &["--group-by", "sex"][..]] {
+        let mut args = vec!["stats", "--format", "json"];
+        args.extend(extra);
+        let after = wd.run(&args).ok().json();
+        args.extend(["--data", "cat.csv"]);
+        let expect = wd.run(&args).ok().json();
+        assert_eq!(xrays(&after), 8);
+        assert_eq!(after["dataset"]["rows"], 33);
+        assert_eq!(expect["dataset"]["rows"], 33);
+        assert_eq!(finger(&after, "index")["n"], 8);
+        assert_eq!(finger(&after, "thumb")["n"], 7);
+        assert_eq!(finger(&after, "middle")["n"], 6);
+        for f in after["fingers"].as_array().unwrap() {
+            assert_eq!(f["bootstrap"]["method"], "exact", "{}", f["finger"]);
+        }
+        assert_json_close(&after["fingers"], &expect["fingers"], "fingers");
+        assert_json_close(&after["groups"], &expect["groups"], "groups");
+    }
+
+    // The added rows really moved the statistics (the comparison is not vacuous).
+    wd.write("paper.csv", paper_data());
+    let paper = wd
+        .run(&["stats", "--format", "json", "--data", "paper.csv"])
+        .ok()
+        .json();
+    let after = wd.run(&["stats", "--format", "json"]).ok().json();
+    let (m0, m1) = (
+        num(&quantity(&paper, "index", "rel_j1")["mean"]),
+        num(&quantity(&after, "index", "rel_j1")["mean"]),
+    );
+    assert!((m0 - m1).abs() > 1e-6, "{m0} {m1}");
+    // By hand: the mean of the 8 index J1/J.
+    let index_j1: Vec<f64> = paper_rows()
+        .iter()
+        .filter(|r| r.finger == "index")
+        .map(|r| r.lengths[0] / r.lengths.iter().sum::<f64>())
+        .chain([
+            352.1 / (352.1 + 201.4 + 178.0),
+            345.9 / (345.9 + 193.3 + 176.2),
+            361.2 / (361.2 + 199.9 + 181.3),
+        ])
+        .collect();
+    assert_close(
+        m1,
+        index_j1.iter().sum::<f64>() / 8.0,
+        1e-12,
+        "index rel_j1 mean",
+    );
+
+    // The last snapshot is of this dataset and has its statistics.
+    let h = history(&wd);
+    assert_eq!(h.len(), 2);
+    let last = &h[1];
+    assert_eq!(last["xrays"], 8);
+    assert_eq!(
+        last["sha256"].as_str().unwrap(),
+        sha256sum(&wd.path().join(DATA))
+    );
+    let rec = last["quantities"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|q| q["finger"] == "index" && q["quantity"] == "rel_j1")
+        .unwrap();
+    assert_eq!(rec["n"], 8);
+    assert_close(num(&rec["mean"]), m1, 1e-12, "snapshot mean");
+    let q = quantity(&after, "index", "rel_j1");
+    assert_json_close(&rec["ci_t"], &q["ci_t"], "snapshot ci_t");
+    assert_json_close(&rec["ci_bca"], &q["ci_bca"], "snapshot ci_bca");
+}
+
+// ---------------------------------------------------------------------------
+// 2. A refused add changes nothing
+// ---------------------------------------------------------------------------
+
+struct Refusal {
+    what: &'static str,
+    /// A file of new rows written as `new.csv` first, if any.
+    file: Option<&'static str>,
+    args: &'static [&'static str],
+    /// Every one must be in stderr.
+    says: &'static [&'static str],
+    /// How many problem lines, when known.
+    problems: Option<usize>,
+}
+
+const REFUSALS: &[Refusal] = &[
+    Refusal {
+        what: "duplicate of a shipped row",
+        file: None,
+        args: &[
+            "--xray",
+            "1a",
+            "--finger",
+            "index",
+            "--lengths",
+            "340,189,170",
+            "--side",
+            "right",
+            "--unit",
+            "image units",
+        ],
+        says: &[
+            "<command line>: X-ray '1a' already has a index row in data/measurements.csv (line 2)",
+        ],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "duplicate of an added row",
+        file: None,
+        args: &[
+            "--xray",
+            "2a",
+            "--finger",
+            "index",
+            "--lengths",
+            "350,190,170",
+        ],
+        says: &[
+            "<command line>: X-ray '2a' already has a index row in data/measurements.csv (line 27)",
+        ],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "length abc",
+        file: None,
+        args: &[
+            "--xray",
+            "9a",
+            "--finger",
+            "index",
+            "--lengths",
+            "abc,190,170",
+        ],
+        says: &["<command line>: --lengths: 'abc' is not a number"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "length -3",
+        file: None,
+        args: &[
+            "--xray",
+            "9a",
+            "--finger",
+            "index",
+            "--lengths",
+            "350,-3,170",
+        ],
+        says: &["<command line>: --lengths: '-3' is negative"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "length NaN",
+        file: None,
+        args: &[
+            "--xray",
+            "9a",
+            "--finger",
+            "index",
+            "--lengths",
+            "350,190,NaN",
+        ],
+        says: &["<command line>: --lengths: 'NaN'"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "length 0",
+        file: None,
+        args: &[
+            "--xray",
+            "9a",
+            "--finger",
+            "index",
+            "--lengths",
+            "0,190,170",
+        ],
+        says: &["<command line>: --lengths: ", "zero"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "thumb with j3",
+        file: None,
+        args: &[
+            "--xray",
+            "9a",
+            "--finger",
+            "thumb",
+            "--lengths",
+            "270,230,100",
+        ],
+        says: &["<command line>: --lengths: the thumb has only J1 and J2"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "index without j3",
+        file: None,
+        args: &["--xray", "9a", "--finger", "index", "--lengths", "350,190"],
+        says: &["<command line>: --lengths: ", "enter J3"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "four lengths",
+        file: None,
+        args: &["--xray", "9a", "--finger", "index", "--lengths", "1,2,3,4"],
+        says: &["--lengths '1,2,3,4'"],
+        problems: None,
+    },
+    Refusal {
+        what: "unknown finger",
+        file: None,
+        args: &[
+            "--xray",
+            "9a",
+            "--finger",
+            "toe",
+            "--lengths",
+            "350,190,170",
+        ],
+        says: &["<command line>: --finger: unknown finger 'toe'"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "bad age",
+        file: None,
+        args: &[
+            "--xray",
+            "9a",
+            "--finger",
+            "index",
+            "--lengths",
+            "350,190,170",
+            "--age",
+            "abc",
+        ],
+        says: &["<command line>: --age: 'abc' is not an age"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "side conflicts with the X-ray's other rows",
+        file: None,
+        args: &[
+            "--xray",
+            "1a",
+            "--finger",
+            "index",
+            "--lengths",
+            "350,190,170",
+        ],
+        says: &[
+            "<command line>: X-ray '1a' already has a index row",
+            "<command line>: side is empty but data/measurements.csv line 2 gives 'right'",
+        ],
+        problems: Some(3),
+    },
+    Refusal {
+        what: "strict with a tenfold typo",
+        file: None,
+        args: &[
+            "--strict",
+            "--xray",
+            "9a",
+            "--finger",
+            "index",
+            "--lengths",
+            "3399.6,188.83,169.67",
+        ],
+        says: &[
+            "<command line>: refused (--strict): index",
+            "X-ray '9a'",
+            "j1 looks 10 times too large",
+        ],
+        problems: None,
+    },
+    Refusal {
+        what: "one bad length among several good rows",
+        file: Some(
+            "xray,finger,j1,j2,j3\n9a,index,350,190,170\n9a,thumb,270,230,\n9b,ring,360,abc,200\n9b,little,290,170,175\n",
+        ),
+        args: &["new.csv"],
+        says: &["new.csv:4:4: j2: 'abc' is not a number"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "a file row repeating a shipped row",
+        file: Some(
+            "xray,finger,j1,j2,j3,side,unit\n9a,index,350,190,170,,\n1c,ring,366.78,247.01,200.40,right,image units\n",
+        ),
+        args: &["new.csv"],
+        says: &["new.csv:3: X-ray '1c' already has a ring row in data/measurements.csv (line 14)"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "a file thumb with j3",
+        file: Some("xray,finger,j1,j2,j3\n9a,index,350,190,170\n9a,thumb,270,230,100\n"),
+        args: &["new.csv"],
+        says: &["new.csv:3:5: j3: the thumb has only J1 and J2"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "a file repeating its own row",
+        file: Some("xray,finger,j1,j2,j3\n9a,index,350,190,170\n9a,index,351,190,170\n"),
+        args: &["new.csv"],
+        says: &["new.csv:3:1: xray: duplicate row"],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "a file row whose side conflicts with the X-ray's added row",
+        file: Some("xray,finger,j1,j2,j3,side\n9a,index,350,190,170,\n2a,ring,370,230,205,left\n"),
+        args: &["new.csv"],
+        says: &[
+            "new.csv:3: side is 'left' but data/measurements.csv line 27 gives empty for the same X-ray '2a'",
+        ],
+        problems: Some(1),
+    },
+    Refusal {
+        what: "a file with a tenfold typo, strict",
+        file: Some(
+            "xray,finger,j1,j2,j3\n9a,index,350,190,170\n9b,index,350,190,170\n9b,middle,380.2,2551.1,190.5\n",
+        ),
+        args: &["--strict", "new.csv"],
+        says: &[
+            "new.csv:4: refused (--strict): middle",
+            "X-ray '9b'",
+            "j2 looks 10 times too large",
+        ],
+        problems: None,
+    },
+];
+
+#[test]
+fn a_refused_add_leaves_dataset_and_history_byte_identical() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    // A history to protect, and an added row (2a, index, line 27) to repeat.
+    wd.run(&[
+        "add",
+        "--xray",
+        "2a",
+        "--finger",
+        "index",
+        "--lengths",
+        "352.1,201.4,178.0",
+    ])
+    .ok();
+    let data = wd.read(DATA);
+    let hist = wd.read(HISTORY);
+    assert_eq!(history(&wd).len(), 1);
+    for r in REFUSALS {
+        if let Some(text) = r.file {
+            wd.write("new.csv", text);
+        }
+        let mut args = vec!["add"];
+        args.extend(r.args);
+        let run = wd.run(&args);
+        run.data_error();
+        for s in r.says {
+            assert!(
+                run.stderr.contains(s),
+                "{}: stderr lacks {s:?}:\n{}",
+                r.what,
+                run.stderr
+            );
+        }
+        if let Some(n) = r.problems {
+            assert_eq!(run.problem_lines().len(), n, "{}:\n{}", r.what, run.stderr);
+        }
+        if r.file.is_some() || r.args.contains(&"--strict") {
+            // Every problem names its row: FILE:LINE or <command line>.
+            let place = if r.file.is_some() {
+                "new.csv:"
+            } else {
+                "<command line>: "
+            };
+            for p in run.problem_lines() {
+                assert!(p.starts_with(place), "{}: {p}", r.what);
+            }
+        }
+        assert!(wd.read(DATA) == data, "{}: the dataset changed", r.what);
+        assert!(wd.read(HISTORY) == hist, "{}: the history changed", r.what);
+        assert!(
+            temp_files(&wd.path().join("data")).is_empty(),
+            "{}: temporary file left",
+            r.what
+        );
+    }
+    // The good rows of the refused files were not added either.
+    let text = String::from_utf8(wd.read(DATA)).unwrap();
+    assert!(!text.contains("\n9a,") && !text.contains("\n9b,"), "{text}");
+}
+
+// ---------------------------------------------------------------------------
+// 3. Concurrent additions
+// ---------------------------------------------------------------------------
+
+#[test]
+fn eight_concurrent_adds_all_land_exactly_once() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let children: Vec<_> = (0..8)
+        .map(|i| {
+            StdCommand::new(BIN)
+                .current_dir(wd.path())
+                .args([
+                    "add",
+                    "--resamples",
+                    "200",
+                    "--xray",
+                    &format!("c{i}"),
+                    "--finger",
+                    "index",
+                    "--lengths",
+                    &format!("{},190.5,171.25", 345 + i),
+                ])
+                .stdout(Stdio::piped())
+                .stderr(Stdio::piped())
+                .spawn()
+                .expect("spawn phalanx add")
+        })
+        .collect();
+    for (i, c) in children.into_iter().enumerate() {
+        let out = c.wait_with_output().expect("wait for phalanx add");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "add c{i} failed: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    let text = String::from_utf8(wd.read(DATA)).unwrap();
+    assert!(text.as_bytes().starts_with(&paper_data()));
+    for i in 0..8 {
+        let row = format!("c{i},index,{},190.5,171.25,,,,,", 345 + i);
+        let n = text.lines().filter(|l| *l == row).count();
+        assert_eq!(n, 1, "row {row} appears {n} times:\n{text}");
+    }
+    assert_eq!(text.lines().count(), 26 + 8);
+    let doc = wd.run(&["stats", "--format", "json"]).ok().json();
+    assert_eq!(xrays(&doc), 13);
+    assert_eq!(finger(&doc, "index")["n"], 13);
+    // The lock serialised them: each snapshot saw every earlier row.
+    let h = history(&wd);
+    let counts: Vec<u64> = h.iter().map(|s| s["xrays"].as_u64().unwrap()).collect();
+    assert_eq!(counts, (6..=13).collect::<Vec<u64>>());
+    assert_eq!(
+        h[7]["sha256"].as_str().unwrap(),
+        sha256sum(&wd.path().join(DATA))
+    );
+}
+
+// ---------------------------------------------------------------------------
+// 4. Crash safety
+// ---------------------------------------------------------------------------
+
+/// A dataset of `n` X-rays with five fingers each, lengths from the generator.
+fn big_dataset(n: usize, rng: &mut Lcg) -> String {
+    let mut out = String::from("xray,finger,j1,j2,j3\n");
+    for i in 0..n {
+        for (f, j1, j2, j3) in [
+            ("thumb", 255.0, 225.0, None),
+            ("index", 335.0, 185.0, Some(165.0)),
+            ("middle", 370.0, 235.0, Some(180.0)),
+            ("ring", 355.0, 220.0, Some(190.0)),
+            ("little", 280.0, 160.0, Some(165.0)),
+        ] {
+            let j3 = j3.map_or_else(String::new, |l| rng.length(l, 200));
+            out.push_str(&format!(
+                "x{i},{f},{},{},{j3}\n",
+                rng.length(j1, 300),
+                rng.length(j2, 200)
+            ));
+        }
+    }
+    out
+}
+
+/// `add --data big.csv` of one index row, as a command.
+fn add_big(wd: &Workdir, xray: &str, lengths: &str) -> StdCommand {
+    let mut c = StdCommand::new(BIN);
+    c.current_dir(wd.path())
+        .args([
+            "add",
+            "--data",
+            "big.csv",
+            "--resamples",
+            "200",
+            "--xray",
+            xray,
+            "--finger",
+            "index",
+            "--lengths",
+            lengths,
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null());
+    c
+}
+
+#[test]
+fn a_killed_add_leaves_the_old_or_the_new_dataset_never_a_torn_one() {
+    const XRAYS: usize = 300;
+    const KILLS: usize = 40;
+    let wd = Workdir::new();
+    let mut rng = Lcg(0x005E_ED0F_F1A1_A7C5);
+    wd.write("big.csv", big_dataset(XRAYS, &mut rng));
+    let hist_path = wd.path().join("history.jsonl");
+
+    // Calibrate: how long one whole add takes here (two runs, the longer).
+    let mut whole = Duration::ZERO;
+    for k in 0..2 {
+        let t = Instant::now();
+        let st = add_big(&wd, &format!("w{k}"), "350,190,170")
+            .status()
+            .unwrap();
+        assert!(st.success());
+        whole = whole.max(t.elapsed());
+    }
+    assert_eq!(history_at(&hist_path).len(), 2);
+    // Kill anywhere from before the lock to a little after the end.
+    let window_ms = (1.25 * whole.as_millis() as f64).max(20.0);
+
+    let (mut old_kept, mut new_kept, mut new_without_snapshot) = (0, 0, 0);
+    for i in 0..KILLS {
+        let old = wd.read("big.csv");
+        let old_history = history_at(&hist_path);
+        let (j1, j2, j3) = (
+            rng.length(335.0, 300),
+            rng.length(185.0, 200),
+            rng.length(165.0, 200),
+        );
+        let xray = format!("k{i}");
+        let row = format!("{xray},index,{j1},{j2},{j3}\n");
+        let mut child = add_big(&wd, &xray, &format!("{j1},{j2},{j3}"))
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis((rng.unit() * window_ms) as u64));
+        child.kill().expect("SIGKILL"); // Ok also when it already exited
+        let status = child.wait().unwrap();
+
+        let now = wd.read("big.csv");
+        let new_history = history_at(&hist_path); // every line parses: never torn
+        let grew = match new_history.len().checked_sub(old_history.len()) {
+            Some(0) => false,
+            Some(1) => true,
+            d => panic!(
+                "kill {i}: the history went from {} to {} lines ({d:?})",
+                old_history.len(),
+                new_history.len()
+            ),
+        };
+        assert_eq!(
+            new_history[..old_history.len()],
+            old_history[..],
+            "kill {i}: old snapshots changed"
+        );
+        if now == old {
+            assert!(
+                !grew,
+                "kill {i}: a snapshot was recorded for a row not added"
+            );
+            assert!(!status.success(), "kill {i}: exit 0 without the row");
+            old_kept += 1;
+        } else {
+            let mut expect = old.clone();
+            expect.extend_from_slice(row.as_bytes());
+            assert!(
+                now == expect,
+                "kill {i}: the dataset is neither the old nor the old plus {row:?}; its tail:\n{}",
+                String::from_utf8_lossy(&now[now.len().saturating_sub(300)..])
+            );
+            let xrays_now = XRAYS + 2 + new_kept + 1;
+            new_kept += 1;
+            if grew {
+                let last = &new_history[new_history.len() - 1];
+                assert_eq!(last["xrays"].as_u64(), Some(xrays_now as u64), "kill {i}");
+                assert_eq!(
+                    last["sha256"].as_str().unwrap(),
+                    sha256sum(&wd.path().join("big.csv")),
+                    "kill {i}: the snapshot is not of the dataset"
+                );
+            } else {
+                new_without_snapshot += 1;
+            }
+        }
+    }
+    // Stray `.phalanx-*.tmp` files may remain after SIGKILL (the process had no
+    // chance to remove its staged file); they never replace the dataset.
+    let strays = temp_files(wd.path());
+    eprintln!(
+        "{KILLS} kills in a {window_ms} ms window: {old_kept} old, {new_kept} new \
+         ({new_without_snapshot} before the snapshot), {} stray temporary files",
+        strays.len()
+    );
+    assert!(
+        old_kept > 0 && new_kept > 0,
+        "the kills did not land on both sides of the replacement \
+         ({old_kept} old, {new_kept} new); the timing window is wrong"
+    );
+
+    // The lock of a killed process is gone: a normal add still works.
+    let run = wd.run(&[
+        "add",
+        "--data",
+        "big.csv",
+        "--resamples",
+        "200",
+        "--xray",
+        "after",
+        "--finger",
+        "index",
+        "--lengths",
+        "350,190,170",
+    ]);
+    run.ok();
+    let total = XRAYS + 2 + new_kept + 1;
+    run.stdout_has(&format!("-> {total} X-rays"));
+    let doc = wd
+        .run(&[
+            "stats",
+            "--data",
+            "big.csv",
+            "--resamples",
+            "200",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    assert_eq!(xrays(&doc), total as u64);
+    let last = history_at(&hist_path).pop().unwrap();
+    assert_eq!(last["xrays"].as_u64(), Some(total as u64));
+}
+
+// ---------------------------------------------------------------------------
+// 5. Typo flags
+// ---------------------------------------------------------------------------
+
+fn warnings(run: &Run) -> Vec<&str> {
+    run.stderr
+        .lines()
+        .filter(|l| l.starts_with("warning: "))
+        .collect()
+}
+
+#[test]
+fn a_tenfold_typo_is_flagged_and_refused_only_with_strict() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    // A plausible row: no warning at all.
+    let run = wd.run(&[
+        "add",
+        "--xray",
+        "2a",
+        "--finger",
+        "index",
+        "--lengths",
+        "352.1,201.4,178.0",
+    ]);
+    run.ok();
+    assert!(run.stderr.is_empty(), "{}", run.stderr);
+
+    for (xray, finger, lengths, segment) in [
+        ("2b", "index", "3399.6,188.83,169.67", "j1"),
+        ("2c", "middle", "380.2,2551.1,190.5", "j2"),
+        ("2d", "ring", "366.8,247.0,2004.0", "j3"),
+        ("2e", "thumb", "2705.0,231.02", "j1"),
+    ] {
+        let data = wd.read(DATA);
+        let hist = wd.read(HISTORY);
+        let args = [
+            "add",
+            "--xray",
+            xray,
+            "--finger",
+            finger,
+            "--lengths",
+            lengths,
+        ];
+        let mut strict = vec!["add", "--strict"];
+        strict.extend(&args[1..]);
+        let run = wd.run(&strict);
+        run.data_error()
+            .stderr_has("refused (--strict)")
+            .stderr_has(&format!("X-ray '{xray}'"))
+            .stderr_has(&format!("{segment} looks 10 times too large"));
+        assert!(wd.read(DATA) == data, "{xray}: the dataset changed");
+        assert!(wd.read(HISTORY) == hist, "{xray}: the history changed");
+
+        let run = wd.run(&args);
+        run.ok();
+        let w = warnings(&run);
+        assert!(!w.is_empty(), "{xray}: no warning:\n{}", run.stderr);
+        for line in &w {
+            assert!(line.contains(&format!("X-ray '{xray}'")), "{line}");
+            assert!(line.starts_with(&format!("warning: {finger} ")), "{line}");
+            assert!(
+                line.contains(&format!("{segment} looks 10 times too large")),
+                "{line}"
+            );
+        }
+        let text = String::from_utf8(wd.read(DATA)).unwrap();
+        let j: Vec<String> = lengths
+            .split(',')
+            .map(|l| format!("{}", l.parse::<f64>().unwrap()))
+            .collect();
+        let j3 = j.get(2).cloned().unwrap_or_default();
+        let row = format!("{xray},{finger},{},{},{j3},,,,,\n", j[0], j[1]);
+        assert!(text.ends_with(&row), "{row:?} not added:\n{text}");
+    }
+}
+
+/// For a two-segment finger, J1 ten times too small and J2 ten times too
+/// large give the same relative values; only the total tells them apart.
+#[test]
+#[ignore = "bug: a thumb J2 typed 10x too large is hinted as 'j1 looks 10 times too small' (the total length, 5x the usual, is not consulted)"]
+fn a_thumb_j2_tenfold_typo_is_hinted_as_j2_too_large() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let run = wd.run(&[
+        "add",
+        "--xray",
+        "t1",
+        "--finger",
+        "thumb",
+        "--lengths",
+        "270.5,2310.2",
+    ]);
+    run.ok();
+    let w = warnings(&run);
+    assert!(!w.is_empty(), "{}", run.stderr);
+    for line in w {
+        assert!(line.contains("j2 looks 10 times too large"), "{line}");
+    }
+}
+
+// ---------------------------------------------------------------------------
+// 6. History
+// ---------------------------------------------------------------------------
+
+#[test]
+fn history_has_one_snapshot_per_add_and_per_snapshot_command() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let data_path = wd.path().join(DATA);
+    assert!(read_opt(&wd, HISTORY).is_none());
+    // Quantities per snapshot: as many as `stats` computes.
+    let n_quantities: usize = wd.run(&["stats", "--format", "json"]).ok().json()["fingers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["quantities"].as_array().unwrap().len())
+        .sum();
+    assert!(n_quantities >= 19, "{n_quantities}");
+    wd.run(&["history"])
+        .ok()
+        .stdout_has("No snapshots in data/history.jsonl yet");
+    for (i, (xray, lengths)) in [
+        ("3a", "352.1,201.4,178.0"),
+        ("3b", "345.9,193.3,176.2"),
+        ("3c", "361.2,199.9,181.3"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        wd.run(&[
+            "add",
+            "--xray",
+            xray,
+            "--finger",
+            "index",
+            "--lengths",
+            lengths,
+        ])
+        .ok()
+        .stdout_has("snapshot appended to data/history.jsonl");
+        let h = history(&wd);
+        assert_eq!(h.len(), i + 1);
+        let last = &h[i];
+        assert_eq!(last["event"], "add");
+        assert_eq!(last["xrays"].as_u64(), Some(6 + i as u64));
+        assert_eq!(last["dataset"], DATA);
+        assert_eq!(last["sha256"].as_str().unwrap(), sha256sum(&data_path));
+        assert_eq!(last["quantities"].as_array().unwrap().len(), n_quantities);
+        let index = last["fingers"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["finger"] == "index")
+            .unwrap();
+        assert_eq!(index["n"].as_u64(), Some(6 + i as u64));
+    }
+    wd.run(&["snapshot"])
+        .ok()
+        .stdout_has("snapshot of data/measurements.csv (8 X-rays");
+    let h = history(&wd);
+    assert_eq!(h.len(), 4);
+    assert_eq!(h[3]["event"], "snapshot");
+    assert_eq!(h[3]["xrays"], 8);
+    assert_eq!(h[3]["sha256"], h[2]["sha256"]);
+    assert_json_close(&h[3]["quantities"], &h[2]["quantities"], "snapshot");
+
+    // Table: one section, one row per snapshot.
+    let run = wd.run(&["history", "--finger", "index", "--quantity", "rel_j1"]);
+    run.ok().stdout_has("4 snapshots in data/history.jsonl");
+    let rows: Vec<Vec<&str>> = run
+        .stdout
+        .lines()
+        .map(|l| l.split('|').map(str::trim).collect::<Vec<_>>())
+        .filter(|c| c.len() > 2 && c[1].parse::<usize>().is_ok())
+        .collect();
+    let numbers: Vec<&str> = rows.iter().map(|c| c[1]).collect();
+    assert_eq!(numbers, ["1", "2", "3", "4"], "{}", run.stdout);
+    let events: Vec<&str> = rows.iter().map(|c| c[3]).collect();
+    assert_eq!(events, ["add", "add", "add", "snapshot"]);
+    let ns: Vec<&str> = rows.iter().map(|c| c[4]).collect();
+    assert_eq!(ns, ["6", "7", "8", "8"]);
+    assert_eq!(run.stdout.matches("index J~1").count(), 1, "{}", run.stdout);
+    assert!(!run.stdout.contains("thumb"), "{}", run.stdout);
+
+    // JSON: a series per quantity, a point per snapshot.
+    let doc = wd.run(&["history", "--format", "json"]).ok().json();
+    assert_eq!(doc["snapshots"], 4);
+    let series = doc["series"].as_array().unwrap();
+    assert_eq!(series.len(), n_quantities);
+    for s in series {
+        let snaps: Vec<u64> = s["points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p["snapshot"].as_u64().unwrap())
+            .collect();
+        assert_eq!(snaps, [1, 2, 3, 4], "{}", s["finger"]);
+    }
+    let doc = wd
+        .run(&[
+            "history",
+            "--format",
+            "json",
+            "--finger",
+            "index",
+            "--quantity",
+            "rel_j1",
+        ])
+        .ok()
+        .json();
+    let series = doc["series"].as_array().unwrap();
+    assert_eq!(series.len(), 1);
+    let points = series[0]["points"].as_array().unwrap();
+    let ns: Vec<u64> = points
+        .iter()
+        .map(|p| p["record"]["n"].as_u64().unwrap())
+        .collect();
+    assert_eq!(ns, [6, 7, 8, 8]);
+    // The last point is today's statistics.
+    let stats = wd.run(&["stats", "--format", "json"]).ok().json();
+    let q = quantity(&stats, "index", "rel_j1");
+    assert_close(
+        num(&points[3]["record"]["mean"]),
+        num(&q["mean"]),
+        1e-12,
+        "mean",
+    );
+    assert_json_close(&points[3]["record"]["ci_t"], &q["ci_t"], "ci_t");
+}
+
+#[test]
+#[ignore = "bug: when the history cannot be written, add exits 1 but the row is already in the dataset (and a retry is refused as a duplicate)"]
+fn an_add_whose_history_cannot_be_written_changes_nothing() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.mkdir("hdir");
+    let data = wd.read(DATA);
+    let run = wd.run(&[
+        "add",
+        "--history",
+        "hdir",
+        "--xray",
+        "z",
+        "--finger",
+        "index",
+        "--lengths",
+        "350,190,170",
+    ]);
+    assert_ne!(run.code, Some(0), "{}", run.stderr);
+    assert!(
+        wd.read(DATA) == data,
+        "add failed ({}) but the dataset changed",
+        run.stderr.trim()
+    );
+}
+
+#[test]
+#[ignore = "bug: add replaces a symlinked dataset by a regular file; the file the link points to is not updated"]
+fn add_through_a_symlinked_dataset_updates_its_target() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.write("real/m.csv", paper_data());
+    std::fs::remove_file(wd.path().join(DATA)).unwrap();
+    std::os::unix::fs::symlink("../real/m.csv", wd.path().join(DATA)).unwrap();
+    wd.run(&[
+        "add",
+        "--xray",
+        "z",
+        "--finger",
+        "index",
+        "--lengths",
+        "350,190,170",
+    ])
+    .ok();
+    let link = std::fs::symlink_metadata(wd.path().join(DATA)).unwrap();
+    let target = String::from_utf8(wd.read("real/m.csv")).unwrap();
+    assert!(
+        target.ends_with("z,index,350,190,170,,,,,\n"),
+        "the link's target was not updated"
+    );
+    assert!(link.file_type().is_symlink(), "the link was replaced");
+}
+
+// ---------------------------------------------------------------------------
+// 7. Groups
+// ---------------------------------------------------------------------------
+
+/// 3 female, 2 male and 1 unknown X-ray; ages 25, 45, 70, 12, 35 and unknown;
+/// sides left, right, right, left, right and unknown.
+const GROUPED: &str = "xray,finger,j1,j2,j3,sex,age,side\n\
+    a,index,340,189,170,female,25,left\n\
+    a,thumb,270,231,,female,25,left\n\
+    b,index,342,195,187,f,45,right\n\
+    b,thumb,260,251,,f,45,right\n\
+    c,index,360,207,174,female,70,right\n\
+    c,ring,367,247,200,female,70,right\n\
+    d,index,417,226,184,male,12,left\n\
+    d,thumb,302,265,,male,12,left\n\
+    e,index,345,200,180,m,35,right\n\
+    f,index,350,199,181,,,\n";
+
+/// Each group of a stats document as `GROUP XRAYS: FINGER N, ...`, in order.
+fn group_sizes(doc: &Value) -> Vec<String> {
+    doc["groups"]["groups"]
+        .as_array()
+        .unwrap_or_else(|| panic!("no groups: {}", doc["groups"]))
+        .iter()
+        .map(|g| {
+            let fingers: Vec<String> = g["fingers"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|f| format!("{} {}", f["finger"].as_str().unwrap(), f["n"]))
+                .collect();
+            format!(
+                "{} {}: {}",
+                g["group"].as_str().unwrap(),
+                g["xrays"],
+                fingers.join(", ")
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn group_by_gives_the_right_n_per_group() {
+    let wd = Workdir::new();
+    wd.write("g.csv", GROUPED);
+    let stats = |extra: &[&str]| {
+        let mut args = vec!["stats", "--data", "g.csv", "--format", "json"];
+        args.extend(extra);
+        wd.run(&args).ok().json()
+    };
+
+    let doc = stats(&["--group-by", "sex"]);
+    assert_eq!(doc["groups"]["by"], "sex");
+    assert_eq!(finger(&doc, "index")["n"], 6, "the whole dataset");
+    assert_eq!(
+        group_sizes(&doc),
+        [
+            "female 3: thumb 2, index 3, ring 1",
+            "male 2: thumb 1, index 2",
+            "unknown 1: index 1",
+        ]
+    );
+    let groups = doc["groups"]["groups"].as_array().unwrap();
+    assert!(groups[0]["note"].is_null());
+    assert!(groups[1]["note"].is_null());
+    // The one-X-ray group: present, with a note and no intervals.
+    let unknown = &groups[2];
+    assert!(
+        unknown["note"].as_str().unwrap().contains("only 1 X-ray"),
+        "{}",
+        unknown["note"]
+    );
+    for q in unknown["fingers"][0]["quantities"].as_array().unwrap() {
+        assert_eq!(q["n"], 1);
+        for k in ["sd", "ci_t", "ci_percentile", "ci_bca", "pi"] {
+            assert!(q[k].is_null(), "{k} of {}: {}", q["name"], q[k]);
+        }
+    }
+    // The female group is the statistics of the female rows alone (means
+    // and t intervals; the bootstrap uses the group's own seed).
+    let female: String = GROUPED
+        .lines()
+        .enumerate()
+        .filter(|(i, l)| *i == 0 || l.contains(",female,") || l.contains(",f,"))
+        .map(|(_, l)| format!("{l}\n"))
+        .collect();
+    wd.write("female.csv", female);
+    let alone = wd
+        .run(&["stats", "--data", "female.csv", "--format", "json"])
+        .ok()
+        .json();
+    assert_eq!(xrays(&alone), 3);
+    let g = json_wrap(&groups[0]);
+    for (f, q) in [
+        ("index", "rel_j1"),
+        ("index", "rel_j3"),
+        ("index", "total"),
+        ("thumb", "rel_j2"),
+    ] {
+        let (a, b) = (quantity(&g, f, q), quantity(&alone, f, q));
+        assert_close(num(&a["mean"]), num(&b["mean"]), 1e-12, "mean");
+        assert_json_close(&a["ci_t"], &b["ci_t"], "ci_t");
+        assert_json_close(&a["sd"], &b["sd"], "sd");
+    }
+
+    let doc = stats(&["--group-by", "age", "--age-bins", "0,30,60"]);
+    assert_eq!(doc["groups"]["by"], "age");
+    assert_eq!(
+        group_sizes(&doc),
+        [
+            "0-30 2: thumb 2, index 2",
+            "30-60 2: thumb 1, index 2",
+            "60+ 1: index 1, ring 1",
+            "unknown 1: index 1",
+        ]
+    );
+    let doc = stats(&["--group-by", "side"]);
+    assert_eq!(doc["groups"]["by"], "side");
+    assert_eq!(
+        group_sizes(&doc),
+        [
+            "left 2: thumb 2, index 2",
+            "right 3: thumb 1, index 3, ring 1",
+            "unknown 1: index 1",
+        ]
+    );
+    assert!(stats(&[])["groups"].is_null(), "no groups unless asked");
+
+    // CSV: group_by and group lead, and the whole dataset is the group `all`.
+    let run = wd.run(&[
+        "stats",
+        "--data",
+        "g.csv",
+        "--group-by",
+        "sex",
+        "--format",
+        "csv",
+    ]);
+    run.ok();
+    let mut r = csv::Reader::from_reader(run.stdout.as_bytes());
+    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+    assert_eq!(
+        header[..5],
+        ["group_by", "group", "finger", "quantity", "n"]
+    );
+    let mut n_of = std::collections::BTreeMap::new();
+    for rec in r.records() {
+        let rec = rec.unwrap();
+        assert_eq!(&rec[0], "sex");
+        if &rec[3] == "rel_j1" {
+            n_of.insert((rec[1].to_string(), rec[2].to_string()), rec[4].to_string());
+        }
+    }
+    let expect: std::collections::BTreeMap<(String, String), String> = [
+        ("all", "thumb", "3"),
+        ("all", "index", "6"),
+        ("all", "ring", "1"),
+        ("female", "thumb", "2"),
+        ("female", "index", "3"),
+        ("female", "ring", "1"),
+        ("male", "thumb", "1"),
+        ("male", "index", "2"),
+        ("unknown", "index", "1"),
+    ]
+    .into_iter()
+    .map(|(g, f, n)| ((g.to_string(), f.to_string()), n.to_string()))
+    .collect();
+    assert_eq!(n_of, expect);
+
+    for bins in ["5,5", "30,10", "0,inf"] {
+        wd.run(&[
+            "stats",
+            "--data",
+            "g.csv",
+            "--group-by",
+            "age",
+            "--age-bins",
+            bins,
+        ])
+        .data_error()
+        .stderr_has("--age-bins");
+    }
+}
+
+/// A group object seen as a stats document (its `fingers` array), so the
+/// `quantity` helper applies.
+fn json_wrap(group: &Value) -> Value {
+    serde_json::json!({ "fingers": group["fingers"] })
+}
