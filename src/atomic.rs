@@ -8,9 +8,17 @@ use std::io::Write;
 use std::path::Path;
 use tempfile::NamedTempFile;
 
+/// The file a path really names: a symbolic link is followed, so replacing
+/// it updates the link's target instead of turning the link into a file.
+pub fn resolve(target: &Path) -> std::path::PathBuf {
+    std::fs::canonicalize(target).unwrap_or_else(|_| target.to_path_buf())
+}
+
 /// Writes `bytes` to a synced temporary file in the directory of `target`
-/// (created if missing). Rename it into place with [`commit`].
+/// (created if missing). Rename it into place with [`commit`] (given the same
+/// `target`; links are followed by both).
 pub fn stage(target: &Path, bytes: &[u8]) -> std::io::Result<NamedTempFile> {
+    let target = &resolve(target);
     let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -36,6 +44,7 @@ pub fn stage(target: &Path, bytes: &[u8]) -> std::io::Result<NamedTempFile> {
 
 /// Renames a staged file over `target` and syncs the directory so the rename is durable.
 pub fn commit(staged: NamedTempFile, target: &Path) -> std::io::Result<()> {
+    let target = &resolve(target);
     staged.persist(target).map_err(|e| e.error)?;
     if let Some(dir) = target.parent().filter(|d| !d.as_os_str().is_empty()) {
         // Directory fsync is best effort: not every platform or file system allows it.
@@ -74,6 +83,19 @@ mod tests {
             replace(&p, b"newer").unwrap();
             let mode = std::fs::metadata(&p).unwrap().permissions().mode() & 0o777;
             assert_eq!(mode, 0o600, "the target's permissions are kept");
+            // A link is followed: its target is replaced, the link stays a link.
+            let real = dir.path().join("real.csv");
+            std::fs::write(&real, "old").unwrap();
+            let link = dir.path().join("link.csv");
+            std::os::unix::fs::symlink(&real, &link).unwrap();
+            replace(&link, b"via link").unwrap();
+            assert_eq!(std::fs::read_to_string(&real).unwrap(), "via link");
+            assert!(
+                std::fs::symlink_metadata(&link)
+                    .unwrap()
+                    .file_type()
+                    .is_symlink()
+            );
         }
     }
 }

@@ -7,6 +7,7 @@
 
 use crate::analysis::tracking::{self, Flag};
 use crate::analysis::{self, Settings};
+use crate::atomic;
 use crate::dataset::append::{self, DatasetLock};
 use crate::dataset::history::{self, Snapshot};
 use crate::dataset::{DataError, Dataset, Problem, csvinput};
@@ -104,11 +105,19 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         }
         .into());
     }
-    crate::atomic::replace(&req.data, &bytes).map_err(io_err(&req.data))?;
     let after = Dataset::from_bytes(&label, &bytes)?;
     let a = analysis::analyse(&after, &req.settings);
     let snapshot = tracking::snapshot(&a, now(), "add");
-    history::append(&req.history, &snapshot).map_err(io_err(&req.history))?;
+    // Stage both files in full before replacing either: a history that cannot be
+    // written stops the add with the dataset untouched. Between the two renames
+    // a crash can only lose the snapshot ('phalanx snapshot' records it again).
+    let history_bytes =
+        history::appended_bytes(&req.history, &snapshot).map_err(io_err(&req.history))?;
+    let staged_data = atomic::stage(&req.data, &bytes).map_err(io_err(&req.data))?;
+    let staged_history =
+        atomic::stage(&req.history, &history_bytes).map_err(io_err(&req.history))?;
+    atomic::commit(staged_data, &req.data).map_err(io_err(&req.data))?;
+    atomic::commit(staged_history, &req.history).map_err(io_err(&req.history))?;
     Ok(AddOutcome {
         added: new.rows.len(),
         xrays_before: current.xray_count(),

@@ -222,14 +222,20 @@ pub fn flag_row(a: &Analysis, row: &Row) -> Vec<Flag> {
     if found.is_empty() {
         return Vec::new();
     }
+    // Candidate fixes: one length times 10 or 0.1. For a two-segment thumb,
+    // "j1 too small" and "j2 too large" give the same proportions; the total
+    // length then decides: the fix whose total is nearest the current mean total.
+    let mean_total = fa.quantity(Quantity::Total).map(|t| t.mean);
     let hint = (0..row.finger.segments())
         .flat_map(|k| [(k, 10.0), (k, 0.1)])
-        .find(|&(k, factor)| {
+        .filter_map(|(k, factor)| {
             let mut fixed = row.clone();
             fixed.lengths[k] *= factor;
-            check(&fixed).is_empty()
+            let distance = mean_total.map_or(0.0, |m| (fixed.total() - m).abs());
+            check(&fixed).is_empty().then_some((k, factor, distance))
         })
-        .map(|(k, factor)| {
+        .min_by(|a, b| a.2.total_cmp(&b.2))
+        .map(|(k, factor, _)| {
             format!(
                 "; j{} looks 10 times too {} (a misplaced decimal point?)",
                 k + 1,
@@ -299,6 +305,21 @@ mod tests {
             flags[0].reason
         );
         assert!(flag_row(&a, &d.rows[1]).is_empty());
+    }
+
+    #[test]
+    fn a_thumb_typo_is_told_apart_by_the_total_length() {
+        // J2 typed 10x too large: proportions alone would also fit "j1 10x too small",
+        // but that would make the thumb ~5x longer than the others (mean total 520).
+        let (_, a) = paper();
+        let d =
+            Dataset::from_bytes("n.csv", b"xray,finger,j1,j2,j3\nt,thumb,270.5,2310.2,\n").unwrap();
+        let flags = flag_row(&a, &d.rows[0]);
+        assert!(
+            flags[0].reason.contains("j2 looks 10 times too large"),
+            "{}",
+            flags[0].reason
+        );
     }
 
     #[test]

@@ -19,8 +19,10 @@ pub struct DatasetLock {
 }
 
 impl DatasetLock {
-    /// Blocks until the lock on `data` is ours.
+    /// Blocks until the lock on `data` is ours. A link is followed, so every
+    /// path to the same file shares one lock.
     pub fn acquire(data: &Path) -> std::io::Result<DatasetLock> {
+        let data = crate::atomic::resolve(data);
         let mut name = data.as_os_str().to_owned();
         name.push(".lock");
         let path = PathBuf::from(name);
@@ -113,9 +115,9 @@ pub fn appended_bytes(
             problems.push(Problem::line(
                 r.line,
                 format!(
-                    "X-ray {} already has a {} row in {} (line {}); existing rows are never replaced. Use another X-ray id, or edit the dataset by hand",
+                    "X-ray {} already has {} row in {} (line {}); existing rows are never replaced. Use another X-ray id, or edit the dataset by hand",
                     quote(&r.xray),
-                    r.finger,
+                    r.finger.with_article(),
                     current.path,
                     old.line
                 ),
@@ -233,7 +235,7 @@ mod tests {
         assert!(
             e.problems[0]
                 .message
-                .contains("already has a index row in d.csv (line 2)")
+                .contains("already has an index row in d.csv (line 2)")
         );
         assert!(e.problems[1].message.contains("no 'age' column"));
         let new = ds(

@@ -42,6 +42,14 @@ impl Finger {
         }
     }
 
+    /// The name with its indefinite article: "an index", "a ring".
+    pub fn with_article(self) -> String {
+        match self {
+            Finger::Index => "an index".to_string(),
+            other => format!("a {}", other.name()),
+        }
+    }
+
     /// Number of measured segments: 2 for the thumb (J1, J2), 3 for the others (J1..J3).
     pub fn segments(self) -> usize {
         match self {

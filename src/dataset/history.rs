@@ -101,10 +101,9 @@ pub fn read(path: &Path) -> Result<Vec<Snapshot>, DataError> {
     }
 }
 
-/// Appends one snapshot as a JSON line. The file is replaced atomically (old
-/// lines, then the new one), so an interrupted append leaves the old history,
-/// never a torn line. Cost: O(size of the history).
-pub fn append(path: &Path, snapshot: &Snapshot) -> std::io::Result<()> {
+/// The history file's bytes with one snapshot appended as a JSON line (a
+/// missing file is empty; a last line without its line end is completed).
+pub fn appended_bytes(path: &Path, snapshot: &Snapshot) -> std::io::Result<Vec<u8>> {
     let mut bytes = match std::fs::read(path) {
         Ok(b) => b,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Vec::new(),
@@ -115,7 +114,14 @@ pub fn append(path: &Path, snapshot: &Snapshot) -> std::io::Result<()> {
     }
     serde_json::to_writer(&mut bytes, snapshot).map_err(std::io::Error::other)?;
     bytes.push(b'\n');
-    crate::atomic::replace(path, &bytes)
+    Ok(bytes)
+}
+
+/// Appends one snapshot as a JSON line. The file is replaced atomically (old
+/// lines, then the new one), so an interrupted append leaves the old history,
+/// never a torn line. Cost: O(size of the history).
+pub fn append(path: &Path, snapshot: &Snapshot) -> std::io::Result<()> {
+    crate::atomic::replace(path, &appended_bytes(path, snapshot)?)
 }
 
 #[cfg(test)]

@@ -147,7 +147,7 @@ pub fn parse_length(text: &str) -> Result<f64, String> {
             }
         }
         Ok(v) if v <= 0.0 => Err(if v == 0.0 {
-            "is zero; a segment length must be positive".to_string()
+            format!("{} is zero; a segment length must be positive", quote(text))
         } else {
             format!(
                 "{} is negative; a segment length must be positive",
@@ -271,9 +271,9 @@ fn parse_rows(label: &str, bytes: &[u8]) -> Result<(Vec<String>, Vec<Row>), Data
                         header.positions[XRAY].map_or(0, |p| p + 1),
                         "xray",
                         format!(
-                            "duplicate row: X-ray {} already has a {} row on line {}; remove one or correct the X-ray id",
+                            "duplicate row: X-ray {} already has {} row on line {}; remove one or correct the X-ray id",
                             quote(&row.xray),
-                            row.finger,
+                            row.finger.with_article(),
                             first.get()
                         ),
                     ));

@@ -159,7 +159,7 @@ fn duplicate_xray_finger() {
         &format!("{HEADER}a,index,1,2,3\nb,index,1,2,3\na,grooming,1,2,3\n"),
         4,
         Some(1),
-        "already has a index row on line 2",
+        "already has an index row on line 2",
     );
 }
 
