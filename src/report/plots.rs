@@ -21,6 +21,7 @@ mod forest;
 mod hand;
 #[cfg(test)]
 mod tests;
+mod tracking;
 
 use crate::analysis::placement::FingerPlacement;
 use crate::analysis::{Analysis, FingerAnalysis};
@@ -104,8 +105,7 @@ pub fn tracking_plot(
     series: &[TrackSeries],
     confidence: f64,
 ) -> Result<Plot, Error> {
-    let _ = (finger, series, confidence);
-    Err(Error::render("tracking plot", "not yet drawn"))
+    tracking::plot(finger, series, confidence)
 }
 
 /// Every plot of a report, in display order: one per finger, the hand diagram, the forest plot.

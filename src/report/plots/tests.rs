@@ -303,6 +303,8 @@ fn synthetic(n: usize) -> FingerAnalysis {
                     Quantity::RelJ1 => x.relative[0],
                     Quantity::RelJ2 => x.relative[1],
                     Quantity::RelJ3 => x.relative[2],
+                    Quantity::RatioJ2J1 => x.lengths[1] / x.lengths[0],
+                    Quantity::RatioJ3J2 => x.lengths[2] / x.lengths[1],
                     Quantity::Total => x.total,
                 })
                 .collect();
@@ -398,4 +400,143 @@ fn escape_handles_every_special_character() {
     assert_eq!(draw::level(0.975), "97.5%");
     assert_eq!(draw::short(1000.0, 4), "1000");
     assert_eq!(draw::clip("abcdef", 4), "abc\u{2026}");
+}
+
+// ---- Tracking plot ----
+
+/// A snapshot as `(number of X-rays, mean, interval)`.
+type Snapshot = (usize, f64, Option<(f64, f64)>);
+
+/// A series from its snapshots.
+fn track(label: &str, points: &[Snapshot]) -> TrackSeries {
+    TrackSeries {
+        label: label.to_string(),
+        points: points
+            .iter()
+            .map(|&(xrays, mean, ci)| TrackPoint { xrays, mean, ci })
+            .collect(),
+    }
+}
+
+/// Index-finger history: ties at 5 X-rays, a snapshot without an interval.
+fn index_history() -> Vec<TrackSeries> {
+    vec![
+        track(
+            "J~1 = J1/J",
+            &[
+                (3, 0.4800, Some((0.4600, 0.5000))),
+                (5, 0.4850, Some((0.4700, 0.5000))),
+                (5, 0.4820, Some((0.4720, 0.4920))),
+                (8, 0.4840, None),
+                (10, 0.4846, Some((0.4728, 0.4964))),
+            ],
+        ),
+        track(
+            "J~2 = J2/J",
+            &[
+                (3, 0.2900, Some((0.2700, 0.3100))),
+                (5, 0.2870, Some((0.2750, 0.2990))),
+                (8, 0.2880, Some((0.2800, 0.2960))),
+                (10, 0.2875, Some((0.2810, 0.2940))),
+            ],
+        ),
+        track("J~3 = J3/J", &[(10, 0.2279, Some((0.2201, 0.2357)))]),
+    ]
+}
+
+#[test]
+fn tracking_plot_draws_every_snapshot() {
+    let p = tracking_plot(Finger::Index, &index_history(), 0.95).unwrap();
+    assert_eq!(
+        (p.id.as_str(), p.kind),
+        ("tracking-index", PlotKind::Tracking)
+    );
+    assert_accessible(&p);
+    assert!(p.svg.contains(&draw::escape(&p.title)));
+    // One diamond per snapshot (5 + 4 + 1, ties included), the legend's, and one
+    // band per run of two or more neighbouring intervals (J~1 at 3..5, J~2).
+    assert_eq!(count(&p.svg, "<polygon"), 10 + 1 + 2);
+    for label in [
+        "number of X-rays",
+        "fraction of total length J",
+        "\nmean\n</text>",
+        "95% t confidence interval",
+        "J~1 = J1/J",
+        "J~3 = J3/J",
+        "5 snapshots, 1 without an interval",
+        "\n10\n</text>",
+    ] {
+        assert!(p.svg.contains(label), "lacks {label:?}");
+    }
+    assert!(!p.svg.contains("no snapshots yet"));
+    for text in [
+        "J~1 = J1/J: 5 snapshots; first at 3 X-rays: mean 0.4800, 95% t confidence interval \
+         from 0.4600 to 0.5000; last at 10 X-rays: mean 0.4846, 95% t confidence interval from \
+         0.4728 to 0.4964.",
+        "J~3 = J3/J: 1 snapshot at 10 X-rays: mean 0.2279",
+        "the index finger (the paper's 'grooming' finger)",
+    ] {
+        assert!(p.description.contains(text), "{text}");
+    }
+    let again = tracking_plot(Finger::Index, &index_history(), 0.95).unwrap();
+    assert_eq!(p.svg, again.svg);
+    let p90 = tracking_plot(Finger::Index, &index_history(), 0.9).unwrap();
+    assert!(p90.svg.contains("90% t confidence interval"));
+}
+
+#[test]
+fn tracking_plot_draws_one_point_and_empty_series() {
+    let series = [
+        track("J~1 = J1/J", &[(1, 0.55, None)]),
+        track("J~2 = J2/J", &[]),
+    ];
+    let p = tracking_plot(Finger::Thumb, &series, 0.95).unwrap();
+    assert_eq!(p.id, "tracking-thumb");
+    assert_accessible(&p);
+    assert_eq!(count(&p.svg, "<polygon"), 1 + 1);
+    assert_eq!(count(&p.svg, "\nno snapshots yet\n</text>"), 1);
+    assert!(p.svg.contains("1 snapshot, 1 without an interval"));
+    assert!(
+        p.description
+            .contains("J~1 = J1/J: 1 snapshot at 1 X-ray: mean 0.5500, no confidence interval.")
+    );
+    assert!(p.description.contains("J~2 = J2/J: no snapshots yet."));
+
+    for series in [Vec::new(), vec![track("J~1", &[]), track("J~2", &[])]] {
+        let p = tracking_plot(Finger::Ring, &series, 0.95).unwrap();
+        assert_accessible(&p);
+        assert!(p.svg.contains("\nno snapshots yet\n</text>"));
+        // Only the legend's diamond.
+        assert_eq!(count(&p.svg, "<polygon"), 1);
+    }
+    let none = tracking_plot(Finger::Ring, &[], 0.95).unwrap();
+    assert!(none.description.ends_with("No snapshots yet."));
+
+    // Non-finite values are left out, never drawn at a bogus pixel.
+    let odd = [track(
+        "J~1",
+        &[
+            (2, f64::NAN, None),
+            (3, 0.5, Some((f64::NEG_INFINITY, 0.6))),
+            (3, 0.51, Some((0.52, 0.49))),
+        ],
+    )];
+    let p = tracking_plot(Finger::Middle, &odd, 0.95).unwrap();
+    assert_accessible(&p);
+    assert_eq!(count(&p.svg, "<polygon"), 2 + 1);
+}
+
+#[test]
+fn tracking_labels_are_escaped_exactly_once() {
+    let series = [track(
+        SCRIPT,
+        &[(4, 0.3, Some((0.2, 0.4))), (6, 0.31, None)],
+    )];
+    let p = tracking_plot(Finger::Little, &series, 0.95).unwrap();
+    assert_accessible(&p);
+    assert!(!p.svg.contains("<script"));
+    assert!(!p.svg.contains("&amp;lt;"));
+    assert!(p.description.contains(SCRIPT));
+    // In the panel heading and in the description.
+    assert_eq!(count(&p.svg, "&lt;script&gt;alert(1)&lt;/script&gt;"), 2);
 }
