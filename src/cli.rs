@@ -441,9 +441,16 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
             let dataset = Dataset::load(&data.data)?;
             let a = analysis::analyse(&dataset, &settings);
             let groups = by.map_or_else(Vec::new, |by| analyse_groups(&dataset, &by, &settings));
+            drop(dataset);
             let bytes = match format {
                 StatsFormat::Table => report::text::stats_with_groups(&a, &groups).into_bytes(),
-                StatsFormat::Json => report::json::stats(&a, &groups)?,
+                StatsFormat::Json => {
+                    // Streamed: the document of a large dataset is not held in memory.
+                    return match report::json::write_stats(std::io::stdout().lock(), &a, &groups) {
+                        Err(e) if is_broken_pipe(&e) => Ok(0),
+                        other => other.map(|()| 0),
+                    };
+                }
                 StatsFormat::Csv => report::csv_out::stats(&a, &groups)?,
             };
             print(&bytes)?;
@@ -486,6 +493,7 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
                 resamples: boot.resamples,
                 seed: boot.seed,
                 confidence: boot.confidence,
+                max_n: None,
             };
             let rows = coverage::of_analysis(&a, &s);
             let bytes = match format {
@@ -655,8 +663,21 @@ fn report_command(args: &ReportArgs) -> Result<(), Error> {
     let history_path = args.history.resolve(&args.data.data);
     let history = crate::dataset::history::read(&history_path)?;
     let claims = Claims::load(&args.claims)?;
-    claims.check_against(&dataset)?;
-    let results = claims::check(&claims, &dataset);
+    // Claims about rows this dataset lacks (another lab's data, say) cannot be
+    // checked: the report says so instead of failing.
+    let (results, claims_note) = match claims.check_against(&dataset) {
+        Ok(()) => (claims::check(&claims, &dataset), None),
+        Err(e) => (
+            Vec::new(),
+            Some(format!(
+                "The claims were not checked: they refer to rows this dataset does not have ({} problem(s), the first: {}).",
+                e.problems.len(),
+                e.problems
+                    .first()
+                    .map_or(String::new(), |p| p.message.clone())
+            )),
+        ),
+    };
     let a = analysis::analyse(&dataset, &settings);
     drop(dataset);
     let cov_settings = CoverageSettings {
@@ -664,6 +685,7 @@ fn report_command(args: &ReportArgs) -> Result<(), Error> {
         resamples: settings.resamples,
         seed: settings.seed,
         confidence: settings.confidence,
+        max_n: Some(coverage::REPORT_MAX_N),
     };
     let cov = coverage::of_analysis(&a, &cov_settings);
     let placements = analysis::placement::place_all(&a, args.model_length);
@@ -674,6 +696,7 @@ fn report_command(args: &ReportArgs) -> Result<(), Error> {
         analysis: &a,
         claims_file: &claims.path,
         claims: &results,
+        claims_note: claims_note.as_deref(),
         coverage_settings: &cov_settings,
         coverage: &cov,
         placements: &placements,
@@ -706,6 +729,25 @@ pub fn load_and_analyse(path: &Path, settings: &Settings) -> Result<Analysis, Er
     settings.validate().map_err(Error::Usage)?;
     let data = Dataset::load(path)?;
     Ok(analysis::analyse(&data, settings))
+}
+
+/// True when an error comes from writing to a closed pipe (e.g. `| head`).
+fn is_broken_pipe(e: &(dyn std::error::Error + 'static)) -> bool {
+    let mut cur: Option<&(dyn std::error::Error + 'static)> = Some(e);
+    while let Some(err) = cur {
+        if err
+            .downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+            || err
+                .downcast_ref::<serde_json::Error>()
+                .and_then(serde_json::Error::io_error_kind)
+                == Some(std::io::ErrorKind::BrokenPipe)
+        {
+            return true;
+        }
+        cur = err.source();
+    }
+    false
 }
 
 /// Writes to standard output; a closed pipe (e.g. `| head`) is not an error.

@@ -23,6 +23,7 @@ fn render_bytes(data: &[u8]) -> (Vec<OutputFile>, view::ReportView) {
         resamples: 10_000,
         seed: 1,
         confidence: 0.95,
+        max_n: Some(coverage::REPORT_MAX_N),
     };
     let cov = coverage::of_analysis(&a, &cs);
     let places = placement::place_all(&a, 1000.0);
@@ -30,6 +31,7 @@ fn render_bytes(data: &[u8]) -> (Vec<OutputFile>, view::ReportView) {
         analysis: &a,
         claims_file: "data/paper_claims.csv",
         claims: &results,
+        claims_note: None,
         coverage_settings: &cs,
         coverage: &cov,
         placements: &places,

@@ -25,7 +25,14 @@ pub struct CoverageSettings {
     pub resamples: usize,
     pub seed: u64,
     pub confidence: f64,
+    /// Largest sample size simulated; larger ones are skipped with a note
+    /// (the cost grows as sims x resamples x n). `None`: no limit.
+    pub max_n: Option<usize>,
 }
+
+/// The report's limit on simulated sample sizes: beyond a few hundred X-rays the
+/// t and bootstrap intervals are close to nominal, and simulating them costs minutes.
+pub const REPORT_MAX_N: usize = 200;
 
 /// The estimated coverage of one interval method.
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -131,6 +138,13 @@ pub fn of_analysis(a: &super::Analysis, s: &CoverageSettings) -> Vec<QuantityCov
                     None,
                     Some("zero spread: every interval collapses".to_string()),
                 )
+            } else if let Some(max) = s.max_n.filter(|&m| q.n > m) {
+                (
+                    None,
+                    Some(format!(
+                        "not simulated for n > {max}: intervals are close to nominal at this size (run 'phalanx coverage' to check)"
+                    )),
+                )
             } else {
                 let c = by_n
                     .entry(q.n)
@@ -182,6 +196,7 @@ mod tests {
             resamples: 10_000,
             seed: 1,
             confidence: 0.95,
+            max_n: None,
         }
     }
 
@@ -219,6 +234,41 @@ mod tests {
             );
         }
         assert!(simulate(1, 0.0, 1.0, &settings(10)).is_none());
+    }
+
+    #[test]
+    fn large_samples_are_skipped_beyond_the_limit() {
+        use crate::analysis::{Settings, analyse};
+        let text: String = std::iter::once("xray,finger,j1,j2,j3\n".to_string())
+            .chain((0..12).map(|i| format!("x{i},index,{},20,10\n", 30 + i)))
+            .collect();
+        let d = crate::dataset::Dataset::from_bytes("t.csv", text.as_bytes()).unwrap();
+        let a = analyse(&d, &Settings::default());
+        let limited = CoverageSettings {
+            max_n: Some(10),
+            ..settings(50)
+        };
+        let rows = of_analysis(&a, &limited);
+        assert!(rows.iter().all(|r| r.coverage.is_none()));
+        assert!(
+            rows[0]
+                .note
+                .as_deref()
+                .unwrap()
+                .contains("not simulated for n > 10")
+        );
+        let rows = of_analysis(
+            &a,
+            &CoverageSettings {
+                max_n: Some(12),
+                ..settings(50)
+            },
+        );
+        // Every quantity with spread is simulated (J3/J2 = 10/20 has none).
+        for r in &rows {
+            let constant = r.quantity == crate::analysis::Quantity::RatioJ3J2;
+            assert_eq!(r.coverage.is_some(), !constant, "{:?}", r.quantity);
+        }
         assert!(simulate(5, 0.0, 0.0, &settings(10)).is_none());
     }
 }

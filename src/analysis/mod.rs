@@ -358,18 +358,21 @@ pub fn analyse(data: &Dataset, settings: &Settings) -> Analysis {
         }
     }
     let mut results: Vec<Option<FingerAnalysis>> = vec![None; per_finger.len()];
+    let mut per_finger: Vec<(Finger, Option<Vec<XrayValues>>)> =
+        per_finger.into_iter().map(|(f, x)| (f, Some(x))).collect();
     for group in &groups {
         let cols: Vec<Vec<Vec<f64>>> = group
             .iter()
-            .map(|&i| columns(per_finger[i].0, &per_finger[i].1))
+            .map(|&i| columns(per_finger[i].0, per_finger[i].1.as_deref().unwrap_or(&[])))
             .collect();
         let flat: Vec<&[f64]> = cols.iter().flatten().map(Vec::as_slice).collect();
         let key = per_finger[group[0]].0.index() as u64;
         let dist = bootstrap::resample_means(&flat, settings.resamples, settings.seed, key);
         let mut offset = 0;
         for (&i, fcols) in group.iter().zip(&cols) {
-            let (finger, xrays) = &per_finger[i];
-            let quantities = Quantity::of(*finger)
+            let finger = per_finger[i].0;
+            let xrays = per_finger[i].1.take().unwrap_or_default();
+            let quantities = Quantity::of(finger)
                 .iter()
                 .zip(fcols)
                 .enumerate()
@@ -379,9 +382,9 @@ pub fn analyse(data: &Dataset, settings: &Settings) -> Analysis {
                 .collect();
             offset += fcols.len();
             results[i] = Some(FingerAnalysis {
-                finger: *finger,
+                finger,
                 n: xrays.len(),
-                xrays: xrays.clone(),
+                xrays,
                 quantities,
                 bootstrap: dist.plan,
             });

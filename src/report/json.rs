@@ -62,7 +62,16 @@ fn to_bytes(value: &impl Serialize) -> Result<Vec<u8>, Error> {
 /// The statistics document of `phalanx stats --format json` and `reports/stats.json`;
 /// with `groups` (from `--group-by`) it gains a `groups` key.
 pub fn stats(a: &Analysis, groups: &[Group]) -> Result<Vec<u8>, Error> {
-    to_bytes(&StatsDocument {
+    let mut out = Vec::new();
+    write_stats(&mut out, a, groups)?;
+    Ok(out)
+}
+
+/// Writes the statistics document to `w` as it is serialised (no copy in
+/// memory: the document of 100,000 X-rays is over 100 MB).
+pub fn write_stats(w: impl std::io::Write, a: &Analysis, groups: &[Group]) -> Result<(), Error> {
+    let mut w = std::io::BufWriter::new(w);
+    let doc = StatsDocument {
         schema_version: SCHEMA_VERSION,
         dataset: &a.dataset,
         settings: SettingsView::of(&a.settings),
@@ -71,7 +80,12 @@ pub fn stats(a: &Analysis, groups: &[Group]) -> Result<Vec<u8>, Error> {
             by: g.by,
             groups: groups.iter().map(Group::summary).collect(),
         }),
-    })
+    };
+    serde_json::to_writer_pretty(&mut w, &doc)
+        .map_err(|e| Error::render("cannot write the JSON statistics", e))?;
+    std::io::Write::write_all(&mut w, b"\n")
+        .and_then(|_| std::io::Write::flush(&mut w))
+        .map_err(|e| Error::render("cannot write the JSON statistics", e))
 }
 
 #[derive(Serialize)]

@@ -196,6 +196,8 @@ pub struct StatsRow {
 #[derive(Debug, Clone, Serialize)]
 pub struct ClaimsView {
     pub file: String,
+    /// Why the claims were not checked, when they were not.
+    pub note: Option<String>,
     pub summary: String,
     pub rows: Vec<ClaimRow>,
     /// Claims that disagree, with their causes.
@@ -276,6 +278,8 @@ pub struct ReportInputs<'a> {
     pub analysis: &'a Analysis,
     pub claims_file: &'a str,
     pub claims: &'a [ClaimResult],
+    /// Why the claims were not checked, when they were not.
+    pub claims_note: Option<&'a str>,
     pub coverage_settings: &'a CoverageSettings,
     pub coverage: &'a [QuantityCoverage],
     pub placements: &'a [FingerPlacement],
@@ -318,7 +322,7 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         table1: table1(a),
         derived: a.fingers.iter().map(derived).collect(),
         stats: a.fingers.iter().map(stats).collect(),
-        claims: claims(inputs.claims_file, inputs.claims),
+        claims: claims(inputs.claims_file, inputs.claims, inputs.claims_note),
         placement: placement(inputs.placements, inputs.model_length),
         coverage: coverage(inputs.coverage_settings, inputs.coverage),
         tracking: tracking(inputs),
@@ -515,7 +519,7 @@ fn stats(f: &crate::analysis::FingerAnalysis) -> StatsFinger {
     }
 }
 
-fn claims(file: &str, results: &[ClaimResult]) -> ClaimsView {
+fn claims(file: &str, results: &[ClaimResult], note: Option<&str>) -> ClaimsView {
     let rows: Vec<ClaimRow> = results
         .iter()
         .map(|r| {
@@ -551,6 +555,7 @@ fn claims(file: &str, results: &[ClaimResult]) -> ClaimsView {
     let s = CheckSummary::of(results);
     ClaimsView {
         file: file.to_string(),
+        note: note.map(str::to_string),
         summary: format!(
             "{} claims: {} match, {} match from rounded values (as the paper computes), {} known errata, {} new mismatches.",
             s.claims, s.matches, s.matches_rounded, s.known_errata, s.mismatches
