@@ -32,6 +32,9 @@ pub const DEFAULT_CLAIMS: &str = "data/paper_claims.csv";
                   Examples:\n  phalanx stats\n  phalanx check\n  phalanx report"
 )]
 pub struct Cli {
+    /// No progress bar on standard error
+    #[arg(long, short, global = true)]
+    pub quiet: bool,
     #[command(subcommand)]
     pub command: Command,
 }
@@ -122,6 +125,26 @@ pub enum Command {
         /// Output format
         #[arg(long, value_enum, default_value_t = TextFormat::Table)]
         format: TextFormat,
+    },
+    /// Write a synthetic dataset (for benchmarks and tests; never mix it into real data)
+    #[command(
+        after_help = "The model (hand scale, per-finger totals and proportions from the paper's Table 1, \
+                            correlated segments) is documented in src/synth.rs and the README.\n\n\
+                            Examples:\n  phalanx synth --xrays 10000 --seed 1 --out /tmp/hands.csv\n  phalanx synth --xrays 20 --no-metadata"
+    )]
+    Synth {
+        /// Number of X-rays (hands); each has the five fingers
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
+        xrays: u64,
+        /// Seed of the generator
+        #[arg(long, value_name = "S", default_value_t = analysis::DEFAULT_SEED)]
+        seed: u64,
+        /// Output file (written atomically); standard output when absent
+        #[arg(long, value_name = "FILE")]
+        out: Option<PathBuf>,
+        /// Leave sex, age and side empty
+        #[arg(long)]
+        no_metadata: bool,
     },
     /// Record a snapshot of the current statistics in the history (after editing the data by hand)
     #[command(
@@ -428,6 +451,7 @@ pub fn main() -> i32 {
 
 /// Runs one parsed command; returns the exit status on success.
 pub fn run(cli: Cli) -> Result<i32, Error> {
+    let quiet = cli.quiet;
     match cli.command {
         Command::Stats {
             data,
@@ -439,7 +463,7 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
             settings.validate().map_err(Error::Usage)?;
             let by = groups.group_by()?;
             let dataset = Dataset::load(&data.data)?;
-            let a = analysis::analyse(&dataset, &settings);
+            let a = analyse_showing_progress(&dataset, &settings, quiet);
             let groups = by.map_or_else(Vec::new, |by| analyse_groups(&dataset, &by, &settings));
             drop(dataset);
             let bytes = match format {
@@ -504,10 +528,32 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
             Ok(0)
         }
         Command::Report(args) => {
-            report_command(&args)?;
+            report_command(&args, quiet)?;
             Ok(0)
         }
         Command::Add(args) => add_command(&args),
+        Command::Synth {
+            xrays,
+            seed,
+            out,
+            no_metadata,
+        } => {
+            let bytes = crate::synth::generate(&crate::synth::SynthOptions {
+                xrays: xrays as usize,
+                seed,
+                metadata: !no_metadata,
+            });
+            match out {
+                Some(path) => {
+                    crate::atomic::replace(&path, &bytes).map_err(|source| Error::Write {
+                        path: path.clone(),
+                        source,
+                    })?
+                }
+                None => print(&bytes)?,
+            }
+            Ok(0)
+        }
         Command::Place {
             data,
             boot,
@@ -650,7 +696,7 @@ fn add_command(args: &AddArgs) -> Result<i32, Error> {
 }
 
 /// `phalanx report`: analyse, check, simulate, render everything in memory, then write.
-fn report_command(args: &ReportArgs) -> Result<(), Error> {
+fn report_command(args: &ReportArgs, quiet: bool) -> Result<(), Error> {
     let settings = args.boot.settings();
     settings.validate().map_err(Error::Usage)?;
     let templates = match &args.templates {
@@ -678,7 +724,7 @@ fn report_command(args: &ReportArgs) -> Result<(), Error> {
             )),
         ),
     };
-    let a = analysis::analyse(&dataset, &settings);
+    let a = analyse_showing_progress(&dataset, &settings, quiet);
     drop(dataset);
     let cov_settings = CoverageSettings {
         sims: args.sims as usize,
@@ -722,6 +768,15 @@ fn report_command(args: &ReportArgs) -> Result<(), Error> {
         names.join(", ")
     );
     Ok(())
+}
+
+/// Analyses a dataset with a progress bar on a terminal for long bootstraps.
+fn analyse_showing_progress(dataset: &Dataset, settings: &Settings, quiet: bool) -> Analysis {
+    let bar =
+        report::progress::TerminalProgress::new(quiet, settings.resamples, dataset.rows.len());
+    let a = analysis::analyse_with(dataset, settings, &bar);
+    bar.finish();
+    a
 }
 
 /// Loads a dataset and analyses it.

@@ -11,4 +11,5 @@ pub mod cli;
 pub mod dataset;
 pub mod error;
 pub mod report;
+pub mod synth;
 pub mod workflow;

@@ -94,11 +94,35 @@ pub struct Distribution {
 /// `key` separates independent groups under one seed. Cost: O(m n q) for m
 /// resamples and q quantities; memory O(m q).
 pub fn resample_means(columns: &[&[f64]], requested: usize, seed: u64, key: u64) -> Distribution {
+    resample_means_with(columns, requested, seed, key, &NoProgress)
+}
+
+/// Receives progress of long computations: `advance(k)` after k more units of
+/// work (resamples), from any thread. Keeps the statistics free of any display code.
+pub trait Progress: Sync {
+    /// Called once with the total before any work is done.
+    fn start(&self, _total: u64) {}
+    fn advance(&self, _done: u64) {}
+}
+
+/// Progress that goes nowhere.
+pub struct NoProgress;
+
+impl Progress for NoProgress {}
+
+/// [`resample_means`] reporting resamples done to `progress`.
+pub fn resample_means_with(
+    columns: &[&[f64]],
+    requested: usize,
+    seed: u64,
+    key: u64,
+    progress: &dyn Progress,
+) -> Distribution {
     let n = columns.first().map_or(0, |c| c.len());
     let plan = Plan::choose(n, requested.max(1));
     match plan {
         Plan::Exact { distinct } => exact(columns, n, distinct),
-        Plan::Random { resamples } => random(columns, n, resamples, seed, key),
+        Plan::Random { resamples } => random(columns, n, resamples, seed, key, progress),
     }
 }
 
@@ -115,36 +139,65 @@ fn weighted_means(columns: &[&[f64]], counts: &[u32], n: usize, out: &mut [f64])
     }
 }
 
-fn exact(columns: &[&[f64]], n: usize, distinct: usize) -> Distribution {
-    let ln_fact: Vec<f64> = (0..=n)
-        .scan(0.0f64, |acc, k| {
-            if k > 0 {
-                *acc += (k as f64).ln();
-            }
-            Some(*acc)
-        })
-        .collect();
-    let ln_norm = ln_fact[n] - n as f64 * (n as f64).ln();
-    let mut weights = Vec::with_capacity(distinct);
-    let mut means = vec![Vec::with_capacity(distinct); columns.len()];
-    let mut row = vec![0.0; columns.len()];
-    let mut counts = vec![0u32; n];
-    compositions(n, &mut counts, |c| {
-        let ln_w = ln_norm - c.iter().map(|&k| ln_fact[k as usize]).sum::<f64>();
-        weights.push(ln_w.exp());
-        weighted_means(columns, c, n, &mut row);
-        for (m, v) in means.iter_mut().zip(&row) {
-            m.push(*v);
-        }
-    });
-    // Normalise away rounding so the weights sum to 1.
-    let total: f64 = weights.iter().sum();
-    weights.iter_mut().for_each(|w| *w /= total);
-    Distribution {
-        plan: Plan::Exact { distinct },
-        weights,
-        means,
+/// Every distinct resample of n units with its multinomial probability:
+/// depends on n only, so it is built once and reused (e.g. by the coverage
+/// simulation, which bootstraps thousands of samples of the same size).
+#[derive(Debug, Clone)]
+pub struct Enumeration {
+    n: usize,
+    /// The count vectors, one after another (`distinct * n` counts).
+    counts: Vec<u32>,
+    /// Probability of each count vector (sums to 1).
+    pub weights: Vec<f64>,
+}
+
+impl Enumeration {
+    /// Enumerates the C(2n-1, n) resamples of n units (`distinct` of them).
+    pub fn new(n: usize, distinct: usize) -> Enumeration {
+        let ln_fact: Vec<f64> = (0..=n)
+            .scan(0.0f64, |acc, k| {
+                if k > 0 {
+                    *acc += (k as f64).ln();
+                }
+                Some(*acc)
+            })
+            .collect();
+        let ln_norm = ln_fact[n] - n as f64 * (n as f64).ln();
+        let mut weights = Vec::with_capacity(distinct);
+        let mut counts = Vec::with_capacity(distinct * n);
+        let mut c = vec![0u32; n];
+        compositions(n, &mut c, |c| {
+            let ln_w = ln_norm - c.iter().map(|&k| ln_fact[k as usize]).sum::<f64>();
+            weights.push(ln_w.exp());
+            counts.extend_from_slice(c);
+        });
+        // Normalise away rounding so the weights sum to 1.
+        let total: f64 = weights.iter().sum();
+        weights.iter_mut().for_each(|w| *w /= total);
+        Enumeration { n, counts, weights }
     }
+
+    /// The bootstrap distribution of the means of `columns` (each of length n).
+    pub fn distribution(&self, columns: &[&[f64]]) -> Distribution {
+        let distinct = self.weights.len();
+        let mut means = vec![Vec::with_capacity(distinct); columns.len()];
+        let mut row = vec![0.0; columns.len()];
+        for c in self.counts.chunks_exact(self.n.max(1)) {
+            weighted_means(columns, c, self.n, &mut row);
+            for (m, v) in means.iter_mut().zip(&row) {
+                m.push(*v);
+            }
+        }
+        Distribution {
+            plan: Plan::Exact { distinct },
+            weights: self.weights.clone(),
+            means,
+        }
+    }
+}
+
+fn exact(columns: &[&[f64]], n: usize, distinct: usize) -> Distribution {
+    Enumeration::new(n, distinct).distribution(columns)
 }
 
 /// Calls `visit` with every vector of n non-negative counts summing to n
@@ -308,7 +361,14 @@ struct ChunkWork {
     sums: Vec<f64>,
 }
 
-fn random(columns: &[&[f64]], n: usize, resamples: usize, seed: u64, key: u64) -> Distribution {
+fn random(
+    columns: &[&[f64]],
+    n: usize,
+    resamples: usize,
+    seed: u64,
+    key: u64,
+    progress: &dyn Progress,
+) -> Distribution {
     let q = columns.len();
     let chunks = resamples.div_ceil(CHUNK);
     // Row-major copy: one X-ray's quantities side by side.
@@ -331,6 +391,7 @@ fn random(columns: &[&[f64]], n: usize, resamples: usize, seed: u64, key: u64) -
                 let len = CHUNK.min(resamples - k * CHUNK);
                 let mut out = Vec::with_capacity(len * q);
                 random_chunk(&rows, q, n, len, &mut rng, work, &mut out);
+                progress.advance(len as u64);
                 out
             },
         )
@@ -521,6 +582,41 @@ mod tests {
         assert_eq!(one, run(3, 9));
         assert_ne!(one, run(1, 10));
         assert_eq!(one[0].len(), 1000);
+    }
+
+    #[test]
+    fn blocked_kernel_equals_the_plain_definition_bit_for_bit() {
+        // The definition: resample j of chunk k draws n indices from stream k in order,
+        // and its mean is sum_i c_i x_i / n summed in index order.
+        let n = 300;
+        let cols: Vec<Vec<f64>> = (0..5)
+            .map(|q| {
+                (0..n)
+                    .map(|i| 1.0 + ((i * 37 + q * 11) % 97) as f64 / 7.0)
+                    .collect()
+            })
+            .collect();
+        let refs: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
+        let resamples = 150; // 3 chunks, the last one partial
+        let d = resample_means(&refs, resamples, 42, 9);
+        for j in 0..resamples {
+            let (k, within) = (j / CHUNK, j % CHUNK);
+            let mut r = rng::stream(42, 9, k as u64);
+            let mut counts = vec![0u32; n];
+            for _ in 0..=within {
+                counts.iter_mut().for_each(|c| *c = 0);
+                for _ in 0..n {
+                    counts[rng::index(&mut r, n as u32) as usize] += 1;
+                }
+            }
+            for (q, col) in cols.iter().enumerate() {
+                let mut sum = 0.0;
+                for (c, x) in counts.iter().zip(col) {
+                    sum += f64::from(*c) * x;
+                }
+                assert_eq!(d.means[q][j], sum / n as f64, "resample {j}, quantity {q}");
+            }
+        }
     }
 
     #[test]

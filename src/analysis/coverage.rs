@@ -67,6 +67,11 @@ pub fn simulate(n: usize, mean: f64, sd: f64, s: &CoverageSettings) -> Option<Co
         return None;
     }
     let plan = bootstrap::Plan::choose(n, s.resamples);
+    // Small n: the exact resamples depend on n only; enumerate them once.
+    let enumeration = match plan {
+        bootstrap::Plan::Exact { distinct } => Some(bootstrap::Enumeration::new(n, distinct)),
+        bootstrap::Plan::Random { .. } => None,
+    };
     // hits[method] per simulation: t, percentile, bca, prediction; None = undefined.
     let outcomes: Vec<[Option<bool>; 4]> = (0..s.sims)
         .into_par_iter()
@@ -77,7 +82,7 @@ pub fn simulate(n: usize, mean: f64, sd: f64, s: &CoverageSettings) -> Option<Co
                 xs.iter_mut()
                     .for_each(|x| *x = mean + sd * rng::standard_normal(&mut r));
                 let new = mean + sd * rng::standard_normal(&mut r);
-                one_simulation(xs, new, mean, s, sim as u64)
+                one_simulation(xs, new, mean, s, sim as u64, enumeration.as_ref())
             },
         )
         .collect();
@@ -170,6 +175,7 @@ fn one_simulation(
     truth: f64,
     s: &CoverageSettings,
     sim: u64,
+    enumeration: Option<&bootstrap::Enumeration>,
 ) -> [Option<bool>; 4] {
     let n = xs.len();
     let (Some(m), Some(sd)) = (describe::mean(xs), describe::sd(xs)) else {
@@ -177,7 +183,10 @@ fn one_simulation(
     };
     let t = describe::t_interval(m, sd, n, s.confidence).map(|i| i.contains(truth));
     let pi = describe::prediction_interval(m, sd, n, s.confidence).map(|i| i.contains(new));
-    let dist = bootstrap::resample_means(&[xs], s.resamples, s.seed, COVERAGE_KEY + 1 + sim);
+    let dist = match enumeration {
+        Some(e) => e.distribution(&[xs]),
+        None => bootstrap::resample_means(&[xs], s.resamples, s.seed, COVERAGE_KEY + 1 + sim),
+    };
     let sorted = Sorted::new(&dist.means[0], &dist.weights);
     let pct = Some(bootstrap::percentile_interval(&sorted, s.confidence).contains(truth));
     let bca = bootstrap::bca_interval(&sorted, xs, m, s.confidence)

@@ -329,6 +329,15 @@ fn columns(finger: Finger, xrays: &[XrayValues]) -> Vec<Vec<f64>> {
 /// Analyses a dataset. Fingers whose X-rays are the same share every bootstrap
 /// resample (the X-ray is the unit resampled). Cost: O(B n q) for B resamples.
 pub fn analyse(data: &Dataset, settings: &Settings) -> Analysis {
+    analyse_with(data, settings, &bootstrap::NoProgress)
+}
+
+/// [`analyse`] reporting bootstrap progress (in resamples, over all groups) to `progress`.
+pub fn analyse_with(
+    data: &Dataset,
+    settings: &Settings,
+    progress: &dyn bootstrap::Progress,
+) -> Analysis {
     // X-rays in order of first appearance, so fingers of the same X-rays line up.
     let mut order: HashMap<&str, usize> = HashMap::new();
     for r in &data.rows {
@@ -357,6 +366,14 @@ pub fn analyse(data: &Dataset, settings: &Settings) -> Analysis {
             None => groups.push(vec![i]),
         }
     }
+    let random_groups = groups
+        .iter()
+        .filter(|g| {
+            let n = per_finger[g[0]].1.len();
+            matches!(Plan::choose(n, settings.resamples), Plan::Random { .. })
+        })
+        .count();
+    progress.start((random_groups * settings.resamples) as u64);
     let mut results: Vec<Option<FingerAnalysis>> = vec![None; per_finger.len()];
     let mut per_finger: Vec<(Finger, Option<Vec<XrayValues>>)> =
         per_finger.into_iter().map(|(f, x)| (f, Some(x))).collect();
@@ -367,7 +384,8 @@ pub fn analyse(data: &Dataset, settings: &Settings) -> Analysis {
             .collect();
         let flat: Vec<&[f64]> = cols.iter().flatten().map(Vec::as_slice).collect();
         let key = per_finger[group[0]].0.index() as u64;
-        let dist = bootstrap::resample_means(&flat, settings.resamples, settings.seed, key);
+        let dist =
+            bootstrap::resample_means_with(&flat, settings.resamples, settings.seed, key, progress);
         let mut offset = 0;
         for (&i, fcols) in group.iter().zip(&cols) {
             let finger = per_finger[i].0;

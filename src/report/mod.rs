@@ -8,6 +8,7 @@ pub mod csv_out;
 pub mod format;
 pub mod json;
 pub mod plots;
+pub mod progress;
 pub mod render;
 pub mod text;
 pub mod view;

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Times the release binary on the workloads of issue 6 and prints a Markdown
+# table of wall time and peak memory (/usr/bin/time -v), then how the cost grows
+# with X-rays and resamples. Usage: bench/run.sh [RUNS]   (default 3; best run kept)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+runs=${1:-3}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+if [ ! -x /usr/bin/time ]; then
+    echo "bench: /usr/bin/time is missing (Debian package 'time')" >&2
+    exit 1
+fi
+cargo build --release -q
+bin=target/release/phalanx
+
+"$bin" synth --xrays 10000 --seed 1 --out "$work/x10k.csv"
+"$bin" synth --xrays 100000 --seed 1 --out "$work/x100k.csv"
+for n in 2500 5000; do "$bin" synth --xrays "$n" --seed 1 --out "$work/x$n.csv"; done
+
+# measure LABEL TARGET -- COMMAND...: best wall time and its peak RSS over $runs runs.
+measure() {
+    local label=$1 target=$2
+    shift 3
+    local best_s="" best_kb=""
+    for _ in $(seq "$runs"); do
+        /usr/bin/time -v -o "$work/time.txt" "$@" > /dev/null 2> "$work/stderr.txt"
+        local wall kb s
+        wall=$(grep "Elapsed (wall clock)" "$work/time.txt" | awk '{print $NF}')
+        kb=$(grep "Maximum resident set size" "$work/time.txt" | awk '{print $NF}')
+        s=$(echo "$wall" | awk -F: '{ if (NF == 3) print $1*3600 + $2*60 + $3; else print $1*60 + $2 }')
+        if [ -z "$best_s" ] || awk -v a="$s" -v b="$best_s" 'BEGIN { exit !(a < b) }'; then
+            best_s=$s
+            best_kb=$kb
+        fi
+    done
+    printf '| %s | %s | %.3f s | %.1f MB |\n' "$label" "$target" "$best_s" "$(echo "$best_kb" | awk '{print $1/1024}')"
+}
+
+echo "Machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(uname -sr); $($bin --version)"
+echo "Date: $(date -u +%Y-%m-%d); best of $runs runs; 10,000 resamples unless noted"
+echo
+echo "| workload | target | wall time | peak memory |"
+echo "|---|---|---|---|"
+measure "paper data, full report (all formats and plots)" "50 ms / 30 MB" -- "$bin" report --out "$work/r0"
+measure "10,000 X-rays, stats --format json" "1 s / 100 MB" -- "$bin" stats --data "$work/x10k.csv" --format json
+measure "100,000 X-rays, stats --format json" "10 s / 300 MB" -- "$bin" stats --data "$work/x100k.csv" --format json
+measure "100,000 X-rays, full report" "15 s / 400 MB" -- "$bin" report --data "$work/x100k.csv" --out "$work/r1"
+echo
+echo "Growth with X-rays (stats --format json, 10,000 resamples):"
+echo
+echo "| workload | | wall time | peak memory |"
+echo "|---|---|---|---|"
+for n in 2500 5000 10k; do
+    measure "$n X-rays" "" -- "$bin" stats --data "$work/x$n.csv" --format json
+done
+echo
+echo "Growth with resamples (10,000 X-rays, stats --format json):"
+echo
+echo "| workload | | wall time | peak memory |"
+echo "|---|---|---|---|"
+for b in 2500 5000 10000 20000; do
+    measure "$b resamples" "" -- "$bin" stats --data "$work/x10k.csv" --format json --resamples "$b"
+done
