@@ -278,3 +278,90 @@ fn a_failed_run_leaves_the_previous_report_untouched_and_reruns_are_identical() 
     assert_eq!(missing.status.code(), Some(2));
     assert_eq!(snapshot_dir(&out), first, "a failed run touched the report");
 }
+
+#[test]
+fn options_choose_formats_templates_and_timestamp() {
+    let tmp = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        phalanx()
+            .args(["report", "--sims", "100"])
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    // --format json: only stats.json.
+    let only_json = tmp.path().join("json");
+    assert!(
+        run(&["--out", only_json.to_str().unwrap(), "--format", "json"])
+            .status
+            .success()
+    );
+    let names: Vec<String> = std::fs::read_dir(&only_json)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().to_string())
+        .collect();
+    assert_eq!(names, vec!["stats.json".to_string()]);
+    // --templates: a Markdown template of our own; the HTML falls back to the built-in one.
+    let tpl = tmp.path().join("tpl");
+    std::fs::create_dir_all(&tpl).unwrap();
+    std::fs::write(
+        tpl.join("report.md.tera"),
+        "custom {{ settings.xrays }} X-rays, {{ claims.summary }}\n",
+    )
+    .unwrap();
+    let out = tmp.path().join("custom");
+    let ok = run(&[
+        "--out",
+        out.to_str().unwrap(),
+        "--templates",
+        tpl.to_str().unwrap(),
+    ]);
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        md.starts_with("custom 5 X-rays, 30 claims: 20 match"),
+        "{md}"
+    );
+    assert!(
+        std::fs::read_to_string(out.join("index.html"))
+            .unwrap()
+            .contains("<h1>")
+    );
+    // A template that does not parse is an error that names it, and writes nothing.
+    std::fs::write(tpl.join("report.md.tera"), "{% if %}").unwrap();
+    let broken = tmp.path().join("broken");
+    let bad = run(&[
+        "--out",
+        broken.to_str().unwrap(),
+        "--templates",
+        tpl.to_str().unwrap(),
+    ]);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("templates"));
+    assert!(!broken.exists());
+    // --timestamp adds a "Generated" line; without it there is none.
+    let stamped = tmp.path().join("stamped");
+    assert!(
+        run(&[
+            "--out",
+            stamped.to_str().unwrap(),
+            "--timestamp",
+            "--format",
+            "md"
+        ])
+        .status
+        .success()
+    );
+    let md = std::fs::read_to_string(stamped.join("report.md")).unwrap();
+    assert!(md.contains("| Generated | `20"), "{md}");
+    assert!(
+        !std::fs::read_to_string(out.join("index.html"))
+            .unwrap()
+            .contains("Generated")
+    );
+}
