@@ -417,7 +417,7 @@ fn a_directory_or_a_missing_file_is_bad_input() {
 /// message only counts fields and advises adding commas; it should say that a
 /// quote is not closed.
 #[test]
-#[ignore = "bug: an unterminated quote is reported as 'has 2 fields but the header has 5; add the missing fields', not as an unclosed quote"]
+
 fn an_unterminated_quote_is_named_as_such() {
     let wd = Workdir::new();
     wd.write(
@@ -440,7 +440,7 @@ fn an_unterminated_quote_is_named_as_such() {
 
 /// A missing claims file is reported with the hint "(see --data)".
 #[test]
-#[ignore = "bug: a missing --claims file says 'check the path (see --data)'"]
+
 fn a_missing_claims_file_points_at_the_claims_option() {
     let wd = Workdir::new();
     wd.copy_paper_data();
@@ -461,7 +461,6 @@ fn a_missing_claims_file_points_at_the_claims_option() {
 /// refuse such rows (as it refuses sums that overflow) or every statistic
 /// should be finite or null with a note.
 #[test]
-#[ignore = "bug: lengths 1e-300,1e300 pass the loader; J2/J1 = inf gives null mean, [null, null] intervals and a false 'same value' note"]
 fn lengths_whose_ratio_overflows_are_refused_or_analysed_finitely() {
     let wd = Workdir::new();
     wd.write(

@@ -169,12 +169,17 @@ impl Claims {
         let mut problems = Vec::new();
         let mut scan = CsvScan::new(label, bytes)?;
         let Some(header_rec) = scan.next_record(&mut problems) else {
+            let content = scan.finish().map(|(_, c)| c).unwrap_or(true);
             return Err(DataError::whole_file(
                 label,
-                format!(
-                    "has no header line; start it with {}",
-                    CLAIM_COLUMNS.join(",")
-                ),
+                if content {
+                    format!(
+                        "has no header line; start it with {}",
+                        CLAIM_COLUMNS.join(",")
+                    )
+                } else {
+                    "is empty; it needs a header line and one row per claim".to_string()
+                },
             ));
         };
         let header = Header::parse(&header_rec, &CLAIM_COLUMNS, &[], &mut problems);
@@ -188,13 +193,9 @@ impl Claims {
                 continue;
             }
             if rec.len() != header.names.len() {
-                problems.push(Problem::line(
-                    rec.line,
-                    format!(
-                        "has {} fields but the header has {}; quote values that contain commas",
-                        rec.len(),
-                        header.names.len()
-                    ),
+                problems.push(super::csvinput::field_count_problem(
+                    &rec,
+                    header.names.len(),
                 ));
                 continue;
             }

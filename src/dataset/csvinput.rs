@@ -21,14 +21,50 @@ pub fn read_input(path: &Path) -> Result<Vec<u8>, DataError> {
             "is a directory, not a CSV file; give the path of the file itself",
         ));
     }
-    std::fs::read(path).map_err(|e| {
-        let hint = match e.kind() {
-            std::io::ErrorKind::NotFound => "no such file; check the path (see --data)",
-            std::io::ErrorKind::PermissionDenied => "permission denied; make the file readable",
-            _ => "could not be read",
-        };
-        DataError::whole_file(&label, format!("{hint} ({e})"))
-    })
+    std::fs::read(path).map_err(|e| io_problem(&label, &e))
+}
+
+/// Opens an input file for streaming, turning failures (missing file, a
+/// directory, no permission) into a [`DataError`] that names the file.
+pub fn open_input(path: &Path) -> Result<std::fs::File, DataError> {
+    let label = path.display().to_string();
+    if path.is_dir() {
+        return Err(DataError::whole_file(
+            &label,
+            "is a directory, not a CSV file; give the path of the file itself",
+        ));
+    }
+    std::fs::File::open(path).map_err(|e| io_problem(&label, &e))
+}
+
+fn io_problem(label: &str, e: &std::io::Error) -> DataError {
+    let hint = match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file; check the path",
+        std::io::ErrorKind::PermissionDenied => "permission denied; make the file readable",
+        _ => "could not be read",
+    };
+    DataError::whole_file(label, format!("{hint} ({e})"))
+}
+
+/// The problem of a record whose field count differs from the header's: most
+/// often a quote left open (the field then runs on over commas and line ends),
+/// else fields missing or extra.
+pub fn field_count_problem(rec: &Record<'_>, width: usize) -> Problem {
+    let runaway = (0..rec.len()).any(|i| rec.get(i).is_some_and(|f| f.contains([',', '\n', '\r'])));
+    let hint = if runaway {
+        "a quoted field is not closed, so it runs on over commas or line ends; close the quote (\") or remove it"
+    } else if rec.len() > width {
+        "remove the extra fields, or quote a value that contains a comma"
+    } else {
+        "add the missing fields (an empty value still needs its comma)"
+    };
+    Problem::line(
+        rec.line,
+        format!(
+            "has {} fields but the header has {width}; {hint}",
+            rec.len()
+        ),
+    )
 }
 
 /// Quotes a value for an error message, shortened when long.
@@ -68,61 +104,125 @@ impl<'s> Record<'s> {
     }
 }
 
-/// A configured CSV reader over the bytes of one file.
-pub struct CsvScan<'a> {
-    reader: csv::Reader<&'a [u8]>,
-    record: csv::ByteRecord,
-    bytes: &'a [u8],
-    /// Byte offset and 1-based line number reached so far, for line counting:
-    /// the `csv` crate's own line numbers drift over blank lines and CRLF.
-    cursor: (usize, u64),
+/// The byte stream under a [`CsvScan`]: hashes every byte read (SHA-256, the
+/// byte-order mark included), drops a UTF-8 byte-order mark, and remembers where
+/// the line ends are that the CSV reader has not been asked about yet, so line
+/// numbers are exact without holding the file in memory.
+pub struct Source<R> {
+    inner: std::io::BufReader<R>,
+    hasher: sha2::Sha256,
+    /// Offset (after the byte-order mark) of the next byte to read.
+    offset: u64,
+    /// Offsets of CR and LF bytes not yet passed by the line counter, with `true` for LF.
+    eol: std::collections::VecDeque<(u64, bool)>,
+    /// Whether any byte other than white space was seen.
+    content: bool,
 }
 
-impl<'a> CsvScan<'a> {
-    /// Prepares `bytes` for reading; whole-file problems (empty, UTF-16) are errors here.
-    pub fn new(label: &str, bytes: &'a [u8]) -> Result<Self, DataError> {
-        let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
-        if bytes.starts_with(b"\xFF\xFE") || bytes.starts_with(b"\xFE\xFF") {
+impl<R: std::io::Read> std::io::Read for Source<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        sha2::Digest::update(&mut self.hasher, &buf[..n]);
+        for (i, &b) in buf[..n].iter().enumerate() {
+            match b {
+                b'\n' | b'\r' => self.eol.push_back((self.offset + i as u64, b == b'\n')),
+                b if !b.is_ascii_whitespace() => self.content = true,
+                _ => {}
+            }
+        }
+        self.offset += n as u64;
+        Ok(n)
+    }
+}
+
+/// A configured CSV reader over one file, read as a stream.
+pub struct CsvScan<R: std::io::Read> {
+    reader: csv::Reader<Source<R>>,
+    record: csv::ByteRecord,
+    /// Byte offset and 1-based line number reached so far, for line counting:
+    /// the `csv` crate's own line numbers drift over blank lines and CRLF.
+    cursor: (u64, u64),
+}
+
+impl<R: std::io::Read> CsvScan<R> {
+    /// Prepares `input` for reading; a UTF-16 file is an error here. Memory: the
+    /// reader's buffers and the line ends read ahead, not the file.
+    pub fn new(label: &str, input: R) -> Result<Self, DataError> {
+        let mut inner = std::io::BufReader::with_capacity(64 * 1024, input);
+        let mut hasher = <sha2::Sha256 as sha2::Digest>::new();
+        let head = std::io::BufRead::fill_buf(&mut inner)
+            .map_err(|e| DataError::whole_file(label, format!("could not be read ({e})")))?;
+        if head.starts_with(b"\xFF\xFE") || head.starts_with(b"\xFE\xFF") {
             return Err(DataError::whole_file(
                 label,
                 "is UTF-16 text; save it as UTF-8 (e.g. 'CSV UTF-8' in a spreadsheet)",
             ));
         }
-        if bytes.iter().all(|b| b.is_ascii_whitespace()) {
-            return Err(DataError::whole_file(
-                label,
-                "is empty; it needs a header line and at least one data row",
-            ));
+        if head.starts_with(b"\xEF\xBB\xBF") {
+            sha2::Digest::update(&mut hasher, &head[..3]);
+            std::io::BufRead::consume(&mut inner, 3);
         }
+        let source = Source {
+            inner,
+            hasher,
+            offset: 0,
+            eol: std::collections::VecDeque::new(),
+            content: false,
+        };
         let reader = csv::ReaderBuilder::new()
             .has_headers(false)
             .flexible(true)
-            .from_reader(bytes);
+            .from_reader(source);
         Ok(CsvScan {
             reader,
             record: csv::ByteRecord::new(),
-            bytes,
             cursor: (0, 1),
         })
     }
 
+    /// Reads what is left and returns the file's SHA-256 (lower-case hex), and
+    /// whether it held anything but white space.
+    pub fn finish(self) -> std::io::Result<(String, bool)> {
+        let mut source = self.reader.into_inner();
+        std::io::copy(&mut source, &mut std::io::sink())?;
+        let digest = sha2::Digest::finalize(source.hasher);
+        let hex = digest.iter().map(|b| format!("{b:02x}")).collect();
+        Ok((hex, source.content))
+    }
+
     /// Line on which the record just read starts. The reader's position points
     /// at the line end or blank lines before the record; skip them, then count
-    /// the newlines since the last record. O(bytes) over the whole file.
+    /// the line ends since the last record: LF, CRLF (counted at its LF), or a
+    /// lone CR (old Mac files). Line ends passed are forgotten. O(1) amortised.
     fn line_of_record(&mut self) -> u64 {
-        let from = self.record.position().map_or(0, |p| p.byte() as usize);
-        let mut start = from.max(self.cursor.0).min(self.bytes.len());
-        while start < self.bytes.len() && matches!(self.bytes[start], b'\r' | b'\n') {
-            start += 1;
+        let eol = &mut self.reader.get_mut().eol;
+        let mut start = self
+            .record
+            .position()
+            .map_or(0, |p| p.byte())
+            .max(self.cursor.0);
+        let mut newlines = 0;
+        // Line ends before the cursor were counted already (or belong to quoted fields).
+        while eol.front().is_some_and(|&(o, _)| o < self.cursor.0) {
+            eol.pop_front();
         }
-        // A line ends at LF, at CRLF (counted at its LF), or at a lone CR (old Mac files).
-        let newlines = (self.cursor.0..start)
-            .filter(|&i| match self.bytes[i] {
-                b'\n' => true,
-                b'\r' => self.bytes.get(i + 1) != Some(&b'\n'),
-                _ => false,
-            })
-            .count() as u64;
+        while let Some(&(o, lf)) = eol.front() {
+            if o > start {
+                break;
+            }
+            // o == start: the record starts on a line end (a blank line); skip it.
+            if o == start {
+                start += 1;
+            }
+            let crlf = !lf
+                && eol
+                    .get(1)
+                    .is_some_and(|&(next, next_lf)| next == o + 1 && next_lf);
+            if lf || !crlf {
+                newlines += 1;
+            }
+            eol.pop_front();
+        }
         self.cursor = (start, self.cursor.1 + newlines);
         self.cursor.1
     }

@@ -22,6 +22,11 @@ use std::collections::hash_map::Entry;
 use std::path::Path;
 use std::sync::Arc;
 
+/// Largest accepted segment length (any unit): beyond it squares of sums could overflow.
+pub const MAX_LENGTH: f64 = 1e100;
+/// Largest accepted ratio between the longest and the shortest segment of a finger.
+pub const MAX_SPREAD: f64 = 1e6;
+
 /// Columns every measurement file must have, in the canonical order.
 pub const REQUIRED_COLUMNS: [&str; 5] = ["xray", "finger", "j1", "j2", "j3"];
 /// Metadata columns a measurement file may have; their values may be empty.
@@ -82,21 +87,26 @@ pub struct Dataset {
 
 impl Dataset {
     /// Reads and validates a measurement file. Cost: O(bytes).
+    /// The file is streamed: memory holds the rows, not the file's bytes.
     pub fn load(path: &Path) -> Result<Dataset, DataError> {
-        let bytes = csvinput::read_input(path)?;
-        Dataset::from_bytes(&path.display().to_string(), &bytes)
+        let file = csvinput::open_input(path)?;
+        Dataset::from_reader(&path.display().to_string(), file)
     }
 
-    /// Validates the bytes of a measurement file; `label` names it in errors.
-    pub fn from_bytes(label: &str, bytes: &[u8]) -> Result<Dataset, DataError> {
-        let sha256 = sha256_hex(bytes);
-        let (columns, rows) = parse_rows(label, bytes)?;
+    /// Validates a measurement table read from `input`; `label` names it in errors.
+    pub fn from_reader(label: &str, input: impl std::io::Read) -> Result<Dataset, DataError> {
+        let (columns, rows, sha256) = parse_rows(label, input)?;
         Ok(Dataset {
             path: label.to_string(),
             sha256,
             columns,
             rows,
         })
+    }
+
+    /// Validates the bytes of a measurement file; `label` names it in errors.
+    pub fn from_bytes(label: &str, bytes: &[u8]) -> Result<Dataset, DataError> {
+        Dataset::from_reader(label, bytes)
     }
 
     /// Number of distinct X-ray ids.
@@ -218,18 +228,28 @@ struct XrayMeta {
     unit: Option<Arc<str>>,
 }
 
-fn parse_rows(label: &str, bytes: &[u8]) -> Result<(Vec<String>, Vec<Row>), DataError> {
+/// Parses and validates rows; returns the header's columns, the rows and the
+/// file's SHA-256.
+fn parse_rows(
+    label: &str,
+    input: impl std::io::Read,
+) -> Result<(Vec<String>, Vec<Row>, String), DataError> {
     let mut problems = Vec::new();
-    let mut scan = CsvScan::new(label, bytes)?;
+    let mut scan = CsvScan::new(label, input)?;
     let (header_line, header) = match scan.next_record(&mut problems) {
         Some(rec) => (
             rec.line,
             Header::parse(&rec, &REQUIRED_COLUMNS, &OPTIONAL_COLUMNS, &mut problems),
         ),
         None => {
-            problems.push(Problem::file(
-                "has no header line; start it with xray,finger,j1,j2,j3",
-            ));
+            let content = scan.finish().map(|(_, c)| c).unwrap_or(true);
+            if problems.is_empty() {
+                problems.push(Problem::file(if content {
+                    "has no header line; start it with xray,finger,j1,j2,j3"
+                } else {
+                    "is empty; it needs a header line and at least one data row"
+                }));
+            }
             return Err(DataError {
                 file: label.to_string(),
                 problems,
@@ -249,18 +269,7 @@ fn parse_rows(label: &str, bytes: &[u8]) -> Result<(Vec<String>, Vec<Row>), Data
             continue; // column meanings are unknown; the header problems say why
         }
         if rec.len() != width {
-            problems.push(Problem::line(
-                rec.line,
-                format!(
-                    "has {} fields but the header has {width}; {}",
-                    rec.len(),
-                    if rec.len() > width {
-                        "remove the extra fields, or quote a value that contains a comma"
-                    } else {
-                        "add the missing fields (an empty value still needs its comma)"
-                    }
-                ),
-            ));
+            problems.push(csvinput::field_count_problem(&rec, width));
             continue;
         }
         if let Some(row) = parse_row(&rec, &header, &mut interner, &mut problems) {
@@ -300,8 +309,15 @@ fn parse_rows(label: &str, bytes: &[u8]) -> Result<(Vec<String>, Vec<Row>), Data
             p.field = header.names.get(c - 1).filter(|n| !n.is_empty()).cloned();
         }
     }
+    let sha256 = match scan.finish() {
+        Ok((sha, _)) => sha,
+        Err(e) => {
+            problems.push(Problem::file(format!("could not be read to the end ({e})")));
+            String::new()
+        }
+    };
     if problems.is_empty() {
-        Ok((header.names, rows))
+        Ok((header.names, rows, sha256))
     } else {
         problems.sort_by_key(|p| (p.line.unwrap_or(0), p.column.unwrap_or(0)));
         Err(DataError {
@@ -451,6 +467,27 @@ fn parse_row(
         problems.push(Problem::line(
             line,
             "the lengths add up to more than the largest representable number; check the values",
+        ));
+        return None;
+    }
+    // Bounds that keep every statistic finite (squares, ratios) and catch unit slips.
+    let segs = row.segments();
+    let (lo, hi) = segs.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &l| {
+        (lo.min(l), hi.max(l))
+    });
+    if hi > MAX_LENGTH {
+        problems.push(Problem::line(
+            line,
+            format!("a length of {hi:e} is implausibly large (over {MAX_LENGTH:e}); check the value and its unit"),
+        ));
+        return None;
+    }
+    if hi / lo > MAX_SPREAD {
+        problems.push(Problem::line(
+            line,
+            format!(
+                "the lengths differ more than {MAX_SPREAD:e}-fold ({lo:e} to {hi:e}); the segments of one finger are of similar size: check the values"
+            ),
         ));
         return None;
     }
