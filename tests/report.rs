@@ -365,3 +365,72 @@ fn options_choose_formats_templates_and_timestamp() {
             .contains("Generated")
     );
 }
+
+#[test]
+fn claim_texts_with_markup_stay_text_in_every_format() {
+    let evil = "<img src=x onerror=alert(1)>|cell\nbreak =HYPERLINK(\"http://x\") **b** [l](u)";
+    let mut claims = String::from_utf8(std::fs::read("data/paper_claims.csv").unwrap()).unwrap();
+    // A new claim with hostile texts, stated wrong and recorded as an erratum, so
+    // its texts appear in the table and in the list of misprints.
+    let quoted = evil.replace('"', "\"\"");
+    claims.push_str(&format!(
+        "evil,\"{quoted}\",\"{quoted}\",index,1b,total,value,,1.00,yes,\"{quoted}\"\n"
+    ));
+    let dataset = Dataset::load(Path::new("data/measurements.csv")).unwrap();
+    let claims = Claims::from_bytes("evil.csv", claims.as_bytes()).unwrap();
+    let results = claims::check(&claims, &dataset);
+    let a = analysis::analyse(&dataset, &Settings::default());
+    let cs = CoverageSettings {
+        sims: 50,
+        resamples: 10_000,
+        seed: 1,
+        confidence: 0.95,
+        max_n: Some(coverage::REPORT_MAX_N),
+    };
+    let cov = coverage::of_analysis(&a, &cs);
+    let places = placement::place_all(&a, 1000.0);
+    let inputs = ReportInputs {
+        analysis: &a,
+        claims_file: "evil.csv",
+        claims: &results,
+        claims_note: None,
+        coverage_settings: &cs,
+        coverage: &cov,
+        placements: &places,
+        model_length: 1000.0,
+        timestamp: None,
+        history_file: "data/history.jsonl",
+        history: &[],
+        target: 0.005,
+        groups: &[],
+    };
+    let files = report::render(&inputs, Formats::ALL, &Templates::builtin().unwrap()).unwrap();
+    let html = file(&files, "index.html");
+    assert!(!html.contains("<img"), "raw markup in HTML");
+    assert!(html.contains("&lt;img src=x onerror=alert(1)&gt;"));
+    let doc = Html::parse_document(html);
+    let row = Selector::parse("table#claims-table tbody tr").unwrap();
+    let evil_row = doc
+        .select(&row)
+        .find(|r| r.text().any(|t| t == "evil"))
+        .expect("the claim's row");
+    let cells: Vec<String> = evil_row
+        .select(&Selector::parse("td").unwrap())
+        .map(|c| c.text().collect())
+        .collect();
+    assert_eq!(cells[1], evil, "the text comes back exactly");
+    let md = file(&files, "report.md");
+    assert!(!md.contains("<img"), "raw markup in Markdown");
+    let line = md
+        .lines()
+        .find(|l| l.starts_with("| evil |"))
+        .expect("the claim's Markdown row");
+    // 6 columns: 7 unescaped pipes; the hostile `|` is escaped and the newline folded.
+    let unescaped = line
+        .match_indices('|')
+        .filter(|(i, _)| !line[..*i].ends_with('\\'))
+        .count();
+    assert_eq!(unescaped, 7, "{line}");
+    assert!(line.contains("\\*\\*b\\*\\* \\[l\\](u)"), "{line}");
+    assert!(md.contains("**evil**"), "listed among the misprints");
+}
