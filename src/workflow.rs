@@ -62,7 +62,7 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         NewRows::File(p) => Dataset::load(p)?,
         NewRows::Fields(fields) => append::single_row(fields)?,
     };
-    csvinput::read_input(&req.data)?; // a missing dataset is reported before any lock file is made
+    csvinput::open_input(&req.data)?; // a missing dataset is reported before any lock file is made
     let _lock = DatasetLock::acquire(&req.data).map_err(io_err(&req.data))?;
     let current_bytes = csvinput::read_input(&req.data)?;
     let label = req.data.display().to_string();
@@ -131,7 +131,7 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
 /// (for data edited by hand). Holds the dataset's lock while it reads.
 pub fn snapshot(data: &Path, history_path: &Path, settings: &Settings) -> Result<Snapshot, Error> {
     settings.validate().map_err(Error::Usage)?;
-    csvinput::read_input(data)?;
+    csvinput::open_input(data)?; // a missing dataset is reported before any lock file is made
     let _lock = DatasetLock::acquire(data).map_err(io_err(data))?;
     let dataset = Dataset::load(data)?;
     let a = analysis::analyse(&dataset, settings);

@@ -16,7 +16,6 @@ pub use error::{DataError, Problem};
 pub use finger::Finger;
 
 use csvinput::{CsvScan, Header, Record, quote};
-use sha2::{Digest, Sha256};
 use std::collections::HashMap;
 use std::collections::hash_map::Entry;
 use std::path::Path;
@@ -121,12 +120,6 @@ impl Dataset {
     pub fn rows_of(&self, finger: Finger) -> impl Iterator<Item = &Row> {
         self.rows.iter().filter(move |r| r.finger == finger)
     }
-}
-
-/// Lower-case hex SHA-256 of some bytes.
-pub fn sha256_hex(bytes: &[u8]) -> String {
-    let digest = Sha256::digest(bytes);
-    digest.iter().map(|b| format!("{b:02x}")).collect()
 }
 
 /// Parses one segment length, explaining what to fix when it is not a
