@@ -348,6 +348,20 @@ fn parse_row(
             "is empty; give every row the id of its X-ray (e.g. 'Figure 1a')".into(),
         );
     }
+    // Text that a spreadsheet would run as a formula never enters the dataset, so
+    // no CSV phalanx writes from it (e.g. on 'add') can carry one.
+    for k in [XRAY, SEX, SIDE, SOURCE, UNIT] {
+        if let Some(t) = field(k).filter(|t| looks_like_formula(t)) {
+            bad(
+                k,
+                format!(
+                    "{} starts like a spreadsheet formula; remove the leading '{}'",
+                    quote(t),
+                    t.chars().next().unwrap_or('=')
+                ),
+            );
+        }
+    }
     let finger_text = field(FINGER);
     let finger = match finger_text {
         Some("") => {
@@ -485,6 +499,12 @@ fn parse_row(
         return None;
     }
     Some(row)
+}
+
+/// True for text a spreadsheet would evaluate: starting with `=`, `+` or `@`
+/// (a leading `-` is allowed: ids such as "-1" are plausible).
+pub fn looks_like_formula(text: &str) -> bool {
+    text.starts_with(['=', '+', '@'])
 }
 
 fn normalise_sex(text: &str) -> String {

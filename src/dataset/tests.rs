@@ -263,3 +263,23 @@ fn long_values_are_shortened_in_messages() {
     let p = problems(&format!("{HEADER}a,index,{long},2,3\n"));
     assert!(p[0].message.len() < 200, "{}", p[0].message.len());
 }
+
+#[test]
+fn spreadsheet_formulas_are_refused_in_text_fields() {
+    let h = "xray,finger,j1,j2,j3,source\n";
+    one(
+        &format!("{h}=1+2,index,1,2,3,x\n"),
+        2,
+        Some(1),
+        "spreadsheet formula; remove the leading '='",
+    );
+    one(
+        &format!("{h}a,index,1,2,3,\"=HYPERLINK(\"\"http://x\"\")\"\n"),
+        2,
+        Some(6),
+        "spreadsheet formula",
+    );
+    one(&format!("{h}@a,index,1,2,3,\n"), 2, Some(1), "leading '@'");
+    // A leading minus is an ordinary id.
+    assert!(load(&format!("{h}-1,index,1,2,3,\n")).is_ok());
+}
