@@ -72,10 +72,11 @@ pub fn render(
     Ok(files)
 }
 
-/// One tracking plot per finger with history, in the analysis's finger order.
+/// One tracking plot per finger with history (two snapshots or more), in the analysis's finger order.
 fn tracking_plots(inputs: &ReportInputs<'_>) -> Result<Vec<plots::Plot>, Error> {
     use crate::analysis::Quantity;
-    if inputs.history.is_empty() {
+    // One snapshot is a single point per quantity: nothing moves yet.
+    if inputs.history.len() < 2 {
         return Ok(Vec::new());
     }
     let histories = crate::analysis::tracking::histories(inputs.history);

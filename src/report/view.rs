@@ -702,8 +702,12 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
     let (note, compared, changes) = if snaps.len() < 2 {
         (
             Some(format!(
-                "{} snapshot(s) in {}: changes appear once there are two. 'phalanx add' records one per addition; 'phalanx snapshot' one on demand.",
-                snaps.len(),
+                "{} in {}: changes and plots appear once there are two. 'phalanx add' records one per addition; 'phalanx snapshot' one on demand.",
+                match snaps.len() {
+                    0 => "No snapshot yet".to_string(),
+                    1 => "One snapshot".to_string(),
+                    k => format!("{k} snapshots"),
+                },
                 inputs.history_file
             )),
             String::new(),
