@@ -16,10 +16,19 @@ use std::path::Path;
 fn render_bytes(data: &[u8]) -> (Vec<OutputFile>, view::ReportView) {
     let dataset = Dataset::from_bytes("data/measurements.csv", data).unwrap();
     let claims = Claims::load(Path::new("data/paper_claims.csv")).unwrap();
-    let results = claims::check(&claims, &dataset);
-    let a = analysis::analyse(&dataset, &Settings::default());
+    render_with(&dataset, &claims, 400)
+}
+
+/// Renders the report of a dataset with some claims (`sims` coverage simulations), in memory.
+fn render_with(
+    dataset: &Dataset,
+    claims: &Claims,
+    sims: usize,
+) -> (Vec<OutputFile>, view::ReportView) {
+    let results = claims::check(claims, dataset);
+    let a = analysis::analyse(dataset, &Settings::default());
     let cs = CoverageSettings {
-        sims: 400,
+        sims,
         resamples: 10_000,
         seed: 1,
         confidence: 0.95,
@@ -29,7 +38,7 @@ fn render_bytes(data: &[u8]) -> (Vec<OutputFile>, view::ReportView) {
     let places = placement::place_all(&a, 1000.0);
     let inputs = ReportInputs {
         analysis: &a,
-        claims_file: "data/paper_claims.csv",
+        claims_file: &claims.path,
         claims: &results,
         claims_note: None,
         coverage_settings: &cs,
@@ -378,33 +387,7 @@ fn claim_texts_with_markup_stay_text_in_every_format() {
     ));
     let dataset = Dataset::load(Path::new("data/measurements.csv")).unwrap();
     let claims = Claims::from_bytes("evil.csv", claims.as_bytes()).unwrap();
-    let results = claims::check(&claims, &dataset);
-    let a = analysis::analyse(&dataset, &Settings::default());
-    let cs = CoverageSettings {
-        sims: 50,
-        resamples: 10_000,
-        seed: 1,
-        confidence: 0.95,
-        max_n: Some(coverage::REPORT_MAX_N),
-    };
-    let cov = coverage::of_analysis(&a, &cs);
-    let places = placement::place_all(&a, 1000.0);
-    let inputs = ReportInputs {
-        analysis: &a,
-        claims_file: "evil.csv",
-        claims: &results,
-        claims_note: None,
-        coverage_settings: &cs,
-        coverage: &cov,
-        placements: &places,
-        model_length: 1000.0,
-        timestamp: None,
-        history_file: "data/history.jsonl",
-        history: &[],
-        target: 0.005,
-        groups: &[],
-    };
-    let files = report::render(&inputs, Formats::ALL, &Templates::builtin().unwrap()).unwrap();
+    let (files, _) = render_with(&dataset, &claims, 50);
     let html = file(&files, "index.html");
     assert!(!html.contains("<img"), "raw markup in HTML");
     assert!(html.contains("&lt;img src=x onerror=alert(1)&gt;"));
