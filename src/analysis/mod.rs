@@ -185,16 +185,15 @@ impl Quantity {
         self != Quantity::Total
     }
 
-    /// The value of this quantity for one measurement row.
-    pub fn of_row(self, row: &Row) -> f64 {
-        let total = row.total();
+    /// The value of this quantity for one X-ray's derived values.
+    pub fn of_xray(self, x: &XrayValues) -> f64 {
         match self {
-            Quantity::RelJ1 => row.lengths[0] / total,
-            Quantity::RelJ2 => row.lengths[1] / total,
-            Quantity::RelJ3 => row.lengths[2] / total,
-            Quantity::RatioJ2J1 => row.lengths[1] / row.lengths[0],
-            Quantity::RatioJ3J2 => row.lengths[2] / row.lengths[1],
-            Quantity::Total => total,
+            Quantity::RelJ1 => x.relative[0],
+            Quantity::RelJ2 => x.relative[1],
+            Quantity::RelJ3 => x.relative[2],
+            Quantity::RatioJ2J1 => x.lengths[1] / x.lengths[0],
+            Quantity::RatioJ3J2 => x.lengths[2] / x.lengths[1],
+            Quantity::Total => x.total,
         }
     }
 }
@@ -310,19 +309,7 @@ impl Analysis {
 fn columns(finger: Finger, xrays: &[XrayValues]) -> Vec<Vec<f64>> {
     Quantity::of(finger)
         .iter()
-        .map(|q| {
-            xrays
-                .iter()
-                .map(|x| match q {
-                    Quantity::Total => x.total,
-                    Quantity::RelJ1 => x.relative[0],
-                    Quantity::RelJ2 => x.relative[1],
-                    Quantity::RelJ3 => x.relative[2],
-                    Quantity::RatioJ2J1 => x.lengths[1] / x.lengths[0],
-                    Quantity::RatioJ3J2 => x.lengths[2] / x.lengths[1],
-                })
-                .collect()
-        })
+        .map(|q| xrays.iter().map(|x| q.of_xray(x)).collect())
         .collect()
 }
 

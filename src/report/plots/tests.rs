@@ -297,17 +297,7 @@ fn synthetic(n: usize) -> FingerAnalysis {
     let quantities = Quantity::of(Finger::Middle)
         .iter()
         .map(|&q| {
-            let values: Vec<f64> = xrays
-                .iter()
-                .map(|x| match q {
-                    Quantity::RelJ1 => x.relative[0],
-                    Quantity::RelJ2 => x.relative[1],
-                    Quantity::RelJ3 => x.relative[2],
-                    Quantity::RatioJ2J1 => x.lengths[1] / x.lengths[0],
-                    Quantity::RatioJ3J2 => x.lengths[2] / x.lengths[1],
-                    Quantity::Total => x.total,
-                })
-                .collect();
+            let values: Vec<f64> = xrays.iter().map(|x| q.of_xray(x)).collect();
             // A stand-in bootstrap distribution: means of 64 interleaved subsamples.
             let boot: Vec<f64> = (0..64)
                 .map(|k| {
