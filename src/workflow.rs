@@ -68,12 +68,13 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     let label = req.data.display().to_string();
     let current = Dataset::from_bytes(&label, &current_bytes)?;
     let from_options = matches!(req.rows, NewRows::Fields(_));
-    let bytes = append::appended_bytes(&current_bytes, &current, &new).map_err(|mut e| {
-        if from_options {
-            e.problems.iter_mut().for_each(|p| p.line = None);
-        }
-        e
-    })?;
+    let (bytes, after) =
+        append::appended_bytes(&current_bytes, &current, &new).map_err(|mut e| {
+            if from_options {
+                e.problems.iter_mut().for_each(|p| p.line = None);
+            }
+            e
+        })?;
     let before = analysis::analyse(&current, &req.settings);
     let flags: Vec<Flag> = new
         .rows
@@ -105,7 +106,6 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         }
         .into());
     }
-    let after = Dataset::from_bytes(&label, &bytes)?;
     let a = analysis::analyse(&after, &req.settings);
     let snapshot = tracking::snapshot(&a, now(), "add");
     // Stage both files in full before replacing either: a history that cannot be

@@ -94,12 +94,13 @@ fn field_of(row: &Row, column: &str) -> String {
 /// The bytes of the dataset with `new` appended, after checking that the new rows
 /// fit it: no (X-ray, finger) already present, the same sex/age/side/unit as
 /// existing rows of the same X-ray, and no metadata for a column the file lacks.
-/// Problems name the new rows' lines in `new.path`.
+/// Problems name the new rows' lines in `new.path`. Returns the new bytes and
+/// the dataset they hold (validated once).
 pub fn appended_bytes(
     current_bytes: &[u8],
     current: &Dataset,
     new: &Dataset,
-) -> Result<Vec<u8>, DataError> {
+) -> Result<(Vec<u8>, Dataset), DataError> {
     let mut problems = Vec::new();
     let existing: HashMap<(&str, super::Finger), &Row> = current
         .rows
@@ -187,9 +188,9 @@ pub fn appended_bytes(
         .into_inner()
         .map_err(|e| DataError::whole_file(&new.path, e.to_string()))?;
     out.extend_from_slice(&tail);
-    // Safety net: the result must load as a valid dataset.
-    Dataset::from_bytes(&current.path, &out)?;
-    Ok(out)
+    // The result must load as a valid dataset; that dataset is returned with it.
+    let appended = Dataset::from_bytes(&current.path, &out)?;
+    Ok((out, appended))
 }
 
 #[cfg(test)]
@@ -206,7 +207,8 @@ mod tests {
     fn appends_in_the_file_column_order_keeping_old_bytes() {
         let cur = ds("d.csv", OLD);
         let new = ds("n.csv", "finger,xray,j2,j1,j3,sex\nring,b,2.5,5.25,2,m\n");
-        let out = appended_bytes(OLD.as_bytes(), &cur, &new).unwrap();
+        let (out, appended) = appended_bytes(OLD.as_bytes(), &cur, &new).unwrap();
+        assert_eq!(appended.rows.len(), 3);
         let text = String::from_utf8(out).unwrap();
         assert!(text.starts_with(OLD));
         assert_eq!(&text[OLD.len()..], "b,ring,5.25,2.5,2,male\n");
@@ -217,7 +219,7 @@ mod tests {
         let old = "xray,finger,j1,j2,j3\r\na,index,4,3,3";
         let cur = ds("d.csv", old);
         let new = ds("n.csv", "xray,finger,j1,j2,j3\nb,index,1,2,3\n");
-        let out = String::from_utf8(appended_bytes(old.as_bytes(), &cur, &new).unwrap()).unwrap();
+        let out = String::from_utf8(appended_bytes(old.as_bytes(), &cur, &new).unwrap().0).unwrap();
         assert_eq!(out, format!("{old}\r\nb,index,1,2,3\r\n"));
     }
 
