@@ -123,6 +123,27 @@ pub fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
     out
 }
 
+/// The (finger, quantity) pairs present in a history, in first-seen order,
+/// narrowed to one finger and/or quantity.
+pub fn selected(
+    snaps: &[Snapshot],
+    finger: Option<crate::dataset::Finger>,
+    quantity: Option<Quantity>,
+) -> Vec<(String, String)> {
+    let mut out: Vec<(String, String)> = Vec::new();
+    for s in snaps {
+        for r in &s.quantities {
+            let keep = finger.is_none_or(|f| f.name() == r.finger)
+                && quantity.is_none_or(|q| q.name() == r.quantity);
+            let key = (r.finger.clone(), r.quantity.clone());
+            if keep && !out.contains(&key) {
+                out.push(key);
+            }
+        }
+    }
+    out
+}
+
 /// Largest n [`xrays_needed`] searches.
 pub const MAX_NEEDED: usize = 100_000_000;
 

@@ -141,27 +141,6 @@ pub fn coverage(
     })
 }
 
-/// The (finger, quantity) pairs present in a history, in first-seen order,
-/// narrowed to one finger and/or quantity.
-pub fn selected(
-    snaps: &[Snapshot],
-    finger: Option<Finger>,
-    quantity: Option<Quantity>,
-) -> Vec<(String, String)> {
-    let mut out: Vec<(String, String)> = Vec::new();
-    for s in snaps {
-        for r in &s.quantities {
-            let keep = finger.is_none_or(|f| f.name() == r.finger)
-                && quantity.is_none_or(|q| q.name() == r.quantity);
-            let key = (r.finger.clone(), r.quantity.clone());
-            if keep && !out.contains(&key) {
-                out.push(key);
-            }
-        }
-    }
-    out
-}
-
 #[derive(Serialize)]
 struct HistorySeries<'a> {
     finger: &'a str,
@@ -184,7 +163,7 @@ pub fn history(
     finger: Option<Finger>,
     quantity: Option<Quantity>,
 ) -> Result<Vec<u8>, Error> {
-    let keys = selected(snaps, finger, quantity);
+    let keys = crate::analysis::tracking::selected(snaps, finger, quantity);
     let series: Vec<HistorySeries<'_>> = keys
         .iter()
         .map(|(f, q)| HistorySeries {

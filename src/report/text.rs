@@ -201,7 +201,7 @@ pub fn history(
         );
     }
     let mut out = format!("{} snapshots in {}\n", snaps.len(), path.display());
-    for (f, q) in super::json::selected(snaps, finger, quantity) {
+    for (f, q) in crate::analysis::tracking::selected(snaps, finger, quantity) {
         let d = Quantity::parse(&q).map_or(4, decimals);
         let label = Quantity::parse(&q).map_or(q.clone(), |x| x.label().to_string());
         out.push_str(&format!("\n{f} {label}\n"));
