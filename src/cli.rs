@@ -126,6 +126,41 @@ pub enum Command {
         #[arg(long, value_enum, default_value_t = TextFormat::Table)]
         format: TextFormat,
     },
+    /// Judge a rigged hand (glTF 2.0) against the X-ray statistics; --fix writes a corrected copy
+    #[command(
+        after_help = "Finds the finger chains of either hand by their names (Mixamo mixamorig:RightHandIndex1..4, \
+                            Rigify f_index.01.R / DEF-f_index.01.R / thumb.01.R, VRM rightIndexProximal or its humanoid table, \
+                            Unreal index_01_r, WebXR index-finger-phalanx-proximal; case and separators ignored; --map for others) \
+                            and measures joint-to-joint distances in the node (bind) pose. Each inner joint is reported inside the \
+                            X-ray range, inside the prediction interval, or outside by how many mm and in which direction. \
+                            Rigs without tip nodes are judged on J2/J1 only.\n\n\
+                            --fix OUT.glb writes a copy with the middle joints at the mean positions along each finger (root and \
+                            tip fixed) and the inverse bind matrices updated so the mesh's rest shape is unchanged; the input is \
+                            never modified.\n\n\
+                            --map FILE: CSV with the header node,side,finger,joint (joint MCP, PIP, DIP, IP or tip).\n\n\
+                            Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv"
+    )]
+    Audit {
+        /// The rig: a .glb, .gltf or .vrm (glTF 2.0) file
+        #[arg(value_name = "RIG")]
+        rig: PathBuf,
+        #[command(flatten)]
+        data: DataArgs,
+        #[command(flatten)]
+        boot: BootArgs,
+        /// Custom joint names: CSV with node,side,finger,joint
+        #[arg(long, value_name = "FILE")]
+        map: Option<PathBuf>,
+        /// Write a corrected copy of the rig here (.glb, or .gltf with the buffer embedded)
+        #[arg(long, value_name = "OUT")]
+        fix: Option<PathBuf>,
+        /// Exit with status 1 when a finger is outside the prediction interval
+        #[arg(long)]
+        strict: bool,
+        /// Output format
+        #[arg(long, value_enum, default_value_t = TextFormat::Table)]
+        format: TextFormat,
+    },
     /// Write a synthetic dataset (for benchmarks and tests; never mix it into real data)
     #[command(
         after_help = "The model (hand scale, per-finger totals and proportions from the paper's Table 1, \
@@ -589,6 +624,35 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
             };
             print(&bytes)?;
             Ok(0)
+        }
+        Command::Audit {
+            rig,
+            data,
+            boot,
+            map,
+            fix,
+            strict,
+            format,
+        } => {
+            let out = workflow::audit(&workflow::AuditRequest {
+                rig: &rig,
+                map: map.as_deref(),
+                fix: fix.as_deref(),
+                data: &data.data,
+                settings: boot.settings(),
+                json: format == TextFormat::Json,
+            })?;
+            print(&out.output)?;
+            if !quiet {
+                for m in &out.messages {
+                    eprintln!("{m}");
+                }
+            }
+            Ok(if strict && out.outside > 0 {
+                EXIT_FAILURE
+            } else {
+                0
+            })
         }
         Command::Snapshot {
             data,

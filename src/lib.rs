@@ -11,5 +11,6 @@ pub mod cli;
 pub mod dataset;
 pub mod error;
 pub mod report;
+pub mod rig;
 pub mod synth;
 pub mod workflow;

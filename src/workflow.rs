@@ -139,3 +139,117 @@ pub fn snapshot(data: &Path, history_path: &Path, settings: &Settings) -> Result
     history::append(history_path, &snap).map_err(io_err(history_path))?;
     Ok(snap)
 }
+
+/// What `phalanx audit` asks for.
+pub struct AuditRequest<'a> {
+    pub rig: &'a Path,
+    pub map: Option<&'a Path>,
+    pub fix: Option<&'a Path>,
+    pub data: &'a Path,
+    pub settings: Settings,
+    pub json: bool,
+}
+
+/// What `phalanx audit` found (and did).
+pub struct AuditOutcome {
+    /// The table or JSON document for standard output.
+    pub output: Vec<u8>,
+    /// Fingers outside the prediction interval in the input rig.
+    pub outside: usize,
+    /// Lines for standard error: what --fix wrote, warnings.
+    pub messages: Vec<String>,
+}
+
+/// True when `a` and `b` name the same file (`b` may not exist yet).
+fn same_file(a: &Path, b: &Path) -> bool {
+    let canon = |p: &Path| {
+        let p = crate::atomic::resolve(p);
+        let dir = p
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        dir.canonicalize()
+            .ok()
+            .map(|d| d.join(p.file_name().unwrap_or_default()))
+    };
+    canon(a).is_some() && canon(a) == canon(b)
+}
+
+/// Audits a rig against the statistics, and with `fix` writes a corrected copy.
+pub fn audit(req: &AuditRequest<'_>) -> Result<AuditOutcome, Error> {
+    use crate::rig::{AuditedRig, Rig, map::NameMap};
+    let map = req.map.map(NameMap::load).transpose()?;
+    let fix_glb = match req.fix {
+        Some(out) => {
+            if same_file(req.rig, out) {
+                return Err(Error::Usage(format!(
+                    "--fix {} would overwrite the input rig; name a new file (the input is never modified)",
+                    out.display()
+                )));
+            }
+            match out
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase)
+                .as_deref()
+            {
+                Some("glb") => Some(true),
+                Some("gltf") => Some(false),
+                _ => {
+                    return Err(Error::Usage(format!(
+                        "--fix {}: name the output .glb (or .gltf for an embedded buffer)",
+                        out.display()
+                    )));
+                }
+            }
+        }
+        None => None,
+    };
+    let rig = Rig::load(req.rig, map.as_ref())?;
+    let dataset = Dataset::load(req.data)?;
+    let a = crate::analysis::analyse(&dataset, &req.settings);
+    let chains = rig.chains.clone();
+    let audited = AuditedRig::of(&rig.file.label, &chains, &rig.notes, &a);
+    let mut messages = Vec::new();
+    let mut fix_view = None;
+    let fixed;
+    if let (Some(out), Some(glb)) = (req.fix, fix_glb) {
+        let dir = req.rig.parent().unwrap_or(Path::new("."));
+        fixed = crate::rig::fix::fix(&rig.file, &audited.fingers, dir, glb)?;
+        crate::atomic::replace(out, &fixed.bytes).map_err(io_err(out))?;
+        let re = Rig::load(out, map.as_ref())?;
+        let again = AuditedRig::of(&re.file.label, &re.chains, &re.notes, &a);
+        messages.push(format!(
+            "wrote {}: {} joints moved; re-audited, {} of {} fingers outside the prediction interval",
+            out.display(),
+            fixed.moved.iter().filter(|(_, d)| *d > 0.0).count(),
+            again.outside(),
+            again.fingers.len()
+        ));
+        messages.extend(fixed.warnings.iter().map(|w| format!("warning: {w}")));
+        fix_view = Some(crate::report::json::FixView {
+            output: out.to_str().unwrap_or("(non-UTF-8 path)"),
+            moved: fixed
+                .moved
+                .iter()
+                .map(|(node, shift)| crate::report::json::MovedView {
+                    node,
+                    shift: *shift,
+                })
+                .collect(),
+            warnings: &fixed.warnings,
+        });
+    }
+    let n_note = format!("{} X-rays", a.dataset.xrays);
+    let output = if req.json {
+        crate::report::json::audit(&a, &audited, fix_view)?
+    } else {
+        crate::report::audit::text(&audited, &a.dataset.path, &n_note, a.settings.confidence)
+            .into_bytes()
+    };
+    Ok(AuditOutcome {
+        output,
+        outside: audited.outside(),
+        messages,
+    })
+}

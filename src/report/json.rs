@@ -220,3 +220,49 @@ pub fn placement(
         placements: ps,
     })
 }
+
+/// What `audit --fix` did, for the audit document.
+#[derive(Serialize)]
+pub struct FixView<'a> {
+    pub output: &'a str,
+    /// Moved joints: node name and distance moved, in rig units.
+    pub moved: Vec<MovedView<'a>>,
+    pub warnings: &'a [String],
+}
+
+/// One moved joint.
+#[derive(Serialize)]
+pub struct MovedView<'a> {
+    pub node: &'a str,
+    pub shift: f64,
+}
+
+/// The document of `phalanx audit --format json`.
+pub fn audit(
+    a: &Analysis,
+    rig: &crate::rig::AuditedRig,
+    fix: Option<FixView<'_>>,
+) -> Result<Vec<u8>, Error> {
+    #[derive(Serialize)]
+    struct Doc<'a> {
+        schema_version: u32,
+        dataset: &'a DatasetInfo,
+        settings: SettingsView<'static>,
+        units: &'static str,
+        rig: &'a crate::rig::AuditedRig,
+        fingers_outside: usize,
+        caveats: &'static [&'static str],
+        #[serde(skip_serializing_if = "Option::is_none")]
+        fix: Option<FixView<'a>>,
+    }
+    to_bytes(&Doc {
+        schema_version: SCHEMA_VERSION,
+        dataset: &a.dataset,
+        settings: SettingsView::of(&a.settings),
+        units: "m",
+        rig,
+        fingers_outside: rig.outside(),
+        caveats: &super::audit::CAVEATS,
+        fix,
+    })
+}

@@ -4,6 +4,7 @@
 //! renderer is pure (returns bytes or text); files are written in one place,
 //! [`writer::write_all`].
 
+pub mod audit;
 pub mod csv_out;
 pub mod format;
 pub mod json;

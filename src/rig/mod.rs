@@ -1,0 +1,467 @@
+//! Reading the finger chains of a rigged hand from a glTF 2.0 file.
+//!
+//! Joint positions are the world translations of the joint nodes in the
+//! file's node pose (the bind pose of an exported rig), in the file's units
+//! (metres by the glTF specification). Candidate nodes are the joints of any
+//! skin and their descendants (tip nodes are often unskinned leaves); a file
+//! without skins is read as a bare skeleton, every node a candidate. Names are
+//! read by [`naming`], VRM's humanoid bone tables when present, and a
+//! `--map` file ([`map`]) first of all.
+
+pub mod fix;
+pub mod map;
+pub mod naming;
+pub mod reference;
+
+use crate::analysis::audit::{ChainInput, Point};
+use crate::analysis::placement::Joint;
+use crate::dataset::{DataError, Finger, Problem};
+use glam::{DMat4, DQuat, DVec3};
+use map::NameMap;
+use naming::{Part, Side, Slot};
+use serde::Serialize;
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+/// One joint of a rig finger.
+#[derive(Debug, Clone, Serialize)]
+pub struct RigJoint {
+    pub joint: Joint,
+    /// Index of the node in the glTF file (`None` for reference rigs).
+    pub node: Option<usize>,
+    /// The node's name.
+    pub name: String,
+    /// World position in the node pose.
+    pub position: Point,
+}
+
+/// One finger chain found in a rig: root (MCP), inner joints, and the tip when present.
+#[derive(Debug, Clone, Serialize)]
+pub struct FingerChain {
+    /// `None` when the names do not say (a one-hand file such as WebXR's).
+    pub side: Option<Side>,
+    pub finger: Finger,
+    pub joints: Vec<RigJoint>,
+    pub has_tip: bool,
+}
+
+impl FingerChain {
+    /// The chain's geometry, for the analysis.
+    pub fn input(&self) -> ChainInput {
+        ChainInput {
+            finger: self.finger,
+            points: self.joints.iter().map(|j| j.position).collect(),
+            has_tip: self.has_tip,
+        }
+    }
+
+    /// "right index", "left thumb", or "index" when the side is unknown.
+    pub fn label(&self) -> String {
+        match self.side {
+            Some(s) => format!("{} {}", s.name(), self.finger),
+            None => self.finger.to_string(),
+        }
+    }
+}
+
+/// A glTF file, parsed, with its node hierarchy evaluated.
+pub struct GltfFile {
+    /// The file as the user named it.
+    pub label: String,
+    pub document: gltf::Document,
+    /// The JSON part, for edits that must keep every field of the file.
+    pub json: serde_json::Value,
+    /// The binary chunk of a .glb file.
+    pub blob: Option<Vec<u8>>,
+    /// Each node's parent.
+    pub parent: Vec<Option<usize>>,
+    /// Each node's world matrix in the node pose.
+    pub world: Vec<DMat4>,
+}
+
+/// The local matrix of a node, in f64.
+pub fn local_matrix(node: &gltf::Node<'_>) -> DMat4 {
+    match node.transform() {
+        gltf::scene::Transform::Matrix { matrix } => {
+            DMat4::from_cols_array_2d(&matrix.map(|c| c.map(f64::from)))
+        }
+        gltf::scene::Transform::Decomposed {
+            translation,
+            rotation,
+            scale,
+        } => DMat4::from_scale_rotation_translation(
+            DVec3::from_array(scale.map(f64::from)),
+            DQuat::from_array(rotation.map(f64::from)).normalize(),
+            DVec3::from_array(translation.map(f64::from)),
+        ),
+    }
+}
+
+impl GltfFile {
+    /// Reads a .gltf or .glb file (external buffers are not needed to audit).
+    pub fn load(path: &Path) -> Result<GltfFile, DataError> {
+        let label = path.display().to_string();
+        let bytes = crate::dataset::csvinput::read_input(path)?;
+        GltfFile::from_bytes(&label, &bytes)
+    }
+
+    /// Parses the bytes of a glTF file; `label` names it in errors.
+    pub fn from_bytes(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
+        let fail = |what: String| DataError::whole_file(label, what);
+        let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| {
+            fail(format!(
+                "is not a valid glTF 2.0 file ({e}); export it as glTF 2.0 (.glb or .gltf)"
+            ))
+        })?;
+        let json_bytes: std::borrow::Cow<'_, [u8]> = if bytes.starts_with(b"glTF") {
+            gltf::binary::Glb::from_slice(bytes)
+                .map_err(|e| fail(format!("has a broken GLB container ({e})")))?
+                .json
+        } else {
+            bytes.into()
+        };
+        let json: serde_json::Value = serde_json::from_slice(&json_bytes)
+            .map_err(|e| fail(format!("has unreadable JSON ({e})")))?;
+        let document = gltf.document;
+        let n = document.nodes().len();
+        let mut parent = vec![None; n];
+        for node in document.nodes() {
+            for child in node.children() {
+                if parent[child.index()].is_some() {
+                    return Err(fail(format!(
+                        "node {} has two parents; a glTF node hierarchy must be a forest",
+                        child.index()
+                    )));
+                }
+                parent[child.index()] = Some(node.index());
+            }
+        }
+        let locals: Vec<DMat4> = document.nodes().map(|n| local_matrix(&n)).collect();
+        let world = world_matrices(&parent, &locals).ok_or_else(|| {
+            fail("has a cycle in its node hierarchy; a node cannot be its own ancestor".into())
+        })?;
+        Ok(GltfFile {
+            label: label.to_string(),
+            document,
+            json,
+            blob: gltf.blob,
+            parent,
+            world,
+        })
+    }
+
+    /// The names of all nodes (index order), unnamed ones as `#i`.
+    pub fn node_names(&self) -> Vec<String> {
+        self.document
+            .nodes()
+            .map(|n| {
+                n.name()
+                    .map_or_else(|| format!("#{}", n.index()), str::to_string)
+            })
+            .collect()
+    }
+}
+
+/// World matrices from parents and local matrices; `None` on a cycle. O(n depth).
+pub fn world_matrices(parent: &[Option<usize>], locals: &[DMat4]) -> Option<Vec<DMat4>> {
+    let n = locals.len();
+    let mut world: Vec<Option<DMat4>> = vec![None; n];
+    for start in 0..n {
+        let mut path = vec![start];
+        while let Some(p) = parent[*path.last()?] {
+            if world[p].is_some() {
+                break;
+            }
+            if path.len() > n {
+                return None;
+            }
+            path.push(p);
+        }
+        for &i in path.iter().rev() {
+            if world[i].is_none() {
+                let up = parent[i].map_or(DMat4::IDENTITY, |p| world[p].unwrap_or(DMat4::IDENTITY));
+                world[i] = Some(up * locals[i]);
+            }
+        }
+    }
+    world.into_iter().collect()
+}
+
+/// A rig's fingers, as found in a glTF file.
+pub struct Rig {
+    pub file: GltfFile,
+    pub chains: Vec<FingerChain>,
+    /// Fingers seen but incomplete, and other remarks.
+    pub notes: Vec<String>,
+}
+
+/// How a node was recognised: (side, finger, slot, priority; lower wins).
+type Found = (Option<Side>, Finger, Slot, u8);
+
+/// VRM humanoid bones (0.x `extensions.VRM`, 1.0 `extensions.VRMC_vrm`) as (node, bone name, 0.x?).
+fn vrm_bones(json: &serde_json::Value) -> Vec<(usize, String, bool)> {
+    let mut out = Vec::new();
+    let ext = &json["extensions"];
+    if let Some(bones) = ext["VRMC_vrm"]["humanoid"]["humanBones"].as_object() {
+        for (name, b) in bones {
+            if let Some(node) = b["node"].as_u64() {
+                out.push((node as usize, name.clone(), false));
+            }
+        }
+    }
+    if let Some(bones) = ext["VRM"]["humanoid"]["humanBones"].as_array() {
+        for b in bones {
+            if let (Some(name), Some(node)) = (b["bone"].as_str(), b["node"].as_u64()) {
+                out.push((node as usize, name.to_string(), true));
+            }
+        }
+    }
+    out
+}
+
+impl Rig {
+    /// Reads a rig and finds its finger chains. Fails, listing the names it
+    /// saw, when no complete finger is found.
+    pub fn load(path: &Path, map: Option<&NameMap>) -> Result<Rig, DataError> {
+        Rig::from_file(GltfFile::load(path)?, map)
+    }
+
+    /// Finds the finger chains of a parsed file.
+    pub fn from_file(file: GltfFile, map: Option<&NameMap>) -> Result<Rig, DataError> {
+        let names = file.node_names();
+        let n = names.len();
+        let mut candidate = vec![false; n];
+        let mut skinned = vec![false; n];
+        let skins: Vec<_> = file.document.skins().collect();
+        for skin in &skins {
+            for j in skin.joints() {
+                skinned[j.index()] = true;
+            }
+        }
+        if skins.is_empty() {
+            candidate.fill(true);
+        } else {
+            for (i, c) in candidate.iter_mut().enumerate() {
+                let mut at = Some(i);
+                while let Some(k) = at {
+                    if skinned[k] {
+                        *c = true;
+                        break;
+                    }
+                    at = file.parent[k];
+                }
+            }
+        }
+        let mut found: Vec<Option<Found>> = vec![None; n];
+        let mut problems = Vec::new();
+        if let Some(map) = map {
+            for (name, &(side, finger, slot, line)) in &map.entries {
+                match names.iter().position(|x| x == name) {
+                    Some(i) => found[i] = Some((side, finger, slot, 0)),
+                    None => problems.push(Problem::line(
+                        line,
+                        format!(
+                            "node {} is not in {}; node names must match exactly",
+                            crate::dataset::csvinput::quote(name),
+                            file.label
+                        ),
+                    )),
+                }
+            }
+            if !problems.is_empty() {
+                problems.sort_by_key(|p| p.line);
+                return Err(DataError {
+                    file: map.file.clone(),
+                    problems,
+                });
+            }
+        }
+        // VRM tables, then names; a VRM 0.x thumb shifts by one (see naming).
+        let mut parsed: Vec<Option<(naming::Parsed, Option<bool>)>> = vec![None; n];
+        for (node, bone, vrm0) in vrm_bones(&file.json) {
+            if let (Some(slot), Some(p)) = (parsed.get_mut(node), naming::parse(&bone)) {
+                *slot = Some((p, Some(vrm0)));
+            }
+        }
+        for (i, name) in names.iter().enumerate() {
+            if parsed[i].is_none() && candidate[i] {
+                parsed[i] = naming::parse(name).map(|p| (p, None));
+            }
+        }
+        let vrm0_thumb: Vec<Option<Side>> = parsed
+            .iter()
+            .flatten()
+            .filter(|(p, _)| p.finger == Finger::Thumb && p.part == Part::Intermediate)
+            .map(|(p, _)| p.side)
+            .collect();
+        for i in 0..n {
+            if found[i].is_some() {
+                continue;
+            }
+            if let Some((p, vrm)) = parsed[i] {
+                let vrm0 = vrm.unwrap_or_else(|| vrm0_thumb.contains(&p.side));
+                if let Some(slot) = naming::slot(p.finger, p.part, vrm0) {
+                    let priority = match (vrm.is_some(), p.deform, skinned[i]) {
+                        (true, _, _) => 1,
+                        (_, true, _) => 2,
+                        (_, _, true) => 3,
+                        _ => 4,
+                    };
+                    found[i] = Some((p.side, p.finger, slot, priority));
+                }
+            }
+        }
+        // Best node per (side, finger, slot).
+        let mut best: BTreeMap<(Option<Side>, Finger, Slot), (u8, usize)> = BTreeMap::new();
+        for (i, f) in found.iter().enumerate() {
+            if let Some((side, finger, slot, prio)) = *f {
+                let e = best.entry((side, finger, slot)).or_insert((prio, i));
+                if prio < e.0 {
+                    *e = (prio, i);
+                }
+            }
+        }
+        let mut groups: BTreeMap<(Option<Side>, Finger), HashMap<Slot, usize>> = BTreeMap::new();
+        for (&(side, finger, slot), &(_, node)) in &best {
+            groups.entry((side, finger)).or_default().insert(slot, node);
+        }
+        let mut chains = Vec::new();
+        let mut notes = Vec::new();
+        for ((side, finger), slots) in groups {
+            let label = match side {
+                Some(s) => format!("{} {finger}", s.name()),
+                None => finger.to_string(),
+            };
+            let mut wanted = vec![(Slot::Mcp, Joint::Mcp)];
+            wanted.extend(
+                Joint::inner(finger)
+                    .iter()
+                    .zip([Slot::First, Slot::Second])
+                    .map(|(&j, s)| (s, j)),
+            );
+            let missing: Vec<&str> = wanted
+                .iter()
+                .filter(|(s, _)| !slots.contains_key(s))
+                .map(|(_, j)| j.name())
+                .collect();
+            if !missing.is_empty() {
+                if wanted.iter().any(|(s, _)| slots.contains_key(s)) {
+                    notes.push(format!(
+                        "{label}: no {} joint found, so this finger is left out",
+                        missing.join(" or ")
+                    ));
+                }
+                continue;
+            }
+            let tip = slots.get(&Slot::Tip).copied();
+            if tip.is_some() {
+                wanted.push((Slot::Tip, Joint::Tip));
+            }
+            let joints = wanted
+                .iter()
+                .map(|&(s, joint)| {
+                    let node = slots[&s];
+                    let t = file.world[node].w_axis;
+                    RigJoint {
+                        joint,
+                        node: Some(node),
+                        name: names[node].clone(),
+                        position: [t.x, t.y, t.z],
+                    }
+                })
+                .collect();
+            chains.push(FingerChain {
+                side,
+                finger,
+                joints,
+                has_tip: tip.is_some(),
+            });
+        }
+        if chains.is_empty() {
+            const SHOWN: usize = 60;
+            let mut listed: Vec<String> =
+                names.iter().take(SHOWN).map(|s| format!("'{s}'")).collect();
+            if n > SHOWN {
+                listed.push(format!("and {} more", n - SHOWN));
+            }
+            let seen = if n == 0 {
+                "no nodes at all".to_string()
+            } else {
+                format!("{n} node names: {}", listed.join(", "))
+            };
+            let mut e = DataError::whole_file(
+                &file.label,
+                format!(
+                    "has no recognisable hand: no finger chain (MCP and its inner joints) was found among its {seen}. \
+                     Known conventions: Mixamo (mixamorig:RightHandIndex1..4), Rigify (f_index.01.R, DEF-f_index.01.R, thumb.01.R), \
+                     VRM (rightIndexProximal), Unreal (index_01_r), WebXR (index-finger-phalanx-proximal); \
+                     for other names give --map FILE (columns node,side,finger,joint)"
+                ),
+            );
+            e.problems.extend(notes.into_iter().map(Problem::file));
+            return Err(e);
+        }
+        Ok(Rig {
+            file,
+            chains,
+            notes,
+        })
+    }
+}
+
+/// A rig finger with its judgement.
+#[derive(Debug, Clone, Serialize)]
+pub struct AuditedFinger {
+    #[serde(flatten)]
+    pub chain: FingerChain,
+    pub audit: crate::analysis::audit::FingerAudit,
+}
+
+/// Every finger of a rig judged against the statistics.
+#[derive(Debug, Clone, Serialize)]
+pub struct AuditedRig {
+    /// The file (or reference rig) the chains come from.
+    pub label: String,
+    pub fingers: Vec<AuditedFinger>,
+    /// Fingers left out and other remarks.
+    pub notes: Vec<String>,
+}
+
+impl AuditedRig {
+    /// Judges `chains` against the analysis; fingers the data lacks become notes.
+    pub fn of(
+        label: &str,
+        chains: &[FingerChain],
+        notes: &[String],
+        a: &crate::analysis::Analysis,
+    ) -> AuditedRig {
+        let mut notes = notes.to_vec();
+        let mut fingers = Vec::new();
+        for chain in chains {
+            match crate::analysis::audit::audit(a, &chain.input()) {
+                Some(audit) => fingers.push(AuditedFinger {
+                    chain: chain.clone(),
+                    audit,
+                }),
+                None => notes.push(format!(
+                    "{}: {} has no statistics for this finger (or the chain has zero length), so it is not judged",
+                    chain.label(),
+                    a.dataset.path
+                )),
+            }
+        }
+        AuditedRig {
+            label: label.to_string(),
+            fingers,
+            notes,
+        }
+    }
+
+    /// Fingers with a joint or value outside the prediction interval.
+    pub fn outside(&self) -> usize {
+        self.fingers
+            .iter()
+            .filter(|f| !f.audit.is_consistent())
+            .count()
+    }
+}

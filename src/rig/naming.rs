@@ -1,0 +1,246 @@
+//! Recognising finger joints by the names common rigs give them.
+//!
+//! Names are compared after dropping any namespace (`mixamorig:`, `Armature|`),
+//! lower-casing and removing separators, so `mixamorig:RightHandIndex1`,
+//! `DEF-f_index.01.R`, `index_01_r`, `rightIndexProximal`, `J_Bip_R_Index1` and
+//! `index-finger-phalanx-proximal` all read as a side, a finger and a part.
+//!
+//! Numbered parts mean the same in Mixamo, Rigify, Unreal, VRoid and Daz: for
+//! index to little 1 = MCP, 2 = PIP, 3 = DIP, 4 = tip; for the thumb
+//! 1 = CMC (carpometacarpal, not used), 2 = MCP, 3 = IP, 4 = tip. A `_end`,
+//! `_nub` or `_leaf` suffix (Blender's leaf bones) is the tail of that bone,
+//! the next joint. Named parts follow VRM and WebXR: metacarpal, proximal
+//! (MCP), intermediate (PIP), distal (DIP), tip; for the thumb VRM 1.0 and
+//! WebXR read metacarpal = CMC, proximal = MCP, distal = IP, while VRM 0.x
+//! reads proximal = CMC, intermediate = MCP, distal = IP (told apart by whether
+//! the thumb has an `intermediate`).
+
+use crate::dataset::Finger;
+use regex::Regex;
+use serde::Serialize;
+use std::sync::LazyLock;
+
+/// Which hand.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Side {
+    Left,
+    Right,
+}
+
+impl Side {
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Left => "left",
+            Side::Right => "right",
+        }
+    }
+
+    /// Parses `left`/`right` (or `l`/`r`), case-insensitively.
+    pub fn parse(text: &str) -> Option<Side> {
+        match text.trim().to_ascii_lowercase().as_str() {
+            "left" | "l" => Some(Side::Left),
+            "right" | "r" => Some(Side::Right),
+            _ => None,
+        }
+    }
+}
+
+/// A joint position along a finger, including the thumb's CMC that is not used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Slot {
+    /// Carpometacarpal (or a finger's metacarpal bone): before the root, unused.
+    Carpal,
+    Mcp,
+    /// PIP of a finger, IP of the thumb.
+    First,
+    /// DIP of a finger.
+    Second,
+    Tip,
+}
+
+/// A part as the name spells it, before the finger decides its meaning.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    /// Numbered 1..=5 (a suffix like `_end` already added one).
+    Number(u8),
+    Metacarpal,
+    Proximal,
+    Intermediate,
+    Distal,
+    Tip,
+}
+
+/// What a name says.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Parsed {
+    pub side: Option<Side>,
+    pub finger: Finger,
+    pub part: Part,
+    /// A Rigify deform bone (`DEF-`), preferred over its twins.
+    pub deform: bool,
+}
+
+static PATTERN: LazyLock<Regex> = LazyLock::new(|| {
+    Regex::new(
+        r"(?x)^
+        (?P<prefix>mixamorig\d*|def|jbip|ccbase)?
+        (?P<s1>right|left|r|l)?
+        (?:hand)?
+        (?:f)?
+        (?P<finger>thumb|index|middle|mid|ring|pinky|little)
+        (?:finger)?
+        (?:phalanx)?
+        (?P<part>0?[1-4]|metacarpal|proximal|intermediate|distal|tip)
+        (?P<s2>right|left|r|l)?
+        (?P<end>end|nub|leaf|tip)?
+        $",
+    )
+    .expect("the name pattern is valid")
+});
+
+/// The name compared: namespace dropped, lower case, letters and digits only.
+pub fn compact(name: &str) -> String {
+    let base = name.rsplit([':', '|']).next().unwrap_or(name);
+    base.chars()
+        .filter(char::is_ascii_alphanumeric)
+        .map(|c| c.to_ascii_lowercase())
+        .collect()
+}
+
+/// Reads a node name; `None` when it names no finger joint.
+pub fn parse(name: &str) -> Option<Parsed> {
+    let c = compact(name);
+    let m = PATTERN.captures(&c)?;
+    let side = match (m.name("s1"), m.name("s2")) {
+        (Some(a), Some(b)) if Side::parse(a.as_str()) != Side::parse(b.as_str()) => return None,
+        (Some(a), _) => Side::parse(a.as_str()),
+        (None, Some(b)) => Side::parse(b.as_str()),
+        (None, None) => None,
+    };
+    let finger = match &m["finger"] {
+        "mid" => Finger::Middle,
+        f => Finger::parse(f)?,
+    };
+    let end = m.name("end").is_some();
+    let part = match &m["part"] {
+        "metacarpal" => Part::Metacarpal,
+        "proximal" => Part::Proximal,
+        "intermediate" => Part::Intermediate,
+        "distal" if end => Part::Tip,
+        "distal" => Part::Distal,
+        "tip" if end => return None,
+        "tip" => Part::Tip,
+        digits => Part::Number(digits.parse::<u8>().ok()? + u8::from(end)),
+    };
+    if end && matches!(part, Part::Metacarpal | Part::Proximal | Part::Intermediate) {
+        return None;
+    }
+    Some(Parsed {
+        side,
+        finger,
+        part,
+        deform: m.name("prefix").is_some_and(|p| p.as_str() == "def"),
+    })
+}
+
+/// The slot of a part on `finger`; `vrm0_thumb` when the thumb's names follow
+/// VRM 0.x (it has an `intermediate`). `None` past the tip.
+pub fn slot(finger: Finger, part: Part, vrm0_thumb: bool) -> Option<Slot> {
+    let thumb = finger == Finger::Thumb;
+    Some(match part {
+        Part::Number(1) if thumb => Slot::Carpal,
+        Part::Number(2) if thumb => Slot::Mcp,
+        Part::Number(3) if thumb => Slot::First,
+        Part::Number(1) => Slot::Mcp,
+        Part::Number(2) => Slot::First,
+        Part::Number(3) => Slot::Second,
+        Part::Number(4) => Slot::Tip,
+        Part::Number(_) => return None,
+        Part::Metacarpal => Slot::Carpal,
+        Part::Proximal if thumb && vrm0_thumb => Slot::Carpal,
+        Part::Proximal => Slot::Mcp,
+        Part::Intermediate if thumb => Slot::Mcp,
+        Part::Intermediate => Slot::First,
+        Part::Distal if thumb => Slot::First,
+        Part::Distal => Slot::Second,
+        Part::Tip => Slot::Tip,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn read(name: &str) -> Option<(Option<Side>, Finger, Option<Slot>)> {
+        let p = parse(name)?;
+        Some((p.side, p.finger, slot(p.finger, p.part, false)))
+    }
+
+    #[test]
+    fn conventions_read_alike() {
+        use Finger::*;
+        use Side::*;
+        let cases: &[(&str, Option<Side>, Finger, Slot)] = &[
+            ("mixamorig:RightHandIndex1", Some(Right), Index, Slot::Mcp),
+            ("mixamorig1:LeftHandThumb2", Some(Left), Thumb, Slot::Mcp),
+            ("mixamorig:RightHandPinky4", Some(Right), Little, Slot::Tip),
+            ("DEF-f_index.02.R", Some(Right), Index, Slot::First),
+            ("f_ring.03.L", Some(Left), Ring, Slot::Second),
+            ("f_ring.03.L_end", Some(Left), Ring, Slot::Tip),
+            ("thumb.01.R", Some(Right), Thumb, Slot::Carpal),
+            ("thumb.03.R_end", Some(Right), Thumb, Slot::Tip),
+            ("index_01_r", Some(Right), Index, Slot::Mcp),
+            ("ring_02_l", Some(Left), Ring, Slot::First),
+            ("pinky_03_r", Some(Right), Little, Slot::Second),
+            ("index_metacarpal_r", Some(Right), Index, Slot::Carpal),
+            ("rightIndexProximal", Some(Right), Index, Slot::Mcp),
+            ("leftLittleDistal", Some(Left), Little, Slot::Second),
+            ("rightThumbProximal", Some(Right), Thumb, Slot::Mcp),
+            ("J_Bip_R_Index1", Some(Right), Index, Slot::Mcp),
+            ("J_Bip_L_Little3", Some(Left), Little, Slot::Second),
+            (
+                "index-finger-phalanx-intermediate",
+                None,
+                Index,
+                Slot::First,
+            ),
+            ("index-finger-tip", None, Index, Slot::Tip),
+            ("thumb-phalanx-distal", None, Thumb, Slot::First),
+            ("CC_Base_R_Mid2", Some(Right), Middle, Slot::First),
+            ("RIGHT_HAND_INDEX_3", Some(Right), Index, Slot::Second),
+        ];
+        for &(name, side, finger, slot) in cases {
+            assert_eq!(read(name), Some((side, finger, Some(slot))), "{name}");
+        }
+    }
+
+    #[test]
+    fn other_names_are_not_joints() {
+        for name in [
+            "Hips",
+            "RightHand",
+            "mixamorig:RightForeArm",
+            "index",
+            "Ring",
+            "rightIndex",
+            "ORG-f_index.01.R",
+            "MCH-thumb.01.R",
+            "f_index.01.R.001x",
+            "RightHandIndex1L",
+        ] {
+            assert_eq!(read(name), None, "{name}");
+        }
+        // Past the tip: Mixamo's leaf after Index4.
+        assert_eq!(read("mixamorig:RightHandIndex4_End").unwrap().2, None);
+    }
+
+    #[test]
+    fn vrm0_thumb_shifts_by_one() {
+        let p = parse("rightThumbProximal").unwrap();
+        assert_eq!(slot(p.finger, p.part, true), Some(Slot::Carpal));
+        let p = parse("rightThumbIntermediate").unwrap();
+        assert_eq!(slot(p.finger, p.part, true), Some(Slot::Mcp));
+        assert!(parse("DEF-f_middle.01.L").unwrap().deform);
+    }
+}

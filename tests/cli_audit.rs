@@ -1,0 +1,370 @@
+//! `phalanx audit`: rigs built by the tests (tests/common/hand.rs) judged against the paper's data.
+
+mod common;
+
+use common::hand::{
+    CM_PER_UNIT, HandSpec, Naming, XRAY_1B, build, read_glb, skinned_rest_vertices,
+};
+use common::*;
+use serde_json::Value;
+
+fn audit_json(wd: &Workdir, file: &str) -> Value {
+    wd.run(&["audit", file, "--format", "json"]).ok().json()
+}
+
+fn fingers(doc: &Value) -> &Vec<Value> {
+    doc["rig"]["fingers"].as_array().unwrap()
+}
+
+fn finger_of<'a>(doc: &'a Value, name: &str) -> &'a Value {
+    fingers(doc)
+        .iter()
+        .find(|f| f["finger"] == name)
+        .unwrap_or_else(|| panic!("no {name} in {doc}"))
+}
+
+/// X-ray 1b's relative values, by hand from Table 1 (data/measurements.csv).
+fn rel_1b(finger: &str) -> Vec<f64> {
+    let segs = XRAY_1B.iter().find(|(f, _)| *f == finger).unwrap().1;
+    let total: f64 = segs.iter().sum();
+    segs.iter().map(|s| s / total).collect()
+}
+
+#[test]
+fn a_mixamo_hand_with_tips_is_read_and_lies_inside_the_xray_range() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.write("hand.glb", build(&HandSpec::new(Naming::Mixamo)));
+    let run = wd.run(&["audit", "hand.glb"]);
+    run.ok()
+        .stdout_has("right index (mixamorig:RightHandIndex1, mixamorig:RightHandIndex2, mixamorig:RightHandIndex3, mixamorig:RightHandIndex4)")
+        .stdout_has("judged on relative values")
+        .stdout_has("Summary: 0 of 5 judged fingers")
+        .stdout_has("joints are rotation centres")
+        .stdout_has("soft tissue");
+    let doc = audit_json(&wd, "hand.glb");
+    assert_eq!(fingers(&doc).len(), 5);
+    assert_eq!(doc["fingers_outside"], 0);
+    for f in fingers(&doc) {
+        let name = f["finger"].as_str().unwrap();
+        assert_eq!(f["side"], "right");
+        assert_eq!(f["audit"]["basis"], "relative", "{name}");
+        // The segments are X-ray 1b's (scaled): relative values equal its own.
+        let rel: Vec<f64> = f["audit"]["values"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|v| v["quantity"].as_str().unwrap().starts_with("rel_"))
+            .map(|v| num(&v["measured"]))
+            .collect();
+        let want = rel_1b(name);
+        assert_eq!(rel.len(), want.len(), "{name}");
+        for (a, b) in rel.iter().zip(&want) {
+            assert_close(*a, *b, 1e-6, name);
+        }
+        // Length in metres: segment sum x 0.0125 cm x 0.01 m/cm.
+        let segs = XRAY_1B.iter().find(|(g, _)| *g == name).unwrap().1;
+        assert_close(
+            num(&f["audit"]["length"]),
+            segs.iter().sum::<f64>() * CM_PER_UNIT * 0.01,
+            1e-7,
+            name,
+        );
+        for j in f["audit"]["joints"].as_array().unwrap() {
+            assert_eq!(j["standing"], "in_range", "{name} {j}");
+        }
+    }
+    // The thumb's chain starts at Thumb2 (Thumb1 is the CMC joint).
+    let thumb = finger_of(&doc, "thumb");
+    assert_eq!(thumb["joints"][0]["name"], "mixamorig:RightHandThumb2");
+    assert_eq!(thumb["joints"][0]["joint"], "MCP");
+    assert_eq!(thumb["joints"][1]["joint"], "IP");
+}
+
+#[test]
+fn a_vrm_hand_without_tips_is_judged_on_ratios_and_says_so() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    for (file, naming) in [("avatar.glb", Naming::Vrm), ("table.vrm", Naming::VrmTable)] {
+        wd.write(file, build(&HandSpec::new(naming)));
+        wd.run(&["audit", file])
+            .ok()
+            .stdout_has("judged on J2/J1 only: the rig has no tip")
+            .stdout_has("not judged: a thumb without a tip");
+        let doc = audit_json(&wd, file);
+        let index = finger_of(&doc, "index");
+        assert_eq!(index["audit"]["basis"], "ratio", "{file}");
+        assert_eq!(index["has_tip"], false);
+        // J2/J1 of X-ray 1b's index, by hand: 195.24 / 342.47.
+        assert_close(
+            num(&index["audit"]["values"][0]["measured"]),
+            195.24 / 342.47,
+            1e-6,
+            file,
+        );
+        assert_eq!(index["audit"]["unjudged"][0], "DIP");
+        assert_eq!(finger_of(&doc, "thumb")["audit"]["basis"], "none");
+        assert_eq!(doc["fingers_outside"], 0, "{file}");
+    }
+    // The VRM table names the nodes, not their names.
+    let doc = audit_json(&wd, "table.vrm");
+    assert!(
+        finger_of(&doc, "ring")["joints"][0]["name"]
+            .as_str()
+            .unwrap()
+            .starts_with("Bone.")
+    );
+}
+
+#[test]
+fn a_far_off_joint_is_flagged_with_its_direction_and_distance() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    // Index PIP 1 cm towards the tip; ring DIP 0.8 cm towards the root.
+    let spec = HandSpec::new(Naming::Mixamo)
+        .moved("index", 1, 1.0)
+        .moved("ring", 2, -0.8);
+    wd.write("far.glb", build(&spec));
+    let run = wd.run(&["audit", "far.glb"]);
+    run.ok()
+        .stdout_has("mm too far towards the tip")
+        .stdout_has("mm too close to the root")
+        .stdout_has("Summary: 2 of 5 judged fingers");
+    wd.run(&["audit", "far.glb", "--strict"]).expect_code(1);
+    let doc = audit_json(&wd, "far.glb");
+    let pip = &finger_of(&doc, "index")["audit"]["joints"][0];
+    assert_eq!(pip["joint"], "PIP");
+    assert_eq!(pip["standing"], "above");
+    let (_, hi) = interval(&pip["pi"]);
+    assert_close(num(&pip["by"]), num(&pip["measured"]) - hi, 1e-12, "by");
+    // 1 cm = 0.01 m further than X-ray 1b's own PIP, which is inside the range.
+    assert!(num(&pip["by"]) > 0.0 && num(&pip["by"]) < 0.01);
+    let dip = &finger_of(&doc, "ring")["audit"]["joints"][1];
+    assert_eq!(dip["joint"], "DIP");
+    assert_eq!(dip["standing"], "below");
+    assert_eq!(
+        finger_of(&doc, "middle")["audit"]["joints"][0]["standing"],
+        "in_range"
+    );
+}
+
+fn node_position(doc: &Value, name: &str) -> [f64; 3] {
+    let nodes = doc["nodes"].as_array().unwrap();
+    let world = common::hand::world_of(nodes);
+    let i = nodes.iter().position(|n| n["name"] == name).unwrap();
+    let t = world[i].w_axis;
+    [t.x, t.y, t.z]
+}
+
+#[test]
+fn fix_writes_a_copy_that_reaudits_clean_with_the_mesh_unchanged() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let spec = HandSpec::new(Naming::Mixamo)
+        .moved("index", 1, 1.0)
+        .moved("ring", 2, -0.8)
+        .moved("thumb", 1, 0.6);
+    let input = build(&spec);
+    wd.write("far.glb", &input);
+    let run = wd.run(&["audit", "far.glb", "--fix", "fixed.glb"]);
+    run.ok()
+        .stderr_has("wrote fixed.glb")
+        .stderr_has("re-audited, 0 of 5 fingers outside");
+    assert_eq!(wd.read("far.glb"), input, "the input must not change");
+    let doc = audit_json(&wd, "fixed.glb");
+    assert_eq!(doc["fingers_outside"], 0);
+    for f in fingers(&doc) {
+        for j in f["audit"]["joints"].as_array().unwrap() {
+            // At the mean: no move left to suggest, to f32 precision of the file.
+            assert!(num(&j["shift"]) < 1e-6, "{j}");
+            assert_eq!(j["standing"], "in_range");
+        }
+    }
+    // Root and tip stay where they were.
+    let (before, _) = read_glb(&input);
+    let (after, _) = read_glb(&wd.read("fixed.glb"));
+    for name in [
+        "mixamorig:RightHandIndex1",
+        "mixamorig:RightHandIndex4",
+        "mixamorig:RightHandRing4",
+        "mixamorig:RightHandThumb4",
+        "mixamorig:RightHandThumb2",
+    ] {
+        let (a, b) = (node_position(&before, name), node_position(&after, name));
+        for k in 0..3 {
+            assert_close(a[k], b[k], 1e-7, name);
+        }
+    }
+    // The moved PIP is where the mean puts it: J~1 = 0.4846 of the finger
+    // (eq. 6, corrected), measured along the chain.
+    let idx = finger_of(&doc, "index");
+    let rel1 = num(&idx["audit"]["values"][0]["measured"]);
+    assert_close(rel1, 0.4846, 5e-5, "index J~1 after the fix");
+    // Every vertex of the rest pose, skinned with the new joints and inverse
+    // bind matrices, is where it was.
+    let v0 = skinned_rest_vertices(&input);
+    let v1 = skinned_rest_vertices(&wd.read("fixed.glb"));
+    assert_eq!(v0.len(), v1.len());
+    let worst = v0
+        .iter()
+        .zip(&v1)
+        .map(|(a, b)| (*a - *b).length())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-5, "a vertex moved by {worst}");
+    // And the fix did change the joints (the check above is not vacuous).
+    let (a, b) = (
+        node_position(&before, "mixamorig:RightHandIndex2"),
+        node_position(&after, "mixamorig:RightHandIndex2"),
+    );
+    let moved = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+    assert!(moved > 0.001, "PIP moved only {moved}");
+}
+
+#[test]
+fn fix_can_write_gltf_and_fixes_ratio_only_rigs() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.write(
+        "vrm.glb",
+        build(&HandSpec::new(Naming::Vrm).moved("middle", 1, 1.2)),
+    );
+    let doc = audit_json(&wd, "vrm.glb");
+    assert_eq!(doc["fingers_outside"], 1);
+    wd.run(&["audit", "vrm.glb", "--fix", "out.gltf"])
+        .ok()
+        .stderr_has("0 of 5 fingers outside");
+    let text = String::from_utf8(wd.read("out.gltf")).unwrap();
+    assert!(text.contains("data:application/octet-stream;base64,"));
+    let doc = audit_json(&wd, "out.gltf");
+    let m = finger_of(&doc, "middle");
+    assert_eq!(m["audit"]["joints"][0]["standing"], "in_range");
+}
+
+#[test]
+fn rigify_deform_bones_win_over_their_control_twins() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.write("rigify.glb", build(&HandSpec::new(Naming::Rigify)));
+    let doc = audit_json(&wd, "rigify.glb");
+    let idx = finger_of(&doc, "index");
+    let names: Vec<&str> = idx["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "DEF-f_index.01.R",
+            "DEF-f_index.02.R",
+            "DEF-f_index.03.R",
+            "DEF-f_index.03.R_end"
+        ]
+    );
+    assert_eq!(
+        finger_of(&doc, "little")["joints"][0]["name"],
+        "DEF-f_pinky.01.R"
+    );
+    assert_eq!(
+        finger_of(&doc, "thumb")["joints"][0]["name"],
+        "DEF-thumb.02.R"
+    );
+    assert_eq!(doc["fingers_outside"], 0);
+}
+
+#[test]
+fn an_unrecognisable_file_lists_the_names_it_saw_and_a_map_reads_it() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.write("bones.glb", build(&HandSpec::new(Naming::Anonymous)));
+    wd.run(&["audit", "bones.glb"])
+        .data_error()
+        .stderr_has("bones.glb: has no recognisable hand")
+        .stderr_has("'Hips', 'Spine', 'Bone.000'")
+        .stderr_has("--map");
+    // Bone serials: thumb 0-2, index 3-6, middle 7-10, ring 11-14, little 15-18.
+    let mut map = String::from("node,side,finger,joint\n");
+    for (k, j) in ["MCP", "PIP", "DIP", "tip"].iter().enumerate() {
+        map.push_str(&format!("Bone.{:03},right,index,{j}\n", 3 + k));
+    }
+    wd.write("names.csv", &map);
+    let doc = wd
+        .run(&[
+            "audit",
+            "bones.glb",
+            "--map",
+            "names.csv",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    assert_eq!(fingers(&doc).len(), 1);
+    let idx = finger_of(&doc, "index");
+    assert_eq!(idx["joints"][3]["name"], "Bone.006");
+    for (a, b) in idx["audit"]["values"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(rel_1b("index"))
+    {
+        assert_close(num(&a["measured"]), b, 1e-6, "mapped index");
+    }
+    // A bad map names every problem with its line and column.
+    wd.write(
+        "bad.csv",
+        "node,side,finger,joint\nBone.003,up,index,MCP\nNope,right,toe,PIP\nBone.004,right,index,PIP\n",
+    );
+    wd.run(&["audit", "bones.glb", "--map", "bad.csv"])
+        .data_error()
+        .stderr_has("bad.csv:2:2: side: unknown side 'up'")
+        .stderr_has("bad.csv:3:3: finger: unknown finger 'toe'");
+    wd.write(
+        "ghost.csv",
+        "node,side,finger,joint\nGhost,right,index,MCP\n",
+    );
+    wd.run(&["audit", "bones.glb", "--map", "ghost.csv"])
+        .data_error()
+        .stderr_has("ghost.csv:2: node 'Ghost' is not in bones.glb");
+}
+
+#[test]
+fn fix_never_overwrites_the_input_and_bad_files_are_clear_errors() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let input = build(&HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0));
+    wd.write("hand.glb", &input);
+    wd.run(&["audit", "hand.glb", "--fix", "./hand.glb"])
+        .data_error()
+        .stderr_has("would overwrite the input rig");
+    wd.run(&["audit", "hand.glb", "--fix", "hand.fbx"])
+        .data_error()
+        .stderr_has("name the output .glb");
+    assert_eq!(wd.read("hand.glb"), input);
+    wd.write("junk.glb", b"glTF\x02\x00\x00\x00garbage");
+    wd.run(&["audit", "junk.glb"])
+        .data_error()
+        .stderr_has("junk.glb: is not a valid glTF 2.0 file");
+    wd.run(&["audit", "missing.glb"])
+        .data_error()
+        .stderr_has("missing.glb");
+    assert!(!wd.path().join("hand.fbx").exists());
+}
+
+/// Writes example rigs for the README when PHALANX_WRITE_EXAMPLES names a directory.
+#[test]
+fn write_examples_when_asked() {
+    let Ok(dir) = std::env::var("PHALANX_WRITE_EXAMPLES") else {
+        return;
+    };
+    let spec = HandSpec::new(Naming::Mixamo)
+        .moved("index", 1, 1.0)
+        .moved("ring", 2, -0.8);
+    std::fs::write(format!("{dir}/hand.glb"), build(&spec)).unwrap();
+    std::fs::write(
+        format!("{dir}/avatar.vrm"),
+        build(&HandSpec::new(Naming::VrmTable)),
+    )
+    .unwrap();
+}

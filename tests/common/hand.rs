@@ -1,0 +1,453 @@
+//! Small skinned glTF hands built in the tests, and an independent skinning check.
+//!
+//! The fingers have the segment lengths of X-ray 1b of the paper's Table 1
+//! (data/measurements.csv), 0.0125 cm per image unit, so each finger is one of
+//! the five measured hands and must fall inside the X-ray range. The hand sits
+//! under an `Armature` scaled 0.01 (centimetres, as Mixamo exports), turned 30
+//! degrees, and each finger bends 12 degrees at its middle joints, so world
+//! transforms compose rotation, scale and translation.
+
+use glam::{DMat4, DQuat, DVec3};
+use serde_json::{Value, json};
+
+/// How the joints are named.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Naming {
+    /// mixamorig:RightHandIndex1..4, thumb 1..4 (1 = CMC).
+    Mixamo,
+    /// rightIndexProximal.., VRM 1.0 thumb (Metacarpal, Proximal, Distal); no tips.
+    Vrm,
+    /// Bone.000.. with a VRMC_vrm humanoid table naming them; no tips.
+    VrmTable,
+    /// DEF-f_index.01.R.. with control twins (no DEF-) placed elsewhere, and _end leaf tips.
+    Rigify,
+    /// Hips, Spine, Bone.000..: nothing recognisable.
+    Anonymous,
+}
+
+/// X-ray 1b of Table 1: (finger, segment lengths in image units).
+pub const XRAY_1B: [(&str, &[f64]); 5] = [
+    ("thumb", &[259.53, 251.34]),
+    ("index", &[342.47, 195.24, 186.70]),
+    ("middle", &[389.42, 239.15, 197.31]),
+    ("ring", &[372.98, 226.72, 212.12]),
+    ("little", &[291.24, 166.72, 170.56]),
+];
+
+/// Centimetres per image unit.
+pub const CM_PER_UNIT: f64 = 0.0125;
+
+/// A hand to build.
+#[derive(Clone, Debug)]
+pub struct HandSpec {
+    pub naming: Naming,
+    /// Moves: (finger, joint index along the chain from MCP = 0, distance in cm
+    /// along the finger's direction; + towards the tip). Children follow.
+    pub moves: Vec<(&'static str, usize, f64)>,
+}
+
+impl HandSpec {
+    pub fn new(naming: Naming) -> HandSpec {
+        HandSpec {
+            naming,
+            moves: Vec::new(),
+        }
+    }
+
+    pub fn moved(mut self, finger: &'static str, joint: usize, cm: f64) -> HandSpec {
+        self.moves.push((finger, joint, cm));
+        self
+    }
+}
+
+fn cap(s: &str) -> String {
+    let mut c = s.chars();
+    c.next().map_or_else(String::new, |f| {
+        f.to_uppercase().collect::<String>() + c.as_str()
+    })
+}
+
+/// The node name of joint `k` (0 = MCP) of `finger`, `None` where the naming has no such node.
+fn joint_name(
+    naming: Naming,
+    finger: &str,
+    k: usize,
+    count: usize,
+    serial: usize,
+) -> Option<String> {
+    let thumb = finger == "thumb";
+    let tip = k + 1 == count;
+    Some(match naming {
+        Naming::Mixamo => format!(
+            "mixamorig:RightHand{}{}",
+            cap(if finger == "little" { "pinky" } else { finger }),
+            k + 1 + usize::from(thumb)
+        ),
+        Naming::Vrm | Naming::VrmTable if tip => return None,
+        Naming::Vrm => {
+            let parts: &[&str] = if thumb {
+                &["Proximal", "Distal"]
+            } else {
+                &["Proximal", "Intermediate", "Distal"]
+            };
+            format!("right{}{}", cap(finger), parts[k])
+        }
+        Naming::VrmTable | Naming::Anonymous => format!("Bone.{serial:03}"),
+        Naming::Rigify => {
+            let f = if thumb {
+                "thumb".to_string()
+            } else if finger == "little" {
+                "f_pinky".to_string()
+            } else {
+                format!("f_{finger}")
+            };
+            let n = k + 1 + usize::from(thumb);
+            if tip {
+                format!("DEF-{f}.{:02}.R_end", n - 1)
+            } else {
+                format!("DEF-{f}.{n:02}.R")
+            }
+        }
+    })
+}
+
+/// The VRM 1.0 bone name of joint `k` of `finger` (no tips).
+fn vrm_bone(finger: &str, k: usize) -> String {
+    let parts: &[&str] = if finger == "thumb" {
+        &["Proximal", "Distal"]
+    } else {
+        &["Proximal", "Intermediate", "Distal"]
+    };
+    format!("right{}{}", cap(finger), parts[k])
+}
+
+/// Builds the hand as GLB bytes.
+pub fn build(spec: &HandSpec) -> Vec<u8> {
+    let mut nodes: Vec<Value> = Vec::new();
+    let mut children: Vec<Vec<usize>> = Vec::new();
+    let add = |nodes: &mut Vec<Value>,
+               children: &mut Vec<Vec<usize>>,
+               parent: Option<usize>,
+               node: Value| {
+        nodes.push(node);
+        children.push(Vec::new());
+        let i = nodes.len() - 1;
+        if let Some(p) = parent {
+            children[p].push(i);
+        }
+        i
+    };
+    let (hips, hand_name) = match spec.naming {
+        Naming::Anonymous => ("Hips", "Spine".to_string()),
+        Naming::Mixamo => ("mixamorig:Hips", "mixamorig:RightHand".into()),
+        _ => ("Hips", "RightHand".into()),
+    };
+    let armature = add(
+        &mut nodes,
+        &mut children,
+        None,
+        json!({"name": "Armature", "scale": [0.01, 0.01, 0.01], "rotation": quat_arr(DQuat::from_rotation_x(0.2))}),
+    );
+    let hips = add(
+        &mut nodes,
+        &mut children,
+        Some(armature),
+        json!({"name": hips, "translation": [0.0, 100.0, 0.0]}),
+    );
+    let hand = add(
+        &mut nodes,
+        &mut children,
+        Some(hips),
+        json!({"name": hand_name, "translation": [40.0, 30.0, 2.0], "rotation": quat_arr(DQuat::from_rotation_z(30f64.to_radians()))}),
+    );
+    let mut joints = vec![hand];
+    let mut vrm_table = serde_json::Map::new();
+    let mut serial = 0;
+    // MCP positions in the hand's frame (cm); fingers point along +y.
+    let roots = [
+        (-3.5, 2.0, 1.5),
+        (-1.6, 9.0, 0.0),
+        (0.4, 9.3, 0.0),
+        (2.2, 8.8, 0.0),
+        (3.8, 7.9, 0.0),
+    ];
+    for (fi, (finger, segs)) in XRAY_1B.iter().enumerate() {
+        let count = segs.len() + 1;
+        let mut parent = hand;
+        for k in 0..count {
+            let along = if k == 0 {
+                0.0
+            } else {
+                segs[k - 1] * CM_PER_UNIT
+            };
+            let mut t = if k == 0 {
+                let r = roots[fi];
+                DVec3::new(r.0, r.1, r.2)
+            } else {
+                DVec3::new(0.0, along, 0.0)
+            };
+            for &(mf, mk, cm) in &spec.moves {
+                if mf == *finger && mk == k {
+                    t.y += cm;
+                }
+                // Keep the later joints where they were: the next joint's offset shrinks.
+                if mf == *finger && mk + 1 == k {
+                    t.y -= cm;
+                }
+            }
+            let name = joint_name(spec.naming, finger, k, count, serial);
+            serial += 1;
+            let Some(name) = name else { continue };
+            let mut node = json!({"name": name, "translation": t.to_array()});
+            if k >= 1 && k + 1 < count {
+                node["rotation"] = quat_arr(DQuat::from_rotation_x(12f64.to_radians()));
+            }
+            let i = add(&mut nodes, &mut children, Some(parent), node);
+            if spec.naming == Naming::VrmTable {
+                vrm_table.insert(vrm_bone(finger, k), json!({"node": i}));
+            }
+            if spec.naming == Naming::Rigify && k + 1 < count {
+                // A control twin without DEF-, 1 cm off: the reader must take the DEF- bone.
+                let twin = nodes[i]["name"].as_str().unwrap().replacen("DEF-", "", 1);
+                add(
+                    &mut nodes,
+                    &mut children,
+                    Some(parent),
+                    json!({"name": twin, "translation": [t.x + 1.0, t.y, t.z]}),
+                );
+            }
+            // Tips are unskinned leaves, as Blender's leaf bones are.
+            if k + 1 < count || spec.naming == Naming::Mixamo {
+                joints.push(i);
+            }
+            parent = i;
+        }
+    }
+    for (i, c) in children.iter().enumerate() {
+        if !c.is_empty() {
+            nodes[i]["children"] = json!(c);
+        }
+    }
+    // World matrices of the bind pose, computed here independently of phalanx.
+    let world = world_of(&nodes);
+    // Vertices: two per joint, 3 mm off its centre, weighted 0.6 to the joint and
+    // 0.4 to its parent joint (or the hand).
+    let mut positions: Vec<[f32; 3]> = Vec::new();
+    let mut joint_ids: Vec<[u16; 4]> = Vec::new();
+    let mut weights: Vec<[f32; 4]> = Vec::new();
+    for (ji, &node) in joints.iter().enumerate() {
+        let parent_ji = nodes_parent(&children, node)
+            .and_then(|p| joints.iter().position(|&j| j == p))
+            .unwrap_or(0);
+        let c = world[node].w_axis.truncate();
+        for off in [DVec3::new(0.003, 0.0, 0.0), DVec3::new(0.0, 0.0, -0.003)] {
+            let p = c + off;
+            positions.push([p.x as f32, p.y as f32, p.z as f32]);
+            joint_ids.push([ji as u16, parent_ji as u16, 0, 0]);
+            weights.push([0.6, 0.4, 0.0, 0.0]);
+        }
+    }
+    let mut bin: Vec<u8> = Vec::new();
+    let mut views = Vec::new();
+    let mut push_view = |bin: &mut Vec<u8>, bytes: &[u8]| {
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        let off = bin.len();
+        bin.extend_from_slice(bytes);
+        views.push(json!({"buffer": 0, "byteOffset": off, "byteLength": bytes.len()}));
+        views.len() - 1
+    };
+    let f32s = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    let pos_flat: Vec<f32> = positions.iter().flatten().copied().collect();
+    let v_pos = push_view(&mut bin, &f32s(&pos_flat));
+    let ids: Vec<u8> = joint_ids
+        .iter()
+        .flatten()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    let v_ids = push_view(&mut bin, &ids);
+    let w_flat: Vec<f32> = weights.iter().flatten().copied().collect();
+    let v_w = push_view(&mut bin, &f32s(&w_flat));
+    let ibm: Vec<f32> = joints
+        .iter()
+        .flat_map(|&j| world[j].inverse().to_cols_array().map(|x| x as f32))
+        .collect();
+    let v_ibm = push_view(&mut bin, &f32s(&ibm));
+    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
+    for p in &positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let nv = positions.len();
+    let mesh_node = nodes.len();
+    nodes.push(json!({"name": "HandMesh", "mesh": 0, "skin": 0}));
+    let mut doc = json!({
+        "asset": {"version": "2.0", "generator": "phalanx tests"},
+        "scene": 0,
+        "scenes": [{"nodes": [armature, mesh_node]}],
+        "nodes": nodes,
+        "meshes": [{"primitives": [{"mode": 0, "attributes": {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2}}]}],
+        "skins": [{"joints": joints, "inverseBindMatrices": 3, "skeleton": armature}],
+        "accessors": [
+            {"bufferView": v_pos, "componentType": 5126, "count": nv, "type": "VEC3", "min": lo, "max": hi},
+            {"bufferView": v_ids, "componentType": 5123, "count": nv, "type": "VEC4"},
+            {"bufferView": v_w, "componentType": 5126, "count": nv, "type": "VEC4"},
+            {"bufferView": v_ibm, "componentType": 5126, "count": joints.len(), "type": "MAT4"}
+        ],
+        "bufferViews": views,
+        "buffers": [{"byteLength": bin.len()}]
+    });
+    if spec.naming == Naming::VrmTable {
+        doc["extensionsUsed"] = json!(["VRMC_vrm"]);
+        doc["extensions"] =
+            json!({"VRMC_vrm": {"specVersion": "1.0", "humanoid": {"humanBones": vrm_table}}});
+    }
+    glb(&doc, bin)
+}
+
+/// A GLB container around a JSON document and a binary chunk.
+pub fn glb(doc: &Value, bin: Vec<u8>) -> Vec<u8> {
+    gltf::binary::Glb {
+        header: gltf::binary::Header {
+            magic: *b"glTF",
+            version: 2,
+            length: 0,
+        },
+        json: serde_json::to_vec(doc).unwrap().into(),
+        bin: Some(bin.into()),
+    }
+    .to_vec()
+    .unwrap()
+}
+
+fn quat_arr(q: DQuat) -> Value {
+    json!([q.x, q.y, q.z, q.w])
+}
+
+fn nodes_parent(children: &[Vec<usize>], node: usize) -> Option<usize> {
+    children.iter().position(|c| c.contains(&node))
+}
+
+fn local_of(n: &Value) -> DMat4 {
+    let v3 = |k: &str, d: [f64; 3]| {
+        n.get(k)
+            .and_then(Value::as_array)
+            .map_or(DVec3::from_array(d), |a| {
+                DVec3::new(
+                    a[0].as_f64().unwrap(),
+                    a[1].as_f64().unwrap(),
+                    a[2].as_f64().unwrap(),
+                )
+            })
+    };
+    if let Some(m) = n.get("matrix").and_then(Value::as_array) {
+        let m: Vec<f64> = m.iter().map(|x| x.as_f64().unwrap()).collect();
+        return DMat4::from_cols_slice(&m);
+    }
+    let r = n
+        .get("rotation")
+        .and_then(Value::as_array)
+        .map_or(DQuat::IDENTITY, |a| {
+            DQuat::from_xyzw(
+                a[0].as_f64().unwrap(),
+                a[1].as_f64().unwrap(),
+                a[2].as_f64().unwrap(),
+                a[3].as_f64().unwrap(),
+            )
+        });
+    DMat4::from_scale_rotation_translation(v3("scale", [1.0; 3]), r, v3("translation", [0.0; 3]))
+}
+
+/// World matrices of the nodes of a glTF JSON document (parents by `children`).
+pub fn world_of(nodes: &[Value]) -> Vec<DMat4> {
+    let n = nodes.len();
+    let mut parent = vec![None; n];
+    for (i, nd) in nodes.iter().enumerate() {
+        for c in nd
+            .get("children")
+            .and_then(Value::as_array)
+            .into_iter()
+            .flatten()
+        {
+            parent[c.as_u64().unwrap() as usize] = Some(i);
+        }
+    }
+    (0..n)
+        .map(|mut i| {
+            let mut m = local_of(&nodes[i]);
+            while let Some(p) = parent[i] {
+                m = local_of(&nodes[p]) * m;
+                i = p;
+            }
+            m
+        })
+        .collect()
+}
+
+/// The JSON and binary chunk of a GLB file.
+pub fn read_glb(bytes: &[u8]) -> (Value, Vec<u8>) {
+    let g = gltf::binary::Glb::from_slice(bytes).unwrap();
+    (
+        serde_json::from_slice(&g.json).unwrap(),
+        g.bin.map(|b| b.into_owned()).unwrap_or_default(),
+    )
+}
+
+/// Every vertex of skin 0's mesh in its rest pose: sum_i w_i (W_i B_i) v, with W
+/// the joints' world matrices and B the inverse bind matrices (glTF 2.0 skinning).
+pub fn skinned_rest_vertices(bytes: &[u8]) -> Vec<DVec3> {
+    let (doc, bin) = read_glb(bytes);
+    let nodes = doc["nodes"].as_array().unwrap();
+    let world = world_of(nodes);
+    let accessor = |i: usize| -> (usize, usize) {
+        let a = &doc["accessors"][i];
+        let v = &doc["bufferViews"][a["bufferView"].as_u64().unwrap() as usize];
+        let off = v["byteOffset"].as_u64().unwrap_or(0) as usize
+            + a["byteOffset"].as_u64().unwrap_or(0) as usize;
+        (off, a["count"].as_u64().unwrap() as usize)
+    };
+    let f32_at = |o: usize| f32::from_le_bytes(bin[o..o + 4].try_into().unwrap()) as f64;
+    let skin = &doc["skins"][0];
+    let joints: Vec<usize> = skin["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j.as_u64().unwrap() as usize)
+        .collect();
+    let (ib, _) = accessor(skin["inverseBindMatrices"].as_u64().unwrap() as usize);
+    let mats: Vec<DMat4> = joints
+        .iter()
+        .enumerate()
+        .map(|(k, &j)| {
+            let cols: Vec<f64> = (0..16).map(|e| f32_at(ib + 64 * k + 4 * e)).collect();
+            world[j] * DMat4::from_cols_slice(&cols)
+        })
+        .collect();
+    let prim = &doc["meshes"][0]["primitives"][0]["attributes"];
+    let (p, n) = accessor(prim["POSITION"].as_u64().unwrap() as usize);
+    let (ji, _) = accessor(prim["JOINTS_0"].as_u64().unwrap() as usize);
+    let (w, _) = accessor(prim["WEIGHTS_0"].as_u64().unwrap() as usize);
+    (0..n)
+        .map(|v| {
+            let pos = DVec3::new(
+                f32_at(p + 12 * v),
+                f32_at(p + 12 * v + 4),
+                f32_at(p + 12 * v + 8),
+            );
+            let mut out = DVec3::ZERO;
+            for k in 0..4 {
+                let j = u16::from_le_bytes(
+                    bin[ji + 8 * v + 2 * k..ji + 8 * v + 2 * k + 2]
+                        .try_into()
+                        .unwrap(),
+                ) as usize;
+                let wt = f32_at(w + 16 * v + 4 * k);
+                out += wt * mats[j].transform_point3(pos);
+            }
+            out
+        })
+        .collect()
+}
