@@ -18,6 +18,8 @@ use std::path::{Path, PathBuf};
 pub const DEFAULT_DATA: &str = "data/measurements.csv";
 /// Default claims file.
 pub const DEFAULT_CLAIMS: &str = "data/paper_claims.csv";
+/// Default directory of reference rigs for the report.
+pub const DEFAULT_RIGS: &str = "data/rigs";
 
 #[derive(Parser, Debug)]
 #[command(
@@ -369,6 +371,9 @@ pub struct ReportArgs {
     pub history: HistoryArgs,
     #[command(flatten)]
     pub groups: GroupArgs,
+    /// Directory of reference rigs (*.json) for "Popular rigs against the X-rays"; absent = no section
+    #[arg(long, value_name = "DIR", default_value = DEFAULT_RIGS)]
+    pub rigs: PathBuf,
     /// Target half-width of the confidence interval of a relative mean, for "X-rays needed"
     #[arg(long, value_name = "W", default_value_t = 0.005, value_parser = parse_target)]
     pub target: f64,
@@ -788,8 +793,16 @@ fn report_command(args: &ReportArgs, quiet: bool) -> Result<(), Error> {
             )),
         ),
     };
+    let references = crate::rig::reference::load_dir(&args.rigs)?;
     let a = analyse_showing_progress(&dataset, &settings, quiet);
     drop(dataset);
+    let rigs: Vec<report::view::ReferenceAudit> = references
+        .into_iter()
+        .map(|rig| {
+            let audit = crate::rig::AuditedRig::of(&rig.name, &rig.chains, &[], &a);
+            report::view::ReferenceAudit { rig, audit }
+        })
+        .collect();
     let cov_settings = CoverageSettings {
         sims: args.sims as usize,
         resamples: settings.resamples,
@@ -816,6 +829,7 @@ fn report_command(args: &ReportArgs, quiet: bool) -> Result<(), Error> {
         history: &history,
         target: args.target,
         groups: &groups,
+        rigs: &rigs,
     };
     let formats = report::Formats {
         html: args.format.contains(&ReportFormat::Html),

@@ -36,6 +36,15 @@ fn render_with(
     };
     let cov = coverage::of_analysis(&a, &cs);
     let places = placement::place_all(&a, 1000.0);
+    let rigs: Vec<view::ReferenceAudit> =
+        phalanx::rig::reference::load_dir(std::path::Path::new("data/rigs"))
+            .unwrap()
+            .into_iter()
+            .map(|rig| {
+                let audit = phalanx::rig::AuditedRig::of(&rig.name, &rig.chains, &[], &a);
+                view::ReferenceAudit { rig, audit }
+            })
+            .collect();
     let inputs = ReportInputs {
         analysis: &a,
         claims_file: &claims.path,
@@ -50,6 +59,7 @@ fn render_with(
         history: &[],
         target: 0.005,
         groups: &[],
+        rigs: &rigs,
     };
     let files = report::render(&inputs, Formats::ALL, &Templates::builtin().unwrap()).unwrap();
     let plots = plots::all(&a, &places).unwrap();
@@ -104,6 +114,7 @@ fn html_holds_every_table_and_a_plot_of_each_kind() {
         "claims-table",
         "placement-joints",
         "placement-segments",
+        "rigs-table",
         "coverage-table",
         "tracking-needed",
     ];
@@ -132,6 +143,8 @@ fn html_holds_every_table_and_a_plot_of_each_kind() {
         .collect();
     assert_eq!(cells.len(), 14);
     assert_eq!(&cells[..3], ["339.96", "188.83", "169.67"]);
+    // Popular rigs: the three data/rigs files, five fingers each.
+    assert_eq!(html.select(&sel("table#rigs-table tbody tr")).count(), 15);
     // Claims: 30 rows.
     assert_eq!(html.select(&sel("table#claims-table tbody tr")).count(), 30);
     for id in [
@@ -139,6 +152,7 @@ fn html_holds_every_table_and_a_plot_of_each_kind() {
         "plot-finger-index",
         "plot-hand",
         "plot-forest",
+        "plot-rigs",
     ] {
         let fig = html
             .select(&sel(&format!("figure#{id}")))

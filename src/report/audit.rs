@@ -173,18 +173,50 @@ pub fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> Stri
     out
 }
 
-/// The short standing of a whole finger, for summary tables.
+/// The standing of a whole finger in one phrase, naming whatever lies outside.
 pub fn finger_summary(a: &FingerAudit) -> String {
-    match a.basis {
-        Basis::None => "not judged (no tip)".into(),
-        _ if a.is_consistent() => {
-            if a.joints.iter().all(|j| j.standing == Standing::InRange) {
-                "inside the X-ray range".into()
-            } else {
-                "inside the prediction interval".into()
-            }
+    if a.basis == Basis::None {
+        return "not judged (no tip)".into();
+    }
+    let mut outside = Vec::new();
+    for j in &a.joints {
+        match j.standing {
+            Standing::Above { by } => outside.push(format!(
+                "{} {} mm too far towards the tip",
+                j.joint.name(),
+                num(by * MM, 2)
+            )),
+            Standing::Below { by } => outside.push(format!(
+                "{} {} mm too close to the root",
+                j.joint.name(),
+                num(by * MM, 2)
+            )),
+            _ => {}
         }
-        _ => "outside the prediction interval".into(),
+    }
+    for v in &a.values {
+        match v.standing {
+            Standing::Above { by } => {
+                outside.push(format!("{} {} above", short(v.quantity), num(by, 4)))
+            }
+            Standing::Below { by } => {
+                outside.push(format!("{} {} below", short(v.quantity), num(by, 4)))
+            }
+            _ => {}
+        }
+    }
+    let all_in_range = a
+        .joints
+        .iter()
+        .map(|j| j.standing)
+        .chain(a.values.iter().map(|v| v.standing))
+        .all(|s| s == Standing::InRange);
+    if !outside.is_empty() {
+        format!("outside the prediction interval: {}", outside.join("; "))
+    } else if all_in_range {
+        "inside the X-ray range".into()
+    } else {
+        "inside the prediction interval".into()
     }
 }
 
@@ -194,4 +226,16 @@ pub fn value_of(a: &FingerAudit, q: Quantity) -> Option<f64> {
         .iter()
         .find(|v| v.quantity == q)
         .map(|v| v.measured)
+}
+
+/// A quantity's short name: J~1, J2/J1, ...
+fn short(q: Quantity) -> &'static str {
+    match q {
+        Quantity::RelJ1 => "J~1",
+        Quantity::RelJ2 => "J~2",
+        Quantity::RelJ3 => "J~3",
+        Quantity::RatioJ2J1 => "J2/J1",
+        Quantity::RatioJ3J2 => "J3/J2",
+        Quantity::Total => "J",
+    }
 }

@@ -50,6 +50,9 @@ pub fn render(
     if formats.html || formats.markdown {
         let mut plots = plots::all(inputs.analysis, inputs.placements)?;
         plots.extend(tracking_plots(inputs)?);
+        if !inputs.rigs.is_empty() {
+            plots.push(plots::rigs_plot(inputs.analysis, &rig_ratios(inputs.rigs))?);
+        }
         let view = view::build(inputs, &plots);
         if formats.html {
             files.push(OutputFile::new("index.html", templates.html(&view)?));
@@ -71,6 +74,27 @@ pub fn render(
         ));
     }
     Ok(files)
+}
+
+/// The ratios of each reference rig, for the rig plot.
+fn rig_ratios(rigs: &[view::ReferenceAudit]) -> Vec<plots::RigRatios> {
+    rigs.iter()
+        .map(|r| plots::RigRatios {
+            name: r.rig.name.clone(),
+            values: r
+                .audit
+                .fingers
+                .iter()
+                .flat_map(|f| {
+                    f.audit
+                        .values
+                        .iter()
+                        .filter(|v| !v.quantity.is_relative())
+                        .map(move |v| (f.chain.finger, v.quantity, v.measured))
+                })
+                .collect(),
+        })
+        .collect()
 }
 
 /// One tracking plot per finger with history (two snapshots or more), in the analysis's finger order.

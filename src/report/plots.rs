@@ -19,6 +19,7 @@ mod draw;
 mod finger;
 mod forest;
 mod hand;
+mod rigs;
 #[cfg(test)]
 mod tests;
 mod tracking;
@@ -41,6 +42,8 @@ pub enum PlotKind {
     Forest,
     /// One finger's means with their confidence band against the number of X-rays.
     Tracking,
+    /// Popular rigs' segment ratios against the X-rays.
+    Rigs,
 }
 
 /// One rendered plot.
@@ -106,6 +109,14 @@ pub fn tracking_plot(
     confidence: f64,
 ) -> Result<Plot, Error> {
     tracking::plot(finger, series, confidence)
+}
+
+pub use rigs::RigRatios;
+
+/// Rig plot (id `rigs`): each rig's J2/J1 and J3/J2 per finger against the
+/// X-rays' mean, observed range and prediction interval.
+pub fn rigs_plot(a: &Analysis, rigs: &[RigRatios]) -> Result<Plot, Error> {
+    rigs::plot(a, rigs)
 }
 
 /// Every plot of a report, in display order: one per finger, the hand diagram, the forest plot.

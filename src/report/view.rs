@@ -33,6 +33,8 @@ pub struct ReportView {
     pub tracking: TrackingView,
     /// Set when the report is grouped (`--group-by`).
     pub groups: Option<GroupsView>,
+    /// Set when reference rigs were given.
+    pub rigs: Option<RigsView>,
     pub plots: Vec<PlotView>,
 }
 
@@ -293,6 +295,47 @@ pub struct ReportInputs<'a> {
     pub target: f64,
     /// Statistics per group (`--group-by`); empty when not grouped.
     pub groups: &'a [Group],
+    /// Popular rigs judged against the statistics (`data/rigs`).
+    pub rigs: &'a [ReferenceAudit],
+}
+
+/// A reference rig with its judgement.
+#[derive(Debug, Clone)]
+pub struct ReferenceAudit {
+    pub rig: crate::rig::reference::ReferenceRig,
+    pub audit: crate::rig::AuditedRig,
+}
+
+/// The section "Popular rigs against the X-rays".
+#[derive(Debug, Clone, Serialize)]
+pub struct RigsView {
+    pub rigs: Vec<RigView>,
+    pub caveats: Vec<String>,
+}
+
+/// One reference rig.
+#[derive(Debug, Clone, Serialize)]
+pub struct RigView {
+    pub id: String,
+    pub name: String,
+    pub source: String,
+    pub url: String,
+    pub notes: String,
+    /// "2 of 5 fingers outside the prediction interval", ...
+    pub summary: String,
+    pub fingers: Vec<RigFingerView>,
+}
+
+/// One finger of a reference rig.
+#[derive(Debug, Clone, Serialize)]
+pub struct RigFingerView {
+    pub finger: String,
+    /// J~1 / J~2 / J~3 (or "no tip").
+    pub relative: String,
+    pub ratio_j2_j1: String,
+    pub ratio_j3_j2: String,
+    /// One phrase, naming whatever lies outside the prediction interval.
+    pub standing: String,
 }
 
 /// Builds the view of a whole report.
@@ -327,6 +370,7 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         coverage: coverage(inputs.coverage_settings, inputs.coverage),
         tracking: tracking(inputs),
         groups: groups_view(inputs.groups),
+        rigs: rigs_view(inputs.rigs),
         plots: plots.iter().map(plot).collect(),
     }
 }
@@ -806,6 +850,68 @@ fn groups_view(groups: &[Group]) -> Option<GroupsView> {
                     })
                     .collect(),
             })
+            .collect(),
+    })
+}
+
+fn rigs_view(rigs: &[ReferenceAudit]) -> Option<RigsView> {
+    use super::audit::{finger_summary, value_of};
+    use crate::analysis::audit::Basis;
+    if rigs.is_empty() {
+        return None;
+    }
+    let views = rigs
+        .iter()
+        .map(|r| {
+            let judged = r
+                .audit
+                .fingers
+                .iter()
+                .filter(|f| f.audit.basis != Basis::None)
+                .count();
+            let fingers = r
+                .audit
+                .fingers
+                .iter()
+                .map(|f| {
+                    let a = &f.audit;
+                    let rel: Vec<String> = [Quantity::RelJ1, Quantity::RelJ2, Quantity::RelJ3]
+                        .iter()
+                        .filter_map(|&q| value_of(a, q).map(|v| num(v, 4)))
+                        .collect();
+                    let ratio = |q| value_of(a, q).map_or("n/a".to_string(), |v| num(v, 4));
+                    RigFingerView {
+                        finger: f.chain.finger.name().to_string(),
+                        relative: if rel.is_empty() {
+                            "n/a (no tip)".into()
+                        } else {
+                            rel.join(" / ")
+                        },
+                        ratio_j2_j1: ratio(Quantity::RatioJ2J1),
+                        ratio_j3_j2: ratio(Quantity::RatioJ3J2),
+                        standing: finger_summary(a),
+                    }
+                })
+                .collect();
+            RigView {
+                id: r.rig.id.clone(),
+                name: r.rig.name.clone(),
+                source: r.rig.source.clone(),
+                url: r.rig.url.clone(),
+                notes: r.rig.notes.clone(),
+                summary: format!(
+                    "{} of {judged} judged fingers outside the prediction interval",
+                    r.audit.outside()
+                ),
+                fingers,
+            }
+        })
+        .collect();
+    Some(RigsView {
+        rigs: views,
+        caveats: super::audit::CAVEATS
+            .iter()
+            .map(|c| c.to_string())
             .collect(),
     })
 }

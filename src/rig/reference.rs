@@ -50,6 +50,16 @@ pub fn parse(label: &str, id: &str, bytes: &[u8]) -> Result<ReferenceRig, DataEr
         }],
     })?;
     let mut problems = Vec::new();
+    if !doc.url.starts_with("https://")
+        || doc
+            .url
+            .contains(|c: char| c.is_whitespace() || c == '>' || c == '<')
+    {
+        problems.push(Problem::file(format!(
+            "url '{}' is not a plain https:// address; give the source's web address",
+            doc.url
+        )));
+    }
     let side = Side::parse(&doc.side);
     if side.is_none() {
         problems.push(Problem::file(format!(
@@ -182,5 +192,64 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("x.json:2:"), "{e}");
+    }
+}
+
+#[cfg(test)]
+mod values {
+    use super::*;
+    use crate::analysis::{Quantity, Settings, analyse};
+    use crate::dataset::Dataset;
+
+    /// Relative values and ratios of the committed rigs, computed independently
+    /// with NumPy from the same JSON files when they were written (data/rigs/README.md).
+    #[test]
+    fn committed_rigs_give_the_independently_computed_proportions() {
+        let d = Dataset::load(Path::new("data/measurements.csv")).unwrap();
+        let a = analyse(&d, &Settings::default());
+        let rigs = load_dir(Path::new("data/rigs")).unwrap();
+        let value = |id: &str, finger: Finger, q: Quantity| {
+            let r = rigs.iter().find(|r| r.id == id).unwrap();
+            let c = r.chains.iter().find(|c| c.finger == finger).unwrap();
+            let audit = crate::analysis::audit::audit(&a, &c.input()).unwrap();
+            audit
+                .values
+                .iter()
+                .find(|v| v.quantity == q)
+                .map(|v| v.measured)
+        };
+        let cases = [
+            ("rigify-human", Finger::Index, Quantity::RelJ1, 0.468766),
+            ("rigify-human", Finger::Index, Quantity::RatioJ2J1, 0.626630),
+            ("rigify-human", Finger::Thumb, Quantity::RelJ1, 0.616671),
+            ("rigify-human", Finger::Little, Quantity::RelJ3, 0.229325),
+            (
+                "godot-humanoid-profile",
+                Finger::Middle,
+                Quantity::RatioJ2J1,
+                0.333333,
+            ),
+            (
+                "iwer-webxr-hand-relaxed",
+                Finger::Little,
+                Quantity::RelJ3,
+                0.300831,
+            ),
+            (
+                "iwer-webxr-hand-relaxed",
+                Finger::Thumb,
+                Quantity::RatioJ2J1,
+                0.728591,
+            ),
+        ];
+        for (id, f, q, want) in cases {
+            let got = value(id, f, q).unwrap_or_else(|| panic!("{id} {f} {q:?}"));
+            assert!((got - want).abs() < 1e-6, "{id} {f} {q:?}: {got} vs {want}");
+        }
+        // Godot has no tips: no relative values, and its thumb is not judged.
+        assert_eq!(
+            value("godot-humanoid-profile", Finger::Index, Quantity::RelJ1),
+            None
+        );
     }
 }

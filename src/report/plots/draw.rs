@@ -289,6 +289,25 @@ impl<'r, 'a> Pen<'r, 'a> {
         self.root.draw(&Polygon::new(points, INK.filled()))
     }
 
+    /// The marker of the k-th rig: circle, square, triangle, then the cycle again
+    /// in other colours, so shape alone tells the first three apart.
+    pub(super) fn marker(&self, c: Px, k: usize) -> DrawResult {
+        let colour = MARKER_COLOURS[k % MARKER_COLOURS.len()];
+        let r = 5;
+        match k % 3 {
+            0 => self.dot(c, r, colour, 1.0),
+            1 => self.rect((c.0 - r, c.1 - r), (c.0 + r, c.1 + r), colour, 1.0),
+            _ => self.root.draw(&Polygon::new(
+                vec![
+                    (c.0, c.1 - r - 1),
+                    (c.0 + r + 1, c.1 + r),
+                    (c.0 - r - 1, c.1 + r),
+                ],
+                colour.filled(),
+            )),
+        }
+    }
+
     /// Text anchored at `at`; plotters escapes it for XML.
     pub(super) fn text(&self, at: Px, text: &str, font: Font) -> DrawResult {
         self.root.draw_text(&plain(text), &font.style(), at)
@@ -333,6 +352,8 @@ pub(super) enum Swatch {
     Range,
     /// A joint at the root or the tip.
     Joint,
+    /// The marker of the k-th rig.
+    Marker(usize),
 }
 
 /// One legend entry.
@@ -423,8 +444,18 @@ fn draw_swatch(pen: &Pen, left: Px, swatch: Swatch) -> DrawResult {
         }
         Swatch::Range => pen.rect((x + 2, y - 6), (x + SWATCH_W - 2, y + 6), RANGE, 0.55),
         Swatch::Joint => pen.dot(mid, 5, INK, 1.0),
+        Swatch::Marker(k) => pen.marker(mid, k),
     }
 }
+
+/// Colours of rig markers (Okabe-Ito blue, vermillion, bluish green, reddish purple, sky blue).
+const MARKER_COLOURS: [RGBColor; 5] = [
+    RGBColor(0x00, 0x72, 0xB2),
+    RGBColor(0xD5, 0x5E, 0x00),
+    RGBColor(0x00, 0x9E, 0x73),
+    RGBColor(0xCC, 0x79, 0xA7),
+    RGBColor(0x56, 0xB4, 0xE9),
+];
 
 /// The top of every plot: a bold title, a wrapped subtitle and the legend.
 pub(super) struct Frame<'t> {
