@@ -13,7 +13,9 @@
 //! (MCP), intermediate (PIP), distal (DIP), tip; for the thumb VRM 1.0 and
 //! WebXR read metacarpal = CMC, proximal = MCP, distal = IP, while VRM 0.x
 //! reads proximal = CMC, intermediate = MCP, distal = IP (told apart by whether
-//! the thumb has an `intermediate`).
+//! the thumb has an `intermediate`). Any prefix may come before the side
+//! (`Character1_`, `b_`, `Armature/`); a name with a word like MCH, IK, CTRL,
+//! target, pole or twist is a control or helper and never a joint.
 
 use crate::dataset::Finger;
 use regex::Regex;
@@ -81,11 +83,13 @@ pub struct Parsed {
     pub deform: bool,
 }
 
-static PATTERN: LazyLock<Regex> = LazyLock::new(|| {
-    Regex::new(
+/// The name pattern, with single-letter sides before the finger allowed or not.
+fn pattern(sides: &str) -> Regex {
+    Regex::new(&format!(
         r"(?x)^
-        (?P<prefix>mixamorig\d*|def|jbip|ccbase)?
-        (?P<s1>right|left|r|l)?
+        (?P<prefix>.*?)
+        (?:hand)?
+        (?P<s1>{sides})?
         (?:hand)?
         (?:f)?
         (?P<finger>thumb|index|middle|mid|ring|pinky|little)
@@ -94,24 +98,74 @@ static PATTERN: LazyLock<Regex> = LazyLock::new(|| {
         (?P<part>0?[1-4]|metacarpal|proximal|intermediate|distal|tip)
         (?P<s2>right|left|r|l)?
         (?P<end>end|nub|leaf|tip)?
-        $",
-    )
+        $"
+    ))
     .expect("the name pattern is valid")
-});
+}
+
+static PATTERN: LazyLock<Regex> = LazyLock::new(|| pattern("right|left|r|l"));
+static PATTERN_WORDS: LazyLock<Regex> = LazyLock::new(|| pattern("right|left"));
 
 /// The name compared: namespace dropped, lower case, letters and digits only.
 pub fn compact(name: &str) -> String {
-    let base = name.rsplit([':', '|']).next().unwrap_or(name);
-    base.chars()
-        .filter(char::is_ascii_alphanumeric)
-        .map(|c| c.to_ascii_lowercase())
-        .collect()
+    compact_with_origin(name).0
 }
+
+/// The compact name and, for each of its characters, the one before it in the
+/// name without the namespace (`None` at the start).
+fn compact_with_origin(name: &str) -> (String, Vec<Option<char>>) {
+    let base = name.rsplit([':', '|']).next().unwrap_or(name);
+    let mut out = String::new();
+    let mut before = Vec::new();
+    let mut prev = None;
+    for c in base.chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c.to_ascii_lowercase());
+            before.push(prev);
+        }
+        prev = Some(c);
+    }
+    (out, before)
+}
+
+/// True when a one-letter side at compact position `i` starts a word of the
+/// name: at its start, after a separator, or as a capital after a small letter
+/// (`J_Bip_R_Index1`, `b_r_index1`, `bipRIndex`), so `Finger_Index1` has no side.
+fn starts_word(name: &str, before: &[Option<char>], i: usize) -> bool {
+    let base = name.rsplit([':', '|']).next().unwrap_or(name);
+    let this = base.chars().filter(char::is_ascii_alphanumeric).nth(i);
+    match (before.get(i).copied().flatten(), this) {
+        (None, _) => true,
+        (Some(p), _) if !p.is_ascii_alphanumeric() => true,
+        (Some(p), Some(c)) => p.is_ascii_lowercase() && c.is_ascii_uppercase(),
+        _ => false,
+    }
+}
+
+/// Words that mark a bone as a control, mechanism or helper rather than a joint
+/// of the skin (Rigify's `MCH-`, IK targets, twist helpers).
+const NOT_JOINTS: [&str; 12] = [
+    "mch", "ik", "fk", "ctrl", "ctl", "control", "target", "pole", "tweak", "twist", "helper",
+    "vis",
+];
 
 /// Reads a node name; `None` when it names no finger joint.
 pub fn parse(name: &str) -> Option<Parsed> {
-    let c = compact(name);
-    let m = PATTERN.captures(&c)?;
+    let base = name.rsplit([':', '|']).next().unwrap_or(name);
+    if base
+        .split(|c: char| !c.is_ascii_alphanumeric())
+        .any(|w| NOT_JOINTS.contains(&w.to_ascii_lowercase().as_str()))
+    {
+        return None;
+    }
+    let (c, before) = compact_with_origin(name);
+    let mut m = PATTERN.captures(&c)?;
+    if let Some(s1) = m.name("s1")
+        && s1.len() == 1
+        && !starts_word(name, &before, s1.start())
+    {
+        m = PATTERN_WORDS.captures(&c)?;
+    }
     let side = match (m.name("s1"), m.name("s2")) {
         (Some(a), Some(b)) if Side::parse(a.as_str()) != Side::parse(b.as_str()) => return None,
         (Some(a), _) => Side::parse(a.as_str()),
@@ -140,7 +194,9 @@ pub fn parse(name: &str) -> Option<Parsed> {
         side,
         finger,
         part,
-        deform: m.name("prefix").is_some_and(|p| p.as_str() == "def"),
+        deform: m
+            .name("prefix")
+            .is_some_and(|p| p.as_str().starts_with("def")),
     })
 }
 
@@ -209,6 +265,19 @@ mod tests {
             ("thumb-phalanx-distal", None, Thumb, Slot::First),
             ("CC_Base_R_Mid2", Some(Right), Middle, Slot::First),
             ("RIGHT_HAND_INDEX_3", Some(Right), Index, Slot::Second),
+            ("Character1_RightHandIndex1", Some(Right), Index, Slot::Mcp),
+            ("Armature/RightHandIndex1", Some(Right), Index, Slot::Mcp),
+            ("Hand_R_Index_01", Some(Right), Index, Slot::Mcp),
+            ("hand_l_thumb_2", Some(Left), Thumb, Slot::Mcp),
+            ("b_r_index1", Some(Right), Index, Slot::Mcp),
+            ("ORG-f_index.01.R", Some(Right), Index, Slot::Mcp),
+            ("thumb-metacarpal", None, Thumb, Slot::Carpal),
+            ("thumb-phalanx-proximal", None, Thumb, Slot::Mcp),
+            ("thumb-tip", None, Thumb, Slot::Tip),
+            ("rightThumbMetacarpal", Some(Right), Thumb, Slot::Carpal),
+            ("thumb_01_r", Some(Right), Thumb, Slot::Carpal),
+            ("thumb_03_l", Some(Left), Thumb, Slot::First),
+            ("Left_Hand_Index_1", Some(Left), Index, Slot::Mcp),
         ];
         for &(name, side, finger, slot) in cases {
             assert_eq!(read(name), Some((side, finger, Some(slot))), "{name}");
@@ -224,13 +293,26 @@ mod tests {
             "index",
             "Ring",
             "rightIndex",
-            "ORG-f_index.01.R",
             "MCH-thumb.01.R",
+            "MCH-f_index.01.R",
+            "IK_RightHandIndex1",
+            "index_01_r_twist",
+            "Finger_Index1x",
             "f_index.01.R.001x",
             "RightHandIndex1L",
         ] {
             assert_eq!(read(name), None, "{name}");
         }
+        // A word ending in r or l before the finger is not a side.
+        assert_eq!(
+            read("Finger_Index1"),
+            Some((None, Finger::Index, Some(Slot::Mcp)))
+        );
+        assert_eq!(
+            read("Bar_Ring2"),
+            Some((None, Finger::Ring, Some(Slot::First)))
+        );
+        assert_eq!(read("bipRIndex1").unwrap().0, Some(Side::Right));
         // Past the tip: Mixamo's leaf after Index4.
         assert_eq!(read("mixamorig:RightHandIndex4_End").unwrap().2, None);
     }
