@@ -68,19 +68,26 @@ pub enum Standing {
 }
 
 impl Standing {
-    /// Judges `x` against `range` and the prediction interval. O(1).
+    /// Judges `x` against the prediction interval when there is one (else the
+    /// range): outside it, by how much; inside it, whether also inside the
+    /// observed range. O(1).
     ///
     /// The range is widened by one part in a million of its ends, the precision
     /// a glTF file (f32) keeps: an X-ray's own proportions stored in a rig must
     /// still read as inside the range they set.
     pub fn of(x: f64, range: Interval, pi: Option<Interval>) -> Standing {
         let tol = 1e-6 * range.low.abs().max(range.high.abs());
-        if range.low - tol <= x && x <= range.high + tol {
-            return Standing::InRange;
-        }
+        let in_range = range.low - tol <= x && x <= range.high + tol;
         let outer = match pi {
-            Some(pi) if pi.contains(x) => return Standing::InPrediction,
+            Some(pi) if pi.contains(x) || (in_range && pi.width() >= range.width()) => {
+                return if in_range {
+                    Standing::InRange
+                } else {
+                    Standing::InPrediction
+                };
+            }
             Some(pi) => pi,
+            None if in_range => return Standing::InRange,
             None => range,
         };
         if x > outer.high {
@@ -125,6 +132,9 @@ pub struct JointCheck {
     pub suggested: Point,
     /// Distance from the rig's joint to the suggested one.
     pub shift: f64,
+    /// How far the suggestion lies along the chain from the rig's joint:
+    /// positive towards the tip, negative towards the root.
+    pub shift_along: f64,
 }
 
 /// A rig finger judged against the X-ray statistics.
@@ -194,54 +204,95 @@ pub fn point_at(points: &[Point], u: f64) -> Point {
     points.last().copied().unwrap_or([0.0; 3])
 }
 
+/// Arc positions of the vertices of a polyline: 0, c_1, c_1 + c_2, ... O(m).
+fn arc_positions(points: &[Point]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(points.len());
+    let mut acc = 0.0;
+    out.push(0.0);
+    for w in points.windows(2) {
+        acc += dist(w[0], w[1]);
+        out.push(acc);
+    }
+    out
+}
+
+/// The first arc position at or after `u0` whose point lies at distance `d`
+/// from `q`; `None` past the end of the polyline. O(m).
+fn forward_at(points: &[Point], arcs: &[f64], u0: f64, q: Point, d: f64) -> Option<f64> {
+    for (k, w) in points.windows(2).enumerate() {
+        let (a, b) = (w[0], w[1]);
+        let len = arcs[k + 1] - arcs[k];
+        if arcs[k + 1] < u0 || len <= 0.0 {
+            continue;
+        }
+        let t0 = ((u0 - arcs[k]) / len).max(0.0);
+        let ab = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let aq = [a[0] - q[0], a[1] - q[1], a[2] - q[2]];
+        let qa = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+        let qb = 2.0 * (aq[0] * ab[0] + aq[1] * ab[1] + aq[2] * ab[2]);
+        let qc = aq[0] * aq[0] + aq[1] * aq[1] + aq[2] * aq[2] - d * d;
+        let disc = qb * qb - 4.0 * qa * qc;
+        if disc < 0.0 {
+            continue;
+        }
+        let r = disc.sqrt();
+        let mut roots = [(-qb - r) / (2.0 * qa), (-qb + r) / (2.0 * qa)];
+        roots.sort_by(f64::total_cmp);
+        if let Some(t) = roots
+            .into_iter()
+            .find(|t| *t >= t0 - 1e-12 && *t <= 1.0 + 1e-12)
+        {
+            return Some(arcs[k] + t.clamp(0.0, 1.0) * len);
+        }
+    }
+    None
+}
+
 /// New inner points on the polyline `points` (ends fixed) whose chords have the
-/// proportions `shares` (one per segment, summing to 1).
+/// proportions `shares` (one per segment, summing to 1), with their arc positions.
 ///
-/// Starts from the arc-length solution and corrects each inner point's arc
-/// position by the error of its cumulative chord share; exact in one step for a
-/// straight chain, a handful of steps for a finger's gentle bends. O(m) per step.
-pub fn on_chain(points: &[Point], shares: &[f64]) -> Vec<Point> {
-    let m = points.len().saturating_sub(1);
-    if m < 2 || shares.len() != m {
-        return points.to_vec();
+/// For a trial total chord C the points are laid one after the other, each the
+/// first point along the chain at chord distance share_k x C from the one
+/// before, and C is bisected until the last chord is share_m x C; so the points
+/// keep their order on the chain. 200 bisection steps, O(m) each. `None` when
+/// the chain is degenerate (non-finite, zero length) or no such C exists.
+pub fn on_chain(points: &[Point], shares: &[f64]) -> Option<(Vec<Point>, Vec<f64>)> {
+    let m = points.len().checked_sub(1)?;
+    if m < 2 || shares.len() != m || shares.iter().any(|s| !(s.is_finite() && *s > 0.0)) {
+        return None;
     }
-    let arc: f64 = points.windows(2).map(|w| dist(w[0], w[1])).sum();
-    let target: Vec<f64> = shares
-        .iter()
-        .scan(0.0, |acc, s| {
-            *acc += s;
-            Some(*acc)
-        })
-        .take(m - 1)
-        .collect();
-    let mut u: Vec<f64> = target.iter().map(|t| t * arc).collect();
-    let build = |u: &[f64]| {
-        let mut q = Vec::with_capacity(points.len());
-        q.push(points[0]);
-        q.extend(u.iter().map(|&x| point_at(points, x)));
-        q.push(points[m]);
-        q
+    let arcs = arc_positions(points);
+    let arc = arcs[m];
+    if !(arc.is_finite() && arc > 0.0) || points.iter().flatten().any(|v| !v.is_finite()) {
+        return None;
+    }
+    let lay = |c: f64| -> Option<(Vec<f64>, f64)> {
+        let mut u = Vec::with_capacity(m - 1);
+        let (mut at, mut q) = (0.0, points[0]);
+        for s in &shares[..m - 1] {
+            at = forward_at(points, &arcs, at, q, s * c)?;
+            q = point_at(points, at);
+            u.push(at);
+        }
+        Some((u, dist(q, points[m]) - shares[m - 1] * c))
     };
+    let (mut lo, mut hi) = (0.0, arc);
     for _ in 0..200 {
-        let q = build(&u);
-        let chords: Vec<f64> = q.windows(2).map(|w| dist(w[0], w[1])).collect();
-        let total: f64 = chords.iter().sum();
-        if total <= 0.0 {
-            break;
-        }
-        let mut worst: f64 = 0.0;
-        let mut cum = 0.0;
-        for (k, uk) in u.iter_mut().enumerate() {
-            cum += chords[k];
-            let err = target[k] - cum / total;
-            worst = worst.max(err.abs());
-            *uk = (*uk + err * arc).clamp(0.0, arc);
-        }
-        if worst < 1e-13 {
-            break;
+        let mid = 0.5 * (lo + hi);
+        match lay(mid) {
+            Some((_, f)) if f > 0.0 => lo = mid,
+            _ => hi = mid,
         }
     }
-    build(&u)
+    let (u, f) = lay(lo)?;
+    if f.abs() > 1e-9 * arc {
+        return None;
+    }
+    let mut q = Vec::with_capacity(points.len());
+    q.push(points[0]);
+    q.extend(u.iter().map(|&x| point_at(points, x)));
+    q.push(points[m]);
+    Some((q, u))
 }
 
 /// The statistics of `quantity` for `finger`, when the data has them.
@@ -269,7 +320,14 @@ pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
     if chain.points.len() != ChainInput::expected_points(finger, chain.has_tip) {
         return None;
     }
+    if chain.points.iter().flatten().any(|v| !v.is_finite()) {
+        return None;
+    }
     let segments: Vec<f64> = chain.points.windows(2).map(|w| dist(w[0], w[1])).collect();
+    if segments.iter().any(|&c| !(c.is_finite() && c > 0.0)) {
+        return None;
+    }
+    let arcs = arc_positions(&chain.points);
     let inner = Joint::inner(finger);
     let mut out = FingerAudit {
         finger,
@@ -306,7 +364,7 @@ pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
             .take(segments.len())
             .map(|&q| stats(a, finger, q).map(|s| s.mean))
             .collect::<Option<_>>()?;
-        let suggested = on_chain(&chain.points, &shares);
+        let (suggested, at) = on_chain(&chain.points, &shares)?;
         let mut measured = 0.0;
         for (k, &joint) in inner.iter().enumerate() {
             measured += segments[k];
@@ -330,6 +388,7 @@ pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
                 standing: Standing::of(measured, range, placed.pi),
                 suggested: suggested[k + 1],
                 shift: dist(chain.points[k + 1], suggested[k + 1]),
+                shift_along: at[k] - arcs[k + 1],
             });
         }
     } else if finger != Finger::Thumb {
@@ -338,15 +397,16 @@ pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
         let r = segments[1] / segments[0];
         out.values.push(value_check(Quantity::RatioJ2J1, r, s));
         let span = segments[0] + segments[1];
-        let at = |r: f64| span / (1.0 + r);
+        // A ratio is never negative, even where an interval's formula says so.
+        let at = |r: f64| span / (1.0 + r.max(0.0));
         let flip = |i: Interval| Interval::new(at(i.high), at(i.low));
         let range = flip(Interval::new(s.min, s.max));
         let pi = s.pi.map(flip);
         let mean_r = s.mean;
-        let suggested = on_chain(
+        let (suggested, at_new) = on_chain(
             &chain.points,
             &[1.0 / (1.0 + mean_r), mean_r / (1.0 + mean_r)],
-        );
+        )?;
         out.joints.push(JointCheck {
             joint: Joint::Pip,
             measured: segments[0],
@@ -356,6 +416,7 @@ pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
             standing: Standing::of(segments[0], range, pi),
             suggested: suggested[1],
             shift: dist(chain.points[1], suggested[1]),
+            shift_along: at_new[0] - arcs[1],
         });
         out.unjudged.push(Joint::Dip);
     } else {
@@ -453,7 +514,7 @@ mod tests {
             [70.0, -25.0, 3.0],
         ];
         let shares = [0.48, 0.29, 0.23];
-        let q = on_chain(&pts, &shares);
+        let (q, _) = on_chain(&pts, &shares).unwrap();
         assert_eq!(q[0], pts[0]);
         assert_eq!(q[3], pts[3]);
         let c: Vec<f64> = q.windows(2).map(|w| dist(w[0], w[1])).collect();
@@ -461,6 +522,73 @@ mod tests {
         for (ck, s) in c.iter().zip(shares) {
             assert!((ck / total - s).abs() < 1e-12, "{c:?}");
         }
+    }
+
+    #[test]
+    fn sharp_bends_keep_the_joints_in_order_or_decline() {
+        // 120 degrees at each joint, segments 20, 40, 40 (a case a per-point
+        // correction got out of order).
+        let turn = |a: f64| [a.cos(), a.sin(), 0.0];
+        let mut pts = vec![[0.0; 3]];
+        let mut dir = 0.0f64;
+        for len in [20.0, 40.0, 40.0] {
+            let p = *pts.last().unwrap();
+            let d = turn(dir);
+            pts.push([p[0] + len * d[0], p[1] + len * d[1], 0.0]);
+            dir += 120f64.to_radians();
+        }
+        let shares = [0.48, 0.29, 0.23];
+        if let Some((q, u)) = on_chain(&pts, &shares) {
+            assert!(u.windows(2).all(|w| w[0] <= w[1]), "{u:?}");
+            let c: Vec<f64> = q.windows(2).map(|w| dist(w[0], w[1])).collect();
+            let total: f64 = c.iter().sum();
+            for (ck, s) in c.iter().zip(shares) {
+                assert!((ck / total - s).abs() < 1e-9, "{c:?}");
+            }
+        }
+        // Degenerate chains are declined, never a panic.
+        assert!(on_chain(&[[0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]], &shares).is_none());
+        assert!(
+            on_chain(
+                &[
+                    [f64::NAN, 0.0, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [2.0, 0.0, 0.0],
+                    [3.0, 0.0, 0.0]
+                ],
+                &shares
+            )
+            .is_none()
+        );
+        let a = paper();
+        let nan = ChainInput {
+            finger: Finger::Index,
+            points: vec![
+                [0.0; 3],
+                [f64::INFINITY, 0.0, 0.0],
+                [2.0, 0.0, 0.0],
+                [3.0, 0.0, 0.0],
+            ],
+            has_tip: true,
+        };
+        assert!(audit(&a, &nan).is_none());
+        let zero = ChainInput {
+            points: vec![[0.0; 3], [0.0; 3], [2.0, 0.0, 0.0], [3.0, 0.0, 0.0]],
+            ..nan
+        };
+        assert!(audit(&a, &zero).is_none());
+    }
+
+    #[test]
+    fn with_many_xrays_the_prediction_interval_decides() {
+        // Range wider than the interval (large n): inside the range but outside the interval is outside.
+        let range = Interval::new(0.3, 0.7);
+        let pi = Some(Interval::new(0.45, 0.55));
+        assert!(matches!(
+            Standing::of(0.65, range, pi),
+            Standing::Above { .. }
+        ));
+        assert_eq!(Standing::of(0.5, range, pi), Standing::InRange);
     }
 
     #[test]

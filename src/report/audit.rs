@@ -63,7 +63,7 @@ pub fn heading(f: &AuditedFinger) -> String {
 
 /// The suggestion for one joint, in words.
 pub fn suggestion(j: &crate::analysis::audit::JointCheck) -> String {
-    let towards = if j.expected >= j.measured {
+    let towards = if j.shift_along >= 0.0 {
         "towards the tip"
     } else {
         "towards the root"
