@@ -193,11 +193,11 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<AuditOutcome, Error> {
                 .map(str::to_ascii_lowercase)
                 .as_deref()
             {
-                Some("glb") => Some(true),
+                Some("glb" | "vrm") => Some(true),
                 Some("gltf") => Some(false),
                 _ => {
                     return Err(Error::Usage(format!(
-                        "--fix {}: name the output .glb (or .gltf for an embedded buffer)",
+                        "--fix {}: name the output .glb or .vrm (or .gltf for an embedded buffer)",
                         out.display()
                     )));
                 }
@@ -216,8 +216,21 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<AuditOutcome, Error> {
     if let (Some(out), Some(glb)) = (req.fix, fix_glb) {
         let dir = req.rig.parent().unwrap_or(Path::new("."));
         fixed = crate::rig::fix::fix(&rig.file, &audited.fingers, dir, glb)?;
+        // Read the new file back before it is written: a copy that would not
+        // load is never left on disk.
+        let out_label = out.display().to_string();
+        let re = crate::rig::GltfFile::from_bytes(&out_label, &fixed.bytes)
+            .and_then(|f| Rig::from_file(f, map.as_ref()))
+            .map_err(|e| {
+                Error::render(
+                    format!(
+                        "the fixed copy of {} did not read back; nothing was written",
+                        rig.file.label
+                    ),
+                    e,
+                )
+            })?;
         crate::atomic::replace(out, &fixed.bytes).map_err(io_err(out))?;
-        let re = Rig::load(out, map.as_ref())?;
         let again = AuditedRig::of(&re.file.label, &re.chains, &re.notes, &a);
         messages.push(format!(
             "wrote {}: {} joints moved; re-audited, {} of {} fingers outside the prediction interval",

@@ -33,31 +33,79 @@ pub struct Fixed {
     pub warnings: Vec<String>,
 }
 
-/// Reads the data of every buffer: the GLB chunk, data URIs, or files beside the input.
+/// Decodes `%xx` escapes of a URI path; `None` on a bad escape or non-UTF-8 result.
+fn percent_decode(uri: &str) -> Option<String> {
+    let b = uri.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        if b[i] == b'%' {
+            let hex = std::str::from_utf8(b.get(i + 1..i + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(b[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
+}
+
+/// Reads the data of every buffer: the GLB chunk (buffer 0 only, as the
+/// specification says), data URIs, or files beside the input. A file URI must
+/// be a relative path that stays beside the input (no `..`, no scheme), and
+/// only the declared byte length is read.
 fn buffers(file: &GltfFile, dir: &Path) -> Result<Vec<Vec<u8>>, DataError> {
     let fail = |m: String| DataError::whole_file(&file.label, m);
     file.document
         .buffers()
         .map(|b| {
+            let i = b.index();
             let mut data = match b.source() {
-                gltf::buffer::Source::Bin => file
+                gltf::buffer::Source::Bin if i == 0 => file
                     .blob
                     .clone()
                     .ok_or_else(|| fail("refers to a GLB binary chunk it does not have".into()))?,
+                gltf::buffer::Source::Bin => {
+                    return Err(fail(format!(
+                        "buffer {i} has no data of its own (a compression fallback buffer?); --fix cannot copy it"
+                    )));
+                }
                 gltf::buffer::Source::Uri(uri) => {
                     if let Some(rest) = uri.strip_prefix("data:") {
-                        let payload = rest.split_once(";base64,").map(|(_, p)| p).ok_or_else(
-                            || fail(format!("buffer {} has a data URI that is not base64", b.index())),
-                        )?;
+                        let payload = rest
+                            .split_once(";base64,")
+                            .map(|(_, p)| p)
+                            .ok_or_else(|| fail(format!("buffer {i} has a data URI that is not base64")))?;
                         base64::engine::general_purpose::STANDARD
                             .decode(payload)
-                            .map_err(|e| fail(format!("buffer {} has bad base64 ({e})", b.index())))?
+                            .map_err(|e| fail(format!("buffer {i} has bad base64 ({e})")))?
                     } else {
-                        let p = dir.join(uri);
-                        std::fs::read(&p).map_err(|e| {
+                        let rel = percent_decode(uri)
+                            .filter(|r| {
+                                let p = Path::new(r);
+                                !r.contains(':')
+                                    && p.is_relative()
+                                    && p.components().all(|c| matches!(c, std::path::Component::Normal(_)))
+                            })
+                            .ok_or_else(|| {
+                                fail(format!(
+                                    "buffer {i} refers to '{uri}', which is not a plain relative path beside the file; \
+                                     --fix reads only files next to the input"
+                                ))
+                            })?;
+                        let p = dir.join(rel);
+                        let read = || -> std::io::Result<Vec<u8>> {
+                            let mut data = Vec::new();
+                            std::io::Read::read_to_end(
+                                &mut std::io::Read::take(std::fs::File::open(&p)?, b.length() as u64 + 1),
+                                &mut data,
+                            )?;
+                            Ok(data)
+                        };
+                        read().map_err(|e| {
                             fail(format!(
-                                "buffer {} refers to {} which cannot be read ({e}); keep it beside the .gltf",
-                                b.index(),
+                                "buffer {i} refers to {} which cannot be read ({e}); keep it beside the .gltf",
                                 p.display()
                             ))
                         })?
@@ -66,8 +114,7 @@ fn buffers(file: &GltfFile, dir: &Path) -> Result<Vec<Vec<u8>>, DataError> {
             };
             if data.len() < b.length() {
                 return Err(fail(format!(
-                    "buffer {} holds {} bytes but declares {}",
-                    b.index(),
+                    "buffer {i} holds {} bytes but declares {}",
                     data.len(),
                     b.length()
                 )));
@@ -76,6 +123,62 @@ fn buffers(file: &GltfFile, dir: &Path) -> Result<Vec<Vec<u8>>, DataError> {
             Ok(data)
         })
         .collect()
+}
+
+/// The inverse bind matrices of a skin, read with every offset checked
+/// (identity matrices when the skin has none).
+fn inverse_binds(
+    data: &[Vec<u8>],
+    skin: &gltf::Skin<'_>,
+    joints: usize,
+) -> Result<Vec<DMat4>, String> {
+    let Some(acc) = skin.inverse_bind_matrices() else {
+        return Ok(vec![DMat4::IDENTITY; joints]);
+    };
+    let what = format!(
+        "skin {}'s inverse bind matrices (accessor {})",
+        skin.index(),
+        acc.index()
+    );
+    if acc.data_type() != gltf::accessor::DataType::F32
+        || acc.dimensions() != gltf::accessor::Dimensions::Mat4
+        || acc.sparse().is_some()
+        || acc.count() != joints
+    {
+        return Err(format!(
+            "{what} are not {joints} plain float MAT4 values, as glTF requires"
+        ));
+    }
+    let view = acc
+        .view()
+        .ok_or_else(|| format!("{what} have no buffer view"))?;
+    let stride = view.stride().unwrap_or(64);
+    let buf = data
+        .get(view.buffer().index())
+        .ok_or_else(|| format!("{what} name a missing buffer"))?;
+    let start = view.offset().checked_add(acc.offset());
+    let need = stride
+        .checked_mul(joints.saturating_sub(1))
+        .and_then(|x| x.checked_add(64));
+    let (Some(start), Some(need)) = (start, need) else {
+        return Err(format!("{what} have impossible offsets"));
+    };
+    if stride < 64
+        || acc.offset() + need > view.length()
+        || view.offset() + view.length() > buf.len()
+    {
+        return Err(format!("{what} do not fit their buffer view"));
+    }
+    Ok((0..joints)
+        .map(|k| {
+            let at = start + k * stride;
+            let cols: Vec<f64> = buf[at..at + 64]
+                .chunks_exact(4)
+                .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+                .collect();
+            DMat4::from_cols_slice(&cols)
+        })
+        .collect())
 }
 
 fn pad4(v: &mut Vec<u8>) {
@@ -130,7 +233,21 @@ pub fn fix(
     let mut world = file.world.clone();
     for &(node, target) in &targets {
         let up = file.parent[node].map_or(DMat4::IDENTITY, |p| world[p]);
+        let det = up.determinant();
         let t = up.inverse().transform_point3(DVec3::from_array(target));
+        if !(det.is_finite() && det.abs() > 1e-300 && t.is_finite()) {
+            return Err(DataError::whole_file(
+                &file.label,
+                format!(
+                    "cannot move node {node} ('{}'): the transform above it is singular (a zero scale?); fix that first",
+                    file.document
+                        .nodes()
+                        .nth(node)
+                        .and_then(|n| n.name())
+                        .unwrap_or("unnamed")
+                ),
+            ));
+        }
         locals[node].w_axis = t.extend(1.0);
         world = world_matrices(&file.parent, &locals).unwrap_or(world);
     }
@@ -150,6 +267,18 @@ pub fn fix(
         }
     }
     // Merge all buffers into one, then append the new inverse bind matrices.
+    if let Some(k) = json["bufferViews"]
+        .as_array()
+        .and_then(|v| v.iter().position(|v| v.get("extensions").is_some()))
+    {
+        return Err(DataError::whole_file(
+            &file.label,
+            format!(
+                "bufferView {k} carries an extension (EXT_meshopt_compression?) that points into buffers; \
+                 --fix cannot rewrite it: decompress the file first (e.g. gltf-transform)"
+            ),
+        ));
+    }
     let data = buffers(file, dir)?;
     let mut bin = Vec::new();
     let mut starts = Vec::new();
@@ -171,28 +300,20 @@ pub fn fix(
         if !joints.iter().any(|&j| world[j] != file.world[j]) {
             continue;
         }
-        let reader = skin.reader(|b| data.get(b.index()).map(Vec::as_slice));
-        let ibm: Vec<DMat4> = match reader.read_inverse_bind_matrices() {
-            Some(it) => it
-                .map(|m| DMat4::from_cols_array_2d(&m.map(|c| c.map(f64::from))))
-                .collect(),
-            None => vec![DMat4::IDENTITY; joints.len()],
-        };
-        if ibm.len() != joints.len() {
-            return Err(DataError::whole_file(
-                &file.label,
-                format!(
-                    "skin {} has {} inverse bind matrices for {} joints",
-                    skin.index(),
-                    ibm.len(),
-                    joints.len()
-                ),
-            ));
-        }
+        let ibm = inverse_binds(&data, &skin, joints.len())
+            .map_err(|e| DataError::whole_file(&file.label, e))?;
         pad4(&mut bin);
         let offset = bin.len();
         for (&j, b) in joints.iter().zip(&ibm) {
             let new = world[j].inverse() * file.world[j] * *b;
+            if !new.is_finite() {
+                return Err(DataError::whole_file(
+                    &file.label,
+                    format!(
+                        "joint node {j} has a singular world transform; cannot update its inverse bind matrix"
+                    ),
+                ));
+            }
             for v in new.to_cols_array() {
                 bin.extend_from_slice(&(v as f32).to_le_bytes());
             }

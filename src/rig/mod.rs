@@ -106,23 +106,43 @@ impl GltfFile {
     }
 
     /// Parses the bytes of a glTF file; `label` names it in errors.
+    ///
+    /// The JSON is validated by the gltf crate, except `extensionsRequired`:
+    /// an audit reads only nodes and skins, so a file needing, say, mesh
+    /// compression is still read. Node transforms must give finite world
+    /// matrices. Never panics: the few inputs known to panic inside the gltf
+    /// crate are refused first, and any other panic there becomes an error.
     pub fn from_bytes(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
         let fail = |what: String| DataError::whole_file(label, what);
-        let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| {
+        let (json_bytes, blob) = if bytes.starts_with(b"glTF") {
+            split_glb(bytes).map_err(|e| fail(format!("has a broken GLB container: {e}")))?
+        } else {
+            (bytes, None)
+        };
+        let json: serde_json::Value = serde_json::from_slice(json_bytes).map_err(|e| {
+            fail(format!(
+                "is not a valid glTF 2.0 file (its JSON is unreadable: {e}); export it as glTF 2.0 (.glb or .gltf)"
+            ))
+        })?;
+        precheck(&json).map_err(|e| fail(format!("is not a valid glTF 2.0 file ({e})")))?;
+        let mut for_document = json.clone();
+        if let Some(o) = for_document.as_object_mut() {
+            o.remove("extensionsRequired");
+        }
+        let root: gltf::json::Root = serde_json::from_value(for_document).map_err(|e| {
             fail(format!(
                 "is not a valid glTF 2.0 file ({e}); export it as glTF 2.0 (.glb or .gltf)"
             ))
         })?;
-        let json_bytes: std::borrow::Cow<'_, [u8]> = if bytes.starts_with(b"glTF") {
-            gltf::binary::Glb::from_slice(bytes)
-                .map_err(|e| fail(format!("has a broken GLB container ({e})")))?
-                .json
-        } else {
-            bytes.into()
-        };
-        let json: serde_json::Value = serde_json::from_slice(&json_bytes)
-            .map_err(|e| fail(format!("has unreadable JSON ({e})")))?;
-        let document = gltf.document;
+        let document = quietly(|| gltf::Document::from_json(root))
+            .ok_or_else(|| {
+                fail("could not be parsed: the glTF reader failed on it; re-export it".into())
+            })?
+            .map_err(|e| {
+                fail(format!(
+                    "is not a valid glTF 2.0 file ({e}); export it as glTF 2.0 (.glb or .gltf)"
+                ))
+            })?;
         let n = document.nodes().len();
         let mut parent = vec![None; n];
         for node in document.nodes() {
@@ -144,7 +164,7 @@ impl GltfFile {
             label: label.to_string(),
             document,
             json,
-            blob: gltf.blob,
+            blob: blob.map(<[u8]>::to_vec),
             parent,
             world,
         })
@@ -160,6 +180,110 @@ impl GltfFile {
             })
             .collect()
     }
+}
+
+/// The JSON and binary chunks of a GLB file, with every length checked.
+fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), String> {
+    let word = |at: usize| -> Option<u32> {
+        bytes
+            .get(at..at.checked_add(4)?)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+    };
+    let version = word(4).ok_or("the header is cut short")?;
+    if version != 2 {
+        return Err(format!("version {version}; only glTF 2.0 is read"));
+    }
+    let total = word(8).ok_or("the header is cut short")? as usize;
+    if total < 20 || total > bytes.len() {
+        return Err(format!("it declares {total} bytes but has {}", bytes.len()));
+    }
+    let mut chunks = Vec::new();
+    let mut at = 12usize;
+    while at < total {
+        let len = word(at).ok_or("a chunk header is cut short")? as usize;
+        let kind = word(at + 4).ok_or("a chunk header is cut short")?;
+        let start = at + 8;
+        let end = start
+            .checked_add(len)
+            .filter(|&e| e <= total)
+            .ok_or("a chunk runs past the end")?;
+        chunks.push((kind, &bytes[start..end]));
+        at = end;
+    }
+    match chunks.as_slice() {
+        [(0x4E4F_534A, json), rest @ ..] => {
+            let bin = rest
+                .iter()
+                .find(|(k, _)| *k == 0x004E_4942)
+                .map(|(_, b)| *b);
+            Ok((json, bin))
+        }
+        _ => Err("its first chunk is not JSON".into()),
+    }
+}
+
+/// Refuses what is known to panic inside the gltf crate's validation: a mesh
+/// attribute naming an accessor that does not exist.
+fn precheck(json: &serde_json::Value) -> Result<(), String> {
+    let accessors = json["accessors"].as_array().map_or(0, Vec::len);
+    for (m, mesh) in json["meshes"].as_array().into_iter().flatten().enumerate() {
+        for (p, prim) in mesh["primitives"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
+            let targets = prim["targets"].as_array().into_iter().flatten();
+            for attrs in std::iter::once(&prim["attributes"]).chain(targets) {
+                for (name, v) in attrs.as_object().into_iter().flatten() {
+                    if v.as_u64().is_none_or(|i| i >= accessors as u64) {
+                        return Err(format!(
+                            "mesh {m} primitive {p} attribute {name} names accessor {v}, which does not exist"
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The joint a slot stands for on `finger`, for messages.
+fn slot_name(finger: Finger, slot: Slot) -> &'static str {
+    match (slot, finger) {
+        (Slot::Carpal, _) => "CMC",
+        (Slot::Mcp, _) => "MCP",
+        (Slot::First, Finger::Thumb) => "IP",
+        (Slot::First, _) => "PIP",
+        (Slot::Second, _) => "DIP",
+        (Slot::Tip, _) => "tip",
+    }
+}
+
+/// True when `node` lies below `ancestor` in the node hierarchy (or is it).
+fn below(parent: &[Option<usize>], node: usize, ancestor: usize) -> bool {
+    let mut at = Some(node);
+    let mut steps = 0;
+    while let Some(i) = at {
+        if i == ancestor {
+            return true;
+        }
+        steps += 1;
+        if steps > parent.len() {
+            return false;
+        }
+        at = parent[i];
+    }
+    false
+}
+
+/// Runs `f`, turning a panic into `None` without printing it.
+fn quietly<T>(f: impl FnOnce() -> T) -> Option<T> {
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).ok();
+    std::panic::set_hook(hook);
+    out
 }
 
 /// World matrices from parents and local matrices; `None` on a cycle. O(n depth).
@@ -241,14 +365,17 @@ impl Rig {
         if skins.is_empty() {
             candidate.fill(true);
         } else {
-            for (i, c) in candidate.iter_mut().enumerate() {
-                let mut at = Some(i);
-                while let Some(k) = at {
-                    if skinned[k] {
-                        *c = true;
-                        break;
-                    }
-                    at = file.parent[k];
+            // Skinned joints and everything below them, each node visited once.
+            let mut children = vec![Vec::new(); n];
+            for (i, p) in file.parent.iter().enumerate() {
+                if let Some(p) = *p {
+                    children[p].push(i);
+                }
+            }
+            let mut stack: Vec<usize> = (0..n).filter(|&i| skinned[i]).collect();
+            while let Some(i) = stack.pop() {
+                if !std::mem::replace(&mut candidate[i], true) {
+                    stack.extend_from_slice(&children[i]);
                 }
             }
         }
@@ -313,20 +440,37 @@ impl Rig {
         }
         // Best node per (side, finger, slot).
         let mut best: BTreeMap<(Option<Side>, Finger, Slot), (u8, usize)> = BTreeMap::new();
+        let mut ties: BTreeMap<(Option<Side>, Finger, Slot), Vec<usize>> = BTreeMap::new();
         for (i, f) in found.iter().enumerate() {
             if let Some((side, finger, slot, prio)) = *f {
-                let e = best.entry((side, finger, slot)).or_insert((prio, i));
+                let key = (side, finger, slot);
+                let e = best.entry(key).or_insert((prio, i));
                 if prio < e.0 {
                     *e = (prio, i);
+                    ties.remove(&key);
+                } else if prio == e.0 && e.1 != i {
+                    ties.entry(key).or_default().push(i);
                 }
             }
+        }
+        let mut notes = Vec::new();
+        for ((side, finger, slot), others) in &ties {
+            let chosen = best[&(*side, *finger, *slot)].1;
+            let side = side.map_or(String::new(), |s| format!("{} ", s.name()));
+            let also: Vec<String> = others.iter().map(|&i| format!("'{}'", names[i])).collect();
+            notes.push(format!(
+                "{side}{finger} {}: '{}' was used; {} would also fit (give --map to choose)",
+                slot_name(*finger, *slot),
+                names[chosen],
+                also.join(", ")
+            ));
         }
         let mut groups: BTreeMap<(Option<Side>, Finger), HashMap<Slot, usize>> = BTreeMap::new();
         for (&(side, finger, slot), &(_, node)) in &best {
             groups.entry((side, finger)).or_default().insert(slot, node);
         }
         let mut chains = Vec::new();
-        let mut notes = Vec::new();
+        let mut bad = Vec::new();
         for ((side, finger), slots) in groups {
             let label = match side {
                 Some(s) => format!("{} {finger}", s.name()),
@@ -353,9 +497,41 @@ impl Rig {
                 }
                 continue;
             }
-            let tip = slots.get(&Slot::Tip).copied();
-            if tip.is_some() {
-                wanted.push((Slot::Tip, Joint::Tip));
+            let mut tip = slots.get(&Slot::Tip).copied();
+            if let Some(t) = tip {
+                let last = slots[&wanted[wanted.len() - 1].0];
+                if below(&file.parent, t, last) {
+                    wanted.push((Slot::Tip, Joint::Tip));
+                } else {
+                    notes.push(format!(
+                        "{label}: tip '{}' is not below '{}' in the node hierarchy, so it is not used",
+                        names[t], names[last]
+                    ));
+                    tip = None;
+                }
+            }
+            if let Some(w) = wanted
+                .windows(2)
+                .find(|w| !below(&file.parent, slots[&w[1].0], slots[&w[0].0]))
+            {
+                notes.push(format!(
+                    "{label}: '{}' is not below '{}' in the node hierarchy, so these are not one finger; left out (give --map to choose)",
+                    names[slots[&w[1].0]],
+                    names[slots[&w[0].0]]
+                ));
+                continue;
+            }
+            if let Some(&(slot, j)) = wanted
+                .iter()
+                .find(|(s, _)| !file.world[slots[s]].is_finite())
+            {
+                bad.push(Problem::file(format!(
+                    "node '{}' ({label} {}) has a non-finite world transform (a zero rotation quaternion, \
+                     a zero scale above it, or a huge value); fix its transform or its parents'",
+                    names[slots[&slot]],
+                    j.name()
+                )));
+                continue;
             }
             let joints = wanted
                 .iter()
@@ -375,6 +551,12 @@ impl Rig {
                 finger,
                 joints,
                 has_tip: tip.is_some(),
+            });
+        }
+        if !bad.is_empty() {
+            return Err(DataError {
+                file: file.label.clone(),
+                problems: bad,
             });
         }
         if chains.is_empty() {
