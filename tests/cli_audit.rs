@@ -345,26 +345,246 @@ fn fix_never_overwrites_the_input_and_bad_files_are_clear_errors() {
     wd.write("junk.glb", b"glTF\x02\x00\x00\x00garbage");
     wd.run(&["audit", "junk.glb"])
         .data_error()
-        .stderr_has("junk.glb: is not a valid glTF 2.0 file");
+        .stderr_has("junk.glb: has a broken GLB container");
     wd.run(&["audit", "missing.glb"])
         .data_error()
         .stderr_has("missing.glb");
     assert!(!wd.path().join("hand.fbx").exists());
 }
 
-/// Writes example rigs for the README when PHALANX_WRITE_EXAMPLES names a directory.
+/// The example rigs of the README (docs/examples) are what the builder makes;
+/// `PHALANX_WRITE_EXAMPLES=1 cargo test --test cli_audit examples` renews them.
 #[test]
-fn write_examples_when_asked() {
-    let Ok(dir) = std::env::var("PHALANX_WRITE_EXAMPLES") else {
-        return;
-    };
-    let spec = HandSpec::new(Naming::Mixamo)
+fn the_committed_example_rigs_are_current() {
+    let far = HandSpec::new(Naming::Mixamo)
         .moved("index", 1, 1.0)
         .moved("ring", 2, -0.8);
-    std::fs::write(format!("{dir}/hand.glb"), build(&spec)).unwrap();
-    std::fs::write(
-        format!("{dir}/avatar.vrm"),
-        build(&HandSpec::new(Naming::VrmTable)),
-    )
-    .unwrap();
+    let examples = [
+        ("docs/examples/hand.glb", build(&far)),
+        (
+            "docs/examples/avatar.vrm",
+            build(&HandSpec::new(Naming::VrmTable)),
+        ),
+    ];
+    for (path, bytes) in examples {
+        let path = manifest_dir().join(path);
+        if std::env::var_os("PHALANX_WRITE_EXAMPLES").is_some() {
+            std::fs::write(&path, &bytes).unwrap();
+        }
+        let committed = std::fs::read(&path).unwrap_or_default();
+        assert!(
+            committed == bytes,
+            "{} is stale: run PHALANX_WRITE_EXAMPLES=1 cargo test --test cli_audit examples",
+            path.display()
+        );
+    }
+}
+
+/// Worst distance between the skinned rest vertices of two files.
+fn worst_vertex_move(a: &[u8], b: &[u8]) -> f64 {
+    let (v0, v1) = (skinned_rest_vertices(a), skinned_rest_vertices(b));
+    assert_eq!(v0.len(), v1.len());
+    v0.iter()
+        .zip(&v1)
+        .map(|(a, b)| (*a - *b).length())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn both_hands_matrix_nodes_and_gltf_output_keep_the_mesh() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let mut spec = HandSpec::new(Naming::Mixamo).moved("middle", 1, -0.9);
+    spec.left_too = true;
+    spec.matrices = true;
+    let input = build(&spec);
+    wd.write("both.glb", &input);
+    let doc = audit_json(&wd, "both.glb");
+    assert_eq!(fingers(&doc).len(), 10);
+    let sides: Vec<&str> = fingers(&doc)
+        .iter()
+        .map(|f| f["side"].as_str().unwrap())
+        .collect();
+    assert_eq!(sides.iter().filter(|s| **s == "left").count(), 5);
+    // Both middle fingers were moved (the left is a mirror image): both flagged, towards the root.
+    assert_eq!(doc["fingers_outside"], 2);
+    for f in fingers(&doc).iter().filter(|f| f["finger"] == "middle") {
+        assert_eq!(
+            f["audit"]["joints"][0]["standing"], "below",
+            "{}",
+            f["side"]
+        );
+    }
+    for out in ["fixed.glb", "fixed.gltf"] {
+        wd.run(&["audit", "both.glb", "--fix", out])
+            .ok()
+            .stderr_has("0 of 10 fingers outside");
+        let fixed = wd.read(out);
+        let worst = worst_vertex_move(&input, &fixed);
+        assert!(worst < 1e-5, "{out}: a vertex moved by {worst}");
+        // Matrix nodes stay matrix nodes.
+        let (json, _) = read_glb(&fixed);
+        let pip = json["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|n| n["name"] == "mixamorig:LeftHandMiddle2")
+            .unwrap();
+        assert!(pip.get("matrix").is_some() && pip.get("translation").is_none());
+    }
+}
+
+#[test]
+fn unreal_webxr_and_vrm0_names_are_read() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.write("ue.glb", build(&HandSpec::new(Naming::Unreal)));
+    let doc = audit_json(&wd, "ue.glb");
+    let idx = finger_of(&doc, "index");
+    assert_eq!(idx["joints"][0]["name"], "index_01_r");
+    assert_eq!(idx["audit"]["basis"], "ratio");
+    assert_eq!(finger_of(&doc, "thumb")["joints"][0]["name"], "thumb_02_r");
+    wd.write("xr.glb", build(&HandSpec::new(Naming::WebXr)));
+    let doc = audit_json(&wd, "xr.glb");
+    let little = finger_of(&doc, "little");
+    assert_eq!(little["side"], Value::Null);
+    assert_eq!(little["joints"][3]["name"], "pinky-finger-tip");
+    assert_eq!(little["audit"]["basis"], "relative");
+    assert_eq!(
+        finger_of(&doc, "thumb")["joints"][0]["name"],
+        "thumb-phalanx-proximal"
+    );
+    wd.run(&["audit", "xr.glb"])
+        .ok()
+        .stdout_has("\nthumb (thumb-phalanx-proximal");
+    // VRM 0.x: the thumb's MCP is its "Intermediate" bone.
+    wd.write("v0.vrm", build(&HandSpec::new(Naming::Vrm0Table)));
+    let doc = audit_json(&wd, "v0.vrm");
+    let thumb = finger_of(&doc, "thumb");
+    assert_eq!(thumb["joints"].as_array().unwrap().len(), 2);
+    assert_eq!(thumb["joints"][0]["name"], "Bone.000");
+    assert_eq!(finger_of(&doc, "ring")["audit"]["basis"], "ratio");
+}
+
+#[test]
+fn a_map_file_also_drives_fix() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let input = build(&HandSpec::new(Naming::Anonymous).moved("index", 1, 1.0));
+    wd.write("bones.glb", &input);
+    let mut map = String::from("node,side,finger,joint\n");
+    for (k, j) in ["MCP", "PIP", "DIP", "tip"].iter().enumerate() {
+        map.push_str(&format!("Bone.{:03},right,index,{j}\n", 3 + k));
+    }
+    wd.write("names.csv", &map);
+    wd.run(&["audit", "bones.glb", "--map", "names.csv", "--strict"])
+        .expect_code(1);
+    wd.run(&[
+        "audit",
+        "bones.glb",
+        "--map",
+        "names.csv",
+        "--fix",
+        "out.glb",
+    ])
+    .ok()
+    .stderr_has("0 of 1 fingers outside");
+    assert!(worst_vertex_move(&input, &wd.read("out.glb")) < 1e-5);
+}
+
+/// Edits the JSON of a GLB built by the tests.
+fn edit(bytes: &[u8], f: impl FnOnce(&mut Value)) -> Vec<u8> {
+    let (mut json, bin) = read_glb(bytes);
+    f(&mut json);
+    common::hand::glb(&json, bin)
+}
+
+#[test]
+fn hostile_rigs_get_clear_errors_and_never_a_panic() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let good = build(&HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0));
+    let node = |json: &Value, name: &str| {
+        json["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .position(|n| n["name"] == name)
+            .unwrap()
+    };
+    // A zero quaternion on a finger joint: a non-finite world transform.
+    wd.write(
+        "nan.glb",
+        edit(&good, |j| {
+            let i = node(j, "mixamorig:RightHandRing2");
+            j["nodes"][i]["rotation"] = serde_json::json!([0.0, 0.0, 0.0, 0.0]);
+        }),
+    );
+    wd.run(&["audit", "nan.glb"])
+        .data_error()
+        .stderr_has("'mixamorig:RightHandRing2' (right ring PIP) has a non-finite world transform");
+    // A mesh attribute naming a missing accessor (panics inside the gltf crate if passed on).
+    wd.write(
+        "attr.glb",
+        edit(&good, |j| {
+            j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = serde_json::json!(99)
+        }),
+    );
+    wd.run(&["audit", "attr.glb"])
+        .data_error()
+        .stderr_has("attribute POSITION names accessor 99, which does not exist");
+    // A GLB header that declares fewer bytes than a header.
+    let mut short = good.clone();
+    short[8..12].copy_from_slice(&4u32.to_le_bytes());
+    wd.write("short.glb", short);
+    wd.run(&["audit", "short.glb"])
+        .data_error()
+        .stderr_has("broken GLB container");
+    // A required extension the audit does not need is no obstacle.
+    wd.write(
+        "quant.glb",
+        edit(&good, |j| {
+            j["extensionsUsed"] = serde_json::json!(["KHR_mesh_quantization"]);
+            j["extensionsRequired"] = serde_json::json!(["KHR_mesh_quantization"]);
+        }),
+    );
+    assert_eq!(audit_json(&wd, "quant.glb")["fingers_outside"], 1);
+    // A zero scale collapses the hand: nothing to judge, said plainly.
+    wd.write(
+        "flat.glb",
+        edit(&good, |j| {
+            let i = node(j, "mixamorig:RightHand");
+            j["nodes"][i]["scale"] = serde_json::json!([0.0, 0.0, 0.0]);
+        }),
+    );
+    wd.run(&["audit", "flat.glb"])
+        .ok()
+        .stdout_has("zero length");
+    // --fix: a buffer outside the input's folder is never read.
+    let (mut json, bin) = read_glb(&good);
+    wd.write("hand.bin", &bin);
+    json["buffers"][0]["uri"] = serde_json::json!("../hand.bin");
+    wd.mkdir("sub");
+    wd.write("sub/hand.gltf", serde_json::to_vec(&json).unwrap());
+    wd.run(&["audit", "sub/hand.gltf"]).ok();
+    wd.run(&["audit", "sub/hand.gltf", "--fix", "out.glb"])
+        .data_error()
+        .stderr_has("is not a plain relative path beside the file");
+    // ... while one beside it, percent-encoded, is.
+    json["buffers"][0]["uri"] = serde_json::json!("hand%20data.bin");
+    wd.write("sub/hand data.bin", &bin);
+    wd.write("sub/hand.gltf", serde_json::to_vec(&json).unwrap());
+    wd.run(&["audit", "sub/hand.gltf", "--fix", "out.glb"]).ok();
+    // A compressed buffer view cannot be rewritten: refused, nothing written.
+    wd.write(
+        "meshopt.glb",
+        edit(&good, |j| {
+            j["bufferViews"][0]["extensions"] =
+                serde_json::json!({"EXT_meshopt_compression": {"buffer": 0, "byteLength": 4, "byteStride": 4, "count": 1, "mode": "ATTRIBUTES"}});
+        }),
+    );
+    wd.run(&["audit", "meshopt.glb", "--fix", "m.glb"])
+        .data_error()
+        .stderr_has("EXT_meshopt_compression");
+    assert!(!wd.path().join("m.glb").exists());
 }

@@ -17,10 +17,16 @@ pub enum Naming {
     Mixamo,
     /// rightIndexProximal.., VRM 1.0 thumb (Metacarpal, Proximal, Distal); no tips.
     Vrm,
-    /// Bone.000.. with a VRMC_vrm humanoid table naming them; no tips.
+    /// Bone.000.. with a VRMC_vrm (1.0) humanoid table naming them; no tips.
     VrmTable,
-    /// DEF-f_index.01.R.. with control twins (no DEF-) placed elsewhere, and _end leaf tips.
+    /// Bone.000.. with a VRM 0.x humanoid table (thumb MCP = Intermediate); no tips.
+    Vrm0Table,
+    /// DEF-f_index.01.R.. with skinned control twins (no DEF-) placed elsewhere, and _end leaf tips.
     Rigify,
+    /// Unreal mannequin: index_01_r.., thumb_02_r = MCP; no tips.
+    Unreal,
+    /// WebXR joint names, no side: index-finger-phalanx-proximal.., index-finger-tip.
+    WebXr,
     /// Hips, Spine, Bone.000..: nothing recognisable.
     Anonymous,
 }
@@ -41,16 +47,25 @@ pub const CM_PER_UNIT: f64 = 0.0125;
 #[derive(Clone, Debug)]
 pub struct HandSpec {
     pub naming: Naming,
+    /// Also build a mirrored left hand (names that carry a side only).
+    pub left_too: bool,
+    /// Write every node's transform as a `matrix` instead of translation, rotation, scale.
+    pub matrices: bool,
     /// Moves: (finger, joint index along the chain from MCP = 0, distance in cm
     /// along the finger's direction; + towards the tip). Children follow.
     pub moves: Vec<(&'static str, usize, f64)>,
+    /// Extra top-level JSON members (e.g. extensionsRequired).
+    pub extra: Vec<(&'static str, Value)>,
 }
 
 impl HandSpec {
     pub fn new(naming: Naming) -> HandSpec {
         HandSpec {
             naming,
+            left_too: false,
+            matrices: false,
             moves: Vec::new(),
+            extra: Vec::new(),
         }
     }
 
@@ -70,6 +85,7 @@ fn cap(s: &str) -> String {
 /// The node name of joint `k` (0 = MCP) of `finger`, `None` where the naming has no such node.
 fn joint_name(
     naming: Naming,
+    left: bool,
     finger: &str,
     k: usize,
     count: usize,
@@ -77,91 +93,112 @@ fn joint_name(
 ) -> Option<String> {
     let thumb = finger == "thumb";
     let tip = k + 1 == count;
+    let pinky = if finger == "little" { "pinky" } else { finger };
+    let (side, s) = if left { ("Left", "L") } else { ("Right", "R") };
     Some(match naming {
         Naming::Mixamo => format!(
-            "mixamorig:RightHand{}{}",
-            cap(if finger == "little" { "pinky" } else { finger }),
+            "mixamorig:{side}Hand{}{}",
+            cap(pinky),
             k + 1 + usize::from(thumb)
         ),
-        Naming::Vrm | Naming::VrmTable if tip => return None,
-        Naming::Vrm => {
-            let parts: &[&str] = if thumb {
-                &["Proximal", "Distal"]
+        Naming::Vrm | Naming::VrmTable | Naming::Vrm0Table | Naming::Unreal if tip => return None,
+        Naming::Vrm => format!(
+            "{}{}{}",
+            side.to_lowercase(),
+            cap(finger),
+            vrm_part(finger, k, false)
+        ),
+        Naming::VrmTable | Naming::Vrm0Table | Naming::Anonymous => format!("Bone.{serial:03}"),
+        Naming::Unreal => format!(
+            "{pinky}_{:02}_{}",
+            k + 1 + usize::from(thumb),
+            s.to_lowercase()
+        ),
+        Naming::WebXr => {
+            let f = if thumb {
+                "thumb".to_string()
             } else {
-                &["Proximal", "Intermediate", "Distal"]
+                format!("{pinky}-finger")
             };
-            format!("right{}{}", cap(finger), parts[k])
+            let parts: &[&str] = if thumb {
+                &["phalanx-proximal", "phalanx-distal", "tip"]
+            } else {
+                &[
+                    "phalanx-proximal",
+                    "phalanx-intermediate",
+                    "phalanx-distal",
+                    "tip",
+                ]
+            };
+            format!("{f}-{}", parts[k])
         }
-        Naming::VrmTable | Naming::Anonymous => format!("Bone.{serial:03}"),
         Naming::Rigify => {
             let f = if thumb {
                 "thumb".to_string()
-            } else if finger == "little" {
-                "f_pinky".to_string()
             } else {
-                format!("f_{finger}")
+                format!("f_{pinky}")
             };
             let n = k + 1 + usize::from(thumb);
             if tip {
-                format!("DEF-{f}.{:02}.R_end", n - 1)
+                format!("DEF-{f}.{:02}.{s}_end", n - 1)
             } else {
-                format!("DEF-{f}.{n:02}.R")
+                format!("DEF-{f}.{n:02}.{s}")
             }
         }
     })
 }
 
-/// The VRM 1.0 bone name of joint `k` of `finger` (no tips).
-fn vrm_bone(finger: &str, k: usize) -> String {
-    let parts: &[&str] = if finger == "thumb" {
+/// The VRM part name of joint `k` of `finger` (1.0, or 0.x with its thumb one further).
+fn vrm_part(finger: &str, k: usize, vrm0: bool) -> &'static str {
+    let parts: &[&'static str] = if finger == "thumb" && vrm0 {
+        &["Intermediate", "Distal"]
+    } else if finger == "thumb" {
         &["Proximal", "Distal"]
     } else {
         &["Proximal", "Intermediate", "Distal"]
     };
-    format!("right{}{}", cap(finger), parts[k])
+    parts[k]
+}
+
+struct Tree {
+    nodes: Vec<Value>,
+    children: Vec<Vec<usize>>,
+}
+
+impl Tree {
+    fn add(&mut self, parent: Option<usize>, node: Value) -> usize {
+        self.nodes.push(node);
+        self.children.push(Vec::new());
+        let i = self.nodes.len() - 1;
+        if let Some(p) = parent {
+            self.children[p].push(i);
+        }
+        i
+    }
 }
 
 /// Builds the hand as GLB bytes.
 pub fn build(spec: &HandSpec) -> Vec<u8> {
-    let mut nodes: Vec<Value> = Vec::new();
-    let mut children: Vec<Vec<usize>> = Vec::new();
-    let add = |nodes: &mut Vec<Value>,
-               children: &mut Vec<Vec<usize>>,
-               parent: Option<usize>,
-               node: Value| {
-        nodes.push(node);
-        children.push(Vec::new());
-        let i = nodes.len() - 1;
-        if let Some(p) = parent {
-            children[p].push(i);
-        }
-        i
+    let mut tree = Tree {
+        nodes: Vec::new(),
+        children: Vec::new(),
     };
-    let (hips, hand_name) = match spec.naming {
-        Naming::Anonymous => ("Hips", "Spine".to_string()),
-        Naming::Mixamo => ("mixamorig:Hips", "mixamorig:RightHand".into()),
-        _ => ("Hips", "RightHand".into()),
+    let hips = if spec.naming == Naming::Mixamo {
+        "mixamorig:Hips"
+    } else {
+        "Hips"
     };
-    let armature = add(
-        &mut nodes,
-        &mut children,
+    let armature = tree.add(
         None,
         json!({"name": "Armature", "scale": [0.01, 0.01, 0.01], "rotation": quat_arr(DQuat::from_rotation_x(0.2))}),
     );
-    let hips = add(
-        &mut nodes,
-        &mut children,
+    let hips = tree.add(
         Some(armature),
         json!({"name": hips, "translation": [0.0, 100.0, 0.0]}),
     );
-    let hand = add(
-        &mut nodes,
-        &mut children,
-        Some(hips),
-        json!({"name": hand_name, "translation": [40.0, 30.0, 2.0], "rotation": quat_arr(DQuat::from_rotation_z(30f64.to_radians()))}),
-    );
-    let mut joints = vec![hand];
+    let mut joints = Vec::new();
     let mut vrm_table = serde_json::Map::new();
+    let mut vrm0_table = Vec::new();
     let mut serial = 0;
     // MCP positions in the hand's frame (cm); fingers point along +y.
     let roots = [
@@ -171,67 +208,109 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
         (2.2, 8.8, 0.0),
         (3.8, 7.9, 0.0),
     ];
-    for (fi, (finger, segs)) in XRAY_1B.iter().enumerate() {
-        let count = segs.len() + 1;
-        let mut parent = hand;
-        for k in 0..count {
-            let along = if k == 0 {
-                0.0
-            } else {
-                segs[k - 1] * CM_PER_UNIT
-            };
-            let mut t = if k == 0 {
-                let r = roots[fi];
-                DVec3::new(r.0, r.1, r.2)
-            } else {
-                DVec3::new(0.0, along, 0.0)
-            };
-            for &(mf, mk, cm) in &spec.moves {
-                if mf == *finger && mk == k {
-                    t.y += cm;
+    let sides: &[bool] = if spec.left_too {
+        &[false, true]
+    } else {
+        &[false]
+    };
+    for &left in sides {
+        let mirror = if left { -1.0 } else { 1.0 };
+        let hand_name = match (spec.naming, left) {
+            (Naming::Anonymous, _) => "Spine".to_string(),
+            (Naming::Mixamo, false) => "mixamorig:RightHand".into(),
+            (Naming::Mixamo, true) => "mixamorig:LeftHand".into(),
+            (_, false) => "RightHand".into(),
+            (_, true) => "LeftHand".into(),
+        };
+        let rot = DQuat::from_rotation_z(mirror * 30f64.to_radians());
+        let pos = DVec3::new(mirror * 40.0, 30.0, 2.0);
+        let hand_node =
+            json!({"name": hand_name, "translation": pos.to_array(), "rotation": quat_arr(rot)});
+        let hand = tree.add(Some(hips), hand_node);
+        joints.push(hand);
+        for (fi, (finger, segs)) in XRAY_1B.iter().enumerate() {
+            let count = segs.len() + 1;
+            let mut parent = hand;
+            for k in 0..count {
+                let mut t = if k == 0 {
+                    let r = roots[fi];
+                    DVec3::new(mirror * r.0, r.1, r.2)
+                } else {
+                    DVec3::new(0.0, segs[k - 1] * CM_PER_UNIT, 0.0)
+                };
+                for &(mf, mk, cm) in &spec.moves {
+                    if mf == *finger && mk == k {
+                        t.y += cm;
+                    }
+                    // Keep the later joints about where they were: the next offset shrinks.
+                    if mf == *finger && mk + 1 == k {
+                        t.y -= cm;
+                    }
                 }
-                // Keep the later joints where they were: the next joint's offset shrinks.
-                if mf == *finger && mk + 1 == k {
-                    t.y -= cm;
+                let name = joint_name(spec.naming, left, finger, k, count, serial);
+                serial += 1;
+                let Some(name) = name else { continue };
+                let mut node = json!({"name": name, "translation": t.to_array()});
+                if k >= 1 && k + 1 < count {
+                    node["rotation"] = quat_arr(DQuat::from_rotation_x(12f64.to_radians()));
                 }
+                let i = tree.add(Some(parent), node);
+                if matches!(spec.naming, Naming::VrmTable | Naming::Vrm0Table) {
+                    let bone = format!(
+                        "right{}{}",
+                        cap(finger),
+                        vrm_part(finger, k, spec.naming == Naming::Vrm0Table)
+                    );
+                    if spec.naming == Naming::VrmTable {
+                        vrm_table.insert(bone, json!({"node": i}));
+                    } else {
+                        vrm0_table.push(json!({"bone": bone, "node": i}));
+                    }
+                }
+                if spec.naming == Naming::Rigify && k + 1 < count {
+                    // A skinned control twin without DEF-, 1 cm off: the reader must take the DEF- bone.
+                    let twin = tree.nodes[i]["name"]
+                        .as_str()
+                        .unwrap()
+                        .replacen("DEF-", "", 1);
+                    let twin = tree.add(
+                        Some(parent),
+                        json!({"name": twin, "translation": [t.x + 1.0, t.y, t.z]}),
+                    );
+                    joints.push(twin);
+                }
+                // Tips are unskinned leaves, as Blender's leaf bones are.
+                if k + 1 < count || spec.naming == Naming::Mixamo {
+                    joints.push(i);
+                }
+                parent = i;
             }
-            let name = joint_name(spec.naming, finger, k, count, serial);
-            serial += 1;
-            let Some(name) = name else { continue };
-            let mut node = json!({"name": name, "translation": t.to_array()});
-            if k >= 1 && k + 1 < count {
-                node["rotation"] = quat_arr(DQuat::from_rotation_x(12f64.to_radians()));
-            }
-            let i = add(&mut nodes, &mut children, Some(parent), node);
-            if spec.naming == Naming::VrmTable {
-                vrm_table.insert(vrm_bone(finger, k), json!({"node": i}));
-            }
-            if spec.naming == Naming::Rigify && k + 1 < count {
-                // A control twin without DEF-, 1 cm off: the reader must take the DEF- bone.
-                let twin = nodes[i]["name"].as_str().unwrap().replacen("DEF-", "", 1);
-                add(
-                    &mut nodes,
-                    &mut children,
-                    Some(parent),
-                    json!({"name": twin, "translation": [t.x + 1.0, t.y, t.z]}),
-                );
-            }
-            // Tips are unskinned leaves, as Blender's leaf bones are.
-            if k + 1 < count || spec.naming == Naming::Mixamo {
-                joints.push(i);
-            }
-            parent = i;
         }
     }
+    let Tree {
+        mut nodes,
+        children,
+    } = tree;
     for (i, c) in children.iter().enumerate() {
         if !c.is_empty() {
             nodes[i]["children"] = json!(c);
         }
     }
+    if spec.matrices {
+        for n in nodes.iter_mut() {
+            let m = local_of(n);
+            if let Some(o) = n.as_object_mut() {
+                for k in ["translation", "rotation", "scale"] {
+                    o.remove(k);
+                }
+            }
+            n["matrix"] = json!(m.to_cols_array());
+        }
+    }
     // World matrices of the bind pose, computed here independently of phalanx.
     let world = world_of(&nodes);
     // Vertices: two per joint, 3 mm off its centre, weighted 0.6 to the joint and
-    // 0.4 to its parent joint (or the hand).
+    // 0.4 to its parent joint (or the first hand).
     let mut positions: Vec<[f32; 3]> = Vec::new();
     let mut joint_ids: Vec<[u16; 4]> = Vec::new();
     let mut weights: Vec<[f32; 4]> = Vec::new();
@@ -304,6 +383,12 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
         doc["extensionsUsed"] = json!(["VRMC_vrm"]);
         doc["extensions"] =
             json!({"VRMC_vrm": {"specVersion": "1.0", "humanoid": {"humanBones": vrm_table}}});
+    } else if spec.naming == Naming::Vrm0Table {
+        doc["extensionsUsed"] = json!(["VRM"]);
+        doc["extensions"] = json!({"VRM": {"humanoid": {"humanBones": vrm0_table}}});
+    }
+    for (k, v) in &spec.extra {
+        doc[*k] = v.clone();
     }
     glb(&doc, bin)
 }
@@ -387,8 +472,16 @@ pub fn world_of(nodes: &[Value]) -> Vec<DMat4> {
         .collect()
 }
 
-/// The JSON and binary chunk of a GLB file.
+/// The JSON and binary chunk of a GLB file, or of a .gltf whose one buffer is
+/// an embedded base64 data URI.
 pub fn read_glb(bytes: &[u8]) -> (Value, Vec<u8>) {
+    if !bytes.starts_with(b"glTF") {
+        let doc: Value = serde_json::from_slice(bytes).unwrap();
+        let uri = doc["buffers"][0]["uri"].as_str().unwrap();
+        let b64 = uri.split_once(";base64,").unwrap().1;
+        let bin = base64::Engine::decode(&base64::engine::general_purpose::STANDARD, b64).unwrap();
+        return (doc, bin);
+    }
     let g = gltf::binary::Glb::from_slice(bytes).unwrap();
     (
         serde_json::from_slice(&g.json).unwrap(),
