@@ -2,7 +2,7 @@
 # Fills the fuzzing corpora from the test fixtures and the shipped data.
 set -euo pipefail
 cd "$(dirname "$0")"
-mkdir -p corpus/measurements corpus/claims
+mkdir -p corpus/measurements corpus/claims corpus/rig
 cp ../data/measurements.csv corpus/measurements/paper.csv
 cp ../data/paper_claims.csv corpus/claims/paper.csv
 for f in ../tests/fixtures/bad/*.csv ../tests/fixtures/fuzz/*; do
@@ -12,4 +12,5 @@ for f in ../tests/fixtures/bad/*.csv ../tests/fixtures/fuzz/*; do
         *) cp "$f" corpus/measurements/ ;;
     esac
 done
-echo "seeded: $(ls corpus/measurements | wc -l) measurement inputs, $(ls corpus/claims | wc -l) claims inputs"
+cp ../docs/examples/*.glb ../docs/examples/*.vrm corpus/rig/
+echo "seeded: $(ls corpus/measurements | wc -l) measurement inputs, $(ls corpus/claims | wc -l) claims inputs, $(ls corpus/rig | wc -l) rigs"

@@ -3,7 +3,8 @@
 //! Reproduces Chaudhry, You, Jin and Zhang, "Statistical Analysis of Joint
 //! Determination for Skeleton Driven Animation of Human Hands", and goes beyond it.
 //! Modules depend one way: [`dataset`] (ingest, validate) -> [`analysis`]
-//! (statistics, bootstrap, claims) -> [`report`] (views, plots, writers).
+//! (statistics, bootstrap, claims, rig audit) -> [`rig`] (glTF rigs in and
+//! out) -> [`report`] (views, plots, writers).
 
 pub mod analysis;
 pub mod atomic;

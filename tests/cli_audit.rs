@@ -588,3 +588,33 @@ fn hostile_rigs_get_clear_errors_and_never_a_panic() {
         .stderr_has("EXT_meshopt_compression");
     assert!(!wd.path().join("m.glb").exists());
 }
+
+/// The README shows real output: its audit example is what the binary prints.
+#[test]
+fn the_readme_audit_example_is_current() {
+    let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
+    let out = Workdir::new();
+    let run = out
+        .command(&["audit", "docs/examples/hand.glb"])
+        .current_dir(manifest_dir())
+        .output()
+        .unwrap();
+    assert!(run.status.success());
+    let text = String::from_utf8(run.stdout).unwrap();
+    let index: Vec<&str> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("right index"))
+        .take_while(|l| !l.is_empty())
+        .collect();
+    assert!(index.len() > 8, "{text}");
+    for line in index
+        .iter()
+        .copied()
+        .chain(text.lines().filter(|l| l.starts_with("Summary")))
+    {
+        assert!(
+            readme.contains(line),
+            "README lacks the current line:\n{line}"
+        );
+    }
+}

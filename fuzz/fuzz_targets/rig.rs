@@ -1,0 +1,35 @@
+//! Fuzzes the glTF rig reader, the audit of whatever it accepts, and `--fix` in memory.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use phalanx::analysis::{Settings, analyse};
+use phalanx::dataset::Dataset;
+use phalanx::rig::{AuditedRig, GltfFile, Rig};
+use std::path::Path;
+use std::sync::OnceLock;
+
+const PAPER: &[u8] = include_bytes!("../../data/measurements.csv");
+
+fuzz_target!(|data: &[u8]| {
+    static ANALYSIS: OnceLock<phalanx::analysis::Analysis> = OnceLock::new();
+    let a = ANALYSIS.get_or_init(|| {
+        let d = Dataset::from_bytes("measurements.csv", PAPER).expect("the paper's data loads");
+        analyse(&d, &Settings { resamples: 200, ..Settings::default() })
+    });
+    let Ok(file) = GltfFile::from_bytes("fuzz.glb", data) else {
+        return;
+    };
+    let Ok(rig) = Rig::from_file(file, None) else {
+        return;
+    };
+    let audited = AuditedRig::of("fuzz.glb", &rig.chains, &rig.notes, a);
+    for f in &audited.fingers {
+        for j in &f.audit.joints {
+            assert!(j.suggested.iter().all(|v| v.is_finite()));
+        }
+    }
+    // External buffers resolve in a folder that does not exist: never read.
+    if let Ok(fixed) = phalanx::rig::fix::fix(&rig.file, &audited.fingers, Path::new("/nonexistent-phalanx-fuzz"), true) {
+        let _ = GltfFile::from_bytes("fixed.glb", &fixed.bytes);
+    }
+});
