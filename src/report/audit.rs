@@ -50,15 +50,27 @@ pub fn basis_words(a: &FingerAudit) -> String {
     }
 }
 
-/// A finger's heading: label, node names, length.
+/// A finger's heading: label, node names, segment lengths and length.
 pub fn heading(f: &AuditedFinger) -> String {
     let names: Vec<&str> = f.chain.joints.iter().map(|j| j.name.as_str()).collect();
+    let segments: Vec<String> = f
+        .audit
+        .segments
+        .iter()
+        .enumerate()
+        .map(|(k, c)| format!("J{} {}", k + 1, num(c * MM, 2)))
+        .collect();
     let length = f
         .audit
         .length
-        .map(|l| format!(", length {} mm", num(l * MM, 1)))
-        .unwrap_or_default();
-    format!("{} ({}){length}", f.chain.label(), names.join(", "))
+        .map(|l| format!(", length {} mm", num(l * MM, 2)))
+        .unwrap_or_else(|| " mm".to_string());
+    format!(
+        "{} ({})\n  segments {}{length}",
+        f.chain.label(),
+        names.join(", "),
+        segments.join(", ")
+    )
 }
 
 /// The suggestion for one joint, in words.
