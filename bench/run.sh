@@ -47,6 +47,8 @@ measure "paper data, full report (all formats and plots)" "50 ms / 30 MB" -- "$b
 measure "10,000 X-rays, stats --format json" "1 s / 100 MB" -- "$bin" stats --data "$work/x10k.csv" --format json
 measure "100,000 X-rays, stats --format json" "10 s / 300 MB" -- "$bin" stats --data "$work/x100k.csv" --format json
 measure "100,000 X-rays, full report" "15 s / 400 MB" -- "$bin" report --data "$work/x100k.csv" --out "$work/r1"
+measure "rig audit (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb
+measure "rig audit --fix (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb --fix "$work/fixed.glb"
 echo
 echo "Growth with X-rays (stats --format json, 10,000 resamples):"
 echo

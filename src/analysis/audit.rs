@@ -538,6 +538,22 @@ mod tests {
             dir += 120f64.to_radians();
         }
         let shares = [0.48, 0.29, 0.23];
+        // A finger curled 60 degrees at each joint is solved exactly, in order.
+        let mut bent = vec![[0.0; 3]];
+        let mut dir = 0.0f64;
+        for len in [45.0, 28.0, 22.0] {
+            let p = *bent.last().unwrap();
+            let d = turn(dir);
+            bent.push([p[0] + len * d[0], p[1] + len * d[1], 0.0]);
+            dir += 60f64.to_radians();
+        }
+        let (q, u) = on_chain(&bent, &shares).expect("a 60-degree curl is solvable");
+        assert!(u[0] < u[1]);
+        let c: Vec<f64> = q.windows(2).map(|w| dist(w[0], w[1])).collect();
+        let total: f64 = c.iter().sum();
+        for (ck, s) in c.iter().zip(shares) {
+            assert!((ck / total - s).abs() < 1e-9, "{c:?}");
+        }
         if let Some((q, u)) = on_chain(&pts, &shares) {
             assert!(u.windows(2).all(|w| w[0] <= w[1]), "{u:?}");
             let c: Vec<f64> = q.windows(2).map(|w| dist(w[0], w[1])).collect();
