@@ -525,6 +525,56 @@ fn wrap(text: &str, px: f64, width: i32) -> Vec<String> {
     lines
 }
 
+/// A chart of labelled rows over a linear x axis from `x.0` to `x.1`: rows are
+/// `(label, group)` from the top, row r at y = count - 1 - r; rows of odd
+/// groups are shaded; the axes are drawn. Shared by the forest and rig plots.
+pub(super) fn row_chart<'a, 'b>(
+    pen: &Pen,
+    area: &'a Root<'b>,
+    rows: &[(String, usize)],
+    x: (f64, f64),
+    (top_px, axis_px): (u32, u32),
+    (x_desc, y_desc): (&str, &str),
+) -> Result<Chart<'a, 'b, Linear, Categories>, DrawError> {
+    let count = rows.len();
+    let (x0, x1) = x;
+    let keys: Vec<f64> = (0..count).map(|i| i as f64).collect();
+    let y_top = count.max(1) as f64 - 0.5;
+    let mut chart: Chart<'a, 'b, Linear, Categories> = ChartBuilder::on(area)
+        .margin_top(top_px)
+        .margin_left(MARGIN)
+        .margin_right(MARGIN + 8)
+        .x_label_area_size(axis_px)
+        .y_label_area_size(104)
+        .build_cartesian_2d(x0..x1, Categories::new(-0.5, y_top, keys))?;
+    let y_of = |r: usize| (count - 1 - r) as f64;
+    {
+        let at = |x: f64, y: f64| chart.backend_coord(&(x, y));
+        for (r, _) in rows.iter().enumerate().filter(|(_, (_, g))| g % 2 == 1) {
+            pen.rect(at(x0, y_of(r) + 0.5), at(x1, y_of(r) - 0.5), SHADE, 1.0)?;
+        }
+    }
+    let x_format = tick_format(x1 - x0);
+    let y_format = |y: &f64| {
+        let r = count as f64 - 1.0 - y.round();
+        if r >= 0.0 {
+            rows.get(r as usize).map_or("", |row| row.0.as_str())
+        } else {
+            ""
+        }
+        .to_string()
+    };
+    let axes = Axes {
+        x_desc: x_desc.to_string(),
+        y_desc: y_desc.to_string(),
+        x_grid: true,
+        x_format: &x_format,
+        y_format: &y_format,
+    };
+    draw_axes(&mut chart, &axes)?;
+    Ok(chart)
+}
+
 /// Texts and tick formats of a chart's two axes.
 pub(super) struct Axes<'f> {
     pub x_desc: String,

@@ -2,15 +2,13 @@
 //! mean and its four intervals stacked within the row, on one shared x axis.
 
 use super::draw::{
-    Axes, Categories, Chart, Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, Linear, MARGIN,
-    MUTED, Pen, Px, Root, SHADE, Swatch, WIDTH, draw_axes, extent, finish, level, padded, render,
-    stats_values, text_width, tick_format,
+    Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, MUTED, Pen, Px, Root, Swatch, WIDTH,
+    extent, finish, level, padded, render, row_chart, stats_values, text_width,
 };
 use super::finger::{quantity_sentence, short_label};
 use super::{Plot, PlotKind};
 use crate::analysis::{Analysis, QuantityStats};
 use crate::error::Error;
-use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
 /// Height of one row in pixels.
@@ -82,46 +80,19 @@ fn draw_chart(pen: &Pen, area: &Root<'_>, rows: &[Row]) -> DrawResult {
     let count = rows.len();
     let (x0, x1) = extent(rows.iter().flat_map(|r| stats_values(r.stats)))
         .map_or((0.0, 1.0), |(lo, hi)| padded(lo, hi, 0.04));
-    let keys: Vec<f64> = (0..count).map(|i| i as f64).collect();
-    let y_top = count.max(1) as f64 - 0.5;
-    let mut chart: Chart<'_, '_, Linear, Categories> = ChartBuilder::on(area)
-        .margin_top(TOP_PX)
-        .margin_left(MARGIN)
-        .margin_right(MARGIN + 8)
-        .x_label_area_size(AXIS_PX)
-        .y_label_area_size(104)
-        .build_cartesian_2d(x0..x1, Categories::new(-0.5, y_top, keys))?;
-    // Row r (from the top) sits at y = count - 1 - r.
+    let labels: Vec<(String, usize)> = rows.iter().map(|r| (r.label.clone(), r.group)).collect();
+    let chart = row_chart(
+        pen,
+        area,
+        &labels,
+        (x0, x1),
+        (TOP_PX, AXIS_PX),
+        (
+            "relative value J~k = Jk/J (fraction of the finger's total length J, unitless)",
+            "finger and segment",
+        ),
+    )?;
     let y_of = |r: usize| (count - 1 - r) as f64;
-    {
-        let at = |x: f64, y: f64| chart.backend_coord(&(x, y));
-        for (r, _) in rows
-            .iter()
-            .enumerate()
-            .filter(|(_, row)| row.group % 2 == 1)
-        {
-            pen.rect(at(x0, y_of(r) + 0.5), at(x1, y_of(r) - 0.5), SHADE, 1.0)?;
-        }
-    }
-    let x_format = tick_format(x1 - x0);
-    let y_format = |y: &f64| {
-        let r = count as f64 - 1.0 - y.round();
-        if r >= 0.0 {
-            rows.get(r as usize).map_or("", |row| row.label.as_str())
-        } else {
-            ""
-        }
-        .to_string()
-    };
-    let axes = Axes {
-        x_desc: "relative value J~k = Jk/J (fraction of the finger's total length J, unitless)"
-            .to_string(),
-        y_desc: "finger and segment".to_string(),
-        x_grid: true,
-        x_format: &x_format,
-        y_format: &y_format,
-    };
-    draw_axes(&mut chart, &axes)?;
     let at = |x: f64, y: f64| chart.backend_coord(&(x, y));
     if rows.is_empty() {
         let font = Font::new(14.0)

@@ -7,15 +7,13 @@
 //! every rig with two segments appears.
 
 use super::draw::{
-    Axes, Categories, Chart, Dir, DrawResult, Font, Frame, Kind, LegendItem, Linear, MARGIN, MUTED,
-    Pen, RANGE, Root, SHADE, Swatch, WIDTH, draw_axes, extent, finish, level, padded, render,
-    short, tick_format,
+    Dir, DrawResult, Font, Frame, Kind, LegendItem, MUTED, Pen, RANGE, Root, Swatch, WIDTH, extent,
+    finish, level, padded, render, row_chart, short,
 };
 use super::{Plot, PlotKind};
 use crate::analysis::{Analysis, Quantity, QuantityStats};
 use crate::dataset::Finger;
 use crate::error::Error;
-use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
 const ROW_PX: u32 = 50;
@@ -115,44 +113,19 @@ fn draw_chart(pen: &Pen, area: &Root<'_>, rows: &[Row], rigs: &[RigRatios]) -> D
         v
     });
     let (x0, x1) = extent(values).map_or((0.0, 1.0), |(lo, hi)| padded(lo, hi, 0.04));
-    let keys: Vec<f64> = (0..count).map(|i| i as f64).collect();
-    let y_top = count.max(1) as f64 - 0.5;
-    let mut chart: Chart<'_, '_, Linear, Categories> = ChartBuilder::on(area)
-        .margin_top(TOP_PX)
-        .margin_left(MARGIN)
-        .margin_right(MARGIN + 8)
-        .x_label_area_size(AXIS_PX)
-        .y_label_area_size(104)
-        .build_cartesian_2d(x0..x1, Categories::new(-0.5, y_top, keys))?;
+    let labels: Vec<(String, usize)> = rows.iter().map(|r| (r.label.clone(), r.group)).collect();
+    let chart = row_chart(
+        pen,
+        area,
+        &labels,
+        (x0, x1),
+        (TOP_PX, AXIS_PX),
+        (
+            "ratio of adjacent segment lengths (unitless)",
+            "finger and ratio",
+        ),
+    )?;
     let y_of = |r: usize| (count - 1 - r) as f64;
-    {
-        let at = |x: f64, y: f64| chart.backend_coord(&(x, y));
-        for (r, _) in rows
-            .iter()
-            .enumerate()
-            .filter(|(_, row)| row.group % 2 == 1)
-        {
-            pen.rect(at(x0, y_of(r) + 0.5), at(x1, y_of(r) - 0.5), SHADE, 1.0)?;
-        }
-    }
-    let x_format = tick_format(x1 - x0);
-    let y_format = |y: &f64| {
-        let r = count as f64 - 1.0 - y.round();
-        if r >= 0.0 {
-            rows.get(r as usize).map_or("", |row| row.label.as_str())
-        } else {
-            ""
-        }
-        .to_string()
-    };
-    let axes = Axes {
-        x_desc: "ratio of adjacent segment lengths (unitless)".to_string(),
-        y_desc: "finger and ratio".to_string(),
-        x_grid: true,
-        x_format: &x_format,
-        y_format: &y_format,
-    };
-    draw_axes(&mut chart, &axes)?;
     let at = |x: f64, y: f64| chart.backend_coord(&(x, y));
     if rows.is_empty() {
         let font = Font::new(14.0)
