@@ -241,6 +241,50 @@ fn forest_plot_has_a_row_per_relative_quantity() {
 }
 
 #[test]
+fn rig_plot_marks_every_rig_value_against_the_xray_ratios() {
+    let a = paper();
+    let rigs = vec![
+        RigRatios {
+            name: "Circle rig".into(),
+            values: vec![
+                (Finger::Index, Quantity::RatioJ2J1, 0.5),
+                (Finger::Thumb, Quantity::RatioJ2J1, 0.9),
+            ],
+        },
+        RigRatios {
+            name: "Square <rig>".into(),
+            values: vec![
+                (Finger::Little, Quantity::RatioJ3J2, 1.0),
+                (Finger::Ring, Quantity::RatioJ2J1, f64::NAN),
+            ],
+        },
+    ];
+    let p = rigs_plot(&a, &rigs).unwrap();
+    assert_eq!((p.id.as_str(), p.kind), ("rigs", PlotKind::Rigs));
+    assert_accessible(&p);
+    assert_well_formed(&p.svg);
+    // Thumb J2/J1 and four fingers x 2 ratios: 9 rows, each a mean diamond (the
+    // legend adds one); circles: the first rig's 2 values and its legend swatch;
+    // squares cannot be told from the range bands by tag, so count the rows' labels.
+    assert_eq!(count(&p.svg, "<circle"), 2 + 1);
+    assert_eq!(count(&p.svg, "<polygon"), 9 + 1);
+    for label in [
+        "thumb J2/J1",
+        "index J3/J2",
+        "little J3/J2",
+        "ratio of adjacent segment lengths (unitless)",
+    ] {
+        assert!(p.svg.contains(label), "lacks {label:?}");
+    }
+    assert!(!p.svg.contains("thumb J3/J2"));
+    assert!(p.svg.contains("Square &lt;rig&gt;"));
+    assert!(p.description.contains("index J2/J1: X-ray mean 0.563"));
+    assert!(p.description.contains("Circle rig 0.5"));
+    // A non-finite value is left out, not drawn.
+    assert!(!p.description.contains("NaN"));
+}
+
+#[test]
 fn user_text_is_escaped_exactly_once() {
     let csv = paper_csv()
         .replace("\n1a,", &format!("\n{SCRIPT},"))
