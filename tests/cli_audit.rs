@@ -464,6 +464,13 @@ fn unreal_webxr_and_vrm0_names_are_read() {
     assert_eq!(thumb["joints"].as_array().unwrap().len(), 2);
     assert_eq!(thumb["joints"][0]["name"], "Bone.000");
     assert_eq!(finger_of(&doc, "ring")["audit"]["basis"], "ratio");
+    // VRM 0.x names without a table: the thumb's Intermediate tells the version.
+    wd.write("v0names.glb", build(&HandSpec::new(Naming::Vrm0)));
+    let doc = audit_json(&wd, "v0names.glb");
+    let thumb = finger_of(&doc, "thumb");
+    assert_eq!(thumb["joints"][0]["name"], "rightThumbIntermediate");
+    assert_eq!(thumb["joints"][0]["joint"], "MCP");
+    assert_eq!(thumb["joints"][1]["name"], "rightThumbDistal");
 }
 
 #[test]

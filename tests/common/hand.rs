@@ -21,6 +21,8 @@ pub enum Naming {
     VrmTable,
     /// Bone.000.. with a VRM 0.x humanoid table (thumb MCP = Intermediate); no tips.
     Vrm0Table,
+    /// VRM 0.x names on the nodes, no table: rightThumbIntermediate is the thumb's MCP.
+    Vrm0,
     /// DEF-f_index.01.R.. with skinned control twins (no DEF-) placed elsewhere, and _end leaf tips.
     Rigify,
     /// Unreal mannequin: index_01_r.., thumb_02_r = MCP; no tips.
@@ -101,7 +103,17 @@ fn joint_name(
             cap(pinky),
             k + 1 + usize::from(thumb)
         ),
-        Naming::Vrm | Naming::VrmTable | Naming::Vrm0Table | Naming::Unreal if tip => return None,
+        Naming::Vrm | Naming::Vrm0 | Naming::VrmTable | Naming::Vrm0Table | Naming::Unreal
+            if tip =>
+        {
+            return None;
+        }
+        Naming::Vrm0 => format!(
+            "{}{}{}",
+            side.to_lowercase(),
+            cap(finger),
+            vrm_part(finger, k, true)
+        ),
         Naming::Vrm => format!(
             "{}{}{}",
             side.to_lowercase(),
