@@ -98,7 +98,7 @@ fn buffers(file: &GltfFile, dir: &Path) -> Result<Vec<Vec<u8>>, DataError> {
                         let read = || -> std::io::Result<Vec<u8>> {
                             let mut data = Vec::new();
                             std::io::Read::read_to_end(
-                                &mut std::io::Read::take(std::fs::File::open(&p)?, b.length() as u64 + 1),
+                                &mut std::io::Read::take(std::fs::File::open(&p)?, (b.length() as u64).saturating_add(1)),
                                 &mut data,
                             )?;
                             Ok(data)
@@ -160,13 +160,12 @@ fn inverse_binds(
     let need = stride
         .checked_mul(joints.saturating_sub(1))
         .and_then(|x| x.checked_add(64));
-    let (Some(start), Some(need)) = (start, need) else {
+    let in_view = need.and_then(|n| acc.offset().checked_add(n));
+    let view_end = view.offset().checked_add(view.length());
+    let (Some(start), Some(in_view), Some(view_end)) = (start, in_view, view_end) else {
         return Err(format!("{what} have impossible offsets"));
     };
-    if stride < 64
-        || acc.offset() + need > view.length()
-        || view.offset() + view.length() > buf.len()
-    {
+    if stride < 64 || in_view > view.length() || view_end > buf.len() {
         return Err(format!("{what} do not fit their buffer view"));
     }
     Ok((0..joints)
@@ -288,11 +287,20 @@ pub fn fix(
         bin.extend_from_slice(d);
     }
     if let Some(views) = json["bufferViews"].as_array_mut() {
-        for v in views {
+        for (k, v) in views.iter_mut().enumerate() {
             let b = v["buffer"].as_u64().unwrap_or(0) as usize;
             let off = v["byteOffset"].as_u64().unwrap_or(0) as usize;
+            let moved = starts
+                .get(b)
+                .and_then(|s| s.checked_add(off))
+                .ok_or_else(|| {
+                    DataError::whole_file(
+                        &file.label,
+                        format!("bufferView {k} has an impossible byteOffset"),
+                    )
+                })?;
             v["buffer"] = json!(0);
-            v["byteOffset"] = json!(starts.get(b).copied().unwrap_or(0) + off);
+            v["byteOffset"] = json!(moved);
         }
     }
     for skin in file.document.skins() {
@@ -343,17 +351,23 @@ pub fn fix(
     let mut warnings = Vec::new();
     let moved_nodes: Vec<usize> = touched.keys().copied().collect();
     for anim in file.document.animations() {
-        for ch in anim.channels() {
-            let t = ch.target();
-            if t.property() == gltf::animation::Property::Translation
-                && moved_nodes.contains(&t.node().index())
-            {
-                warnings.push(format!(
-                    "animation {} drives the translation of {}; its keyframes are unchanged and will undo the fix during playback",
-                    anim.name().map_or_else(|| format!("#{}", anim.index()), |s| format!("'{s}'")),
-                    t.node().name().unwrap_or("a moved joint"),
-                ));
-            }
+        let mut keyed: Vec<String> = anim
+            .channels()
+            .map(|ch| ch.target())
+            .filter(|t| {
+                t.property() == gltf::animation::Property::Translation
+                    && moved_nodes.contains(&t.node().index())
+            })
+            .map(|t| super::shown(t.node().name().unwrap_or("unnamed")))
+            .collect();
+        keyed.dedup();
+        if !keyed.is_empty() {
+            warnings.push(format!(
+                "animation {} keys the translation of {}: its keyframes are unchanged, and with the new \
+                 inverse bind matrices they would now distort the mesh; delete or re-bake those channels",
+                anim.name().map_or_else(|| format!("#{}", anim.index()), super::shown),
+                keyed.join(", ")
+            ));
         }
     }
     if file.document.images().any(

@@ -277,12 +277,37 @@ fn below(parent: &[Option<usize>], node: usize, ancestor: usize) -> bool {
     false
 }
 
-/// Runs `f`, turning a panic into `None` without printing it.
+/// A node name fit for a message or a terminal: quoted, control characters
+/// replaced, at most 80 characters.
+pub fn shown(name: &str) -> String {
+    let clean: String = name
+        .chars()
+        .map(|c| if c.is_control() { '\u{FFFD}' } else { c })
+        .collect();
+    crate::dataset::csvinput::quote(&clean)
+}
+
+thread_local! {
+    static QUIET: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs `f`, turning a panic into `None` without printing it. One panic hook,
+/// installed once, stays silent while its thread is inside `quietly` and
+/// otherwise passes on to the hook that was there before, so concurrent
+/// callers cannot leave the process with a silent hook.
 fn quietly<T>(f: impl FnOnce() -> T) -> Option<T> {
-    let hook = std::panic::take_hook();
-    std::panic::set_hook(Box::new(|_| {}));
+    static INSTALL: std::sync::Once = std::sync::Once::new();
+    INSTALL.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !QUIET.with(std::cell::Cell::get) {
+                previous(info);
+            }
+        }));
+    });
+    QUIET.with(|q| q.set(true));
     let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).ok();
-    std::panic::set_hook(hook);
+    QUIET.with(|q| q.set(false));
     out
 }
 
@@ -457,11 +482,11 @@ impl Rig {
         for ((side, finger, slot), others) in &ties {
             let chosen = best[&(*side, *finger, *slot)].1;
             let side = side.map_or(String::new(), |s| format!("{} ", s.name()));
-            let also: Vec<String> = others.iter().map(|&i| format!("'{}'", names[i])).collect();
+            let also: Vec<String> = others.iter().map(|&i| shown(&names[i])).collect();
             notes.push(format!(
-                "{side}{finger} {}: '{}' was used; {} would also fit (give --map to choose)",
+                "{side}{finger} {}: {} was used; {} would also fit (give --map to choose)",
                 slot_name(*finger, *slot),
-                names[chosen],
+                shown(&names[chosen]),
                 also.join(", ")
             ));
         }
@@ -504,8 +529,9 @@ impl Rig {
                     wanted.push((Slot::Tip, Joint::Tip));
                 } else {
                     notes.push(format!(
-                        "{label}: tip '{}' is not below '{}' in the node hierarchy, so it is not used",
-                        names[t], names[last]
+                        "{label}: tip {} is not below {} in the node hierarchy, so it is not used",
+                        shown(&names[t]),
+                        shown(&names[last])
                     ));
                     tip = None;
                 }
@@ -515,9 +541,9 @@ impl Rig {
                 .find(|w| !below(&file.parent, slots[&w[1].0], slots[&w[0].0]))
             {
                 notes.push(format!(
-                    "{label}: '{}' is not below '{}' in the node hierarchy, so these are not one finger; left out (give --map to choose)",
-                    names[slots[&w[1].0]],
-                    names[slots[&w[0].0]]
+                    "{label}: {} is not below {} in the node hierarchy, so these are not one finger; left out (give --map to choose)",
+                    shown(&names[slots[&w[1].0]]),
+                    shown(&names[slots[&w[0].0]])
                 ));
                 continue;
             }
@@ -526,9 +552,9 @@ impl Rig {
                 .find(|(s, _)| !file.world[slots[s]].is_finite())
             {
                 bad.push(Problem::file(format!(
-                    "node '{}' ({label} {}) has a non-finite world transform (a zero rotation quaternion, \
+                    "node {} ({label} {}) has a non-finite world transform (a zero rotation quaternion, \
                      a zero scale above it, or a huge value); fix its transform or its parents'",
-                    names[slots[&slot]],
+                    shown(&names[slots[&slot]]),
                     j.name()
                 )));
                 continue;
@@ -561,8 +587,7 @@ impl Rig {
         }
         if chains.is_empty() {
             const SHOWN: usize = 60;
-            let mut listed: Vec<String> =
-                names.iter().take(SHOWN).map(|s| format!("'{s}'")).collect();
+            let mut listed: Vec<String> = names.iter().take(SHOWN).map(|s| shown(s)).collect();
             if n > SHOWN {
                 listed.push(format!("and {} more", n - SHOWN));
             }
@@ -621,10 +646,21 @@ impl AuditedRig {
         let mut fingers = Vec::new();
         for chain in chains {
             match crate::analysis::audit::audit(a, &chain.input()) {
-                Some(audit) => fingers.push(AuditedFinger {
+                Some(audit) => {
+                    let span: f64 = audit.segments.iter().sum();
+                    if !(0.005..=0.3).contains(&span) {
+                        notes.push(format!(
+                            "{}: its joints span {:.1} mm, unlike a finger: are the file's units metres? \
+                             The mm figures would be off; relative values and ratios are not",
+                            chain.label(),
+                            span * 1000.0
+                        ));
+                    }
+                    fingers.push(AuditedFinger {
                     chain: chain.clone(),
                     audit,
-                }),
+                    });
+                }
                 None => notes.push(format!(
                     "{}: {} has no statistics for this finger (or the chain has zero length), so it is not judged",
                     chain.label(),

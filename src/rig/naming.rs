@@ -149,8 +149,14 @@ const NOT_JOINTS: [&str; 12] = [
     "vis",
 ];
 
+/// Names longer than this are never joint names (and are not run through the pattern).
+const MAX_NAME: usize = 256;
+
 /// Reads a node name; `None` when it names no finger joint.
 pub fn parse(name: &str) -> Option<Parsed> {
+    if name.len() > MAX_NAME {
+        return None;
+    }
     let base = name.rsplit([':', '|']).next().unwrap_or(name);
     if base
         .split(|c: char| !c.is_ascii_alphanumeric())
