@@ -127,8 +127,8 @@ fn a_far_off_joint_is_flagged_with_its_direction_and_distance() {
     wd.write("far.glb", build(&spec));
     let run = wd.run(&["audit", "far.glb"]);
     run.ok()
-        .stdout_has("mm too far towards the tip")
-        .stdout_has("mm too close to the root")
+        .stdout_has("OUTSIDE: too far towards the tip, ")
+        .stdout_has("OUTSIDE: too close to the root, ")
         .stdout_has("Summary: 2 of 5 judged fingers");
     wd.run(&["audit", "far.glb", "--strict"]).expect_code(1);
     let doc = audit_json(&wd, "far.glb");

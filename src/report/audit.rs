@@ -17,16 +17,23 @@ pub const CAVEATS: [&str; 3] = [
     "A rig's tip usually sits at the skin and so includes the fingertip's soft tissue, which the distal phalanx on an X-ray does not; this lengthens a rig's last segment.",
 ];
 
-/// "inside the X-ray range", "2.1 mm too far towards the tip", ...: how a joint stands.
+/// "inside the X-ray range", "OUTSIDE: too far towards the tip, 2.10 mm beyond the
+/// prediction interval", ...: how a joint stands.
 pub fn joint_standing(s: Standing, scale: f64) -> String {
     match s {
         Standing::InRange => "inside the X-ray range".into(),
         Standing::InPrediction => "inside the prediction interval".into(),
         Standing::Above { by } => {
-            format!("OUTSIDE: {} mm too far towards the tip", num(by * scale, 2))
+            format!(
+                "OUTSIDE: too far towards the tip, {} mm beyond the prediction interval",
+                num(by * scale, 2)
+            )
         }
         Standing::Below { by } => {
-            format!("OUTSIDE: {} mm too close to the root", num(by * scale, 2))
+            format!(
+                "OUTSIDE: too close to the root, {} mm beyond the prediction interval",
+                num(by * scale, 2)
+            )
         }
     }
 }
@@ -36,8 +43,8 @@ pub fn value_standing(s: Standing) -> String {
     match s {
         Standing::InRange => "inside the X-ray range".into(),
         Standing::InPrediction => "inside the prediction interval".into(),
-        Standing::Above { by } => format!("OUTSIDE: {} above", num(by, 4)),
-        Standing::Below { by } => format!("OUTSIDE: {} below", num(by, 4)),
+        Standing::Above { by } => format!("OUTSIDE: {} above the prediction interval", num(by, 4)),
+        Standing::Below { by } => format!("OUTSIDE: {} below the prediction interval", num(by, 4)),
     }
 }
 
@@ -84,7 +91,7 @@ pub fn suggestion(j: &crate::analysis::audit::JointCheck) -> String {
         "at the mean already".into()
     } else {
         format!(
-            "move {} mm {towards}, to ({}, {}, {}) m",
+            "move {} mm {towards}, to ({}, {}, {}) m in glTF world space (Y up)",
             num(j.shift * MM, 2),
             num(j.suggested[0], 5),
             num(j.suggested[1], 5),

@@ -898,7 +898,11 @@ fn rigs_view(rigs: &[ReferenceAudit]) -> Option<RigsView> {
                 name: r.rig.name.clone(),
                 source: r.rig.source.clone(),
                 url: r.rig.url.clone(),
-                notes: r.rig.notes.clone(),
+                notes: std::iter::once(r.rig.notes.clone())
+                    .chain(r.audit.notes.iter().cloned())
+                    .filter(|n| !n.is_empty())
+                    .collect::<Vec<_>>()
+                    .join(" "),
                 summary: format!(
                     "{} of {judged} judged fingers outside the prediction interval",
                     r.audit.outside()

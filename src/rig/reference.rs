@@ -53,7 +53,7 @@ pub fn parse(label: &str, id: &str, bytes: &[u8]) -> Result<ReferenceRig, DataEr
     if !doc.url.starts_with("https://")
         || doc
             .url
-            .contains(|c: char| c.is_whitespace() || c == '>' || c == '<')
+            .contains(|c: char| c.is_whitespace() || c.is_control() || c == '>' || c == '<')
     {
         problems.push(Problem::file(format!(
             "url '{}' is not a plain https:// address; give the source's web address",
@@ -67,7 +67,14 @@ pub fn parse(label: &str, id: &str, bytes: &[u8]) -> Result<ReferenceRig, DataEr
             doc.side
         )));
     }
-    let mut chains = Vec::new();
+    let units = doc.units.to_ascii_lowercase();
+    if !(units == "m" || units.contains("metre") || units.contains("meter")) {
+        problems.push(Problem::file(format!(
+            "units '{}' are not metres; give the coordinates in metres (e.g. \"Blender units (metres)\")",
+            doc.units
+        )));
+    }
+    let mut chains: Vec<FingerChain> = Vec::new();
     for (fname, joints) in &doc.fingers {
         let Some(finger) = Finger::parse(fname) else {
             problems.push(Problem::file(format!(
@@ -76,6 +83,12 @@ pub fn parse(label: &str, id: &str, bytes: &[u8]) -> Result<ReferenceRig, DataEr
             )));
             continue;
         };
+        if chains.iter().any(|c| c.finger == finger) {
+            problems.push(Problem::file(format!(
+                "{fname}: the {finger} is given twice (under two of its names); keep one"
+            )));
+            continue;
+        }
         let mut order = vec![Joint::Mcp];
         order.extend_from_slice(Joint::inner(finger));
         let has_tip = joints.contains_key("tip");
@@ -84,7 +97,10 @@ pub fn parse(label: &str, id: &str, bytes: &[u8]) -> Result<ReferenceRig, DataEr
         }
         for key in joints.keys() {
             if !order.iter().any(|j| j.name() == key) {
-                let allowed: Vec<&str> = order.iter().map(|j| j.name()).chain(["tip"]).collect();
+                let mut allowed: Vec<&str> = order.iter().map(|j| j.name()).collect();
+                if !has_tip {
+                    allowed.push("tip");
+                }
                 problems.push(Problem::file(format!(
                     "{fname}: unknown joint '{key}'; use {}",
                     allowed.join(", ")
@@ -188,6 +204,16 @@ mod tests {
         assert!(e.contains("side 'up'"), "{e}");
         assert!(e.contains("unknown finger 'toe'"), "{e}");
         assert!(e.contains("index: joint DIP is missing"), "{e}");
+        let e = parse(
+            "x.json",
+            "x",
+            br#"{"name":"a","source":"b","url":"https://e.org/\u0007","side":"left","units":"cm","fingers":{"little":{"MCP":[0,0,0],"PIP":[1,0,0],"DIP":[2,0,0]},"pinky":{"MCP":[0,0,0],"PIP":[1,0,0],"DIP":[2,0,0]}}}"#,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("is not a plain https:// address"), "{e}");
+        assert!(e.contains("units 'cm' are not metres"), "{e}");
+        assert!(e.contains("given twice"), "{e}");
         let e = parse("x.json", "x", b"{\n  \"name\": 3\n}")
             .unwrap_err()
             .to_string();
