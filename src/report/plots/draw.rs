@@ -527,14 +527,15 @@ fn wrap(text: &str, px: f64, width: i32) -> Vec<String> {
 
 /// A chart of labelled rows over a linear x axis from `x.0` to `x.1`: rows are
 /// `(label, group)` from the top, row r at y = count - 1 - r; rows of odd
-/// groups are shaded; the axes are drawn. Shared by the forest and rig plots.
+/// groups are shaded; the axes are drawn, and without rows `empty` is written
+/// in the middle. Shared by the forest and rig plots.
 pub(super) fn row_chart<'a, 'b>(
     pen: &Pen,
     area: &'a Root<'b>,
     rows: &[(String, usize)],
     x: (f64, f64),
     (top_px, axis_px): (u32, u32),
-    (x_desc, y_desc): (&str, &str),
+    (x_desc, y_desc, empty): (&str, &str, &str),
 ) -> Result<Chart<'a, 'b, Linear, Categories>, DrawError> {
     let count = rows.len();
     let (x0, x1) = x;
@@ -572,6 +573,12 @@ pub(super) fn row_chart<'a, 'b>(
         y_format: &y_format,
     };
     draw_axes(&mut chart, &axes)?;
+    if rows.is_empty() {
+        let font = Font::new(14.0)
+            .colour(MUTED)
+            .anchor(HPos::Center, VPos::Center);
+        pen.text(chart.backend_coord(&((x0 + x1) / 2.0, 0.0)), empty, font)?;
+    }
     Ok(chart)
 }
 

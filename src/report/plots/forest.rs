@@ -90,15 +90,13 @@ fn draw_chart(pen: &Pen, area: &Root<'_>, rows: &[Row]) -> DrawResult {
         (
             "relative value J~k = Jk/J (fraction of the finger's total length J, unitless)",
             "finger and segment",
+            "no finger in the data",
         ),
     )?;
     let y_of = |r: usize| (count - 1 - r) as f64;
     let at = |x: f64, y: f64| chart.backend_coord(&(x, y));
     if rows.is_empty() {
-        let font = Font::new(14.0)
-            .colour(MUTED)
-            .anchor(HPos::Center, VPos::Center);
-        return pen.text(at((x0 + x1) / 2.0, 0.0), "no finger in the data", font);
+        return Ok(());
     }
     let right_px = at(x1, 0.0).0;
     for (r, row) in rows.iter().enumerate() {

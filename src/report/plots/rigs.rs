@@ -7,14 +7,13 @@
 //! every rig with two segments appears.
 
 use super::draw::{
-    Dir, DrawResult, Font, Frame, Kind, LegendItem, MUTED, Pen, RANGE, Root, Swatch, WIDTH, extent,
-    finish, level, padded, render, row_chart, short,
+    Dir, DrawResult, Frame, Kind, LegendItem, Pen, RANGE, Root, Swatch, WIDTH, extent, finish,
+    level, padded, render, row_chart, short,
 };
 use super::{Plot, PlotKind};
 use crate::analysis::{Analysis, Quantity, QuantityStats};
 use crate::dataset::Finger;
 use crate::error::Error;
-use plotters::style::text_anchor::{HPos, VPos};
 
 const ROW_PX: u32 = 50;
 const AXIS_PX: u32 = 46;
@@ -123,15 +122,13 @@ fn draw_chart(pen: &Pen, area: &Root<'_>, rows: &[Row], rigs: &[RigRatios]) -> D
         (
             "ratio of adjacent segment lengths (unitless)",
             "finger and ratio",
+            "no ratios in the data",
         ),
     )?;
     let y_of = |r: usize| (count - 1 - r) as f64;
     let at = |x: f64, y: f64| chart.backend_coord(&(x, y));
     if rows.is_empty() {
-        let font = Font::new(14.0)
-            .colour(MUTED)
-            .anchor(HPos::Center, VPos::Center);
-        return pen.text(at((x0 + x1) / 2.0, 0.0), "no ratios in the data", font);
+        return Ok(());
     }
     let n = rigs.len() as i32;
     for (r, row) in rows.iter().enumerate() {
