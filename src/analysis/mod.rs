@@ -176,6 +176,11 @@ impl Quantity {
         }
     }
 
+    /// The symbol alone: "J~1", "J2/J1", "J (total length)".
+    pub fn symbol(self) -> &'static str {
+        self.label().split(" = ").next().unwrap_or(self.name())
+    }
+
     /// True for the relative values J~k (fractions of the total length).
     pub fn is_relative(self) -> bool {
         matches!(self, Quantity::RelJ1 | Quantity::RelJ2 | Quantity::RelJ3)

@@ -100,14 +100,6 @@ pub fn suggestion(j: &crate::analysis::audit::JointCheck) -> String {
     }
 }
 
-fn table(header: &[&str]) -> comfy_table::Table {
-    let mut t = comfy_table::Table::new();
-    t.load_style(comfy_table::presets::ASCII_MARKDOWN)
-        .set_content_arrangement(comfy_table::ContentArrangement::Disabled)
-        .set_header(header.to_vec());
-    t
-}
-
 /// The terminal report of `phalanx audit`.
 pub fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> String {
     let c = percent(confidence);
@@ -120,14 +112,10 @@ pub fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> Stri
         if f.audit.joints.is_empty() {
             continue;
         }
-        let mut t = table(&[
-            "",
-            "rig",
-            "X-ray mean",
-            "X-ray range",
-            &format!("prediction {c}"),
-            "standing",
-        ]);
+        let pi_head = format!("prediction {c}");
+        let header = ["", "rig", "X-ray mean", "X-ray range", &pi_head, "standing"];
+        // Left-aligned throughout, as the standings are sentences.
+        let mut t = super::text::table(&header, header.len());
         for j in &f.audit.joints {
             t.add_row(vec![
                 format!("{} from root (mm)", j.joint.name()),
@@ -216,10 +204,10 @@ pub fn finger_summary(a: &FingerAudit) -> String {
     for v in &a.values {
         match v.standing {
             Standing::Above { by } => {
-                outside.push(format!("{} {} above", short(v.quantity), num(by, 4)))
+                outside.push(format!("{} {} above", v.quantity.symbol(), num(by, 4)))
             }
             Standing::Below { by } => {
-                outside.push(format!("{} {} below", short(v.quantity), num(by, 4)))
+                outside.push(format!("{} {} below", v.quantity.symbol(), num(by, 4)))
             }
             _ => {}
         }
@@ -245,16 +233,4 @@ pub fn value_of(a: &FingerAudit, q: Quantity) -> Option<f64> {
         .iter()
         .find(|v| v.quantity == q)
         .map(|v| v.measured)
-}
-
-/// A quantity's short name: J~1, J2/J1, ...
-fn short(q: Quantity) -> &'static str {
-    match q {
-        Quantity::RelJ1 => "J~1",
-        Quantity::RelJ2 => "J~2",
-        Quantity::RelJ3 => "J~3",
-        Quantity::RatioJ2J1 => "J2/J1",
-        Quantity::RatioJ3J2 => "J3/J2",
-        Quantity::Total => "J",
-    }
 }

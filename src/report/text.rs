@@ -8,7 +8,8 @@ use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
 use comfy_table::{CellAlignment, ContentArrangement, Table, presets};
 
-fn table(header: &[&str], right_from: usize) -> Table {
+/// A terminal table in Markdown style, columns from `right_from` on right-aligned.
+pub(super) fn table(header: &[&str], right_from: usize) -> Table {
     let mut t = Table::new();
     t.load_style(presets::ASCII_MARKDOWN)
         .set_content_arrangement(ContentArrangement::Disabled)

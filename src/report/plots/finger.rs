@@ -391,7 +391,7 @@ fn description(f: &FingerAnalysis, panels: &[Panel], confidence: f64) -> String 
                 let values: Vec<String> = panels
                     .iter()
                     .zip(&x.relative)
-                    .map(|(p, v)| format!("{} {}", short_label(p.stats.name), format::num(*v, 4)))
+                    .map(|(p, v)| format!("{} {}", p.stats.name.symbol(), format::num(*v, 4)))
                     .collect();
                 format!("{}: {}", x.xray, values.join(", "))
             })
@@ -417,11 +417,6 @@ pub(super) fn quantity_sentence(s: &QuantityStats, confidence: f64) -> String {
         level(confidence),
         intervals.join(", ")
     )
-}
-
-/// "J~1" from "J~1 = J1/J".
-pub(super) fn short_label(q: Quantity) -> &'static str {
-    q.label().split(" = ").next().unwrap_or(q.name())
 }
 
 #[cfg(test)]
@@ -456,6 +451,6 @@ mod tests {
             labels,
             ["t CI", "percentile CI", "BCa CI", "prediction", "X-rays"]
         );
-        assert_eq!(short_label(Quantity::RelJ3), "J~3");
+        assert_eq!(Quantity::RelJ3.symbol(), "J~3");
     }
 }

@@ -5,7 +5,7 @@ use super::draw::{
     Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, MUTED, Pen, Px, Root, Swatch, WIDTH,
     extent, finish, level, padded, render, row_chart, stats_values, text_width,
 };
-use super::finger::{quantity_sentence, short_label};
+use super::finger::quantity_sentence;
 use super::{Plot, PlotKind};
 use crate::analysis::{Analysis, QuantityStats};
 use crate::error::Error;
@@ -37,7 +37,7 @@ fn rows(a: &Analysis) -> Vec<Row<'_>> {
                 .iter()
                 .filter(|s| s.name.is_relative())
                 .map(move |s| Row {
-                    label: format!("{} {}", f.finger.name(), short_label(s.name)),
+                    label: format!("{} {}", f.finger.name(), s.name.symbol()),
                     group,
                     stats: s,
                 })
