@@ -368,6 +368,109 @@ fn vrm_bones(json: &serde_json::Value) -> Vec<(usize, String, bool)> {
     out
 }
 
+/// Which nodes may be finger joints (the joints of any skin and everything
+/// below them; every node of a file without skins), and which are skinned. O(n).
+fn candidates(file: &GltfFile) -> (Vec<bool>, Vec<bool>) {
+    let n = file.parent.len();
+    let mut candidate = vec![false; n];
+    let mut skinned = vec![false; n];
+    let skins: Vec<_> = file.document.skins().collect();
+    for skin in &skins {
+        for j in skin.joints() {
+            skinned[j.index()] = true;
+        }
+    }
+    if skins.is_empty() {
+        candidate.fill(true);
+    } else {
+        // Skinned joints and everything below them, each node visited once.
+        let mut children = vec![Vec::new(); n];
+        for (i, p) in file.parent.iter().enumerate() {
+            if let Some(p) = *p {
+                children[p].push(i);
+            }
+        }
+        let mut stack: Vec<usize> = (0..n).filter(|&i| skinned[i]).collect();
+        while let Some(i) = stack.pop() {
+            if !std::mem::replace(&mut candidate[i], true) {
+                stack.extend_from_slice(&children[i]);
+            }
+        }
+    }
+    (candidate, skinned)
+}
+
+/// How each node is recognised: by the `--map` file first, then by a VRM
+/// humanoid table, then by its name; with the priority of each (lower wins).
+fn recognise(
+    file: &GltfFile,
+    names: &[String],
+    map: Option<&NameMap>,
+) -> Result<Vec<Option<Found>>, DataError> {
+    let n = names.len();
+    let (candidate, skinned) = candidates(file);
+    let mut found: Vec<Option<Found>> = vec![None; n];
+    let mut problems = Vec::new();
+    if let Some(map) = map {
+        for (name, &(side, finger, slot, line)) in &map.entries {
+            match names.iter().position(|x| x == name) {
+                Some(i) => found[i] = Some((side, finger, slot, 0)),
+                None => problems.push(Problem::line(
+                    line,
+                    format!(
+                        "node {} is not in {}; node names must match exactly",
+                        crate::dataset::csvinput::quote(name),
+                        file.label
+                    ),
+                )),
+            }
+        }
+        if !problems.is_empty() {
+            problems.sort_by_key(|p| p.line);
+            return Err(DataError {
+                file: map.file.clone(),
+                problems,
+            });
+        }
+    }
+    // VRM tables, then names; a VRM 0.x thumb shifts by one (see naming).
+    let mut parsed: Vec<Option<(naming::Parsed, Option<bool>)>> = vec![None; n];
+    for (node, bone, vrm0) in vrm_bones(&file.json) {
+        if let (Some(slot), Some(p)) = (parsed.get_mut(node), naming::parse(&bone)) {
+            *slot = Some((p, Some(vrm0)));
+        }
+    }
+    for (i, name) in names.iter().enumerate() {
+        if parsed[i].is_none() && candidate[i] {
+            parsed[i] = naming::parse(name).map(|p| (p, None));
+        }
+    }
+    let vrm0_thumb: Vec<Option<Side>> = parsed
+        .iter()
+        .flatten()
+        .filter(|(p, _)| p.finger == Finger::Thumb && p.part == Part::Intermediate)
+        .map(|(p, _)| p.side)
+        .collect();
+    for i in 0..n {
+        if found[i].is_some() {
+            continue;
+        }
+        if let Some((p, vrm)) = parsed[i] {
+            let vrm0 = vrm.unwrap_or_else(|| vrm0_thumb.contains(&p.side));
+            if let Some(slot) = naming::slot(p.finger, p.part, vrm0) {
+                let priority = match (vrm.is_some(), p.deform, skinned[i]) {
+                    (true, _, _) => 1,
+                    (_, true, _) => 2,
+                    (_, _, true) => 3,
+                    _ => 4,
+                };
+                found[i] = Some((p.side, p.finger, slot, priority));
+            }
+        }
+    }
+    Ok(found)
+}
+
 impl Rig {
     /// Reads a rig and finds its finger chains. Fails, listing the names it
     /// saw, when no complete finger is found.
@@ -379,90 +482,7 @@ impl Rig {
     pub fn from_file(file: GltfFile, map: Option<&NameMap>) -> Result<Rig, DataError> {
         let names = file.node_names();
         let n = names.len();
-        let mut candidate = vec![false; n];
-        let mut skinned = vec![false; n];
-        let skins: Vec<_> = file.document.skins().collect();
-        for skin in &skins {
-            for j in skin.joints() {
-                skinned[j.index()] = true;
-            }
-        }
-        if skins.is_empty() {
-            candidate.fill(true);
-        } else {
-            // Skinned joints and everything below them, each node visited once.
-            let mut children = vec![Vec::new(); n];
-            for (i, p) in file.parent.iter().enumerate() {
-                if let Some(p) = *p {
-                    children[p].push(i);
-                }
-            }
-            let mut stack: Vec<usize> = (0..n).filter(|&i| skinned[i]).collect();
-            while let Some(i) = stack.pop() {
-                if !std::mem::replace(&mut candidate[i], true) {
-                    stack.extend_from_slice(&children[i]);
-                }
-            }
-        }
-        let mut found: Vec<Option<Found>> = vec![None; n];
-        let mut problems = Vec::new();
-        if let Some(map) = map {
-            for (name, &(side, finger, slot, line)) in &map.entries {
-                match names.iter().position(|x| x == name) {
-                    Some(i) => found[i] = Some((side, finger, slot, 0)),
-                    None => problems.push(Problem::line(
-                        line,
-                        format!(
-                            "node {} is not in {}; node names must match exactly",
-                            crate::dataset::csvinput::quote(name),
-                            file.label
-                        ),
-                    )),
-                }
-            }
-            if !problems.is_empty() {
-                problems.sort_by_key(|p| p.line);
-                return Err(DataError {
-                    file: map.file.clone(),
-                    problems,
-                });
-            }
-        }
-        // VRM tables, then names; a VRM 0.x thumb shifts by one (see naming).
-        let mut parsed: Vec<Option<(naming::Parsed, Option<bool>)>> = vec![None; n];
-        for (node, bone, vrm0) in vrm_bones(&file.json) {
-            if let (Some(slot), Some(p)) = (parsed.get_mut(node), naming::parse(&bone)) {
-                *slot = Some((p, Some(vrm0)));
-            }
-        }
-        for (i, name) in names.iter().enumerate() {
-            if parsed[i].is_none() && candidate[i] {
-                parsed[i] = naming::parse(name).map(|p| (p, None));
-            }
-        }
-        let vrm0_thumb: Vec<Option<Side>> = parsed
-            .iter()
-            .flatten()
-            .filter(|(p, _)| p.finger == Finger::Thumb && p.part == Part::Intermediate)
-            .map(|(p, _)| p.side)
-            .collect();
-        for i in 0..n {
-            if found[i].is_some() {
-                continue;
-            }
-            if let Some((p, vrm)) = parsed[i] {
-                let vrm0 = vrm.unwrap_or_else(|| vrm0_thumb.contains(&p.side));
-                if let Some(slot) = naming::slot(p.finger, p.part, vrm0) {
-                    let priority = match (vrm.is_some(), p.deform, skinned[i]) {
-                        (true, _, _) => 1,
-                        (_, true, _) => 2,
-                        (_, _, true) => 3,
-                        _ => 4,
-                    };
-                    found[i] = Some((p.side, p.finger, slot, priority));
-                }
-            }
-        }
+        let found = recognise(&file, &names, map)?;
         // Best node per (side, finger, slot).
         let mut best: BTreeMap<(Option<Side>, Finger, Slot), (u8, usize)> = BTreeMap::new();
         let mut ties: BTreeMap<(Option<Side>, Finger, Slot), Vec<usize>> = BTreeMap::new();
