@@ -6,7 +6,8 @@
 //! and then uses these helpers, so the three plots share one look.
 
 use super::{Plot, PlotKind};
-use crate::analysis::{Interval, QuantityStats};
+use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
+use crate::dataset::Finger;
 use crate::error::Error;
 use crate::report::format;
 use plotters::coord::Shift;
@@ -525,14 +526,44 @@ fn wrap(text: &str, px: f64, width: i32) -> Vec<String> {
     lines
 }
 
-/// A chart of labelled rows over a linear x axis from `x.0` to `x.1`: rows are
-/// `(label, group)` from the top, row r at y = count - 1 - r; rows of odd
-/// groups are shaded; the axes are drawn, and without rows `empty` is written
-/// in the middle. Shared by the forest and rig plots.
+/// One row of a row chart: a quantity of a finger.
+pub(super) struct QuantityRow<'s> {
+    /// "index J~1", "ring J2/J1".
+    pub label: String,
+    pub finger: Finger,
+    /// Position of the finger in the analysis (alternate fingers are shaded).
+    pub group: usize,
+    pub stats: &'s QuantityStats,
+}
+
+/// The rows of the quantities `keep` accepts, top to bottom: fingers in the
+/// analysis's order, their quantities in order.
+pub(super) fn quantity_rows(a: &Analysis, keep: impl Fn(Quantity) -> bool) -> Vec<QuantityRow<'_>> {
+    a.fingers
+        .iter()
+        .enumerate()
+        .flat_map(|(group, f)| {
+            f.quantities
+                .iter()
+                .filter(|s| keep(s.name))
+                .map(move |s| QuantityRow {
+                    label: format!("{} {}", f.finger.name(), s.name.symbol()),
+                    finger: f.finger,
+                    group,
+                    stats: s,
+                })
+        })
+        .collect()
+}
+
+/// A chart of quantity rows over a linear x axis from `x.0` to `x.1`: row r
+/// (from the top) at y = count - 1 - r; rows of odd groups are shaded; the
+/// axes are drawn, and without rows `empty` is written in the middle. Shared
+/// by the forest and rig plots.
 pub(super) fn row_chart<'a, 'b>(
     pen: &Pen,
     area: &'a Root<'b>,
-    rows: &[(String, usize)],
+    rows: &[QuantityRow<'_>],
     x: (f64, f64),
     (top_px, axis_px): (u32, u32),
     (x_desc, y_desc, empty): (&str, &str, &str),
@@ -551,7 +582,11 @@ pub(super) fn row_chart<'a, 'b>(
     let y_of = |r: usize| (count - 1 - r) as f64;
     {
         let at = |x: f64, y: f64| chart.backend_coord(&(x, y));
-        for (r, _) in rows.iter().enumerate().filter(|(_, (_, g))| g % 2 == 1) {
+        for (r, _) in rows
+            .iter()
+            .enumerate()
+            .filter(|(_, row)| row.group % 2 == 1)
+        {
             pen.rect(at(x0, y_of(r) + 0.5), at(x1, y_of(r) - 0.5), SHADE, 1.0)?;
         }
     }
@@ -559,7 +594,7 @@ pub(super) fn row_chart<'a, 'b>(
     let y_format = |y: &f64| {
         let r = count as f64 - 1.0 - y.round();
         if r >= 0.0 {
-            rows.get(r as usize).map_or("", |row| row.0.as_str())
+            rows.get(r as usize).map_or("", |row| row.label.as_str())
         } else {
             ""
         }

@@ -2,12 +2,13 @@
 //! mean and its four intervals stacked within the row, on one shared x axis.
 
 use super::draw::{
-    Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, MUTED, Pen, Px, Root, Swatch, WIDTH,
-    extent, finish, level, padded, render, row_chart, stats_values, text_width,
+    Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, MUTED, Pen, Px, QuantityRow, Root, Swatch,
+    WIDTH, extent, finish, level, padded, quantity_rows, render, row_chart, stats_values,
+    text_width,
 };
 use super::finger::quantity_sentence;
 use super::{Plot, PlotKind};
-use crate::analysis::{Analysis, QuantityStats};
+use crate::analysis::{Analysis, Quantity, QuantityStats};
 use crate::error::Error;
 use plotters::style::text_anchor::{HPos, VPos};
 
@@ -19,30 +20,12 @@ const TOP_PX: u32 = 10;
 /// Vertical offsets of the four bars within a row, in pixels (t at the top).
 const OFFSETS: [i32; 4] = [-12, -4, 4, 12];
 
-/// One row: a relative quantity of a finger.
-struct Row<'a> {
-    label: String,
-    /// Position of the finger in the analysis (alternate fingers are shaded).
-    group: usize,
-    stats: &'a QuantityStats,
-}
+/// One row per finger and relative quantity.
+type Row<'a> = QuantityRow<'a>;
 
 /// The rows, top to bottom: fingers in order, their relative quantities in order.
 fn rows(a: &Analysis) -> Vec<Row<'_>> {
-    a.fingers
-        .iter()
-        .enumerate()
-        .flat_map(|(group, f)| {
-            f.quantities
-                .iter()
-                .filter(|s| s.name.is_relative())
-                .map(move |s| Row {
-                    label: format!("{} {}", f.finger.name(), s.name.symbol()),
-                    group,
-                    stats: s,
-                })
-        })
-        .collect()
+    quantity_rows(a, Quantity::is_relative)
 }
 
 /// Draws the forest plot.
@@ -80,11 +63,10 @@ fn draw_chart(pen: &Pen, area: &Root<'_>, rows: &[Row]) -> DrawResult {
     let count = rows.len();
     let (x0, x1) = extent(rows.iter().flat_map(|r| stats_values(r.stats)))
         .map_or((0.0, 1.0), |(lo, hi)| padded(lo, hi, 0.04));
-    let labels: Vec<(String, usize)> = rows.iter().map(|r| (r.label.clone(), r.group)).collect();
     let chart = row_chart(
         pen,
         area,
-        &labels,
+        rows,
         (x0, x1),
         (TOP_PX, AXIS_PX),
         (
@@ -154,7 +136,7 @@ fn description(rows: &[Row], confidence: f64) -> String {
         level(confidence)
     );
     for row in rows {
-        let finger = row.label.split(' ').next().unwrap_or("");
+        let finger = row.finger.name();
         out.push_str(&format!(
             " {finger} {}",
             quantity_sentence(row.stats, confidence)

@@ -7,11 +7,11 @@
 //! every rig with two segments appears.
 
 use super::draw::{
-    Dir, DrawResult, Frame, Kind, LegendItem, Pen, RANGE, Root, Swatch, WIDTH, extent, finish,
-    level, padded, render, row_chart, short,
+    Dir, DrawResult, Frame, Kind, LegendItem, Pen, QuantityRow, RANGE, Root, Swatch, WIDTH, extent,
+    finish, level, padded, quantity_rows, render, row_chart, short,
 };
 use super::{Plot, PlotKind};
-use crate::analysis::{Analysis, Quantity, QuantityStats};
+use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::error::Error;
 
@@ -26,31 +26,13 @@ pub struct RigRatios {
     pub values: Vec<(Finger, Quantity, f64)>,
 }
 
-struct Row<'a> {
-    label: String,
-    finger: Finger,
-    quantity: Quantity,
-    group: usize,
-    stats: &'a QuantityStats,
-}
+/// One row per finger and ratio.
+type Row<'a> = QuantityRow<'a>;
 
 fn rows(a: &Analysis) -> Vec<Row<'_>> {
-    a.fingers
-        .iter()
-        .enumerate()
-        .flat_map(|(group, f)| {
-            f.quantities
-                .iter()
-                .filter(|s| matches!(s.name, Quantity::RatioJ2J1 | Quantity::RatioJ3J2))
-                .map(move |s| Row {
-                    label: format!("{} {}", f.finger.name(), s.name.label()),
-                    finger: f.finger,
-                    quantity: s.name,
-                    group,
-                    stats: s,
-                })
-        })
-        .collect()
+    quantity_rows(a, |q| {
+        matches!(q, Quantity::RatioJ2J1 | Quantity::RatioJ3J2)
+    })
 }
 
 /// Draws the rig plot (id `rigs`).
@@ -95,7 +77,7 @@ pub(super) fn plot(a: &Analysis, rigs: &[RigRatios]) -> Result<Plot, Error> {
 fn value_of(r: &RigRatios, row: &Row) -> Option<f64> {
     r.values
         .iter()
-        .find(|(f, q, _)| *f == row.finger && *q == row.quantity)
+        .find(|(f, q, _)| *f == row.finger && *q == row.stats.name)
         .map(|v| v.2)
         .filter(|v| v.is_finite())
 }
@@ -112,11 +94,10 @@ fn draw_chart(pen: &Pen, area: &Root<'_>, rows: &[Row], rigs: &[RigRatios]) -> D
         v
     });
     let (x0, x1) = extent(values).map_or((0.0, 1.0), |(lo, hi)| padded(lo, hi, 0.04));
-    let labels: Vec<(String, usize)> = rows.iter().map(|r| (r.label.clone(), r.group)).collect();
     let chart = row_chart(
         pen,
         area,
-        &labels,
+        rows,
         (x0, x1),
         (TOP_PX, AXIS_PX),
         (
