@@ -584,12 +584,7 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
                 metadata: !no_metadata,
             });
             match out {
-                Some(path) => {
-                    crate::atomic::replace(&path, &bytes).map_err(|source| Error::Write {
-                        path: path.clone(),
-                        source,
-                    })?
-                }
+                Some(path) => crate::atomic::replace(&path, &bytes).map_err(Error::write(&path))?,
                 None => print(&bytes)?,
             }
             Ok(0)
@@ -888,10 +883,7 @@ fn print(bytes: &[u8]) -> Result<(), Error> {
     let mut out = std::io::stdout().lock();
     match out.write_all(bytes).and_then(|_| out.flush()) {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-        Err(e) => Err(Error::Write {
-            path: PathBuf::from("<stdout>"),
-            source: e,
-        }),
+        Err(e) => Err(Error::write(Path::new("<stdout>"))(e)),
         Ok(()) => Ok(()),
     }
 }

@@ -1,7 +1,7 @@
 //! The errors of a phalanx run and their exit codes.
 
 use crate::dataset::DataError;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Exit status for bad input data (a data file, a claims file, an option value).
 pub const EXIT_DATA: i32 = 2;
@@ -40,6 +40,14 @@ impl Error {
         match self {
             Error::Data(_) | Error::Usage(_) => EXIT_DATA,
             Error::Write { .. } | Error::Render { .. } => EXIT_FAILURE,
+        }
+    }
+
+    /// Turns an I/O error on `path` into [`Error::Write`]: `.map_err(Error::write(&path))`.
+    pub fn write(path: &Path) -> impl FnOnce(std::io::Error) -> Error {
+        move |source| Error::Write {
+            path: path.to_path_buf(),
+            source,
         }
     }
 

@@ -48,13 +48,6 @@ pub fn now() -> String {
     humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
 }
 
-fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
-    move |source| Error::Write {
-        path: path.to_path_buf(),
-        source,
-    }
-}
-
 /// Adds new rows to a dataset, then appends a snapshot to its history.
 pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     req.settings.validate().map_err(Error::Usage)?;
@@ -63,7 +56,7 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         NewRows::Fields(fields) => append::single_row(fields)?,
     };
     csvinput::open_input(&req.data)?; // a missing dataset is reported before any lock file is made
-    let _lock = DatasetLock::acquire(&req.data).map_err(io_err(&req.data))?;
+    let _lock = DatasetLock::acquire(&req.data).map_err(Error::write(&req.data))?;
     let current_bytes = csvinput::read_input(&req.data)?;
     let label = req.data.display().to_string();
     let current = Dataset::from_bytes(&label, &current_bytes)?;
@@ -112,12 +105,12 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     // written stops the add with the dataset untouched. Between the two renames
     // a crash can only lose the snapshot ('phalanx snapshot' records it again).
     let history_bytes =
-        history::appended_bytes(&req.history, &snapshot).map_err(io_err(&req.history))?;
-    let staged_data = atomic::stage(&req.data, &bytes).map_err(io_err(&req.data))?;
+        history::appended_bytes(&req.history, &snapshot).map_err(Error::write(&req.history))?;
+    let staged_data = atomic::stage(&req.data, &bytes).map_err(Error::write(&req.data))?;
     let staged_history =
-        atomic::stage(&req.history, &history_bytes).map_err(io_err(&req.history))?;
-    atomic::commit(staged_data, &req.data).map_err(io_err(&req.data))?;
-    atomic::commit(staged_history, &req.history).map_err(io_err(&req.history))?;
+        atomic::stage(&req.history, &history_bytes).map_err(Error::write(&req.history))?;
+    atomic::commit(staged_data, &req.data).map_err(Error::write(&req.data))?;
+    atomic::commit(staged_history, &req.history).map_err(Error::write(&req.history))?;
     Ok(AddOutcome {
         added: new.rows.len(),
         xrays_before: current.xray_count(),
@@ -132,11 +125,11 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
 pub fn snapshot(data: &Path, history_path: &Path, settings: &Settings) -> Result<Snapshot, Error> {
     settings.validate().map_err(Error::Usage)?;
     csvinput::open_input(data)?; // a missing dataset is reported before any lock file is made
-    let _lock = DatasetLock::acquire(data).map_err(io_err(data))?;
+    let _lock = DatasetLock::acquire(data).map_err(Error::write(data))?;
     let dataset = Dataset::load(data)?;
     let a = analysis::analyse(&dataset, settings);
     let snap = tracking::snapshot(&a, now(), "snapshot");
-    history::append(history_path, &snap).map_err(io_err(history_path))?;
+    history::append(history_path, &snap).map_err(Error::write(history_path))?;
     Ok(snap)
 }
 
@@ -230,7 +223,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<AuditOutcome, Error> {
                     e,
                 )
             })?;
-        crate::atomic::replace(out, &fixed.bytes).map_err(io_err(out))?;
+        crate::atomic::replace(out, &fixed.bytes).map_err(Error::write(out))?;
         let again = AuditedRig::of(&re.file.label, &re.chains, &re.notes, &a);
         messages.push(format!(
             "wrote {}: {} joints moved; re-audited, {} of {} fingers outside the prediction interval",

@@ -20,13 +20,6 @@ impl OutputFile {
     }
 }
 
-fn write_err(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
-    move |source| Error::Write {
-        path: path.to_path_buf(),
-        source,
-    }
-}
-
 /// Writes every file under `dir`. Each is first written in full to a temporary
 /// file beside its target and synced; only when all are staged are they renamed
 /// into place. A failure before that point leaves every existing file untouched.
@@ -37,12 +30,12 @@ pub fn write_all(dir: &Path, files: &[OutputFile]) -> Result<(), Error> {
     let mut staged = Vec::with_capacity(files.len());
     for f in files {
         let target = dir.join(&f.path);
-        let tmp = atomic::stage(&target, &f.bytes).map_err(write_err(&target))?;
+        let tmp = atomic::stage(&target, &f.bytes).map_err(Error::write(&target))?;
         staged.push((tmp, target));
     }
     let mut written: Vec<PathBuf> = Vec::new();
     for (tmp, target) in staged {
-        atomic::commit(tmp, &target).map_err(write_err(&target))?;
+        atomic::commit(tmp, &target).map_err(Error::write(&target))?;
         written.push(target);
     }
     remove_stale_plots(&written)?;
@@ -59,11 +52,11 @@ fn remove_stale_plots(written: &[PathBuf]) -> Result<(), Error> {
     dirs.sort();
     dirs.dedup();
     for d in dirs {
-        let entries = std::fs::read_dir(d).map_err(write_err(d))?;
+        let entries = std::fs::read_dir(d).map_err(Error::write(d))?;
         for e in entries.flatten() {
             let p = e.path();
             if p.extension().is_some_and(|x| x == "svg") && !written.contains(&p) {
-                std::fs::remove_file(&p).map_err(write_err(&p))?;
+                std::fs::remove_file(&p).map_err(Error::write(&p))?;
             }
         }
     }
