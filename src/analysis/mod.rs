@@ -30,6 +30,10 @@ pub const DEFAULT_RESAMPLES: usize = 10_000;
 pub const DEFAULT_CONFIDENCE: f64 = 0.95;
 
 /// Settings of an analysis.
+///
+/// Build them with [`Settings::new`], which refuses values the analysis cannot
+/// use; a literal must pass [`Settings::validate`] before it is analysed with
+/// (a confidence outside (0, 1) has no t quantile).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Settings {
     /// Bootstrap resamples asked for (fewer are used when exact enumeration is cheaper).
@@ -50,6 +54,17 @@ impl Default for Settings {
 }
 
 impl Settings {
+    /// Checked settings: a confidence strictly between 0 and 1, at least one resample.
+    pub fn new(resamples: usize, seed: u64, confidence: f64) -> Result<Settings, String> {
+        let settings = Settings {
+            resamples,
+            seed,
+            confidence,
+        };
+        settings.validate()?;
+        Ok(settings)
+    }
+
     /// Checks the settings, explaining what is wrong.
     pub fn validate(&self) -> Result<(), String> {
         if !(self.confidence > 0.0 && self.confidence < 1.0) {
