@@ -12,6 +12,7 @@ pub mod fix;
 pub mod map;
 pub mod naming;
 pub mod reference;
+pub mod session;
 
 use crate::analysis::audit::{ChainInput, Point};
 use crate::analysis::placement::Joint;

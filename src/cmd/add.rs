@@ -1,0 +1,128 @@
+//! `phalanx add`: new X-rays into the dataset, with a snapshot in the history.
+
+use super::args::{BootArgs, DataArgs, HistoryArgs};
+use super::out;
+use crate::error::Error;
+use crate::track::{self, AddRequest, NewRows};
+use std::path::PathBuf;
+
+/// Add new X-rays to the dataset (validated, locked, atomic) and record a snapshot
+#[derive(clap::Args, Debug)]
+#[command(
+    after_help = "New rows pass every check of the dataset and may not repeat an (xray, finger) already there; \
+                  on any problem nothing is added. A value outside the current prediction interval is flagged \
+                  as a likely measurement or typing error: a warning, or a refusal with --strict.\n\n\
+                  Examples:\n  phalanx add new_xrays.csv\n  phalanx add --xray 2a --finger index --lengths 352.1,201.4,178.0 --sex female --age 34\n  phalanx add --strict --xray 2a --finger thumb --lengths 270.1,233.9"
+)]
+pub struct Args {
+    /// CSV file of new rows, in the dataset's format (with a header)
+    #[arg(value_name = "FILE.csv", conflicts_with_all = ["xray", "finger", "lengths"])]
+    file: Option<PathBuf>,
+    /// X-ray id of one new row
+    #[arg(long, requires_all = ["finger", "lengths"])]
+    xray: Option<String>,
+    /// Finger of the new row
+    #[arg(long, requires_all = ["xray", "lengths"])]
+    finger: Option<String>,
+    /// Segment lengths J1,J2[,J3] of the new row (J3 not for the thumb)
+    #[arg(long, value_name = "J1,J2[,J3]", requires_all = ["xray", "finger"], allow_hyphen_values = true)]
+    lengths: Option<String>,
+    /// Sex of the hand (female, male, ...)
+    #[arg(long)]
+    sex: Option<String>,
+    /// Age in years
+    #[arg(long)]
+    age: Option<String>,
+    /// left or right
+    #[arg(long)]
+    side: Option<String>,
+    /// Where the measurement comes from
+    #[arg(long)]
+    source: Option<String>,
+    /// Unit of the lengths
+    #[arg(long)]
+    unit: Option<String>,
+    /// Refuse rows flagged as likely errors instead of warning
+    #[arg(long)]
+    strict: bool,
+    #[command(flatten)]
+    data: DataArgs,
+    #[command(flatten)]
+    history: HistoryArgs,
+    #[command(flatten)]
+    boot: BootArgs,
+}
+
+pub(crate) fn run(args: &Args) -> Result<i32, Error> {
+    let rows = new_rows(args)?;
+    let history = args.history.resolve(&args.data.data);
+    let outcome = track::add(&AddRequest {
+        data: args.data.data.clone(),
+        history: history.clone(),
+        rows,
+        strict: args.strict,
+        settings: args.boot.settings()?,
+    })?;
+    for f in &outcome.flags {
+        eprintln!("warning: {}", f.reason);
+    }
+    out::print(
+        format!(
+            "added {} row{} to {}: {} -> {} X-rays; snapshot appended to {}\n",
+            outcome.added,
+            if outcome.added == 1 { "" } else { "s" },
+            args.data.data.display(),
+            outcome.xrays_before,
+            outcome.xrays_after,
+            history.display()
+        )
+        .as_bytes(),
+    )?;
+    Ok(0)
+}
+
+/// The new rows: a file, or one row from the options.
+fn new_rows(args: &Args) -> Result<NewRows, Error> {
+    match (&args.file, &args.xray, &args.finger, &args.lengths) {
+        (Some(f), ..) => Ok(NewRows::File(f.clone())),
+        (None, Some(x), Some(f), Some(l)) => Ok(NewRows::Fields(row_fields(args, x, f, l)?)),
+        _ => Err(Error::Usage(
+            "give a CSV file of new rows, or --xray, --finger and --lengths for one row (see phalanx add --help)".into(),
+        )),
+    }
+}
+
+/// The (column, value) pairs of a row given as options.
+fn row_fields(
+    args: &Args,
+    xray: &str,
+    finger: &str,
+    lengths: &str,
+) -> Result<Vec<(&'static str, String)>, Error> {
+    let mut parts: Vec<String> = lengths.split(',').map(|p| p.trim().to_string()).collect();
+    if parts.len() < 2 || parts.len() > 3 {
+        return Err(Error::Usage(format!(
+            "--lengths '{lengths}': give 2 (thumb) or 3 (other fingers) comma-separated lengths, e.g. 352.1,201.4,178.0"
+        )));
+    }
+    parts.resize(3, String::new());
+    let mut fields = vec![
+        ("xray", xray.to_string()),
+        ("finger", finger.to_string()),
+        ("j1", parts[0].clone()),
+        ("j2", parts[1].clone()),
+        ("j3", parts[2].clone()),
+    ];
+    for (name, v) in [
+        ("sex", &args.sex),
+        ("age", &args.age),
+        ("side", &args.side),
+        ("source", &args.source),
+        ("unit", &args.unit),
+    ] {
+        if let Some(v) = v {
+            fields.push((name, v.clone()));
+        }
+    }
+    Ok(fields)
+}

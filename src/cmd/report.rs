@@ -1,0 +1,183 @@
+//! `phalanx report`: analyse, check, simulate, render everything in memory, then write.
+
+use super::args::{BootArgs, DEFAULT_CLAIMS, DataArgs, GroupArgs, HistoryArgs, parse_length};
+use crate::analysis::claims::{self, ClaimResult};
+use crate::analysis::coverage::{self, CoverageSettings};
+use crate::analysis::groups::analyse_groups;
+use crate::analysis::{Analysis, placement};
+use crate::dataset::Dataset;
+use crate::dataset::claims::Claims;
+use crate::error::Error;
+use crate::report::render::Templates;
+use crate::report::view::{ReferenceAudit, ReportInputs};
+use crate::report::writer::OutputFile;
+use crate::report::{self, Formats};
+use crate::rig::AuditedRig;
+use crate::rig::reference::{self, ReferenceRig};
+use clap::ValueEnum;
+use std::path::{Path, PathBuf};
+
+/// Default directory of reference rigs for the report.
+const DEFAULT_RIGS: &str = "data/rigs";
+
+/// Render the HTML and Markdown report with SVG plots, and stats.json
+#[derive(clap::Args, Debug)]
+#[command(
+    after_help = "Writes DIR/index.html (self-contained), DIR/report.md, DIR/plots/*.svg and DIR/stats.json.\n\
+                  Files are replaced atomically; a failed run leaves the previous report as it was.\n\n\
+                  Examples:\n  phalanx report\n  phalanx report --out /tmp/site --model-length 87.5 --format html\n  phalanx report --templates my_templates/"
+)]
+pub struct Args {
+    #[command(flatten)]
+    data: DataArgs,
+    /// The claims file checked in the "Reproducing the paper" section
+    #[arg(long, value_name = "PATH", default_value = DEFAULT_CLAIMS)]
+    claims: PathBuf,
+    /// Output directory
+    #[arg(long, value_name = "DIR", default_value = "reports")]
+    out: PathBuf,
+    #[command(flatten)]
+    boot: BootArgs,
+    /// Total length of the model finger for the joint-placement section, in model units
+    #[arg(long, value_name = "L", default_value_t = 1000.0, value_parser = parse_length, allow_negative_numbers = true)]
+    model_length: f64,
+    /// Formats to write, comma-separated
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [Format::Html, Format::Md, Format::Json])]
+    format: Vec<Format>,
+    /// Directory with report.html.tera and/or report.md.tera overriding the built-in templates
+    #[arg(long, value_name = "DIR")]
+    templates: Option<PathBuf>,
+    /// Add the generation time (UTC) to the provenance; the report is then no longer reproducible byte for byte
+    #[arg(long)]
+    timestamp: bool,
+    /// Simulated datasets for the coverage section
+    #[arg(long, default_value_t = 4000, value_parser = clap::value_parser!(u64).range(1..))]
+    sims: u64,
+    #[command(flatten)]
+    history: HistoryArgs,
+    #[command(flatten)]
+    groups: GroupArgs,
+    /// Directory of reference rigs (*.json) for "Popular rigs against the X-rays"; absent = no section
+    #[arg(long, value_name = "DIR", default_value = DEFAULT_RIGS)]
+    rigs: PathBuf,
+    /// Target half-width of the confidence interval of a relative mean, for "X-rays needed"
+    #[arg(long, value_name = "W", default_value_t = 0.005, value_parser = parse_target)]
+    target: f64,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum Format {
+    Html,
+    Md,
+    Json,
+}
+
+fn parse_target(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 => Ok(t),
+        _ => Err(format!(
+            "'{text}' is not a positive half-width; give e.g. 0.005"
+        )),
+    }
+}
+
+pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
+    let settings = args.boot.settings()?;
+    let templates = match &args.templates {
+        Some(dir) => Templates::from_dir(dir)?,
+        None => Templates::builtin()?,
+    };
+    let by = args.groups.group_by()?;
+    let dataset = Dataset::load(&args.data.data)?;
+    let groups = by.map_or_else(Vec::new, |by| analyse_groups(&dataset, &by, &settings));
+    let history_path = args.history.resolve(&args.data.data);
+    let history = crate::dataset::history::read(&history_path)?;
+    let claims = Claims::load(&args.claims)?;
+    let (results, claims_note) = check_claims(&claims, &dataset);
+    let references = reference::load_dir(&args.rigs)?;
+    let a = super::analyse_showing_progress(&dataset, &settings, quiet);
+    drop(dataset);
+    let rigs = audit_references(references, &a);
+    let cov_settings = CoverageSettings {
+        sims: args.sims as usize,
+        resamples: settings.resamples,
+        seed: settings.seed,
+        confidence: settings.confidence,
+        max_n: Some(coverage::REPORT_MAX_N),
+    };
+    let cov = coverage::of_analysis(&a, &cov_settings);
+    let placements = placement::place_all(&a, args.model_length);
+    let timestamp = args
+        .timestamp
+        .then(|| humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string());
+    let inputs = ReportInputs {
+        analysis: &a,
+        claims_file: &claims.path,
+        claims: &results,
+        claims_note: claims_note.as_deref(),
+        coverage_settings: &cov_settings,
+        coverage: &cov,
+        placements: &placements,
+        model_length: args.model_length,
+        timestamp,
+        history_file: &history_path.display().to_string(),
+        history: &history,
+        target: args.target,
+        groups: &groups,
+        rigs: &rigs,
+    };
+    let files = report::render(&inputs, formats(&args.format), &templates)?;
+    write(&args.out, &files)?;
+    Ok(0)
+}
+
+/// Checks the claims. Claims about rows this dataset lacks (another lab's data,
+/// say) cannot be checked: the report says so instead of failing.
+fn check_claims(claims: &Claims, dataset: &Dataset) -> (Vec<ClaimResult>, Option<String>) {
+    match claims.check_against(dataset) {
+        Ok(()) => (claims::check(claims, dataset), None),
+        Err(e) => (
+            Vec::new(),
+            Some(format!(
+                "The claims were not checked: they refer to rows this dataset does not have ({} problem(s), the first: {}).",
+                e.problems.len(),
+                e.problems
+                    .first()
+                    .map_or(String::new(), |p| p.message.clone())
+            )),
+        ),
+    }
+}
+
+/// Judges each reference rig against the statistics.
+fn audit_references(references: Vec<ReferenceRig>, a: &Analysis) -> Vec<ReferenceAudit> {
+    references
+        .into_iter()
+        .map(|rig| {
+            let audit = AuditedRig::of(&rig.name, &rig.chains, &[], a);
+            ReferenceAudit { rig, audit }
+        })
+        .collect()
+}
+
+/// The report files asked for with --format.
+fn formats(asked: &[Format]) -> Formats {
+    Formats {
+        html: asked.contains(&Format::Html),
+        markdown: asked.contains(&Format::Md),
+        json: asked.contains(&Format::Json),
+    }
+}
+
+/// Writes the files and says which on standard error.
+fn write(dir: &Path, files: &[OutputFile]) -> Result<(), Error> {
+    report::writer::write_all(dir, files)?;
+    let names: Vec<String> = files.iter().map(|f| f.path.display().to_string()).collect();
+    eprintln!(
+        "phalanx: wrote {} files to {}: {}",
+        files.len(),
+        dir.display(),
+        names.join(", ")
+    );
+    Ok(())
+}

@@ -1,0 +1,49 @@
+//! `phalanx stats`: the statistics of every finger.
+
+use super::args::{BootArgs, DataArgs, GroupArgs};
+use super::out;
+use crate::analysis::groups::analyse_groups;
+use crate::dataset::Dataset;
+use crate::error::Error;
+use crate::report;
+use clap::ValueEnum;
+
+/// Statistics of every finger: the paper's (mean, min, max, range) and beyond
+#[derive(clap::Args, Debug)]
+#[command(
+    after_help = "Examples:\n  phalanx stats\n  phalanx stats --format json > stats.json\n  phalanx stats --format csv --resamples 20000 --seed 7 --confidence 0.9"
+)]
+pub struct Args {
+    #[command(flatten)]
+    data: DataArgs,
+    #[command(flatten)]
+    boot: BootArgs,
+    #[command(flatten)]
+    groups: GroupArgs,
+    /// Output format
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    format: Format,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum Format {
+    Table,
+    Json,
+    Csv,
+}
+
+pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
+    let settings = args.boot.settings()?;
+    let by = args.groups.group_by()?;
+    let dataset = Dataset::load(&args.data.data)?;
+    let a = super::analyse_showing_progress(&dataset, &settings, quiet);
+    let groups = by.map_or_else(Vec::new, |by| analyse_groups(&dataset, &by, &settings));
+    drop(dataset);
+    match args.format {
+        Format::Table => out::print(report::text::stats_with_groups(&a, &groups).as_bytes())?,
+        // Streamed: the document of a large dataset is not held in memory.
+        Format::Json => out::stream(|w| report::json::write_stats(w, &a, &groups))?,
+        Format::Csv => out::print(&report::csv_out::stats(&a, &groups)?)?,
+    }
+    Ok(0)
+}

@@ -1,0 +1,151 @@
+//! One audit of a rig file: load it, judge it against the statistics and,
+//! when asked, write a fixed copy. Returns finished results; showing them is
+//! the caller's business.
+
+use super::fix::{self, Fixed};
+use super::map::NameMap;
+use super::{AuditedRig, GltfFile, Rig};
+use crate::analysis::{self, Analysis, Settings};
+use crate::dataset::Dataset;
+use crate::error::Error;
+use std::path::{Path, PathBuf};
+
+/// What to audit, against which data, and where to write a fixed copy.
+pub struct AuditRequest<'a> {
+    /// The rig: a .glb, .gltf or .vrm file.
+    pub rig: &'a Path,
+    /// Custom joint names (CSV with node,side,finger,joint).
+    pub map: Option<&'a Path>,
+    /// Where to write a fixed copy (.glb or .vrm; .gltf for an embedded buffer).
+    pub fix: Option<&'a Path>,
+    /// The measurement file the rig is judged against.
+    pub data: &'a Path,
+    /// Used as given: build them with [`Settings::new`].
+    pub settings: Settings,
+}
+
+/// A finished audit.
+pub struct Audit {
+    /// The statistics the rig was judged against.
+    pub analysis: Analysis,
+    /// The input rig, judged.
+    pub rig: AuditedRig,
+    /// What the fix wrote, when one was asked for.
+    pub fix: Option<FixOutcome>,
+}
+
+/// What the fix wrote.
+pub struct FixOutcome {
+    /// The file written.
+    pub output: PathBuf,
+    /// (node name, distance moved in rig units), in chain order.
+    pub moved: Vec<(String, f64)>,
+    /// Remarks for the user (animations that drive moved joints, external images).
+    pub warnings: Vec<String>,
+    /// The written copy, read back and judged again.
+    pub reaudit: AuditedRig,
+}
+
+/// Audits a rig against the statistics, and with `fix` writes a corrected copy.
+///
+/// The fix is refused before any work when it would overwrite the input or its
+/// extension names no glTF container. The fixed copy is read back from memory
+/// before it is written, so a copy that would not load is never left on disk;
+/// it is written atomically and the input is never modified.
+pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
+    let map = req.map.map(NameMap::load).transpose()?;
+    let fix_glb = req.fix.map(|out| fix_container(req.rig, out)).transpose()?;
+    let rig = Rig::load(req.rig, map.as_ref())?;
+    let dataset = Dataset::load(req.data)?;
+    let analysis = analysis::analyse(&dataset, &req.settings);
+    let audited = AuditedRig::of(&rig.file.label, &rig.chains, &rig.notes, &analysis);
+    let fix = match (req.fix, fix_glb) {
+        (Some(out), Some(glb)) => {
+            let dir = req.rig.parent().unwrap_or(Path::new("."));
+            let fixed = fix::fix(&rig.file, &audited.fingers, dir, glb)?;
+            let reaudit = write_checked(&rig, &fixed, out, map.as_ref(), &analysis)?;
+            Some(FixOutcome {
+                output: out.to_path_buf(),
+                moved: fixed.moved,
+                warnings: fixed.warnings,
+                reaudit,
+            })
+        }
+        _ => None,
+    };
+    Ok(Audit {
+        analysis,
+        rig: audited,
+        fix,
+    })
+}
+
+/// The container of a fixed copy written to `out`: `true` for GLB (.glb,
+/// .vrm), `false` for .gltf; refuses an output that is the input rig.
+fn fix_container(rig: &Path, out: &Path) -> Result<bool, Error> {
+    if same_file(rig, out) {
+        return Err(Error::Usage(format!(
+            "--fix {} would overwrite the input rig; name a new file (the input is never modified)",
+            out.display()
+        )));
+    }
+    match out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
+        Some("glb" | "vrm") => Ok(true),
+        Some("gltf") => Ok(false),
+        _ => Err(Error::Usage(format!(
+            "--fix {}: name the output .glb or .vrm (or .gltf for an embedded buffer)",
+            out.display()
+        ))),
+    }
+}
+
+/// Reads the fixed copy back, writes it to `out` atomically and judges it again.
+fn write_checked(
+    rig: &Rig,
+    fixed: &Fixed,
+    out: &Path,
+    map: Option<&NameMap>,
+    analysis: &Analysis,
+) -> Result<AuditedRig, Error> {
+    // Read the new file back before it is written: a copy that would not
+    // load is never left on disk.
+    let out_label = out.display().to_string();
+    let re = GltfFile::from_bytes(&out_label, &fixed.bytes)
+        .and_then(|f| Rig::from_file(f, map))
+        .map_err(|e| {
+            Error::render(
+                format!(
+                    "the fixed copy of {} did not read back; nothing was written",
+                    rig.file.label
+                ),
+                e,
+            )
+        })?;
+    crate::atomic::replace(out, &fixed.bytes).map_err(Error::write(out))?;
+    Ok(AuditedRig::of(
+        &re.file.label,
+        &re.chains,
+        &re.notes,
+        analysis,
+    ))
+}
+
+/// True when `a` and `b` name the same file (`b` may not exist yet).
+fn same_file(a: &Path, b: &Path) -> bool {
+    let canon = |p: &Path| {
+        let p = crate::atomic::resolve(p);
+        let dir = p
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        dir.canonicalize()
+            .ok()
+            .map(|d| d.join(p.file_name().unwrap_or_default()))
+    };
+    canon(a).is_some() && canon(a) == canon(b)
+}

@@ -1,0 +1,138 @@
+//! The tracking workflow's file operations: adding X-rays and taking snapshots.
+//!
+//! `add` holds the dataset's lock from reading to replacing the file, so two
+//! additions at the same time both land; the dataset is replaced atomically,
+//! so a killed run leaves the old or the new file, never a torn one; on any
+//! problem nothing is written.
+//!
+//! The settings are used as given: build them with
+//! [`Settings::new`](crate::analysis::Settings::new) (the command line does).
+
+use crate::analysis::tracking::{self, Flag};
+use crate::analysis::{self, Settings};
+use crate::atomic;
+use crate::dataset::append::{self, DatasetLock};
+use crate::dataset::history::{self, Snapshot};
+use crate::dataset::{DataError, Dataset, Problem, csvinput};
+use crate::error::Error;
+use std::path::{Path, PathBuf};
+
+/// Where new rows come from.
+pub enum NewRows {
+    /// A CSV file in the dataset's format (with its own header).
+    File(PathBuf),
+    /// One row given as options: (column, value) pairs.
+    Fields(Vec<(&'static str, String)>),
+}
+
+/// What `add` is asked to do.
+pub struct AddRequest {
+    pub data: PathBuf,
+    pub history: PathBuf,
+    pub rows: NewRows,
+    /// Refuse rows whose relative values fall outside the prediction intervals.
+    pub strict: bool,
+    pub settings: Settings,
+}
+
+/// What `add` did.
+#[derive(Debug)]
+pub struct AddOutcome {
+    pub added: usize,
+    pub xrays_before: usize,
+    pub xrays_after: usize,
+    /// Values outside the current prediction intervals (warnings unless strict).
+    pub flags: Vec<Flag>,
+    pub snapshot: Snapshot,
+}
+
+/// The current UTC time, RFC 3339, for history records.
+pub fn now() -> String {
+    humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
+}
+
+/// Adds new rows to a dataset, then appends a snapshot to its history.
+pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
+    let new = match &req.rows {
+        NewRows::File(p) => Dataset::load(p)?,
+        NewRows::Fields(fields) => append::single_row(fields)?,
+    };
+    csvinput::open_input(&req.data)?; // a missing dataset is reported before any lock file is made
+    let _lock = DatasetLock::acquire(&req.data).map_err(Error::write(&req.data))?;
+    let current_bytes = csvinput::read_input(&req.data)?;
+    let label = req.data.display().to_string();
+    let current = Dataset::from_bytes(&label, &current_bytes)?;
+    let from_options = matches!(req.rows, NewRows::Fields(_));
+    let (bytes, after) =
+        append::appended_bytes(&current_bytes, &current, &new).map_err(|mut e| {
+            if from_options {
+                e.problems.iter_mut().for_each(|p| p.line = None);
+            }
+            e
+        })?;
+    let before = analysis::analyse(&current, &req.settings);
+    let flags: Vec<Flag> = new
+        .rows
+        .iter()
+        .flat_map(|r| tracking::flag_row(&before, r))
+        .collect();
+    if req.strict && !flags.is_empty() {
+        return Err(refusal(&new, &flags, from_options).into());
+    }
+    let a = analysis::analyse(&after, &req.settings);
+    let snapshot = tracking::snapshot(&a, now(), "add");
+    // Stage both files in full before replacing either: a history that cannot be
+    // written stops the add with the dataset untouched. Between the two renames
+    // a crash can only lose the snapshot ('phalanx snapshot' records it again).
+    let history_bytes =
+        history::appended_bytes(&req.history, &snapshot).map_err(Error::write(&req.history))?;
+    let staged_data = atomic::stage(&req.data, &bytes).map_err(Error::write(&req.data))?;
+    let staged_history =
+        atomic::stage(&req.history, &history_bytes).map_err(Error::write(&req.history))?;
+    atomic::commit(staged_data, &req.data).map_err(Error::write(&req.data))?;
+    atomic::commit(staged_history, &req.history).map_err(Error::write(&req.history))?;
+    Ok(AddOutcome {
+        added: new.rows.len(),
+        xrays_before: current.xray_count(),
+        xrays_after: after.xray_count(),
+        flags,
+        snapshot,
+    })
+}
+
+/// The error of `add --strict`: one problem per flagged value, at the new row's
+/// line (no line for a row given as options).
+fn refusal(new: &Dataset, flags: &[Flag], from_options: bool) -> DataError {
+    let problems = new
+        .rows
+        .iter()
+        .flat_map(|r| {
+            flags
+                .iter()
+                .filter(move |f| f.xray == *r.xray && f.finger == r.finger.name())
+                .map(move |f| Problem::line(r.line, format!("refused (--strict): {}", f.reason)))
+        })
+        .map(|mut p| {
+            if from_options {
+                p.line = None;
+            }
+            p
+        })
+        .collect();
+    DataError {
+        file: new.path.clone(),
+        problems,
+    }
+}
+
+/// Appends a snapshot of the dataset's current statistics to its history
+/// (for data edited by hand). Holds the dataset's lock while it reads.
+pub fn snapshot(data: &Path, history_path: &Path, settings: &Settings) -> Result<Snapshot, Error> {
+    csvinput::open_input(data)?; // a missing dataset is reported before any lock file is made
+    let _lock = DatasetLock::acquire(data).map_err(Error::write(data))?;
+    let dataset = Dataset::load(data)?;
+    let a = analysis::analyse(&dataset, settings);
+    let snap = tracking::snapshot(&a, now(), "snapshot");
+    history::append(history_path, &snap).map_err(Error::write(history_path))?;
+    Ok(snap)
+}
