@@ -3,7 +3,7 @@
 
 use crate::cmd;
 use crate::error::{EXIT_DATA, Error};
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -38,6 +38,8 @@ pub enum Command {
     Synth(cmd::synth::Args),
     Snapshot(cmd::snapshot::Args),
     History(cmd::history::Args),
+    Completions(cmd::completions::Args),
+    Man(cmd::man::Args),
 }
 
 /// Runs phalanx with the process arguments; returns the exit status.
@@ -73,5 +75,7 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
         Command::Synth(args) => cmd::synth::run(&args),
         Command::Snapshot(args) => cmd::snapshot::run(&args),
         Command::History(args) => cmd::history::run(&args),
+        Command::Completions(args) => cmd::completions::run(&args, Cli::command()),
+        Command::Man(args) => cmd::man::run(&args, Cli::command()),
     }
 }
