@@ -1,6 +1,6 @@
 //! `phalanx audit`: rigs built by the tests (tests/common/hand.rs) judged against the paper's data.
 
-mod common;
+use crate::common;
 
 use common::hand::{
     CM_PER_UNIT, HandSpec, Naming, XRAY_1B, build, read_glb, skinned_rest_vertices,

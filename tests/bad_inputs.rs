@@ -26,7 +26,7 @@
 //! Every run must not panic, must print nothing on stdout, and must leave
 //! every file of its directory as it was (no new, changed or removed file).
 
-mod common;
+use crate::common;
 
 use common::{Run, Workdir, paper_claims, paper_data};
 use std::collections::BTreeMap;

@@ -1,7 +1,7 @@
 //! `phalanx check` through the binary: the paper's misprints and their causes,
 //! exit 1 for an unrecorded mismatch, and every problem of a claims file.
 
-mod common;
+use crate::common;
 
 use common::*;
 use serde_json::Value;

@@ -1,7 +1,7 @@
 //! A `phalanx report` killed (SIGKILL) at random moments never leaves a torn file:
 //! every report file is, each on its own, the previous or the new complete version.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::collections::BTreeMap;

@@ -3,7 +3,7 @@
 //! SIGKILL in the middle of an addition, typo flags), `snapshot` and `history`,
 //! and `stats --group-by`.
 
-mod common;
+use crate::common;
 
 use common::*;
 use serde_json::Value;
