@@ -8,8 +8,6 @@
 
 #![allow(dead_code)] // each test binary uses a different part of the harness
 
-pub mod hand;
-
 use assert_cmd::Command;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
