@@ -353,7 +353,8 @@ fn fix_never_overwrites_the_input_and_bad_files_are_clear_errors() {
 }
 
 /// The example rigs of the README (docs/examples) are what the builder makes;
-/// `PHALANX_WRITE_EXAMPLES=1 cargo test --test cli_audit examples` renews them.
+/// `PHALANX_WRITE_EXAMPLES=1 cargo test --test integration audit::the_committed_example_rigs`
+/// renews them.
 #[test]
 fn the_committed_example_rigs_are_current() {
     let far = HandSpec::new(Naming::Mixamo)
@@ -374,7 +375,7 @@ fn the_committed_example_rigs_are_current() {
         let committed = std::fs::read(&path).unwrap_or_default();
         assert!(
             committed == bytes,
-            "{} is stale: run PHALANX_WRITE_EXAMPLES=1 cargo test --test cli_audit examples",
+            "{} is stale: run PHALANX_WRITE_EXAMPLES=1 cargo test --test integration audit::the_committed_example_rigs",
             path.display()
         );
     }
