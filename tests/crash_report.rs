@@ -25,6 +25,7 @@ fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
 }
 
 #[test]
+#[ignore = "slow: 30 reports killed at random moments (run by .ci/run)"]
 fn a_killed_report_leaves_each_file_old_or_new() {
     let wd = Workdir::new();
     wd.copy_paper_data();
