@@ -25,8 +25,12 @@
 //!
 //! Every run must not panic, must print nothing on stdout, and must leave
 //! every file of its directory as it was (no new, changed or removed file).
+//!
+//! The `stats`/`check` runs are one test; the `report` runs, most of the
+//! corpus's time, are another, which a plain `cargo test` skips and `.ci/run`
+//! runs (`cargo test -- --ignored`).
 
-mod common;
+use crate::common;
 
 use common::{Run, Workdir, paper_claims, paper_data};
 use std::collections::BTreeMap;
@@ -282,7 +286,8 @@ fn check_run(wrong: &mut Vec<String>, exit: i32, what: &str, run: &Run, needles:
     }
 }
 
-/// Checks one fixture; returns what went wrong, if anything.
+/// Checks the command that reads one fixture (`stats` or `check`); returns
+/// what went wrong, if anything.
 fn check_fixture(fixture: &Fixture) -> Vec<String> {
     let e = &fixture.expect;
     let wd = stage(fixture);
@@ -301,6 +306,17 @@ fn check_fixture(fixture: &Fixture) -> Vec<String> {
     if !diff.is_empty() {
         wrong.push(format!("{}: files changed: {diff}", args.join(" ")));
     }
+    wrong
+}
+
+/// Checks `report` over a previous report with one fixture as input; returns
+/// what went wrong, if anything.
+fn check_fixture_report(fixture: &Fixture) -> Vec<String> {
+    let e = &fixture.expect;
+    let wd = stage(fixture);
+    let data = e.data.as_deref().unwrap_or("data/measurements.csv");
+    let mut wrong = Vec::new();
+    let before = tree(wd.path());
 
     // `report` over a previous report: fails and leaves it byte-identical.
     let args: Vec<&str> = match e.kind {
@@ -348,6 +364,25 @@ fn every_malformed_input_is_refused_with_its_expected_error() {
     );
     for f in &fixtures {
         for w in check_fixture(f) {
+            failures.push(format!("{}: {w}", f.name));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} failure(s) over {} fixtures:\n\n{}",
+        failures.len(),
+        fixtures.len(),
+        failures.join("\n\n")
+    );
+}
+
+/// The corpus through `report`, over a previous report.
+#[test]
+#[ignore = "slow: a report run per fixture (run by .ci/run)"]
+fn a_report_over_a_malformed_input_fails_the_same_way_or_notes_it() {
+    let (fixtures, mut failures) = load_corpus();
+    for f in &fixtures {
+        for w in check_fixture_report(f) {
             failures.push(format!("{}: {w}", f.name));
         }
     }

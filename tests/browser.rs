@@ -22,7 +22,9 @@
 //! The browser is `$PHALANX_CHROMIUM`, else `chromium`, `chromium-browser` or
 //! `google-chrome` on `PATH`. Without one the test says why on stderr and
 //! passes (`.ci/run` installs the Debian package `chromium`). Chromium is
-//! killed if it runs longer than [`TIMEOUT`].
+//! killed if it runs longer than [`TIMEOUT`]. Starting it takes seconds, so a
+//! plain `cargo test` skips the test and `.ci/run` runs it
+//! (`cargo test -- --ignored`).
 
 use scraper::{Html, Selector};
 use serde_json::Value;
@@ -425,6 +427,7 @@ fn problems(page: &Value) -> Vec<String> {
 }
 
 #[test]
+#[ignore = "slow: starts headless Chromium (run by .ci/run, which installs it)"]
 fn report_renders_in_chromium() {
     let explicit = std::env::var_os("PHALANX_CHROMIUM");
     let path = std::env::var_os("PATH");

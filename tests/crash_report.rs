@@ -1,7 +1,7 @@
 //! A `phalanx report` killed (SIGKILL) at random moments never leaves a torn file:
 //! every report file is, each on its own, the previous or the new complete version.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::collections::BTreeMap;
@@ -25,6 +25,7 @@ fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
 }
 
 #[test]
+#[ignore = "slow: 30 reports killed at random moments (run by .ci/run)"]
 fn a_killed_report_leaves_each_file_old_or_new() {
     let wd = Workdir::new();
     wd.copy_paper_data();

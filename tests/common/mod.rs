@@ -6,10 +6,6 @@
 //! [`Run`] with stdout, stderr and the exit code. Every run is checked for a
 //! panic, so no test can pass while the binary panics.
 
-#![allow(dead_code)] // each test binary uses a different part of the harness
-
-pub mod hand;
-
 use assert_cmd::Command;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -42,10 +38,6 @@ pub fn paper_claims() -> Vec<u8> {
 
 /// The header of a minimal measurement file.
 pub const HEADER: &str = "xray,finger,j1,j2,j3";
-
-/// The header of a claims file.
-pub const CLAIMS_HEADER: &str =
-    "id,location,refers_to,finger,xray,quantity,statistic,model_length,stated,erratum,note";
 
 /// One row of the paper's Table 1: X-ray, finger, lengths (2 for the thumb).
 #[derive(Debug, Clone)]
@@ -91,12 +83,6 @@ pub fn measurement_csv(rows: &[PaperRow]) -> String {
 /// An isolated temporary working directory; removed when dropped.
 pub struct Workdir {
     dir: tempfile::TempDir,
-}
-
-impl Default for Workdir {
-    fn default() -> Self {
-        Self::new()
-    }
 }
 
 impl Workdir {

@@ -1,6 +1,6 @@
 //! `phalanx synth`: synthetic datasets that load, are reproducible, and scale.
 
-mod common;
+use crate::common;
 
 use common::*;
 

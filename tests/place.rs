@@ -1,6 +1,6 @@
 //! `phalanx place`: joint positions for a model finger, against the paper's worked example.
 
-mod common;
+use crate::common;
 
 use common::*;
 

@@ -3,7 +3,7 @@
 //! SIGKILL in the middle of an addition, typo flags), `snapshot` and `history`,
 //! and `stats --group-by`.
 
-mod common;
+use crate::common;
 
 use common::*;
 use serde_json::Value;
@@ -674,6 +674,7 @@ fn add_big(wd: &Workdir, xray: &str, lengths: &str) -> StdCommand {
 }
 
 #[test]
+#[ignore = "slow: 40 adds killed at random moments (run by .ci/run)"]
 fn a_killed_add_leaves_the_old_or_the_new_dataset_never_a_torn_one() {
     const XRAYS: usize = 300;
     const KILLS: usize = 40;

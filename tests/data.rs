@@ -2,7 +2,7 @@
 //! place (`FILE:LINE:COLUMN: FIELD: message`), exit codes of data errors, and
 //! the inputs that must be accepted (BOM, CRLF, quotes, blank lines, aliases).
 
-mod common;
+use crate::common;
 
 use common::*;
 use serde_json::Value;

@@ -1,10 +1,14 @@
 //! `phalanx check` through the binary: the paper's misprints and their causes,
 //! exit 1 for an unrecorded mismatch, and every problem of a claims file.
 
-mod common;
+use crate::common;
 
 use common::*;
 use serde_json::Value;
+
+/// The header of a claims file.
+const CLAIMS_HEADER: &str =
+    "id,location,refers_to,finger,xray,quantity,statistic,model_length,stated,erratum,note";
 
 const SUMMARY: &str =
     "30 claims: 20 match, 2 match from rounded values, 8 known errata, 0 new mismatches";

@@ -1,11 +1,11 @@
-//! `phalanx audit`: rigs built by the tests (tests/common/hand.rs) judged against the paper's data.
+//! `phalanx audit`: rigs built by the tests (tests/audit/hand.rs) judged against the paper's data.
 
-mod common;
+mod hand;
 
-use common::hand::{
-    CM_PER_UNIT, HandSpec, Naming, XRAY_1B, build, read_glb, skinned_rest_vertices,
-};
+use crate::common;
+
 use common::*;
+use hand::{CM_PER_UNIT, HandSpec, Naming, XRAY_1B, build, read_glb, skinned_rest_vertices};
 use serde_json::Value;
 
 fn audit_json(wd: &Workdir, file: &str) -> Value {
@@ -150,7 +150,7 @@ fn a_far_off_joint_is_flagged_with_its_direction_and_distance() {
 
 fn node_position(doc: &Value, name: &str) -> [f64; 3] {
     let nodes = doc["nodes"].as_array().unwrap();
-    let world = common::hand::world_of(nodes);
+    let world = hand::world_of(nodes);
     let i = nodes.iter().position(|n| n["name"] == name).unwrap();
     let t = world[i].w_axis;
     [t.x, t.y, t.z]
@@ -353,7 +353,8 @@ fn fix_never_overwrites_the_input_and_bad_files_are_clear_errors() {
 }
 
 /// The example rigs of the README (docs/examples) are what the builder makes;
-/// `PHALANX_WRITE_EXAMPLES=1 cargo test --test cli_audit examples` renews them.
+/// `PHALANX_WRITE_EXAMPLES=1 cargo test --test integration audit::the_committed_example_rigs`
+/// renews them.
 #[test]
 fn the_committed_example_rigs_are_current() {
     let far = HandSpec::new(Naming::Mixamo)
@@ -374,7 +375,7 @@ fn the_committed_example_rigs_are_current() {
         let committed = std::fs::read(&path).unwrap_or_default();
         assert!(
             committed == bytes,
-            "{} is stale: run PHALANX_WRITE_EXAMPLES=1 cargo test --test cli_audit examples",
+            "{} is stale: run PHALANX_WRITE_EXAMPLES=1 cargo test --test integration audit::the_committed_example_rigs",
             path.display()
         );
     }
@@ -503,7 +504,7 @@ fn a_map_file_also_drives_fix() {
 fn edit(bytes: &[u8], f: impl FnOnce(&mut Value)) -> Vec<u8> {
     let (mut json, bin) = read_glb(bytes);
     f(&mut json);
-    common::hand::glb(&json, bin)
+    hand::glb(&json, bin)
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! `phalanx stats` through the binary: the JSON document's schema and values,
 //! reproducibility (seeds, thread counts), scale invariance and the CSV export.
 
-mod common;
+use crate::common;
 
 use common::*;
 use serde_json::Value;

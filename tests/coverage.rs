@@ -1,7 +1,7 @@
 //! `phalanx coverage` through the binary: the simulated coverage of each
 //! interval method at the paper's n = 5.
 
-mod common;
+use crate::common;
 
 use common::*;
 use serde_json::Value;

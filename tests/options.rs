@@ -1,7 +1,7 @@
 //! Command-line options through the binary: exit codes of good and bad option
 //! values for every command, and the help texts.
 
-mod common;
+use crate::common;
 
 use common::*;
 

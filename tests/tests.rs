@@ -1,0 +1,18 @@
+//! The integration tests: one binary, one module per area.
+
+mod common;
+
+mod audit;
+mod bad_inputs;
+mod browser;
+mod check;
+mod coverage;
+mod crash_report;
+mod data;
+mod options;
+mod place;
+mod properties;
+mod report;
+mod stats;
+mod synth;
+mod track;
