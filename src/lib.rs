@@ -4,14 +4,18 @@
 //! Determination for Skeleton Driven Animation of Human Hands", and goes beyond it.
 //! Modules depend one way: [`dataset`] (ingest, validate) -> [`analysis`]
 //! (statistics, bootstrap, claims, rig audit) -> [`rig`] (glTF rigs in and
-//! out) -> [`report`] (views, plots, writers).
+//! out) -> [`report`] (views, plots, writers). Two leaves serve them all:
+//! [`stats`], the self-contained statistics core, and [`format`], where every
+//! number shown becomes text.
 
 pub mod analysis;
 pub mod atomic;
 pub mod cli;
 pub mod dataset;
 pub mod error;
+pub mod format;
 pub mod report;
 pub mod rig;
+pub mod stats;
 pub mod synth;
 pub mod workflow;

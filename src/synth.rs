@@ -16,8 +16,8 @@
 //! side right (90%) or left. All draws come from one ChaCha8 stream of the seed,
 //! so a seed always gives the same file.
 
-use crate::analysis::rng;
 use crate::dataset::Finger;
+use crate::stats::rng;
 use std::fmt::Write as _;
 
 /// Random-stream key of the generator (separate from the bootstrap's).

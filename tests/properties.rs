@@ -267,7 +267,7 @@ proptest! {
                 if let Err(e) = same_order_free_stats(s, t, 1e-12) {
                     return Err(TestCaseError::fail(format!("{what} (rows shuffled): {e}")));
                 }
-                let exact = |p: phalanx::analysis::bootstrap::Plan| matches!(p, phalanx::analysis::bootstrap::Plan::Exact { .. });
+                let exact = |p: phalanx::stats::bootstrap::Plan| matches!(p, phalanx::stats::bootstrap::Plan::Exact { .. });
                 if exact(fa.bootstrap) && exact(fb.bootstrap) {
                     let tol = 1e-12 * magnitude(s);
                     prop_assert!(close_iv(s.ci_percentile, t.ci_percentile, tol), "{what} percentile: {:?} vs {:?}", s.ci_percentile, t.ci_percentile);

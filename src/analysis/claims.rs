@@ -154,9 +154,9 @@ fn compute(claim: &Claim, rows: &[&Row], rounded: bool) -> Option<f64> {
 
 /// Mean, min, max or range of some values (eqs. 5, 7, 9).
 fn summary(s: Statistic, vals: &[f64]) -> Option<f64> {
-    let (lo, hi) = super::describe::min_max(vals)?;
+    let (lo, hi) = crate::stats::describe::min_max(vals)?;
     Some(match s {
-        Statistic::Mean => super::describe::mean(vals)?,
+        Statistic::Mean => crate::stats::describe::mean(vals)?,
         Statistic::Min => lo,
         Statistic::Max => hi,
         Statistic::Range => hi - lo,

@@ -8,8 +8,8 @@
 //! alone, not on the fitted mean and SD: quantities of equal n share one
 //! simulation (common random numbers), and their coverages are equal.
 
-use super::bootstrap::{self, Sorted};
-use super::{describe, rng};
+use crate::stats::bootstrap::{self, Sorted};
+use crate::stats::{describe, rng};
 use rayon::prelude::*;
 use serde::Serialize;
 

@@ -7,17 +7,18 @@
 //! prediction interval for one new X-ray. Knows nothing of files or rendering.
 
 pub mod audit;
-pub mod bootstrap;
 pub mod claims;
 pub mod coverage;
-pub mod describe;
 pub mod groups;
 pub mod placement;
-pub mod rng;
 pub mod tracking;
 
+/// The interval type of [`crate::stats`], also here for the analysis's callers.
+pub use crate::stats::Interval;
+
 use crate::dataset::{Dataset, Finger, Row};
-use bootstrap::{Plan, Sorted};
+use crate::stats::bootstrap::{self, Plan, Sorted};
+use crate::stats::describe;
 use serde::{Serialize, Serializer};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -62,45 +63,6 @@ impl Settings {
             return Err("resamples must be at least 1 (default 10000)".into());
         }
         Ok(())
-    }
-}
-
-/// A closed interval `[low, high]`; serialised as a two-element array.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Interval {
-    pub low: f64,
-    pub high: f64,
-}
-
-impl Interval {
-    pub fn new(low: f64, high: f64) -> Interval {
-        Interval { low, high }
-    }
-
-    /// A zero-width interval at `x`.
-    pub fn point(x: f64) -> Interval {
-        Interval { low: x, high: x }
-    }
-
-    /// high - low.
-    pub fn width(&self) -> f64 {
-        self.high - self.low
-    }
-
-    /// True when `low <= x <= high`.
-    pub fn contains(&self, x: f64) -> bool {
-        self.low <= x && x <= self.high
-    }
-
-    /// The interval multiplied by a non-negative factor.
-    pub fn scaled(&self, k: f64) -> Interval {
-        Interval::new(self.low * k, self.high * k)
-    }
-}
-
-impl Serialize for Interval {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        [self.low, self.high].serialize(s)
     }
 }
 

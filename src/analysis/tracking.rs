@@ -1,9 +1,10 @@
 //! Tracking a growing dataset: snapshots, changes between them, outlier flags,
 //! and how many X-rays a target precision needs.
 
-use super::{Analysis, Interval, Quantity, describe, xray_values};
+use super::{Analysis, Interval, Quantity, xray_values};
 use crate::dataset::Row;
 use crate::dataset::history::{FingerCount, QuantityRecord, Snapshot, SnapshotSettings};
+use crate::stats::describe;
 use serde::Serialize;
 
 fn pair(i: Option<Interval>) -> Option<[f64; 2]> {

@@ -2,9 +2,9 @@
 //!
 //! Rig coordinates are taken as metres (the glTF unit) and shown in millimetres.
 
-use super::format::{num, percent};
 use crate::analysis::Quantity;
 use crate::analysis::audit::{Basis, FingerAudit, Standing};
+use crate::format::{num, percent};
 use crate::rig::{AuditedFinger, AuditedRig};
 
 /// Millimetres per rig unit (glTF units are metres).

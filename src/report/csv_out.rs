@@ -83,8 +83,8 @@ fn write_analysis(
     let err = |e| Error::render("cannot write CSV", e);
     for fa in &a.fingers {
         let method = match fa.bootstrap {
-            crate::analysis::bootstrap::Plan::Exact { .. } => "exact",
-            crate::analysis::bootstrap::Plan::Random { .. } => "random",
+            crate::stats::bootstrap::Plan::Exact { .. } => "exact",
+            crate::stats::bootstrap::Plan::Random { .. } => "random",
         };
         for q in &fa.quantities {
             let mut rec = lead.to_vec();

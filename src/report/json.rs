@@ -3,10 +3,11 @@
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
 use crate::analysis::groups::{Group, GroupSummary};
-use crate::analysis::{Analysis, DatasetInfo, FingerAnalysis, Quantity, Settings, rng};
+use crate::analysis::{Analysis, DatasetInfo, FingerAnalysis, Quantity, Settings};
 use crate::dataset::Finger;
 use crate::dataset::history::{QuantityRecord, Snapshot};
 use crate::error::Error;
+use crate::stats::rng;
 use serde::Serialize;
 
 /// Version of every JSON document phalanx writes; bumped on any incompatible change.

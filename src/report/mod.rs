@@ -6,7 +6,6 @@
 
 pub mod audit;
 pub mod csv_out;
-pub mod format;
 pub mod json;
 pub mod plots;
 pub mod progress;

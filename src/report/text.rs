@@ -1,11 +1,11 @@
 //! Terminal tables for `stats`, `check` and `coverage`.
 
-use super::format::{decimals, interval, num, opt, percent};
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
+use crate::format::{decimals, interval, num, opt, percent};
 use comfy_table::{CellAlignment, ContentArrangement, Table, presets};
 
 /// A terminal table in Markdown style, columns from `right_from` on right-aligned.
@@ -292,7 +292,7 @@ pub fn placement(ps: &[crate::analysis::placement::FingerPlacement], confidence:
                     .iter()
                     .map(|s| (format!("segment {}", s.segment.to_uppercase()), &s.length)),
             );
-        let d = super::format::length_decimals(p.length);
+        let d = crate::format::length_decimals(p.length);
         for (what, v) in rows {
             t.add_row(vec![
                 what,

@@ -3,16 +3,17 @@
 //! Templates never compute or format numbers; everything they show is a string
 //! here. Built from analysis results only, never from raw measurement rows.
 
-use super::format::{decimals, interval, num, opt, percent};
 use super::plots::{Plot, PlotKind};
-use crate::analysis::bootstrap::Plan;
 use crate::analysis::claims::{CheckSummary, ClaimResult, Verdict};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
 use crate::analysis::groups::Group;
 use crate::analysis::placement::FingerPlacement;
-use crate::analysis::{Analysis, Quantity, rng};
+use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
+use crate::format::{decimals, interval, num, opt, percent};
+use crate::stats::bootstrap::Plan;
+use crate::stats::rng;
 use serde::Serialize;
 
 /// Most X-rays listed row by row in the data tables; the rest are summarised.
@@ -395,14 +396,14 @@ fn settings_text(inputs: &ReportInputs<'_>) -> SettingsText {
 fn width_reason(a: &Analysis) -> String {
     let n = a.fingers.iter().map(|f| f.n).min().unwrap_or(0);
     let c = a.settings.confidence;
-    match crate::analysis::describe::t_quantile(c, n.saturating_sub(1)) {
+    match crate::stats::describe::t_quantile(c, n.saturating_sub(1)) {
         Some(t) => format!(
             "With n = {n} the {} t quantile is {} ({} degrees of freedom), not the normal {}.",
             percent_plain(c),
             num(t, 2),
             n - 1,
             num(
-                crate::analysis::describe::normal_quantile(1.0 - (1.0 - c) / 2.0),
+                crate::stats::describe::normal_quantile(1.0 - (1.0 - c) / 2.0),
                 2
             )
         ),
@@ -614,7 +615,7 @@ fn claims(file: &str, results: &[ClaimResult], note: Option<&str>) -> ClaimsView
 }
 
 fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
-    let d = super::format::length_decimals(length);
+    let d = crate::format::length_decimals(length);
     let row = |finger: Finger, what: &str, p: &crate::analysis::placement::Placed| PlacementRow {
         finger: finger.display_name().to_string(),
         what: what.to_string(),

@@ -9,7 +9,7 @@ use super::{Plot, PlotKind};
 use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
 use crate::dataset::Finger;
 use crate::error::Error;
-use crate::report::format;
+use crate::format;
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged, ValueFormatter};
 use plotters::coord::types::RangedCoordf64;

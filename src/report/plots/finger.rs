@@ -13,7 +13,7 @@ use super::draw::{
 use super::{Plot, PlotKind, finger_phrase};
 use crate::analysis::{FingerAnalysis, Quantity, QuantityStats};
 use crate::error::Error;
-use crate::report::format;
+use crate::format;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 

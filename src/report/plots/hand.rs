@@ -10,7 +10,7 @@ use super::draw::{
 use super::{Plot, PlotKind};
 use crate::analysis::placement::{FingerPlacement, JointPosition};
 use crate::error::Error;
-use crate::report::format;
+use crate::format;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 

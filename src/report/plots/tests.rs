@@ -1,12 +1,11 @@
 //! Tests of the plots on the paper's data and on synthetic extremes.
 
 use super::*;
-use crate::analysis::bootstrap::Plan;
 use crate::analysis::placement::place_all;
-use crate::analysis::{
-    DatasetInfo, Quantity, Settings, XrayValues, analyse, describe, quantity_stats,
-};
+use crate::analysis::{DatasetInfo, Quantity, Settings, XrayValues, analyse, quantity_stats};
 use crate::dataset::Dataset;
+use crate::stats::bootstrap::Plan;
+use crate::stats::describe;
 use std::path::Path;
 use std::sync::Arc;
 

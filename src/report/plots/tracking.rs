@@ -17,7 +17,7 @@ use super::draw::{
 use super::{Plot, PlotKind, TrackPoint, TrackSeries, finger_phrase};
 use crate::dataset::Finger;
 use crate::error::Error;
-use crate::report::format;
+use crate::format;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
