@@ -1,6 +1,7 @@
 //! Number formatting shared by every output: the one place numbers become text.
 
-use crate::analysis::{Interval, Quantity};
+use crate::analysis::Quantity;
+use crate::stats::{Interval, Intervals};
 
 /// Decimals for a quantity: 4 for relative values and ratios (as the paper prints them), 2 for lengths.
 pub fn decimals(q: Quantity) -> usize {
@@ -42,6 +43,28 @@ pub fn interval(i: Option<Interval>, d: usize) -> String {
         Some(i) => format!("[{}, {}]", num(i.low, d), num(i.high, d)),
         None => "n/a".to_string(),
     }
+}
+
+/// The table cells of the four intervals, in table order (t, percentile, BCa,
+/// prediction): each `[low, high]` with `d` decimals, or "n/a".
+pub fn interval_cells(iv: &Intervals, d: usize) -> [String; 4] {
+    iv.all().map(|i| interval(i, d))
+}
+
+/// A number at full precision for machine-read outputs (CSV): the shortest text
+/// that reads back as the same `f64`; empty when absent or not finite.
+pub fn full(x: Option<f64>) -> String {
+    x.filter(|v| v.is_finite())
+        .map_or_else(String::new, |v| v.to_string())
+}
+
+/// The CSV cells of the four intervals, in table order: low and high of each
+/// at full precision, both empty where the interval is undefined.
+pub fn interval_bounds(iv: &Intervals) -> Vec<String> {
+    iv.all()
+        .iter()
+        .flat_map(|i| [full(i.map(|i| i.low)), full(i.map(|i| i.high))])
+        .collect()
 }
 
 /// A proportion as a percentage with one decimal.

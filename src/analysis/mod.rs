@@ -17,6 +17,7 @@ pub mod tracking;
 pub use crate::stats::Interval;
 
 use crate::dataset::{Dataset, Finger, Row};
+use crate::stats::Intervals;
 use crate::stats::bootstrap::{self, Plan, Sorted};
 use crate::stats::describe;
 use serde::{Serialize, Serializer};
@@ -204,11 +205,10 @@ pub struct QuantityStats {
     pub range: f64,
     /// SD / mean; null for n = 1.
     pub cv: Option<f64>,
-    pub ci_t: Option<Interval>,
-    pub ci_percentile: Option<Interval>,
-    pub ci_bca: Option<Interval>,
-    /// Prediction interval for one new X-ray.
-    pub pi: Option<Interval>,
+    /// The t, percentile and BCa intervals of the mean and the prediction
+    /// interval for one new X-ray (JSON keys `ci_t`, `ci_percentile`, `ci_bca`, `pi`).
+    #[serde(flatten)]
+    pub intervals: Intervals,
     /// Why an interval is null or collapsed, when it is.
     pub notes: Vec<String>,
 }
@@ -410,30 +410,20 @@ pub fn quantity_stats(
     let se = sd.map(|s| s / (n as f64).sqrt());
     let cv = sd.map(|s| s / mean);
     let mut notes = Vec::new();
-    let (ci_t, ci_percentile, ci_bca, pi);
-    if n < 2 {
+    let intervals = if n < 2 {
         notes.push("n = 1: no spread can be estimated, so every interval is null".into());
-        (ci_t, ci_percentile, ci_bca, pi) = (None, None, None, None);
+        Intervals::NONE
     } else if zero_spread {
         notes.push(
             "every X-ray gives the same value: every interval collapses to that value".into(),
         );
-        let p = Some(Interval::point(mean));
-        (ci_t, ci_percentile, ci_bca, pi) = (p, p, p, p);
+        Intervals::point(mean)
     } else {
-        let s = sd.unwrap_or(0.0);
-        ci_t = describe::t_interval(mean, s, n, c);
-        pi = describe::prediction_interval(mean, s, n, c);
         let sorted = Sorted::new(boot, weights);
-        ci_percentile = Some(bootstrap::percentile_interval(&sorted, c));
-        ci_bca = match bootstrap::bca_interval(&sorted, values, mean, c) {
-            Ok(i) => Some(i),
-            Err(reason) => {
-                notes.push(reason.to_string());
-                None
-            }
-        };
-    }
+        let (intervals, why) = Intervals::of_mean(values, mean, sd.unwrap_or(0.0), &sorted, c);
+        notes.extend(why.map(str::to_string));
+        intervals
+    };
     QuantityStats {
         name,
         n,
@@ -445,10 +435,7 @@ pub fn quantity_stats(
         max,
         range: max - min,
         cv,
-        ci_t,
-        ci_percentile,
-        ci_bca,
-        pi,
+        intervals,
         notes,
     }
 }

@@ -7,10 +7,6 @@ use crate::dataset::history::{FingerCount, QuantityRecord, Snapshot, SnapshotSet
 use crate::stats::describe;
 use serde::Serialize;
 
-fn pair(i: Option<Interval>) -> Option<[f64; 2]> {
-    i.map(|i| [i.low, i.high])
-}
-
 /// The history record of an analysis.
 pub fn snapshot(a: &Analysis, time: String, event: &str) -> Snapshot {
     Snapshot {
@@ -42,10 +38,7 @@ pub fn snapshot(a: &Analysis, time: String, event: &str) -> Snapshot {
                     n: q.n,
                     mean: q.mean,
                     sd: q.sd,
-                    ci_t: pair(q.ci_t),
-                    ci_percentile: pair(q.ci_percentile),
-                    ci_bca: pair(q.ci_bca),
-                    pi: pair(q.pi),
+                    intervals: q.intervals,
                 })
             })
             .collect(),
@@ -78,7 +71,7 @@ pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
                 .quantities
                 .iter()
                 .find(|p| p.finger == q.finger && p.quantity == q.quantity)?;
-            let width = |i: Option<[f64; 2]>| i.map(|[lo, hi]| hi - lo);
+            let width = |i: Option<Interval>| i.map(|i| i.width());
             Some(Change {
                 finger: q.finger.clone(),
                 quantity: q.quantity.clone(),
@@ -87,8 +80,8 @@ pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
                 mean_before: b.mean,
                 mean_after: q.mean,
                 mean_shift: q.mean - b.mean,
-                ci_width_before: width(b.ci_t),
-                ci_width_after: width(q.ci_t),
+                ci_width_before: width(b.intervals.ci_t),
+                ci_width_after: width(q.intervals.ci_t),
             })
         })
         .collect()
@@ -99,7 +92,7 @@ pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
 pub struct QuantityHistory {
     pub finger: String,
     pub quantity: String,
-    pub points: Vec<(usize, f64, Option<[f64; 2]>)>,
+    pub points: Vec<(usize, f64, Option<Interval>)>,
 }
 
 /// The history of every quantity present in the snapshots, in first-seen order.
@@ -107,7 +100,7 @@ pub fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
     let mut out: Vec<QuantityHistory> = Vec::new();
     for s in snaps {
         for q in &s.quantities {
-            let point = (q.n, q.mean, q.ci_t);
+            let point = (q.n, q.mean, q.intervals.ci_t);
             match out
                 .iter_mut()
                 .find(|h| h.finger == q.finger && h.quantity == q.quantity)
@@ -235,7 +228,7 @@ pub fn flag_row(a: &Analysis, row: &Row) -> Vec<Flag> {
             .iter()
             .enumerate()
             .filter_map(|(k, q)| {
-                let pi = fa.quantity(*q).and_then(|s| s.pi);
+                let pi = fa.quantity(*q).and_then(|s| s.intervals.pi);
                 unusual(x.relative[k], pi, &columns[k]).map(|why| (k, why))
             })
             .collect()
@@ -270,7 +263,7 @@ pub fn flag_row(a: &Analysis, row: &Row) -> Vec<Flag> {
         .into_iter()
         .map(|(k, why)| {
             let q = relative[k];
-            let pi = fa.quantity(q).and_then(|s| s.pi);
+            let pi = fa.quantity(q).and_then(|s| s.intervals.pi);
             Flag {
                 xray: row.xray.to_string(),
                 finger: row.finger.name().to_string(),
@@ -367,6 +360,7 @@ mod tests {
             .unwrap()
             .quantity(Quantity::RelJ1)
             .unwrap()
+            .intervals
             .pi
             .unwrap();
         assert!(

@@ -5,6 +5,7 @@
 
 use super::csvinput::read_input;
 use super::{DataError, Problem};
+use crate::stats::Intervals;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -16,10 +17,9 @@ pub struct QuantityRecord {
     pub n: usize,
     pub mean: f64,
     pub sd: Option<f64>,
-    pub ci_t: Option<[f64; 2]>,
-    pub ci_percentile: Option<[f64; 2]>,
-    pub ci_bca: Option<[f64; 2]>,
-    pub pi: Option<[f64; 2]>,
+    /// Keys `ci_t`, `ci_percentile`, `ci_bca`, `pi`, as in the statistics document.
+    #[serde(flatten)]
+    pub intervals: Intervals,
 }
 
 /// X-rays per finger at one snapshot.
@@ -127,6 +127,7 @@ pub fn append(path: &Path, snapshot: &Snapshot) -> std::io::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::stats::Interval;
 
     fn snap(n: usize) -> Snapshot {
         Snapshot {
@@ -150,10 +151,10 @@ mod tests {
                 n,
                 mean: 0.5,
                 sd: None,
-                ci_t: Some([0.4, 0.6]),
-                ci_percentile: None,
-                ci_bca: None,
-                pi: None,
+                intervals: Intervals {
+                    ci_t: Some(Interval::new(0.4, 0.6)),
+                    ..Intervals::NONE
+                },
             }],
         }
     }

@@ -119,7 +119,7 @@ fn tracking_plots(inputs: &ReportInputs<'_>) -> Result<Vec<plots::Plot>, Error> 
                         .map(|&(xrays, mean, ci)| plots::TrackPoint {
                             xrays,
                             mean,
-                            ci: ci.map(|[lo, hi]| (lo, hi)),
+                            ci: ci.map(|i| (i.low, i.high)),
                         })
                         .collect(),
                 })

@@ -5,7 +5,7 @@ use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
-use crate::format::{decimals, interval, num, opt, percent};
+use crate::format::{decimals, interval, interval_cells, num, opt, percent};
 use comfy_table::{CellAlignment, ContentArrangement, Table, presets};
 
 /// A terminal table in Markdown style, columns from `right_from` on right-aligned.
@@ -54,7 +54,7 @@ pub fn stats(a: &Analysis) -> String {
         );
         for q in &f.quantities {
             let d = decimals(q.name);
-            t.add_row(vec![
+            let mut row = vec![
                 q.name.label().to_string(),
                 num(q.mean, d),
                 num(q.min, d),
@@ -62,11 +62,9 @@ pub fn stats(a: &Analysis) -> String {
                 num(q.range, d),
                 opt(q.sd, d),
                 opt(q.se, d),
-                interval(q.ci_t, d),
-                interval(q.ci_percentile, d),
-                interval(q.ci_bca, d),
-                interval(q.pi, d),
-            ]);
+            ];
+            row.extend(interval_cells(&q.intervals, d));
+            t.add_row(row);
         }
         out.push_str(&t.to_string());
         out.push('\n');
@@ -229,9 +227,7 @@ pub fn history(
             else {
                 continue;
             };
-            let ci = r
-                .ci_t
-                .map(|[lo, hi]| crate::analysis::Interval::new(lo, hi));
+            let ci = r.intervals.ci_t;
             t.add_row(vec![
                 (i + 1).to_string(),
                 s.time.clone(),
@@ -294,17 +290,15 @@ pub fn placement(ps: &[crate::analysis::placement::FingerPlacement], confidence:
             );
         let d = crate::format::length_decimals(p.length);
         for (what, v) in rows {
-            t.add_row(vec![
+            let mut row = vec![
                 what,
                 num(v.mean, d),
                 num(v.min, d),
                 num(v.max, d),
                 num(v.range, d),
-                interval(v.ci_t, d),
-                interval(v.ci_percentile, d),
-                interval(v.ci_bca, d),
-                interval(v.pi, d),
-            ]);
+            ];
+            row.extend(interval_cells(&v.intervals, d));
+            t.add_row(row);
         }
         if let Some(col) = t.column_mut(0) {
             col.set_cell_alignment(CellAlignment::Left);

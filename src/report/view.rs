@@ -11,9 +11,9 @@ use crate::analysis::placement::FingerPlacement;
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
-use crate::format::{decimals, interval, num, opt, percent};
+use crate::format::{decimals, interval_cells, num, opt, percent};
 use crate::stats::bootstrap::Plan;
-use crate::stats::rng;
+use crate::stats::{Intervals, rng};
 use serde::Serialize;
 
 /// Most X-rays listed row by row in the data tables; the rest are summarised.
@@ -189,10 +189,30 @@ pub struct StatsRow {
     pub se: String,
     pub median: String,
     pub cv: String,
+    #[serde(flatten)]
+    pub intervals: IntervalCells,
+}
+
+/// The four intervals of a table row as text (keys `ci_t`, `ci_percentile`, `ci_bca`, `pi`).
+#[derive(Debug, Clone, Serialize)]
+pub struct IntervalCells {
     pub ci_t: String,
     pub ci_percentile: String,
     pub ci_bca: String,
     pub pi: String,
+}
+
+impl IntervalCells {
+    /// The cells of `iv` with `d` decimals (from [`interval_cells`]).
+    pub fn new(iv: &Intervals, d: usize) -> IntervalCells {
+        let [ci_t, ci_percentile, ci_bca, pi] = interval_cells(iv, d);
+        IntervalCells {
+            ci_t,
+            ci_percentile,
+            ci_bca,
+            pi,
+        }
+    }
 }
 
 /// The claim-by-claim check.
@@ -238,10 +258,8 @@ pub struct PlacementRow {
     pub min: String,
     pub max: String,
     pub range: String,
-    pub ci_t: String,
-    pub ci_percentile: String,
-    pub ci_bca: String,
-    pub pi: String,
+    #[serde(flatten)]
+    pub intervals: IntervalCells,
 }
 
 /// Simulated coverage per method.
@@ -538,10 +556,7 @@ fn stats(f: &crate::analysis::FingerAnalysis) -> StatsFinger {
                 se: opt(q.se, d),
                 median: num(q.median, d),
                 cv: q.cv.map_or_else(|| "n/a".to_string(), percent),
-                ci_t: interval(q.ci_t, d),
-                ci_percentile: interval(q.ci_percentile, d),
-                ci_bca: interval(q.ci_bca, d),
-                pi: interval(q.pi, d),
+                intervals: IntervalCells::new(&q.intervals, d),
             }
         })
         .collect();
@@ -623,10 +638,7 @@ fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
         min: num(p.min, d),
         max: num(p.max, d),
         range: num(p.range, d),
-        ci_t: interval(p.ci_t, d),
-        ci_percentile: interval(p.ci_percentile, d),
-        ci_bca: interval(p.ci_bca, d),
-        pi: interval(p.pi, d),
+        intervals: IntervalCells::new(&p.intervals, d),
     };
     PlacementView {
         length: length_text(length),
@@ -806,7 +818,7 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
                         quantity: q.name.label().to_string(),
                         n: q.n.to_string(),
                         sd: opt(q.sd, 4),
-                        half_width: opt(q.ci_t.map(|i| i.width() / 2.0), 4),
+                        half_width: opt(q.intervals.ci_t.map(|i| i.width() / 2.0), 4),
                         needed: need.map_or_else(|| "n/a".to_string(), |n| n.to_string()),
                         more: match need {
                             Some(n) if n <= q.n => "reached".to_string(),

@@ -8,7 +8,9 @@
 
 pub mod bootstrap;
 pub mod describe;
+pub mod estimate;
 pub mod interval;
 pub mod rng;
 
+pub use estimate::Intervals;
 pub use interval::Interval;

@@ -82,10 +82,10 @@ impl Kind {
     /// This interval of a quantity, if it exists.
     pub(super) fn of(self, s: &QuantityStats) -> Option<Interval> {
         match self {
-            Kind::T => s.ci_t,
-            Kind::Percentile => s.ci_percentile,
-            Kind::Bca => s.ci_bca,
-            Kind::Prediction => s.pi,
+            Kind::T => s.intervals.ci_t,
+            Kind::Percentile => s.intervals.ci_percentile,
+            Kind::Bca => s.intervals.ci_bca,
+            Kind::Prediction => s.intervals.pi,
         }
     }
 

@@ -139,7 +139,7 @@ fn y_range(placements: &[FingerPlacement], length: f64) -> (f64, f64) {
     let ends = placements.iter().flat_map(|p| {
         p.joints.iter().flat_map(|j| {
             let pos = &j.position;
-            let pi = pos.pi.map_or([pos.mean; 2], |i| [i.low, i.high]);
+            let pi = pos.intervals.pi.map_or([pos.mean; 2], |i| [i.low, i.high]);
             [pos.min, pos.max, pi[0], pi[1]]
         })
     });
@@ -173,7 +173,7 @@ fn draw_joint(pen: &Pen, at: &dyn Fn(f64) -> Px, j: &JointPosition, d: usize) ->
     let x = at(0.0).0;
     let (low, high) = (at(pos.min).1, at(pos.max).1);
     pen.rect((x - BAND_HALF, high), (x + BAND_HALF, low), RANGE, 0.6)?;
-    if let Some(pi) = pos.pi {
+    if let Some(pi) = pos.intervals.pi {
         let bar_x = x - PI_OFFSET;
         pen.interval(
             (bar_x, at(pi.low).1),
@@ -214,7 +214,7 @@ fn description(placements: &[FingerPlacement], length: f64, confidence: f64) -> 
                     format::num(pos.min, d),
                     format::num(pos.max, d),
                     level(confidence),
-                    format::interval(pos.pi, d)
+                    format::interval(pos.intervals.pi, d)
                 )
             })
             .collect();

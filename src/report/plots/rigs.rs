@@ -87,7 +87,7 @@ fn draw_chart(pen: &Pen, area: &Root<'_>, rows: &[Row], rigs: &[RigRatios]) -> D
     let values = rows.iter().flat_map(|r| {
         let s = r.stats;
         let mut v = vec![s.min, s.max, s.mean];
-        if let Some(pi) = s.pi {
+        if let Some(pi) = s.intervals.pi {
             v.extend([pi.low, pi.high]);
         }
         v.extend(rigs.iter().filter_map(|g| value_of(g, r)));
@@ -117,7 +117,7 @@ fn draw_chart(pen: &Pen, area: &Root<'_>, rows: &[Row], rigs: &[RigRatios]) -> D
         let s = row.stats;
         let (a, b) = (at(s.min, y), at(s.max, y));
         pen.rect((a.0, a.1 - 8), (b.0.max(a.0 + 2), b.1 + 8), RANGE, 0.55)?;
-        if let Some(pi) = s.pi {
+        if let Some(pi) = s.intervals.pi {
             let (a, b) = (at(pi.low, y), at(pi.high, y));
             pen.interval(
                 (a.0, a.1 + 14),
@@ -159,7 +159,7 @@ fn description(rows: &[Row], rigs: &[RigRatios], confidence: f64) -> String {
             short(s.min, 3),
             short(s.max, 3)
         ));
-        if let Some(pi) = s.pi {
+        if let Some(pi) = s.intervals.pi {
             out.push_str(&format!(
                 ", prediction {} to {}",
                 short(pi.low, 3),

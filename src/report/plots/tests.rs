@@ -418,7 +418,7 @@ fn empty_and_non_finite_inputs_render_without_panicking() {
     let mut f = synthetic(20);
     f.xrays[3].relative[0] = f64::NAN;
     f.quantities[0].mean = f64::INFINITY;
-    f.quantities[1].ci_t = None;
+    f.quantities[1].intervals.ci_t = None;
     let p = finger_plot(&f, 0.95).unwrap();
     assert_accessible(&p);
 }
