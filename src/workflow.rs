@@ -9,7 +9,7 @@ use crate::analysis::tracking::{self, Flag};
 use crate::analysis::{self, Settings};
 use crate::atomic;
 use crate::dataset::append::{self, DatasetLock};
-use crate::dataset::history::{self, Snapshot};
+use crate::dataset::history::{self, Event, Snapshot};
 use crate::dataset::{DataError, Dataset, Problem, csvinput};
 use crate::error::Error;
 use std::path::{Path, PathBuf};
@@ -107,7 +107,7 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         .into());
     }
     let a = analysis::analyse(&after, &req.settings);
-    let snapshot = tracking::snapshot(&a, now(), "add");
+    let snapshot = tracking::snapshot(&a, now(), Event::Add);
     // Stage both files in full before replacing either: a history that cannot be
     // written stops the add with the dataset untouched. Between the two renames
     // a crash can only lose the snapshot ('phalanx snapshot' records it again).
@@ -135,7 +135,7 @@ pub fn snapshot(data: &Path, history_path: &Path, settings: &Settings) -> Result
     let _lock = DatasetLock::acquire(data).map_err(io_err(data))?;
     let dataset = Dataset::load(data)?;
     let a = analysis::analyse(&dataset, settings);
-    let snap = tracking::snapshot(&a, now(), "snapshot");
+    let snap = tracking::snapshot(&a, now(), Event::Snapshot);
     history::append(history_path, &snap).map_err(io_err(history_path))?;
     Ok(snap)
 }

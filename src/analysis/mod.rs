@@ -13,14 +13,16 @@ pub mod groups;
 pub mod placement;
 pub mod tracking;
 
-/// The interval type of [`crate::stats`], also here for the analysis's callers.
+/// The interval type of [`crate::stats`] and the quantities of [`crate::dataset`],
+/// also here for the analysis's callers.
+pub use crate::dataset::Quantity;
 pub use crate::stats::Interval;
 
 use crate::dataset::{Dataset, Finger, Row};
 use crate::stats::Intervals;
 use crate::stats::bootstrap::{self, Plan, Sorted};
 use crate::stats::describe;
-use serde::{Serialize, Serializer};
+use serde::Serialize;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -67,112 +69,6 @@ impl Settings {
     }
 }
 
-/// A quantity measured once per X-ray of a finger.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Quantity {
-    /// J~1 = J1 / J.
-    RelJ1,
-    /// J~2 = J2 / J.
-    RelJ2,
-    /// J~3 = J3 / J (not for the thumb).
-    RelJ3,
-    /// J2 / J1, the ratio of adjacent segments (needs no fingertip).
-    RatioJ2J1,
-    /// J3 / J2 (not for the thumb).
-    RatioJ3J2,
-    /// J, the total length in data units.
-    Total,
-}
-
-impl Quantity {
-    /// Every quantity, in output order.
-    pub const ALL: [Quantity; 6] = [
-        Quantity::RelJ1,
-        Quantity::RelJ2,
-        Quantity::RelJ3,
-        Quantity::RatioJ2J1,
-        Quantity::RatioJ3J2,
-        Quantity::Total,
-    ];
-
-    /// The quantities of a finger.
-    pub fn of(finger: Finger) -> &'static [Quantity] {
-        match finger {
-            Finger::Thumb => &[
-                Quantity::RelJ1,
-                Quantity::RelJ2,
-                Quantity::RatioJ2J1,
-                Quantity::Total,
-            ],
-            _ => &Quantity::ALL,
-        }
-    }
-
-    /// Machine name (`rel_j1`, ..., `total`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Quantity::RelJ1 => "rel_j1",
-            Quantity::RelJ2 => "rel_j2",
-            Quantity::RelJ3 => "rel_j3",
-            Quantity::RatioJ2J1 => "ratio_j2_j1",
-            Quantity::RatioJ3J2 => "ratio_j3_j2",
-            Quantity::Total => "total",
-        }
-    }
-
-    /// Parses a machine name.
-    pub fn parse(text: &str) -> Option<Quantity> {
-        Quantity::ALL
-            .into_iter()
-            .find(|q| q.name() == text.trim().to_ascii_lowercase())
-    }
-
-    /// Name for people, in the paper's notation.
-    pub fn label(self) -> &'static str {
-        match self {
-            Quantity::RelJ1 => "J~1 = J1/J",
-            Quantity::RelJ2 => "J~2 = J2/J",
-            Quantity::RelJ3 => "J~3 = J3/J",
-            Quantity::RatioJ2J1 => "J2/J1",
-            Quantity::RatioJ3J2 => "J3/J2",
-            Quantity::Total => "J (total length)",
-        }
-    }
-
-    /// The symbol alone: "J~1", "J2/J1", "J (total length)".
-    pub fn symbol(self) -> &'static str {
-        self.label().split(" = ").next().unwrap_or(self.name())
-    }
-
-    /// True for the relative values J~k (fractions of the total length).
-    pub fn is_relative(self) -> bool {
-        matches!(self, Quantity::RelJ1 | Quantity::RelJ2 | Quantity::RelJ3)
-    }
-
-    /// True for every quantity without a unit (relative values and ratios).
-    pub fn is_unitless(self) -> bool {
-        self != Quantity::Total
-    }
-
-    /// The value of this quantity for one X-ray's derived values.
-    pub fn of_xray(self, x: &XrayValues) -> f64 {
-        match self {
-            Quantity::RelJ1 => x.relative[0],
-            Quantity::RelJ2 => x.relative[1],
-            Quantity::RelJ3 => x.relative[2],
-            Quantity::RatioJ2J1 => x.lengths[1] / x.lengths[0],
-            Quantity::RatioJ3J2 => x.lengths[2] / x.lengths[1],
-            Quantity::Total => x.total,
-        }
-    }
-}
-
-impl Serialize for Quantity {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(self.name())
-    }
-}
-
 /// The derived values of one X-ray for one finger (eqs. 1-2).
 #[derive(Debug, Clone, Serialize)]
 pub struct XrayValues {
@@ -183,6 +79,20 @@ pub struct XrayValues {
     pub total: f64,
     /// J~k = J_k / J for every segment (eq. 2).
     pub relative: Vec<f64>,
+}
+
+impl XrayValues {
+    /// The value of quantity `q` on this X-ray.
+    pub fn value(&self, q: Quantity) -> f64 {
+        match q {
+            Quantity::RelJ1 => self.relative[0],
+            Quantity::RelJ2 => self.relative[1],
+            Quantity::RelJ3 => self.relative[2],
+            Quantity::RatioJ2J1 => self.lengths[1] / self.lengths[0],
+            Quantity::RatioJ3J2 => self.lengths[2] / self.lengths[1],
+            Quantity::Total => self.total,
+        }
+    }
 }
 
 /// Every statistic of one quantity over the X-rays of a finger.
@@ -277,7 +187,7 @@ impl Analysis {
 fn columns(finger: Finger, xrays: &[XrayValues]) -> Vec<Vec<f64>> {
     Quantity::of(finger)
         .iter()
-        .map(|q| xrays.iter().map(|x| q.of_xray(x)).collect())
+        .map(|&q| xrays.iter().map(|x| x.value(q)).collect())
         .collect()
 }
 

@@ -2,16 +2,16 @@
 //! and how many X-rays a target precision needs.
 
 use super::{Analysis, Interval, Quantity, xray_values};
-use crate::dataset::Row;
-use crate::dataset::history::{FingerCount, QuantityRecord, Snapshot, SnapshotSettings};
+use crate::dataset::history::{Event, FingerCount, QuantityRecord, Snapshot, SnapshotSettings};
+use crate::dataset::{Finger, Row};
 use crate::stats::describe;
 use serde::Serialize;
 
 /// The history record of an analysis.
-pub fn snapshot(a: &Analysis, time: String, event: &str) -> Snapshot {
+pub fn snapshot(a: &Analysis, time: String, event: Event) -> Snapshot {
     Snapshot {
         time,
-        event: event.to_string(),
+        event,
         dataset: a.dataset.path.clone(),
         sha256: a.dataset.sha256.clone(),
         xrays: a.dataset.xrays,
@@ -19,7 +19,7 @@ pub fn snapshot(a: &Analysis, time: String, event: &str) -> Snapshot {
             .fingers
             .iter()
             .map(|f| FingerCount {
-                finger: f.finger.name().to_string(),
+                finger: f.finger,
                 n: f.n,
             })
             .collect(),
@@ -33,8 +33,8 @@ pub fn snapshot(a: &Analysis, time: String, event: &str) -> Snapshot {
             .iter()
             .flat_map(|f| {
                 f.quantities.iter().map(move |q| QuantityRecord {
-                    finger: f.finger.name().to_string(),
-                    quantity: q.name.name().to_string(),
+                    finger: f.finger,
+                    quantity: q.name,
                     n: q.n,
                     mean: q.mean,
                     sd: q.sd,
@@ -48,8 +48,8 @@ pub fn snapshot(a: &Analysis, time: String, event: &str) -> Snapshot {
 /// How one quantity moved between two snapshots.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Change {
-    pub finger: String,
-    pub quantity: String,
+    pub finger: Finger,
+    pub quantity: Quantity,
     pub n_before: usize,
     pub n_after: usize,
     pub mean_before: f64,
@@ -73,8 +73,8 @@ pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
                 .find(|p| p.finger == q.finger && p.quantity == q.quantity)?;
             let width = |i: Option<Interval>| i.map(|i| i.width());
             Some(Change {
-                finger: q.finger.clone(),
-                quantity: q.quantity.clone(),
+                finger: q.finger,
+                quantity: q.quantity,
                 n_before: b.n,
                 n_after: q.n,
                 mean_before: b.mean,
@@ -90,8 +90,8 @@ pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
 /// One quantity's history: (X-rays, mean, t interval) per snapshot, in order.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct QuantityHistory {
-    pub finger: String,
-    pub quantity: String,
+    pub finger: Finger,
+    pub quantity: Quantity,
     pub points: Vec<(usize, f64, Option<Interval>)>,
 }
 
@@ -107,8 +107,8 @@ pub fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
             {
                 Some(h) => h.points.push(point),
                 None => out.push(QuantityHistory {
-                    finger: q.finger.clone(),
-                    quantity: q.quantity.clone(),
+                    finger: q.finger,
+                    quantity: q.quantity,
                     points: vec![point],
                 }),
             }
@@ -121,15 +121,15 @@ pub fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
 /// narrowed to one finger and/or quantity.
 pub fn selected(
     snaps: &[Snapshot],
-    finger: Option<crate::dataset::Finger>,
+    finger: Option<Finger>,
     quantity: Option<Quantity>,
-) -> Vec<(String, String)> {
-    let mut out: Vec<(String, String)> = Vec::new();
+) -> Vec<(Finger, Quantity)> {
+    let mut out: Vec<(Finger, Quantity)> = Vec::new();
     for s in snaps {
         for r in &s.quantities {
-            let keep = finger.is_none_or(|f| f.name() == r.finger)
-                && quantity.is_none_or(|q| q.name() == r.quantity);
-            let key = (r.finger.clone(), r.quantity.clone());
+            let keep =
+                finger.is_none_or(|f| f == r.finger) && quantity.is_none_or(|q| q == r.quantity);
+            let key = (r.finger, r.quantity);
             if keep && !out.contains(&key) {
                 out.push(key);
             }
@@ -356,7 +356,7 @@ mod tests {
         )
         .unwrap();
         let pi = a
-            .finger(crate::dataset::Finger::Ring)
+            .finger(Finger::Ring)
             .unwrap()
             .quantity(Quantity::RelJ1)
             .unwrap()
@@ -379,24 +379,24 @@ mod tests {
     #[test]
     fn snapshot_and_changes() {
         let (d, a) = paper();
-        let s1 = snapshot(&a, "t1".into(), "snapshot");
+        let s1 = snapshot(&a, "t1".into(), Event::Snapshot);
         assert_eq!(s1.quantities.len(), 28); // thumb 4 + 4 fingers x 6
         assert_eq!(s1.xrays, 5);
         let mut d2 = d.clone();
         let extra =
             Dataset::from_bytes("n.csv", b"xray,finger,j1,j2,j3\nz,index,350,190,170\n").unwrap();
         d2.rows.extend(extra.rows);
-        let s2 = snapshot(&analyse(&d2, &Settings::default()), "t2".into(), "add");
+        let s2 = snapshot(&analyse(&d2, &Settings::default()), "t2".into(), Event::Add);
         let c = changes(&s1, &s2);
         assert_eq!(c.len(), 28);
         let idx = c
             .iter()
-            .find(|c| c.finger == "index" && c.quantity == "rel_j1")
+            .find(|c| c.finger == Finger::Index && c.quantity == Quantity::RelJ1)
             .unwrap();
         assert_eq!((idx.n_before, idx.n_after), (5, 6));
         let expect = (0.484636 * 5.0 + 350.0 / 710.0) / 6.0 - 0.484636;
         assert!((idx.mean_shift - expect).abs() < 1e-5, "{}", idx.mean_shift);
-        let thumb = c.iter().find(|c| c.finger == "thumb").unwrap();
+        let thumb = c.iter().find(|c| c.finger == Finger::Thumb).unwrap();
         assert_eq!(thumb.mean_shift, 0.0);
     }
 }

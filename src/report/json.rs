@@ -5,7 +5,7 @@ use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
 use crate::analysis::groups::{Group, GroupSummary};
 use crate::analysis::{Analysis, DatasetInfo, FingerAnalysis, Quantity, Settings};
 use crate::dataset::Finger;
-use crate::dataset::history::{QuantityRecord, Snapshot};
+use crate::dataset::history::{Event, QuantityRecord, Snapshot};
 use crate::error::Error;
 use crate::stats::rng;
 use serde::Serialize;
@@ -144,8 +144,8 @@ pub fn coverage(
 
 #[derive(Serialize)]
 struct HistorySeries<'a> {
-    finger: &'a str,
-    quantity: &'a str,
+    finger: Finger,
+    quantity: Quantity,
     points: Vec<HistoryPoint<'a>>,
 }
 
@@ -153,7 +153,7 @@ struct HistorySeries<'a> {
 struct HistoryPoint<'a> {
     snapshot: usize,
     time: &'a str,
-    event: &'a str,
+    event: Event,
     sha256: &'a str,
     record: &'a QuantityRecord,
 }
@@ -168,8 +168,8 @@ pub fn history(
     let series: Vec<HistorySeries<'_>> = keys
         .iter()
         .map(|(f, q)| HistorySeries {
-            finger: f,
-            quantity: q,
+            finger: *f,
+            quantity: *q,
             points: snaps
                 .iter()
                 .enumerate()
@@ -181,7 +181,7 @@ pub fn history(
                     Some(HistoryPoint {
                         snapshot: i + 1,
                         time: &s.time,
-                        event: &s.event,
+                        event: s.event,
                         sha256: &s.sha256,
                         record,
                     })

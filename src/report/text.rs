@@ -201,9 +201,8 @@ pub fn history(
     }
     let mut out = format!("{} snapshots in {}\n", snaps.len(), path.display());
     for (f, q) in crate::analysis::tracking::selected(snaps, finger, quantity) {
-        let d = Quantity::parse(&q).map_or(4, decimals);
-        let label = Quantity::parse(&q).map_or(q.clone(), |x| x.label().to_string());
-        out.push_str(&format!("\n{f} {label}\n"));
+        let d = decimals(q);
+        out.push_str(&format!("\n{f} {}\n", q.label()));
         let mut t = table(
             &[
                 "#",
@@ -231,7 +230,7 @@ pub fn history(
             t.add_row(vec![
                 (i + 1).to_string(),
                 s.time.clone(),
-                s.event.clone(),
+                s.event.to_string(),
                 r.n.to_string(),
                 num(r.mean, d),
                 opt(r.sd, d),

@@ -774,15 +774,12 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
         let (b, e) = (snaps.len() - 2, snaps.len() - 1);
         let rows = crate::analysis::tracking::changes(&snaps[b], &snaps[e])
             .into_iter()
-            .filter(|ch| ch.quantity != "total")
+            .filter(|ch| ch.quantity != Quantity::Total)
             .map(|ch| {
-                let d = 4;
-                let label = Quantity::parse(&ch.quantity)
-                    .map_or(ch.quantity.clone(), |q| q.label().to_string());
+                let d = decimals(ch.quantity);
                 ChangeRow {
-                    finger: Finger::parse(&ch.finger)
-                        .map_or(ch.finger.clone(), |f| f.display_name().to_string()),
-                    quantity: label,
+                    finger: ch.finger.display_name().to_string(),
+                    quantity: ch.quantity.label().to_string(),
                     n: format!("{} -> {}", ch.n_before, ch.n_after),
                     mean_before: num(ch.mean_before, d),
                     mean_after: num(ch.mean_after, d),

@@ -340,7 +340,7 @@ fn synthetic(n: usize) -> FingerAnalysis {
     let quantities = Quantity::of(Finger::Middle)
         .iter()
         .map(|&q| {
-            let values: Vec<f64> = xrays.iter().map(|x| q.of_xray(x)).collect();
+            let values: Vec<f64> = xrays.iter().map(|x| x.value(q)).collect();
             // A stand-in bootstrap distribution: means of 64 interleaved subsamples.
             let boot: Vec<f64> = (0..64)
                 .map(|k| {
