@@ -4,6 +4,7 @@
 use super::{Analysis, Interval, Quantity, xray_values};
 use crate::dataset::history::{Event, FingerCount, QuantityRecord, Snapshot, SnapshotSettings};
 use crate::dataset::{Finger, Row};
+use crate::format;
 use crate::stats::describe;
 use serde::Serialize;
 
@@ -193,8 +194,8 @@ pub const ROBUST_Z: f64 = 5.0;
 fn unusual(v: f64, pi: Option<Interval>, values: &[f64]) -> Option<String> {
     if let Some(pi) = pi.filter(|pi| !pi.contains(v)) {
         return Some(format!(
-            "outside the prediction interval [{:.4}, {:.4}]",
-            pi.low, pi.high
+            "outside the prediction interval {}",
+            format::interval(Some(pi), 4)
         ));
     }
     if values.len() < 5 {
@@ -202,8 +203,14 @@ fn unusual(v: f64, pi: Option<Interval>, values: &[f64]) -> Option<String> {
     }
     let (m, s) = (describe::median(values)?, describe::mad(values)?);
     let z = (v - m).abs() / s;
-    (s > 0.0 && z > ROBUST_Z)
-        .then(|| format!("{z:.1} robust SDs from the median {m:.4} (more than {ROBUST_Z})"))
+    (s > 0.0 && z > ROBUST_Z).then(|| {
+        format!(
+            "{} robust SDs from the median {} (more than {})",
+            format::num(z, 1),
+            format::num(m, 4),
+            format::exact(ROBUST_Z)
+        )
+    })
 }
 
 /// Compares a new row's relative values with the current analysis (see
@@ -271,11 +278,11 @@ pub fn flag_row(a: &Analysis, row: &Row) -> Vec<Flag> {
                 value: x.relative[k],
                 interval: pi.map(|p| [p.low, p.high]),
                 reason: format!(
-                    "{} {} of X-ray '{}' is {:.4}, {why} of the current {} X-rays: a likely measurement or typing error{hint}",
+                    "{} {} of X-ray '{}' is {}, {why} of the current {} X-rays: a likely measurement or typing error{hint}",
                     row.finger,
                     q.label(),
                     row.xray,
-                    x.relative[k],
+                    format::num(x.relative[k], 4),
                     fa.n
                 ),
             }

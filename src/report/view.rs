@@ -11,7 +11,9 @@ use crate::analysis::placement::FingerPlacement;
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
-use crate::format::{decimals, interval_cells, num, opt, percent};
+use crate::format::{
+    decimals, exact, interval_cells, length_decimals, level, num, opt, percent, signed,
+};
 use crate::stats::bootstrap::Plan;
 use crate::stats::{Intervals, rng};
 use serde::Serialize;
@@ -399,13 +401,13 @@ fn settings_text(inputs: &ReportInputs<'_>) -> SettingsText {
     let mut plans: Vec<String> = a.fingers.iter().map(|f| f.bootstrap.describe()).collect();
     plans.dedup();
     SettingsText {
-        confidence: percent_plain(a.settings.confidence),
+        confidence: level(a.settings.confidence),
         resamples: a.settings.resamples.to_string(),
         seed: a.settings.seed.to_string(),
         rng: rng::RNG_NAME.to_string(),
         xrays: a.dataset.xrays.to_string(),
         bootstrap: plans.join("; "),
-        model_length: length_text(inputs.model_length),
+        model_length: exact(inputs.model_length),
         width_reason: width_reason(a),
     }
 }
@@ -417,7 +419,7 @@ fn width_reason(a: &Analysis) -> String {
     match crate::stats::describe::t_quantile(c, n.saturating_sub(1)) {
         Some(t) => format!(
             "With n = {n} the {} t quantile is {} ({} degrees of freedom), not the normal {}.",
-            percent_plain(c),
+            level(c),
             num(t, 2),
             n - 1,
             num(
@@ -426,24 +428,6 @@ fn width_reason(a: &Analysis) -> String {
             )
         ),
         None => format!("With n = {n} no interval can be estimated."),
-    }
-}
-
-/// A confidence level as "95%" (no decimals when whole).
-fn percent_plain(c: f64) -> String {
-    let p = 100.0 * c;
-    if (p - p.round()).abs() < 1e-9 {
-        format!("{}%", p.round() as i64)
-    } else {
-        percent(c)
-    }
-}
-
-fn length_text(l: f64) -> String {
-    if l.fract() == 0.0 && l.abs() < 1e15 {
-        format!("{}", l as i64)
-    } else {
-        l.to_string()
     }
 }
 
@@ -545,7 +529,7 @@ fn stats(f: &crate::analysis::FingerAnalysis) -> StatsFinger {
         .quantities
         .iter()
         .map(|q| {
-            let d = decimals(q.name);
+            let d = decimals(q.name.is_unitless());
             StatsRow {
                 quantity: q.name.label().to_string(),
                 mean: num(q.mean, d),
@@ -630,7 +614,7 @@ fn claims(file: &str, results: &[ClaimResult], note: Option<&str>) -> ClaimsView
 }
 
 fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
-    let d = crate::format::length_decimals(length);
+    let d = length_decimals(length);
     let row = |finger: Finger, what: &str, p: &crate::analysis::placement::Placed| PlacementRow {
         finger: finger.display_name().to_string(),
         what: what.to_string(),
@@ -641,7 +625,7 @@ fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
         intervals: IntervalCells::new(&p.intervals, d),
     };
     PlacementView {
-        length: length_text(length),
+        length: exact(length),
         joints: ps
             .iter()
             .flat_map(|p| {
@@ -681,7 +665,7 @@ fn coverage(s: &CoverageSettings, rows: &[QuantityCoverage]) -> CoverageView {
             get("t"),
             get("percentile"),
             get("bca"),
-            percent_plain(s.confidence),
+            level(s.confidence),
             get("prediction")
         ));
     }
@@ -732,16 +716,6 @@ fn plot(p: &Plot) -> PlotView {
     }
 }
 
-fn signed(x: f64, d: usize) -> String {
-    let s = format!("{x:+.d$}");
-    // "+0.0000" and "-0.0000" both read as no change.
-    if s[1..].chars().all(|c| c == '0' || c == '.') {
-        format!("{:.d$}", 0.0)
-    } else {
-        s
-    }
-}
-
 fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
     let a = inputs.analysis;
     let snaps = inputs.history;
@@ -776,7 +750,7 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
             .into_iter()
             .filter(|ch| ch.quantity != Quantity::Total)
             .map(|ch| {
-                let d = decimals(ch.quantity);
+                let d = decimals(ch.quantity.is_unitless());
                 ChangeRow {
                     finger: ch.finger.display_name().to_string(),
                     quantity: ch.quantity.label().to_string(),

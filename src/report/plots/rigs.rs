@@ -8,12 +8,13 @@
 
 use super::draw::{
     Dir, DrawResult, Frame, Kind, LegendItem, Pen, QuantityRow, RANGE, Root, Swatch, WIDTH, extent,
-    finish, level, padded, quantity_rows, render, row_chart, short,
+    finish, padded, quantity_rows, render, row_chart,
 };
 use super::{Plot, PlotKind};
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::error::Error;
+use crate::format::{level, trimmed};
 
 const ROW_PX: u32 = 50;
 const AXIS_PX: u32 = 46;
@@ -155,20 +156,20 @@ fn description(rows: &[Row], rigs: &[RigRatios], confidence: f64) -> String {
         out.push_str(&format!(
             " {}: X-ray mean {}, range {} to {}",
             row.label,
-            short(s.mean, 3),
-            short(s.min, 3),
-            short(s.max, 3)
+            trimmed(s.mean, 3),
+            trimmed(s.min, 3),
+            trimmed(s.max, 3)
         ));
         if let Some(pi) = s.intervals.pi {
             out.push_str(&format!(
                 ", prediction {} to {}",
-                short(pi.low, 3),
-                short(pi.high, 3)
+                trimmed(pi.low, 3),
+                trimmed(pi.high, 3)
             ));
         }
         let named: Vec<String> = rigs
             .iter()
-            .filter_map(|g| value_of(g, row).map(|v| format!("{} {}", g.name, short(v, 3))))
+            .filter_map(|g| value_of(g, row).map(|v| format!("{} {}", g.name, trimmed(v, 3))))
             .collect();
         if !named.is_empty() {
             out.push_str(&format!("; {}", named.join(", ")));

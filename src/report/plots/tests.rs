@@ -429,9 +429,9 @@ fn escape_handles_every_special_character() {
         draw::escape("a<b>&\"c\"'d'\u{1}"),
         "a&lt;b&gt;&amp;&quot;c&quot;&apos;d&apos; "
     );
-    assert_eq!(draw::level(0.95), "95%");
-    assert_eq!(draw::level(0.975), "97.5%");
-    assert_eq!(draw::short(1000.0, 4), "1000");
+    assert_eq!(crate::format::level(0.95), "95%");
+    assert_eq!(crate::format::level(0.975), "97.5%");
+    assert_eq!(crate::format::trimmed(1000.0, 4), "1000");
     assert_eq!(draw::clip("abcdef", 4), "abc\u{2026}");
 }
 
