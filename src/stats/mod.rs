@@ -3,8 +3,9 @@
 //!
 //! Self-contained in the manner of criterion's `stats` module: it depends on no
 //! other module of phalanx (not on the dataset, not on the analysis) and works
-//! on plain slices of `f64`. What a value means (an X-ray, a finger, a
-//! quantity) is the caller's business; [`crate::analysis`] builds on it.
+//! on plain slices of `f64`. What a value means (a finger, a quantity) is the
+//! caller's business; [`crate::analysis`] builds on it. Its documentation and
+//! its few messages call the unit resampled an X-ray, as phalanx's users do.
 
 pub mod bootstrap;
 pub mod describe;
