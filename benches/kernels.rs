@@ -4,9 +4,9 @@
 //! by `bench/run.sh` instead (see BENCHMARKS.md).
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use phalanx::analysis::bootstrap::resample_means;
 use phalanx::analysis::{Settings, analyse};
 use phalanx::dataset::Dataset;
+use phalanx::stats::bootstrap::resample_means;
 use phalanx::synth::{SynthOptions, generate};
 use std::hint::black_box;
 

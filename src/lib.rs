@@ -6,7 +6,9 @@
 //! (statistics, bootstrap, claims, rig audit) -> [`rig`] (glTF rigs in and
 //! out) -> [`report`] (views, plots, writers) -> `cmd` (one module per
 //! command) -> [`cli`] (dispatch). [`track`] holds the file operations of
-//! tracking a dataset (add, snapshot).
+//! tracking a dataset (add, snapshot). Two leaves serve them all:
+//! [`stats`], the self-contained statistics core, and [`format`], where every
+//! number shown becomes text.
 
 pub mod analysis;
 pub mod atomic;
@@ -14,7 +16,9 @@ pub mod cli;
 mod cmd;
 pub mod dataset;
 pub mod error;
+pub mod format;
 pub mod report;
 pub mod rig;
+pub mod stats;
 pub mod synth;
 pub mod track;

@@ -16,8 +16,9 @@
 //! side right (90%) or left. All draws come from one ChaCha8 stream of the seed,
 //! so a seed always gives the same file.
 
-use crate::analysis::rng;
 use crate::dataset::Finger;
+use crate::format;
+use crate::stats::rng;
 use std::fmt::Write as _;
 
 /// Random-stream key of the generator (separate from the bootstrap's).
@@ -95,7 +96,7 @@ pub fn generate(o: &SynthOptions) -> Vec<u8> {
         let (sex, age, side) = if o.metadata {
             (
                 if male { "male" } else { "female" },
-                format!("{age:.0}"),
+                format::num(age, 0),
                 if right { "right" } else { "left" },
             )
         } else {
@@ -118,7 +119,7 @@ pub fn generate(o: &SynthOptions) -> Vec<u8> {
             for k in 0..3 {
                 match lengths.get(k) {
                     Some(l) => {
-                        let _ = write!(out, ",{:.2}", l.max(0.01));
+                        let _ = write!(out, ",{}", format::num(l.max(0.01), 2));
                     }
                     None => out.push(','),
                 }

@@ -12,7 +12,7 @@ use crate::analysis::tracking::{self, Flag};
 use crate::analysis::{self, Settings};
 use crate::atomic;
 use crate::dataset::append::{self, DatasetLock};
-use crate::dataset::history::{self, Snapshot};
+use crate::dataset::history::{self, Event, Snapshot};
 use crate::dataset::{DataError, Dataset, Problem, csvinput};
 use crate::error::Error;
 use std::path::{Path, PathBuf};
@@ -80,7 +80,7 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         return Err(refusal(&new, &flags, from_options).into());
     }
     let a = analysis::analyse(&after, &req.settings);
-    let snapshot = tracking::snapshot(&a, now(), "add");
+    let snapshot = tracking::snapshot(&a, now(), Event::Add);
     // Stage both files in full before replacing either: a history that cannot be
     // written stops the add with the dataset untouched. Between the two renames
     // a crash can only lose the snapshot ('phalanx snapshot' records it again).
@@ -132,7 +132,7 @@ pub fn snapshot(data: &Path, history_path: &Path, settings: &Settings) -> Result
     let _lock = DatasetLock::acquire(data).map_err(Error::write(data))?;
     let dataset = Dataset::load(data)?;
     let a = analysis::analyse(&dataset, settings);
-    let snap = tracking::snapshot(&a, now(), "snapshot");
+    let snap = tracking::snapshot(&a, now(), Event::Snapshot);
     history::append(history_path, &snap).map_err(Error::write(history_path))?;
     Ok(snap)
 }

@@ -95,10 +95,10 @@ fn analyse_bytes(bytes: &[u8]) -> Analysis {
 
 fn intervals(s: &QuantityStats) -> [(&'static str, Option<Interval>); 4] {
     [
-        ("ci_t", s.ci_t),
-        ("ci_percentile", s.ci_percentile),
-        ("ci_bca", s.ci_bca),
-        ("pi", s.pi),
+        ("ci_t", s.intervals.ci_t),
+        ("ci_percentile", s.intervals.ci_percentile),
+        ("ci_bca", s.intervals.ci_bca),
+        ("pi", s.intervals.pi),
     ]
 }
 
@@ -160,7 +160,10 @@ fn same_order_free_stats(a: &QuantityStats, b: &QuantityStats, rel: f64) -> Resu
             return Err(format!("{what}: {x:?} vs {y:?}"));
         }
     }
-    for (what, x, y) in [("ci_t", a.ci_t, b.ci_t), ("pi", a.pi, b.pi)] {
+    for (what, x, y) in [
+        ("ci_t", a.intervals.ci_t, b.intervals.ci_t),
+        ("pi", a.intervals.pi, b.intervals.pi),
+    ] {
         if !close_iv(x, y, tol) {
             return Err(format!("{what}: {x:?} vs {y:?}"));
         }
@@ -205,16 +208,16 @@ proptest! {
                     prop_assert!(!s.notes.is_empty(), "{what} {name} is null without a note");
                 }
             }
-            for (name, iv) in [("ci_t", s.ci_t), ("pi", s.pi)] {
+            for (name, iv) in [("ci_t", s.intervals.ci_t), ("pi", s.intervals.pi)] {
                 if let Some(iv) = iv {
                     prop_assert!(iv.contains(s.mean), "{what} {name} {iv:?} lacks the mean {}", s.mean);
                 }
             }
-            if let (Some(t), Some(pi)) = (s.ci_t, s.pi) {
+            if let (Some(t), Some(pi)) = (s.intervals.ci_t, s.intervals.pi) {
                 prop_assert!(pi.low <= t.low && t.high <= pi.high, "{what}: pi {pi:?} narrower than t {t:?}");
             }
             if s.n >= 2 {
-                prop_assert!(s.ci_t.is_some() && s.pi.is_some(), "{what}: n = {} but no t interval or PI", s.n);
+                prop_assert!(s.intervals.ci_t.is_some() && s.intervals.pi.is_some(), "{what}: n = {} but no t interval or PI", s.n);
             }
         }
     }
@@ -267,11 +270,11 @@ proptest! {
                 if let Err(e) = same_order_free_stats(s, t, 1e-12) {
                     return Err(TestCaseError::fail(format!("{what} (rows shuffled): {e}")));
                 }
-                let exact = |p: phalanx::analysis::bootstrap::Plan| matches!(p, phalanx::analysis::bootstrap::Plan::Exact { .. });
+                let exact = |p: phalanx::stats::bootstrap::Plan| matches!(p, phalanx::stats::bootstrap::Plan::Exact { .. });
                 if exact(fa.bootstrap) && exact(fb.bootstrap) {
                     let tol = 1e-12 * magnitude(s);
-                    prop_assert!(close_iv(s.ci_percentile, t.ci_percentile, tol), "{what} percentile: {:?} vs {:?}", s.ci_percentile, t.ci_percentile);
-                    prop_assert!(close_iv(s.ci_bca, t.ci_bca, tol), "{what} BCa: {:?} vs {:?}", s.ci_bca, t.ci_bca);
+                    prop_assert!(close_iv(s.intervals.ci_percentile, t.intervals.ci_percentile, tol), "{what} percentile: {:?} vs {:?}", s.intervals.ci_percentile, t.intervals.ci_percentile);
+                    prop_assert!(close_iv(s.intervals.ci_bca, t.intervals.ci_bca, tol), "{what} BCa: {:?} vs {:?}", s.intervals.ci_bca, t.intervals.ci_bca);
                 }
             }
             // The same X-ray values, matched by id.

@@ -6,6 +6,7 @@ mod audit;
 mod bad_inputs;
 mod browser;
 mod check;
+mod confidence_level;
 mod coverage;
 mod crash_report;
 mod data;

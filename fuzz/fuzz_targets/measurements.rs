@@ -18,10 +18,7 @@ fuzz_target!(|data: &[u8]| {
             for f in &a.fingers {
                 for q in &f.quantities {
                     assert!(q.mean.is_finite(), "non-finite mean from accepted data");
-                    for i in [q.ci_t, q.ci_percentile, q.ci_bca, q.pi]
-                        .into_iter()
-                        .flatten()
-                    {
+                    for i in q.intervals.all().into_iter().flatten() {
                         assert!(i.low <= i.high, "reversed interval");
                     }
                 }

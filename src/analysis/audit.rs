@@ -307,8 +307,8 @@ fn value_check(q: Quantity, measured: f64, s: &QuantityStats) -> ValueCheck {
         measured,
         mean: s.mean,
         range,
-        pi: s.pi,
-        standing: Standing::of(measured, range, s.pi),
+        pi: s.intervals.pi,
+        standing: Standing::of(measured, range, s.intervals.pi),
     }
 }
 
@@ -384,8 +384,8 @@ pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
                 measured,
                 expected: placed.mean,
                 range,
-                pi: placed.pi,
-                standing: Standing::of(measured, range, placed.pi),
+                pi: placed.intervals.pi,
+                standing: Standing::of(measured, range, placed.intervals.pi),
                 suggested: suggested[k + 1],
                 shift: dist(chain.points[k + 1], suggested[k + 1]),
                 shift_along: at[k] - arcs[k + 1],
@@ -401,7 +401,7 @@ pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
         let at = |r: f64| span / (1.0 + r.max(0.0));
         let flip = |i: Interval| Interval::new(at(i.high), at(i.low));
         let range = flip(Interval::new(s.min, s.max));
-        let pi = s.pi.map(flip);
+        let pi = s.intervals.pi.map(flip);
         let mean_r = s.mean;
         let (suggested, at_new) = on_chain(
             &chain.points,

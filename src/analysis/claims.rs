@@ -11,6 +11,7 @@
 
 use crate::dataset::claims::{Claim, Claims, Statistic, Subject};
 use crate::dataset::{Dataset, Finger, Row};
+use crate::format::num;
 use serde::Serialize;
 
 /// Decimals the paper rounds relative values to before computing with them.
@@ -154,9 +155,9 @@ fn compute(claim: &Claim, rows: &[&Row], rounded: bool) -> Option<f64> {
 
 /// Mean, min, max or range of some values (eqs. 5, 7, 9).
 fn summary(s: Statistic, vals: &[f64]) -> Option<f64> {
-    let (lo, hi) = super::describe::min_max(vals)?;
+    let (lo, hi) = crate::stats::describe::min_max(vals)?;
     Some(match s {
-        Statistic::Mean => super::describe::mean(vals)?,
+        Statistic::Mean => crate::stats::describe::mean(vals)?,
         Statistic::Min => lo,
         Statistic::Max => hi,
         Statistic::Range => hi - lo,
@@ -210,10 +211,6 @@ fn digits_differing(a: &str, b: &str) -> Option<usize> {
     (a.len() == b.len()).then(|| a.bytes().zip(b.bytes()).filter(|(x, y)| x != y).count())
 }
 
-fn fmt(x: f64, decimals: usize) -> String {
-    format!("{x:.decimals$}")
-}
-
 /// Finds the likely cause of a claim's disagreement with the data.
 fn diagnose(claim: &Claim, claims: &Claims, rows: &[&Row]) -> String {
     if let Some(cause) = carried_over(claim, claims) {
@@ -230,7 +227,7 @@ fn diagnose(claim: &Claim, claims: &Claims, rows: &[&Row]) -> String {
     let computed = compute(claim, rows, false).unwrap_or(f64::NAN);
     format!(
         "no single cause found: the data give {}, the paper states {}",
-        fmt(computed, claim.decimals + 2),
+        num(computed, claim.decimals + 2),
         claim.stated_text
     )
 }
@@ -279,7 +276,7 @@ fn against_own_values(claim: &Claim, claims: &Claims) -> Option<String> {
         .map(|v| v.stated_text.as_str())
         .collect::<Vec<_>>()
         .join(", ");
-    let shown = fmt(from_own, claim.decimals);
+    let shown = num(from_own, claim.decimals);
     if agrees(from_own, claim.stated, claim.decimals) {
         Some(format!(
             "follows from the paper's own per-X-ray values ({listed}), some of which disagree with Table 1"
@@ -300,7 +297,7 @@ fn against_own_values(claim: &Claim, claims: &Claims) -> Option<String> {
 
 /// Edits of one digit of a value printed with 2 decimals (as Table 1 is).
 fn one_digit_edits(x: f64) -> Vec<f64> {
-    let text = fmt(x, 2);
+    let text = num(x, 2);
     let mut out = Vec::new();
     for (i, ch) in text.char_indices() {
         if !ch.is_ascii_digit() {
@@ -332,7 +329,7 @@ fn table_digit(claim: &Claim, claims: &Claims, rows: &[&Row]) -> Option<String> 
         .iter()
         .find(|r| r.finger == claim.finger && &*r.xray == x)?;
     if let Subject::Length(k) = claim.subject {
-        let printed = fmt(row.lengths[k], 2);
+        let printed = num(row.lengths[k], 2);
         let digits = match digits_differing(&printed, &claim.stated_text) {
             Some(1) => " (one digit differs)",
             _ => "",
@@ -372,9 +369,9 @@ fn table_digit(claim: &Claim, claims: &Claims, rows: &[&Row]) -> Option<String> 
     Some(format!(
         "Table 1 prints j{} = {} for the {} finger of X-ray {x}; with {} instead (one digit changed), {score} of the paper's {} claims about it agree instead of {before}: Table 1 and the text disagree in that digit",
         k + 1,
-        fmt(row.lengths[k], 2),
+        num(row.lengths[k], 2),
         claim.finger,
-        fmt(v, 2),
+        num(v, 2),
         siblings.len(),
     ))
 }

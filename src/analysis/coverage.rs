@@ -8,8 +8,8 @@
 //! alone, not on the fitted mean and SD: quantities of equal n share one
 //! simulation (common random numbers), and their coverages are equal.
 
-use super::bootstrap::{self, Sorted};
-use super::{describe, rng};
+use crate::stats::bootstrap::{self, Sorted};
+use crate::stats::{Interval, Intervals, describe, rng};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -177,22 +177,23 @@ fn one_simulation(
     sim: u64,
     enumeration: Option<&bootstrap::Enumeration>,
 ) -> [Option<bool>; 4] {
-    let n = xs.len();
     let (Some(m), Some(sd)) = (describe::mean(xs), describe::sd(xs)) else {
         return [None; 4];
     };
-    let t = describe::t_interval(m, sd, n, s.confidence).map(|i| i.contains(truth));
-    let pi = describe::prediction_interval(m, sd, n, s.confidence).map(|i| i.contains(new));
     let dist = match enumeration {
         Some(e) => e.distribution(&[xs]),
         None => bootstrap::resample_means(&[xs], s.resamples, s.seed, COVERAGE_KEY + 1 + sim),
     };
     let sorted = Sorted::new(&dist.means[0], &dist.weights);
-    let pct = Some(bootstrap::percentile_interval(&sorted, s.confidence).contains(truth));
-    let bca = bootstrap::bca_interval(&sorted, xs, m, s.confidence)
-        .ok()
-        .map(|i| i.contains(truth));
-    [t, pct, bca, pi]
+    // The same four intervals the statistics give.
+    let (iv, _) = Intervals::of_mean(xs, m, sd, &sorted, s.confidence);
+    let covers = |i: Option<Interval>, x: f64| i.map(|i| i.contains(x));
+    [
+        covers(iv.ci_t, truth),
+        covers(iv.ci_percentile, truth),
+        covers(iv.ci_bca, truth),
+        covers(iv.pi, new),
+    ]
 }
 
 #[cfg(test)]

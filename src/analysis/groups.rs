@@ -39,13 +39,7 @@ impl GroupBy {
 
 /// The band of an age: "18-40" for [18, 40), "65+" for the last, "under 0" below the first.
 fn age_band(age: f64, edges: &[f64]) -> String {
-    let fmt = |x: f64| {
-        if x.fract() == 0.0 {
-            format!("{}", x as i64)
-        } else {
-            x.to_string()
-        }
-    };
+    let fmt = crate::format::exact;
     match edges.iter().rposition(|&e| age >= e) {
         None => format!(
             "under {}",

@@ -7,18 +7,22 @@
 //! prediction interval for one new X-ray. Knows nothing of files or rendering.
 
 pub mod audit;
-pub mod bootstrap;
 pub mod claims;
 pub mod coverage;
-pub mod describe;
 pub mod groups;
 pub mod placement;
-pub mod rng;
 pub mod tracking;
 
+/// The interval type of [`crate::stats`] and the quantities of [`crate::dataset`],
+/// also here for the analysis's callers.
+pub use crate::dataset::Quantity;
+pub use crate::stats::Interval;
+
 use crate::dataset::{Dataset, Finger, Row};
-use bootstrap::{Plan, Sorted};
-use serde::{Serialize, Serializer};
+use crate::stats::Intervals;
+use crate::stats::bootstrap::{self, Plan, Sorted};
+use crate::stats::describe;
+use serde::Serialize;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -80,151 +84,6 @@ impl Settings {
     }
 }
 
-/// A closed interval `[low, high]`; serialised as a two-element array.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Interval {
-    pub low: f64,
-    pub high: f64,
-}
-
-impl Interval {
-    pub fn new(low: f64, high: f64) -> Interval {
-        Interval { low, high }
-    }
-
-    /// A zero-width interval at `x`.
-    pub fn point(x: f64) -> Interval {
-        Interval { low: x, high: x }
-    }
-
-    /// high - low.
-    pub fn width(&self) -> f64 {
-        self.high - self.low
-    }
-
-    /// True when `low <= x <= high`.
-    pub fn contains(&self, x: f64) -> bool {
-        self.low <= x && x <= self.high
-    }
-
-    /// The interval multiplied by a non-negative factor.
-    pub fn scaled(&self, k: f64) -> Interval {
-        Interval::new(self.low * k, self.high * k)
-    }
-}
-
-impl Serialize for Interval {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        [self.low, self.high].serialize(s)
-    }
-}
-
-/// A quantity measured once per X-ray of a finger.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Quantity {
-    /// J~1 = J1 / J.
-    RelJ1,
-    /// J~2 = J2 / J.
-    RelJ2,
-    /// J~3 = J3 / J (not for the thumb).
-    RelJ3,
-    /// J2 / J1, the ratio of adjacent segments (needs no fingertip).
-    RatioJ2J1,
-    /// J3 / J2 (not for the thumb).
-    RatioJ3J2,
-    /// J, the total length in data units.
-    Total,
-}
-
-impl Quantity {
-    /// Every quantity, in output order.
-    pub const ALL: [Quantity; 6] = [
-        Quantity::RelJ1,
-        Quantity::RelJ2,
-        Quantity::RelJ3,
-        Quantity::RatioJ2J1,
-        Quantity::RatioJ3J2,
-        Quantity::Total,
-    ];
-
-    /// The quantities of a finger.
-    pub fn of(finger: Finger) -> &'static [Quantity] {
-        match finger {
-            Finger::Thumb => &[
-                Quantity::RelJ1,
-                Quantity::RelJ2,
-                Quantity::RatioJ2J1,
-                Quantity::Total,
-            ],
-            _ => &Quantity::ALL,
-        }
-    }
-
-    /// Machine name (`rel_j1`, ..., `total`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Quantity::RelJ1 => "rel_j1",
-            Quantity::RelJ2 => "rel_j2",
-            Quantity::RelJ3 => "rel_j3",
-            Quantity::RatioJ2J1 => "ratio_j2_j1",
-            Quantity::RatioJ3J2 => "ratio_j3_j2",
-            Quantity::Total => "total",
-        }
-    }
-
-    /// Parses a machine name.
-    pub fn parse(text: &str) -> Option<Quantity> {
-        Quantity::ALL
-            .into_iter()
-            .find(|q| q.name() == text.trim().to_ascii_lowercase())
-    }
-
-    /// Name for people, in the paper's notation.
-    pub fn label(self) -> &'static str {
-        match self {
-            Quantity::RelJ1 => "J~1 = J1/J",
-            Quantity::RelJ2 => "J~2 = J2/J",
-            Quantity::RelJ3 => "J~3 = J3/J",
-            Quantity::RatioJ2J1 => "J2/J1",
-            Quantity::RatioJ3J2 => "J3/J2",
-            Quantity::Total => "J (total length)",
-        }
-    }
-
-    /// The symbol alone: "J~1", "J2/J1", "J (total length)".
-    pub fn symbol(self) -> &'static str {
-        self.label().split(" = ").next().unwrap_or(self.name())
-    }
-
-    /// True for the relative values J~k (fractions of the total length).
-    pub fn is_relative(self) -> bool {
-        matches!(self, Quantity::RelJ1 | Quantity::RelJ2 | Quantity::RelJ3)
-    }
-
-    /// True for every quantity without a unit (relative values and ratios).
-    pub fn is_unitless(self) -> bool {
-        self != Quantity::Total
-    }
-
-    /// The value of this quantity for one X-ray's derived values.
-    pub fn of_xray(self, x: &XrayValues) -> f64 {
-        match self {
-            Quantity::RelJ1 => x.relative[0],
-            Quantity::RelJ2 => x.relative[1],
-            Quantity::RelJ3 => x.relative[2],
-            Quantity::RatioJ2J1 => x.lengths[1] / x.lengths[0],
-            Quantity::RatioJ3J2 => x.lengths[2] / x.lengths[1],
-            Quantity::Total => x.total,
-        }
-    }
-}
-
-impl Serialize for Quantity {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(self.name())
-    }
-}
-
 /// The derived values of one X-ray for one finger (eqs. 1-2).
 #[derive(Debug, Clone, Serialize)]
 pub struct XrayValues {
@@ -235,6 +94,20 @@ pub struct XrayValues {
     pub total: f64,
     /// J~k = J_k / J for every segment (eq. 2).
     pub relative: Vec<f64>,
+}
+
+impl XrayValues {
+    /// The value of quantity `q` on this X-ray.
+    pub fn value(&self, q: Quantity) -> f64 {
+        match q {
+            Quantity::RelJ1 => self.relative[0],
+            Quantity::RelJ2 => self.relative[1],
+            Quantity::RelJ3 => self.relative[2],
+            Quantity::RatioJ2J1 => self.lengths[1] / self.lengths[0],
+            Quantity::RatioJ3J2 => self.lengths[2] / self.lengths[1],
+            Quantity::Total => self.total,
+        }
+    }
 }
 
 /// Every statistic of one quantity over the X-rays of a finger.
@@ -257,11 +130,10 @@ pub struct QuantityStats {
     pub range: f64,
     /// SD / mean; null for n = 1.
     pub cv: Option<f64>,
-    pub ci_t: Option<Interval>,
-    pub ci_percentile: Option<Interval>,
-    pub ci_bca: Option<Interval>,
-    /// Prediction interval for one new X-ray.
-    pub pi: Option<Interval>,
+    /// The t, percentile and BCa intervals of the mean and the prediction
+    /// interval for one new X-ray (JSON keys `ci_t`, `ci_percentile`, `ci_bca`, `pi`).
+    #[serde(flatten)]
+    pub intervals: Intervals,
     /// Why an interval is null or collapsed, when it is.
     pub notes: Vec<String>,
 }
@@ -330,7 +202,7 @@ impl Analysis {
 fn columns(finger: Finger, xrays: &[XrayValues]) -> Vec<Vec<f64>> {
     Quantity::of(finger)
         .iter()
-        .map(|q| xrays.iter().map(|x| q.of_xray(x)).collect())
+        .map(|&q| xrays.iter().map(|x| x.value(q)).collect())
         .collect()
 }
 
@@ -463,30 +335,20 @@ pub fn quantity_stats(
     let se = sd.map(|s| s / (n as f64).sqrt());
     let cv = sd.map(|s| s / mean);
     let mut notes = Vec::new();
-    let (ci_t, ci_percentile, ci_bca, pi);
-    if n < 2 {
+    let intervals = if n < 2 {
         notes.push("n = 1: no spread can be estimated, so every interval is null".into());
-        (ci_t, ci_percentile, ci_bca, pi) = (None, None, None, None);
+        Intervals::NONE
     } else if zero_spread {
         notes.push(
             "every X-ray gives the same value: every interval collapses to that value".into(),
         );
-        let p = Some(Interval::point(mean));
-        (ci_t, ci_percentile, ci_bca, pi) = (p, p, p, p);
+        Intervals::point(mean)
     } else {
-        let s = sd.unwrap_or(0.0);
-        ci_t = describe::t_interval(mean, s, n, c);
-        pi = describe::prediction_interval(mean, s, n, c);
         let sorted = Sorted::new(boot, weights);
-        ci_percentile = Some(bootstrap::percentile_interval(&sorted, c));
-        ci_bca = match bootstrap::bca_interval(&sorted, values, mean, c) {
-            Ok(i) => Some(i),
-            Err(reason) => {
-                notes.push(reason.to_string());
-                None
-            }
-        };
-    }
+        let (intervals, why) = Intervals::of_mean(values, mean, sd.unwrap_or(0.0), &sorted, c);
+        notes.extend(why.map(str::to_string));
+        intervals
+    };
     QuantityStats {
         name,
         n,
@@ -498,10 +360,7 @@ pub fn quantity_stats(
         max,
         range: max - min,
         cv,
-        ci_t,
-        ci_percentile,
-        ci_bca,
-        pi,
+        intervals,
         notes,
     }
 }

@@ -8,8 +8,9 @@
 //! all four intervals are equivariant under such maps (for b < 0 the ends swap),
 //! so no new resampling is needed.
 
-use super::{Analysis, Interval, Quantity, QuantityStats};
+use super::{Analysis, Quantity, QuantityStats};
 use crate::dataset::Finger;
+use crate::stats::Intervals;
 use serde::Serialize;
 
 /// A joint of a finger, from root to tip.
@@ -62,22 +63,15 @@ pub struct Placed {
     pub range: f64,
     /// SD in model units; null for n = 1.
     pub sd: Option<f64>,
-    pub ci_t: Option<Interval>,
-    pub ci_percentile: Option<Interval>,
-    pub ci_bca: Option<Interval>,
-    pub pi: Option<Interval>,
+    /// The four intervals in model units (JSON keys `ci_t`, `ci_percentile`, `ci_bca`, `pi`).
+    #[serde(flatten)]
+    pub intervals: Intervals,
 }
 
 impl Placed {
     /// The statistics of `offset + scale * x`, from those of x. O(1).
     pub fn affine(s: &QuantityStats, offset: f64, scale: f64) -> Placed {
         let map = |x: f64| offset + scale * x;
-        let iv = |i: Option<Interval>| {
-            i.map(|i| {
-                let (a, b) = (map(i.low), map(i.high));
-                Interval::new(a.min(b), a.max(b))
-            })
-        };
         let (a, b) = (map(s.min), map(s.max));
         Placed {
             mean: map(s.mean),
@@ -85,10 +79,7 @@ impl Placed {
             max: a.max(b),
             range: (b - a).abs(),
             sd: s.sd.map(|sd| sd * scale.abs()),
-            ci_t: iv(s.ci_t),
-            ci_percentile: iv(s.ci_percentile),
-            ci_bca: iv(s.ci_bca),
-            pi: iv(s.pi),
+            intervals: s.intervals.affine(offset, scale),
         }
     }
 }
@@ -201,8 +192,8 @@ mod tests {
         let dip = &p.joints[1].position;
         assert!((dip.mean - 100.0 * (1.0 - j3.mean)).abs() < 1e-9);
         assert!((dip.max - 100.0 * (1.0 - j3.min)).abs() < 1e-9);
-        let ci = dip.ci_bca.unwrap();
-        let src = j3.ci_bca.unwrap();
+        let ci = dip.intervals.ci_bca.unwrap();
+        let src = j3.intervals.ci_bca.unwrap();
         assert!((ci.low - 100.0 * (1.0 - src.high)).abs() < 1e-9);
         assert!(ci.low < dip.mean && dip.mean < ci.high);
         // The mean DIP equals the sum of the mean J~1 and J~2 positions.

@@ -114,24 +114,24 @@ fn statistics_match_independent_reference() {
         assert!(close(s.sd.unwrap(), sd, 1e-6), "{what} sd");
         assert!(close(s.se.unwrap(), sd / 5f64.sqrt(), 1e-6), "{what} se");
         assert!(close(s.cv.unwrap(), sd / mean, 1e-5), "{what} cv");
-        let t = s.ci_t.unwrap();
+        let t = s.intervals.ci_t.unwrap();
         assert!(
             close(t.low, ci[0], 1e-6) && close(t.high, ci[1], 1e-6),
             "{what} ci_t {t:?}"
         );
-        let p = s.pi.unwrap();
+        let p = s.intervals.pi.unwrap();
         assert!(
             close(p.low, pi[0], 1e-6) && close(p.high, pi[1], 1e-6),
             "{what} pi {p:?}"
         );
         // Exact enumeration vs 1e6 random resamples: Monte-Carlo error of the reference
         // quantiles is about 1e-5; allow 5e-4 (a few percent of the interval width).
-        let b = s.ci_percentile.unwrap();
+        let b = s.intervals.ci_percentile.unwrap();
         assert!(
             close(b.low, pct[0], 5e-4) && close(b.high, pct[1], 5e-4),
             "{what} pct {b:?}"
         );
-        let b = s.ci_bca.unwrap();
+        let b = s.intervals.ci_bca.unwrap();
         assert!(
             close(b.low, bca[0], 5e-4) && close(b.high, bca[1], 5e-4),
             "{what} bca {b:?}"
@@ -167,14 +167,22 @@ fn relative_values_sum_to_one_and_intervals_are_ordered() {
         }
         for q in &f.quantities {
             assert!(q.min <= q.mean && q.mean <= q.max);
-            for i in [q.ci_t, q.ci_percentile, q.ci_bca, q.pi]
-                .into_iter()
-                .flatten()
+            for i in [
+                q.intervals.ci_t,
+                q.intervals.ci_percentile,
+                q.intervals.ci_bca,
+                q.intervals.pi,
+            ]
+            .into_iter()
+            .flatten()
             {
                 assert!(i.low <= i.high);
             }
-            assert!(q.ci_t.unwrap().contains(q.mean) && q.pi.unwrap().contains(q.mean));
-            assert!(q.pi.unwrap().width() > q.ci_t.unwrap().width());
+            assert!(
+                q.intervals.ci_t.unwrap().contains(q.mean)
+                    && q.intervals.pi.unwrap().contains(q.mean)
+            );
+            assert!(q.intervals.pi.unwrap().width() > q.intervals.ci_t.unwrap().width());
             assert!(q.notes.is_empty(), "{:?}", q.notes);
         }
     }
@@ -190,7 +198,11 @@ fn same_seed_same_numbers_other_seed_other_numbers() {
         let a = analyse(&paper(), &Settings { seed, ..s });
         a.fingers
             .iter()
-            .flat_map(|f| f.quantities.iter().map(|q| (q.ci_percentile, q.ci_bca)))
+            .flat_map(|f| {
+                f.quantities
+                    .iter()
+                    .map(|q| (q.intervals.ci_percentile, q.intervals.ci_bca))
+            })
             .collect::<Vec<_>>()
     };
     assert_eq!(run(1), run(1));
@@ -217,10 +229,10 @@ fn scaling_every_length_changes_no_relative_statistic() {
             assert!(close(qa.mean * k, qb.mean, tol), "{:?}", qa.name);
             assert!(close(qa.sd.unwrap() * k, qb.sd.unwrap(), tol));
             for (ia, ib) in [
-                (qa.ci_t, qb.ci_t),
-                (qa.ci_percentile, qb.ci_percentile),
-                (qa.ci_bca, qb.ci_bca),
-                (qa.pi, qb.pi),
+                (qa.intervals.ci_t, qb.intervals.ci_t),
+                (qa.intervals.ci_percentile, qb.intervals.ci_percentile),
+                (qa.intervals.ci_bca, qb.intervals.ci_bca),
+                (qa.intervals.pi, qb.intervals.pi),
             ] {
                 let (ia, ib) = (ia.unwrap().scaled(k), ib.unwrap());
                 assert!(close(ia.low, ib.low, tol) && close(ia.high, ib.high, tol));
@@ -241,7 +253,12 @@ fn one_xray_gives_null_intervals_with_a_reason() {
     );
     let s = stats(&a, Finger::Index, Quantity::RelJ1);
     assert_eq!((s.n, s.mean, s.sd, s.se, s.cv), (1, 0.4, None, None, None));
-    assert!(s.ci_t.is_none() && s.ci_percentile.is_none() && s.ci_bca.is_none() && s.pi.is_none());
+    assert!(
+        s.intervals.ci_t.is_none()
+            && s.intervals.ci_percentile.is_none()
+            && s.intervals.ci_bca.is_none()
+            && s.intervals.pi.is_none()
+    );
     assert!(s.notes[0].contains("n = 1"));
     assert_eq!(a.fingers.len(), 1);
 }
@@ -254,14 +271,19 @@ fn zero_spread_collapses_every_interval() {
     );
     let s = stats(&a, Finger::Index, Quantity::RelJ1);
     assert_eq!(s.sd, Some(0.0));
-    for i in [s.ci_t, s.ci_percentile, s.ci_bca, s.pi] {
+    for i in [
+        s.intervals.ci_t,
+        s.intervals.ci_percentile,
+        s.intervals.ci_bca,
+        s.intervals.pi,
+    ] {
         let i = i.unwrap();
         assert!(i.low == i.high && close(i.low, 0.4, 1e-15), "{i:?}");
     }
     assert!(s.notes[0].contains("collapses"));
     // The totals differ, so their intervals do not collapse.
     let t = stats(&a, Finger::Index, Quantity::Total);
-    assert!(t.ci_t.unwrap().width() > 0.0 && t.notes.is_empty());
+    assert!(t.intervals.ci_t.unwrap().width() > 0.0 && t.notes.is_empty());
 }
 
 #[test]

@@ -1,20 +1,18 @@
 //! Tracking a growing dataset: snapshots, changes between them, outlier flags,
 //! and how many X-rays a target precision needs.
 
-use super::{Analysis, Interval, Quantity, describe, xray_values};
-use crate::dataset::Row;
-use crate::dataset::history::{FingerCount, QuantityRecord, Snapshot, SnapshotSettings};
+use super::{Analysis, Interval, Quantity, xray_values};
+use crate::dataset::history::{Event, FingerCount, QuantityRecord, Snapshot, SnapshotSettings};
+use crate::dataset::{Finger, Row};
+use crate::format;
+use crate::stats::describe;
 use serde::Serialize;
 
-fn pair(i: Option<Interval>) -> Option<[f64; 2]> {
-    i.map(|i| [i.low, i.high])
-}
-
 /// The history record of an analysis.
-pub fn snapshot(a: &Analysis, time: String, event: &str) -> Snapshot {
+pub fn snapshot(a: &Analysis, time: String, event: Event) -> Snapshot {
     Snapshot {
         time,
-        event: event.to_string(),
+        event,
         dataset: a.dataset.path.clone(),
         sha256: a.dataset.sha256.clone(),
         xrays: a.dataset.xrays,
@@ -22,7 +20,7 @@ pub fn snapshot(a: &Analysis, time: String, event: &str) -> Snapshot {
             .fingers
             .iter()
             .map(|f| FingerCount {
-                finger: f.finger.name().to_string(),
+                finger: f.finger,
                 n: f.n,
             })
             .collect(),
@@ -36,15 +34,12 @@ pub fn snapshot(a: &Analysis, time: String, event: &str) -> Snapshot {
             .iter()
             .flat_map(|f| {
                 f.quantities.iter().map(move |q| QuantityRecord {
-                    finger: f.finger.name().to_string(),
-                    quantity: q.name.name().to_string(),
+                    finger: f.finger,
+                    quantity: q.name,
                     n: q.n,
                     mean: q.mean,
                     sd: q.sd,
-                    ci_t: pair(q.ci_t),
-                    ci_percentile: pair(q.ci_percentile),
-                    ci_bca: pair(q.ci_bca),
-                    pi: pair(q.pi),
+                    intervals: q.intervals,
                 })
             })
             .collect(),
@@ -54,8 +49,8 @@ pub fn snapshot(a: &Analysis, time: String, event: &str) -> Snapshot {
 /// How one quantity moved between two snapshots.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Change {
-    pub finger: String,
-    pub quantity: String,
+    pub finger: Finger,
+    pub quantity: Quantity,
     pub n_before: usize,
     pub n_after: usize,
     pub mean_before: f64,
@@ -77,17 +72,17 @@ pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
                 .quantities
                 .iter()
                 .find(|p| p.finger == q.finger && p.quantity == q.quantity)?;
-            let width = |i: Option<[f64; 2]>| i.map(|[lo, hi]| hi - lo);
+            let width = |i: Option<Interval>| i.map(|i| i.width());
             Some(Change {
-                finger: q.finger.clone(),
-                quantity: q.quantity.clone(),
+                finger: q.finger,
+                quantity: q.quantity,
                 n_before: b.n,
                 n_after: q.n,
                 mean_before: b.mean,
                 mean_after: q.mean,
                 mean_shift: q.mean - b.mean,
-                ci_width_before: width(b.ci_t),
-                ci_width_after: width(q.ci_t),
+                ci_width_before: width(b.intervals.ci_t),
+                ci_width_after: width(q.intervals.ci_t),
             })
         })
         .collect()
@@ -96,9 +91,9 @@ pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
 /// One quantity's history: (X-rays, mean, t interval) per snapshot, in order.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct QuantityHistory {
-    pub finger: String,
-    pub quantity: String,
-    pub points: Vec<(usize, f64, Option<[f64; 2]>)>,
+    pub finger: Finger,
+    pub quantity: Quantity,
+    pub points: Vec<(usize, f64, Option<Interval>)>,
 }
 
 /// The history of every quantity present in the snapshots, in first-seen order.
@@ -106,15 +101,15 @@ pub fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
     let mut out: Vec<QuantityHistory> = Vec::new();
     for s in snaps {
         for q in &s.quantities {
-            let point = (q.n, q.mean, q.ci_t);
+            let point = (q.n, q.mean, q.intervals.ci_t);
             match out
                 .iter_mut()
                 .find(|h| h.finger == q.finger && h.quantity == q.quantity)
             {
                 Some(h) => h.points.push(point),
                 None => out.push(QuantityHistory {
-                    finger: q.finger.clone(),
-                    quantity: q.quantity.clone(),
+                    finger: q.finger,
+                    quantity: q.quantity,
                     points: vec![point],
                 }),
             }
@@ -127,15 +122,15 @@ pub fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
 /// narrowed to one finger and/or quantity.
 pub fn selected(
     snaps: &[Snapshot],
-    finger: Option<crate::dataset::Finger>,
+    finger: Option<Finger>,
     quantity: Option<Quantity>,
-) -> Vec<(String, String)> {
-    let mut out: Vec<(String, String)> = Vec::new();
+) -> Vec<(Finger, Quantity)> {
+    let mut out: Vec<(Finger, Quantity)> = Vec::new();
     for s in snaps {
         for r in &s.quantities {
-            let keep = finger.is_none_or(|f| f.name() == r.finger)
-                && quantity.is_none_or(|q| q.name() == r.quantity);
-            let key = (r.finger.clone(), r.quantity.clone());
+            let keep =
+                finger.is_none_or(|f| f == r.finger) && quantity.is_none_or(|q| q == r.quantity);
+            let key = (r.finger, r.quantity);
             if keep && !out.contains(&key) {
                 out.push(key);
             }
@@ -199,8 +194,8 @@ pub const ROBUST_Z: f64 = 5.0;
 fn unusual(v: f64, pi: Option<Interval>, values: &[f64]) -> Option<String> {
     if let Some(pi) = pi.filter(|pi| !pi.contains(v)) {
         return Some(format!(
-            "outside the prediction interval [{:.4}, {:.4}]",
-            pi.low, pi.high
+            "outside the prediction interval {}",
+            format::interval(Some(pi), 4)
         ));
     }
     if values.len() < 5 {
@@ -208,8 +203,14 @@ fn unusual(v: f64, pi: Option<Interval>, values: &[f64]) -> Option<String> {
     }
     let (m, s) = (describe::median(values)?, describe::mad(values)?);
     let z = (v - m).abs() / s;
-    (s > 0.0 && z > ROBUST_Z)
-        .then(|| format!("{z:.1} robust SDs from the median {m:.4} (more than {ROBUST_Z})"))
+    (s > 0.0 && z > ROBUST_Z).then(|| {
+        format!(
+            "{} robust SDs from the median {} (more than {})",
+            format::num(z, 1),
+            format::num(m, 4),
+            format::exact(ROBUST_Z)
+        )
+    })
 }
 
 /// Compares a new row's relative values with the current analysis (see
@@ -234,7 +235,7 @@ pub fn flag_row(a: &Analysis, row: &Row) -> Vec<Flag> {
             .iter()
             .enumerate()
             .filter_map(|(k, q)| {
-                let pi = fa.quantity(*q).and_then(|s| s.pi);
+                let pi = fa.quantity(*q).and_then(|s| s.intervals.pi);
                 unusual(x.relative[k], pi, &columns[k]).map(|why| (k, why))
             })
             .collect()
@@ -269,7 +270,7 @@ pub fn flag_row(a: &Analysis, row: &Row) -> Vec<Flag> {
         .into_iter()
         .map(|(k, why)| {
             let q = relative[k];
-            let pi = fa.quantity(q).and_then(|s| s.pi);
+            let pi = fa.quantity(q).and_then(|s| s.intervals.pi);
             Flag {
                 xray: row.xray.to_string(),
                 finger: row.finger.name().to_string(),
@@ -277,11 +278,11 @@ pub fn flag_row(a: &Analysis, row: &Row) -> Vec<Flag> {
                 value: x.relative[k],
                 interval: pi.map(|p| [p.low, p.high]),
                 reason: format!(
-                    "{} {} of X-ray '{}' is {:.4}, {why} of the current {} X-rays: a likely measurement or typing error{hint}",
+                    "{} {} of X-ray '{}' is {}, {why} of the current {} X-rays: a likely measurement or typing error{hint}",
                     row.finger,
                     q.label(),
                     row.xray,
-                    x.relative[k],
+                    format::num(x.relative[k], 4),
                     fa.n
                 ),
             }
@@ -362,10 +363,11 @@ mod tests {
         )
         .unwrap();
         let pi = a
-            .finger(crate::dataset::Finger::Ring)
+            .finger(Finger::Ring)
             .unwrap()
             .quantity(Quantity::RelJ1)
             .unwrap()
+            .intervals
             .pi
             .unwrap();
         assert!(
@@ -384,24 +386,24 @@ mod tests {
     #[test]
     fn snapshot_and_changes() {
         let (d, a) = paper();
-        let s1 = snapshot(&a, "t1".into(), "snapshot");
+        let s1 = snapshot(&a, "t1".into(), Event::Snapshot);
         assert_eq!(s1.quantities.len(), 28); // thumb 4 + 4 fingers x 6
         assert_eq!(s1.xrays, 5);
         let mut d2 = d.clone();
         let extra =
             Dataset::from_bytes("n.csv", b"xray,finger,j1,j2,j3\nz,index,350,190,170\n").unwrap();
         d2.rows.extend(extra.rows);
-        let s2 = snapshot(&analyse(&d2, &Settings::default()), "t2".into(), "add");
+        let s2 = snapshot(&analyse(&d2, &Settings::default()), "t2".into(), Event::Add);
         let c = changes(&s1, &s2);
         assert_eq!(c.len(), 28);
         let idx = c
             .iter()
-            .find(|c| c.finger == "index" && c.quantity == "rel_j1")
+            .find(|c| c.finger == Finger::Index && c.quantity == Quantity::RelJ1)
             .unwrap();
         assert_eq!((idx.n_before, idx.n_after), (5, 6));
         let expect = (0.484636 * 5.0 + 350.0 / 710.0) / 6.0 - 0.484636;
         assert!((idx.mean_shift - expect).abs() < 1e-5, "{}", idx.mean_shift);
-        let thumb = c.iter().find(|c| c.finger == "thumb").unwrap();
+        let thumb = c.iter().find(|c| c.finger == Finger::Thumb).unwrap();
         assert_eq!(thumb.mean_shift, 0.0);
     }
 }

@@ -70,7 +70,7 @@ fn option_of(column: &str) -> &str {
 
 /// Formats a length so that it parses back to the same `f64`.
 fn length_text(x: f64) -> String {
-    format!("{x}")
+    crate::format::full(Some(x))
 }
 
 /// One field of a row, by column name.
@@ -83,7 +83,7 @@ fn field_of(row: &Row, column: &str) -> String {
         "j2" => length_text(row.lengths[1]),
         "j3" if row.finger.segments() == 3 => length_text(row.lengths[2]),
         "sex" => s(&row.meta.sex),
-        "age" => row.meta.age.map_or_else(String::new, |a| a.to_string()),
+        "age" => crate::format::full(row.meta.age),
         "side" => s(&row.meta.side),
         "source" => s(&row.meta.source),
         "unit" => s(&row.meta.unit),

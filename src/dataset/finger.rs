@@ -1,6 +1,7 @@
 //! The five fingers and the names they go by.
 
-use serde::{Serialize, Serializer};
+use serde::de::Error as _;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 
 /// One finger of a hand, in the order the report lists them.
@@ -94,6 +95,19 @@ impl Serialize for Finger {
     }
 }
 
+impl<'de> Deserialize<'de> for Finger {
+    /// Reads a name [`Finger::parse`] accepts (phalanx writes [`Finger::name`]).
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Finger, D::Error> {
+        let text = String::deserialize(d)?;
+        Finger::parse(&text).ok_or_else(|| {
+            D::Error::custom(format!(
+                "unknown finger '{text}', expected one of {}",
+                Finger::ACCEPTED
+            ))
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -108,6 +122,21 @@ mod tests {
         assert_eq!(Finger::parse("THUMB"), Some(Finger::Thumb));
         assert_eq!(Finger::parse("toe"), None);
         assert_eq!(Finger::parse(""), None);
+    }
+
+    #[test]
+    fn json_names_round_trip_and_unknown_names_are_refused() {
+        for f in Finger::ALL {
+            let json = serde_json::to_string(&f).unwrap();
+            assert_eq!(json, format!("\"{}\"", f.name()));
+            assert_eq!(serde_json::from_str::<Finger>(&json).unwrap(), f);
+        }
+        let e = serde_json::from_str::<Finger>("\"toe\"").unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("unknown finger 'toe', expected one of thumb, "),
+            "{e}"
+        );
     }
 
     #[test]

@@ -4,28 +4,29 @@
 //! and the report's Tracking section. Lines are never rewritten.
 
 use super::csvinput::read_input;
-use super::{DataError, Problem};
+use super::{DataError, Finger, Problem, Quantity};
+use crate::stats::Intervals;
 use serde::{Deserialize, Serialize};
+use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// Statistics of one quantity at one snapshot.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct QuantityRecord {
-    pub finger: String,
-    pub quantity: String,
+    pub finger: Finger,
+    pub quantity: Quantity,
     pub n: usize,
     pub mean: f64,
     pub sd: Option<f64>,
-    pub ci_t: Option<[f64; 2]>,
-    pub ci_percentile: Option<[f64; 2]>,
-    pub ci_bca: Option<[f64; 2]>,
-    pub pi: Option<[f64; 2]>,
+    /// Keys `ci_t`, `ci_percentile`, `ci_bca`, `pi`, as in the statistics document.
+    #[serde(flatten)]
+    pub intervals: Intervals,
 }
 
 /// X-rays per finger at one snapshot.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct FingerCount {
-    pub finger: String,
+    pub finger: Finger,
     pub n: usize,
 }
 
@@ -37,13 +38,39 @@ pub struct SnapshotSettings {
     pub confidence: f64,
 }
 
+/// What made a snapshot.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Event {
+    /// `phalanx add`: rows were added to the dataset.
+    Add,
+    /// `phalanx snapshot`: recorded on demand.
+    Snapshot,
+}
+
+impl Event {
+    /// The name written to the history file: `add` or `snapshot`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Event::Add => "add",
+            Event::Snapshot => "snapshot",
+        }
+    }
+}
+
+impl fmt::Display for Event {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// One line of the history file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Snapshot {
     /// UTC time, RFC 3339.
     pub time: String,
-    /// What made it: `add` or `snapshot`.
-    pub event: String,
+    /// What made it.
+    pub event: Event,
     /// The dataset's path as given.
     pub dataset: String,
     pub sha256: String,
@@ -127,16 +154,17 @@ pub fn append(path: &Path, snapshot: &Snapshot) -> std::io::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::stats::Interval;
 
     fn snap(n: usize) -> Snapshot {
         Snapshot {
             time: "2026-01-01T00:00:00Z".into(),
-            event: "add".into(),
+            event: Event::Add,
             dataset: "d.csv".into(),
             sha256: "00".into(),
             xrays: n,
             fingers: vec![FingerCount {
-                finger: "index".into(),
+                finger: Finger::Index,
                 n,
             }],
             settings: SnapshotSettings {
@@ -145,15 +173,15 @@ mod tests {
                 confidence: 0.95,
             },
             quantities: vec![QuantityRecord {
-                finger: "index".into(),
-                quantity: "rel_j1".into(),
+                finger: Finger::Index,
+                quantity: Quantity::RelJ1,
                 n,
                 mean: 0.5,
                 sd: None,
-                ci_t: Some([0.4, 0.6]),
-                ci_percentile: None,
-                ci_bca: None,
-                pi: None,
+                intervals: Intervals {
+                    ci_t: Some(Interval::new(0.4, 0.6)),
+                    ..Intervals::NONE
+                },
             }],
         }
     }
@@ -186,5 +214,52 @@ mod tests {
             default_path(Path::new("m.csv")),
             PathBuf::from("history.jsonl")
         );
+    }
+
+    #[test]
+    fn the_committed_history_reads_and_writes_back_unchanged() {
+        // data/history.jsonl was written before the records were typed.
+        let path = Path::new("data/history.jsonl");
+        let snaps = read(path).unwrap();
+        assert!(!snaps.is_empty());
+        assert_eq!(snaps[0].event, Event::Snapshot);
+        assert_eq!(snaps[0].quantities[0].finger, Finger::Thumb);
+        assert_eq!(snaps[0].quantities[0].quantity, Quantity::RelJ1);
+        // Written back, every key and value is as read. (serde_json parses floats to
+        // within an ulp, not always exactly, so the lines are compared as parsed JSON.)
+        let text = std::fs::read_to_string(path).unwrap();
+        assert_eq!(text.lines().count(), snaps.len());
+        for (line, snap) in text.lines().zip(&snaps) {
+            let read: serde_json::Value = serde_json::from_str(line).unwrap();
+            assert_eq!(serde_json::to_value(snap).unwrap(), read);
+        }
+    }
+
+    #[test]
+    fn unknown_names_are_reported_with_their_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("history.jsonl");
+        let good = serde_json::to_string(&snap(5)).unwrap();
+        let lines = [
+            good.clone(),
+            good.replace("\"event\":\"add\"", "\"event\":\"merge\""),
+            good.replace("\"finger\":\"index\"", "\"finger\":\"toe\""),
+            good.replace("\"quantity\":\"rel_j1\"", "\"quantity\":\"rel_j9\""),
+        ];
+        std::fs::write(&p, lines.join("\n")).unwrap();
+        let e = read(&p).unwrap_err();
+        let got: Vec<(Option<u64>, &str)> = e
+            .problems
+            .iter()
+            .map(|p| (p.line, p.message.as_str()))
+            .collect();
+        assert_eq!(got.len(), 3, "{got:?}");
+        assert_eq!(got[0].0, Some(2));
+        assert!(got[0].1.contains("unknown variant `merge`"), "{got:?}");
+        assert_eq!(got[1].0, Some(3));
+        assert!(got[1].1.contains("unknown finger 'toe'"), "{got:?}");
+        assert_eq!(got[2].0, Some(4));
+        assert!(got[2].1.contains("unknown quantity 'rel_j9'"), "{got:?}");
+        assert!(e.to_string().contains("history.jsonl"), "{e}");
     }
 }

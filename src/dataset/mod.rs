@@ -11,9 +11,11 @@ pub mod csvinput;
 pub mod error;
 pub mod finger;
 pub mod history;
+pub mod quantity;
 
 pub use error::{DataError, Problem};
 pub use finger::Finger;
+pub use quantity::Quantity;
 
 use csvinput::{CsvScan, Header, Record, quote};
 use std::collections::HashMap;

@@ -2,9 +2,9 @@
 //!
 //! Rig coordinates are taken as metres (the glTF unit) and shown in millimetres.
 
-use super::format::{num, percent};
 use crate::analysis::Quantity;
 use crate::analysis::audit::{Basis, FingerAudit, Standing};
+use crate::format::{level, num};
 use crate::rig::{AuditedFinger, AuditedRig};
 
 /// Millimetres per rig unit (glTF units are metres).
@@ -102,7 +102,7 @@ pub fn suggestion(j: &crate::analysis::audit::JointCheck) -> String {
 
 /// The terminal report of `phalanx audit`.
 pub fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> String {
-    let c = percent(confidence);
+    let c = level(confidence);
     let mut out = format!(
         "Rig audit of {} against {data} ({n_note}); lengths in mm (glTF units are metres), {c} prediction intervals\n",
         rig.label

@@ -1,8 +1,9 @@
 //! CSV output of the statistics: one row per finger and quantity, full precision.
 
+use crate::analysis::Analysis;
 use crate::analysis::groups::Group;
-use crate::analysis::{Analysis, Interval};
 use crate::error::Error;
+use crate::format::{full, interval_bounds};
 
 /// Header of the statistics CSV.
 pub const STATS_COLUMNS: [&str; 22] = [
@@ -40,15 +41,6 @@ pub fn safe_cell(text: &str) -> String {
     }
 }
 
-fn f(x: Option<f64>) -> String {
-    x.filter(|v| v.is_finite())
-        .map_or_else(String::new, |v| v.to_string())
-}
-
-fn lo_hi(i: Option<Interval>) -> [String; 2] {
-    [f(i.map(|i| i.low)), f(i.map(|i| i.high))]
-}
-
 /// The statistics as CSV bytes; empty cells where a value is null. With groups
 /// (`--group-by`), two leading columns `group_by` and `group` name each row's
 /// group (`all` for the whole dataset).
@@ -83,8 +75,8 @@ fn write_analysis(
     let err = |e| Error::render("cannot write CSV", e);
     for fa in &a.fingers {
         let method = match fa.bootstrap {
-            crate::analysis::bootstrap::Plan::Exact { .. } => "exact",
-            crate::analysis::bootstrap::Plan::Random { .. } => "random",
+            crate::stats::bootstrap::Plan::Exact { .. } => "exact",
+            crate::stats::bootstrap::Plan::Random { .. } => "random",
         };
         for q in &fa.quantities {
             let mut rec = lead.to_vec();
@@ -92,20 +84,18 @@ fn write_analysis(
                 fa.finger.name().to_string(),
                 q.name.name().to_string(),
                 q.n.to_string(),
-                f(Some(q.mean)),
-                f(q.sd),
-                f(q.se),
-                f(Some(q.median)),
-                f(Some(q.min)),
-                f(Some(q.max)),
-                f(Some(q.range)),
-                f(q.cv),
+                full(Some(q.mean)),
+                full(q.sd),
+                full(q.se),
+                full(Some(q.median)),
+                full(Some(q.min)),
+                full(Some(q.max)),
+                full(Some(q.range)),
+                full(q.cv),
             ]);
-            for i in [q.ci_t, q.ci_percentile, q.ci_bca, q.pi] {
-                rec.extend(lo_hi(i));
-            }
+            rec.extend(interval_bounds(&q.intervals));
             rec.push(method.to_string());
-            rec.push(a.settings.confidence.to_string());
+            rec.push(full(Some(a.settings.confidence)));
             rec.push(safe_cell(&q.notes.join("; ")));
             w.write_record(&rec).map_err(err)?;
         }

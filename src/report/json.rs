@@ -3,10 +3,11 @@
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
 use crate::analysis::groups::{Group, GroupSummary};
-use crate::analysis::{Analysis, DatasetInfo, FingerAnalysis, Quantity, Settings, rng};
+use crate::analysis::{Analysis, DatasetInfo, FingerAnalysis, Quantity, Settings};
 use crate::dataset::Finger;
-use crate::dataset::history::{QuantityRecord, Snapshot};
+use crate::dataset::history::{Event, QuantityRecord, Snapshot};
 use crate::error::Error;
+use crate::stats::rng;
 use serde::Serialize;
 
 /// Version of every JSON document phalanx writes; bumped on any incompatible change.
@@ -143,8 +144,8 @@ pub fn coverage(
 
 #[derive(Serialize)]
 struct HistorySeries<'a> {
-    finger: &'a str,
-    quantity: &'a str,
+    finger: Finger,
+    quantity: Quantity,
     points: Vec<HistoryPoint<'a>>,
 }
 
@@ -152,7 +153,7 @@ struct HistorySeries<'a> {
 struct HistoryPoint<'a> {
     snapshot: usize,
     time: &'a str,
-    event: &'a str,
+    event: Event,
     sha256: &'a str,
     record: &'a QuantityRecord,
 }
@@ -167,8 +168,8 @@ pub fn history(
     let series: Vec<HistorySeries<'_>> = keys
         .iter()
         .map(|(f, q)| HistorySeries {
-            finger: f,
-            quantity: q,
+            finger: *f,
+            quantity: *q,
             points: snaps
                 .iter()
                 .enumerate()
@@ -180,7 +181,7 @@ pub fn history(
                     Some(HistoryPoint {
                         snapshot: i + 1,
                         time: &s.time,
-                        event: &s.event,
+                        event: s.event,
                         sha256: &s.sha256,
                         record,
                     })

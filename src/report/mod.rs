@@ -6,7 +6,6 @@
 
 pub mod audit;
 pub mod csv_out;
-pub mod format;
 pub mod json;
 pub mod plots;
 pub mod progress;
@@ -99,7 +98,6 @@ fn rig_ratios(rigs: &[view::ReferenceAudit]) -> Vec<plots::RigRatios> {
 
 /// One tracking plot per finger with history (two snapshots or more), in the analysis's finger order.
 fn tracking_plots(inputs: &ReportInputs<'_>) -> Result<Vec<plots::Plot>, Error> {
-    use crate::analysis::Quantity;
     // One snapshot is a single point per quantity: nothing moves yet.
     if inputs.history.len() < 2 {
         return Ok(Vec::new());
@@ -109,21 +107,18 @@ fn tracking_plots(inputs: &ReportInputs<'_>) -> Result<Vec<plots::Plot>, Error> 
     for f in &inputs.analysis.fingers {
         let series: Vec<plots::TrackSeries> = histories
             .iter()
-            .filter(|h| h.finger == f.finger.name())
-            .filter_map(|h| {
-                let q = Quantity::parse(&h.quantity).filter(|q| q.is_relative())?;
-                Some(plots::TrackSeries {
-                    label: q.label().to_string(),
-                    points: h
-                        .points
-                        .iter()
-                        .map(|&(xrays, mean, ci)| plots::TrackPoint {
-                            xrays,
-                            mean,
-                            ci: ci.map(|[lo, hi]| (lo, hi)),
-                        })
-                        .collect(),
-                })
+            .filter(|h| h.finger == f.finger && h.quantity.is_relative())
+            .map(|h| plots::TrackSeries {
+                label: h.quantity.label().to_string(),
+                points: h
+                    .points
+                    .iter()
+                    .map(|&(xrays, mean, ci)| plots::TrackPoint {
+                        xrays,
+                        mean,
+                        ci: ci.map(|i| (i.low, i.high)),
+                    })
+                    .collect(),
             })
             .collect();
         if !series.is_empty() {

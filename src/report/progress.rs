@@ -1,6 +1,6 @@
 //! A progress bar on standard error for long bootstraps (indicatif).
 
-use crate::analysis::bootstrap::Progress;
+use crate::stats::bootstrap::Progress;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 

@@ -1,11 +1,13 @@
 //! Terminal tables for `stats`, `check` and `coverage`.
 
-use super::format::{decimals, interval, num, opt, percent};
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
+use crate::format::{
+    decimals, exact, interval, interval_cells, length_decimals, level, num, opt, percent, signed,
+};
 use comfy_table::{CellAlignment, ContentArrangement, Table, presets};
 
 /// A terminal table in Markdown style, columns from `right_from` on right-aligned.
@@ -24,7 +26,7 @@ pub(super) fn table(header: &[&str], right_from: usize) -> Table {
 
 /// The statistics of every finger, 4 decimals for relative values as in the paper.
 pub fn stats(a: &Analysis) -> String {
-    let c = percent(a.settings.confidence);
+    let c = level(a.settings.confidence);
     let mut out = format!(
         "phalanx statistics of {} ({} X-rays, {} rows); confidence {c}, seed {}\n",
         a.dataset.path, a.dataset.xrays, a.dataset.rows, a.settings.seed
@@ -53,8 +55,8 @@ pub fn stats(a: &Analysis) -> String {
             1,
         );
         for q in &f.quantities {
-            let d = decimals(q.name);
-            t.add_row(vec![
+            let d = decimals(q.name.is_unitless());
+            let mut row = vec![
                 q.name.label().to_string(),
                 num(q.mean, d),
                 num(q.min, d),
@@ -62,11 +64,9 @@ pub fn stats(a: &Analysis) -> String {
                 num(q.range, d),
                 opt(q.sd, d),
                 opt(q.se, d),
-                interval(q.ci_t, d),
-                interval(q.ci_percentile, d),
-                interval(q.ci_bca, d),
-                interval(q.pi, d),
-            ]);
+            ];
+            row.extend(interval_cells(&q.intervals, d));
+            t.add_row(row);
         }
         out.push_str(&t.to_string());
         out.push('\n');
@@ -183,7 +183,7 @@ pub fn coverage(rows: &[QuantityCoverage], settings: &CoverageSettings) -> Strin
     format!(
         "Simulated coverage of nominal {} intervals ({sims} simulated datasets per sample size; normal model fitted to each quantity).\n\
          Confidence intervals are checked against the model mean; the prediction interval against one new draw.\n{t}\n",
-        percent(settings.confidence),
+        level(settings.confidence),
         sims = settings.sims
     )
 }
@@ -203,9 +203,8 @@ pub fn history(
     }
     let mut out = format!("{} snapshots in {}\n", snaps.len(), path.display());
     for (f, q) in crate::analysis::tracking::selected(snaps, finger, quantity) {
-        let d = Quantity::parse(&q).map_or(4, decimals);
-        let label = Quantity::parse(&q).map_or(q.clone(), |x| x.label().to_string());
-        out.push_str(&format!("\n{f} {label}\n"));
+        let d = decimals(q.is_unitless());
+        out.push_str(&format!("\n{f} {}\n", q.label()));
         let mut t = table(
             &[
                 "#",
@@ -229,19 +228,17 @@ pub fn history(
             else {
                 continue;
             };
-            let ci = r
-                .ci_t
-                .map(|[lo, hi]| crate::analysis::Interval::new(lo, hi));
+            let ci = r.intervals.ci_t;
             t.add_row(vec![
                 (i + 1).to_string(),
                 s.time.clone(),
-                s.event.clone(),
+                s.event.to_string(),
                 r.n.to_string(),
                 num(r.mean, d),
                 opt(r.sd, d),
                 interval(ci, d),
                 opt(ci.map(|c| c.width()), d),
-                previous.map_or_else(|| "-".to_string(), |p| format!("{:+.*}", d, r.mean - p)),
+                previous.map_or_else(|| "-".to_string(), |p| signed(r.mean - p, d)),
             ]);
             previous = Some(r.mean);
         }
@@ -259,15 +256,15 @@ pub fn history(
 
 /// Joint positions and segment lengths of model fingers, one table each.
 pub fn placement(ps: &[crate::analysis::placement::FingerPlacement], confidence: f64) -> String {
-    let c = percent(confidence);
+    let c = level(confidence);
     let mut out = String::new();
     for p in ps {
         out.push_str(&format!(
             "{} - model length {} (from {} X-rays); positions from the root joint (MCP at 0, tip at {})\n",
             p.finger.display_name(),
-            p.length,
+            exact(p.length),
             p.n,
-            p.length
+            exact(p.length)
         ));
         let mut t = table(
             &[
@@ -292,19 +289,17 @@ pub fn placement(ps: &[crate::analysis::placement::FingerPlacement], confidence:
                     .iter()
                     .map(|s| (format!("segment {}", s.segment.to_uppercase()), &s.length)),
             );
-        let d = super::format::length_decimals(p.length);
+        let d = length_decimals(p.length);
         for (what, v) in rows {
-            t.add_row(vec![
+            let mut row = vec![
                 what,
                 num(v.mean, d),
                 num(v.min, d),
                 num(v.max, d),
                 num(v.range, d),
-                interval(v.ci_t, d),
-                interval(v.ci_percentile, d),
-                interval(v.ci_bca, d),
-                interval(v.pi, d),
-            ]);
+            ];
+            row.extend(interval_cells(&v.intervals, d));
+            t.add_row(row);
         }
         if let Some(col) = t.column_mut(0) {
             col.set_cell_alignment(CellAlignment::Left);

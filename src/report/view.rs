@@ -3,16 +3,19 @@
 //! Templates never compute or format numbers; everything they show is a string
 //! here. Built from analysis results only, never from raw measurement rows.
 
-use super::format::{decimals, interval, num, opt, percent};
 use super::plots::{Plot, PlotKind};
-use crate::analysis::bootstrap::Plan;
 use crate::analysis::claims::{CheckSummary, ClaimResult, Verdict};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
 use crate::analysis::groups::Group;
 use crate::analysis::placement::FingerPlacement;
-use crate::analysis::{Analysis, Quantity, rng};
+use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
+use crate::format::{
+    decimals, exact, interval_cells, length_decimals, level, num, opt, percent, signed,
+};
+use crate::stats::bootstrap::Plan;
+use crate::stats::{Intervals, rng};
 use serde::Serialize;
 
 /// Most X-rays listed row by row in the data tables; the rest are summarised.
@@ -188,10 +191,30 @@ pub struct StatsRow {
     pub se: String,
     pub median: String,
     pub cv: String,
+    #[serde(flatten)]
+    pub intervals: IntervalCells,
+}
+
+/// The four intervals of a table row as text (keys `ci_t`, `ci_percentile`, `ci_bca`, `pi`).
+#[derive(Debug, Clone, Serialize)]
+pub struct IntervalCells {
     pub ci_t: String,
     pub ci_percentile: String,
     pub ci_bca: String,
     pub pi: String,
+}
+
+impl IntervalCells {
+    /// The cells of `iv` with `d` decimals (from [`interval_cells`]).
+    pub fn new(iv: &Intervals, d: usize) -> IntervalCells {
+        let [ci_t, ci_percentile, ci_bca, pi] = interval_cells(iv, d);
+        IntervalCells {
+            ci_t,
+            ci_percentile,
+            ci_bca,
+            pi,
+        }
+    }
 }
 
 /// The claim-by-claim check.
@@ -237,10 +260,8 @@ pub struct PlacementRow {
     pub min: String,
     pub max: String,
     pub range: String,
-    pub ci_t: String,
-    pub ci_percentile: String,
-    pub ci_bca: String,
-    pub pi: String,
+    #[serde(flatten)]
+    pub intervals: IntervalCells,
 }
 
 /// Simulated coverage per method.
@@ -380,13 +401,13 @@ fn settings_text(inputs: &ReportInputs<'_>) -> SettingsText {
     let mut plans: Vec<String> = a.fingers.iter().map(|f| f.bootstrap.describe()).collect();
     plans.dedup();
     SettingsText {
-        confidence: percent_plain(a.settings.confidence),
+        confidence: level(a.settings.confidence),
         resamples: a.settings.resamples.to_string(),
         seed: a.settings.seed.to_string(),
         rng: rng::RNG_NAME.to_string(),
         xrays: a.dataset.xrays.to_string(),
         bootstrap: plans.join("; "),
-        model_length: length_text(inputs.model_length),
+        model_length: exact(inputs.model_length),
         width_reason: width_reason(a),
     }
 }
@@ -395,36 +416,18 @@ fn settings_text(inputs: &ReportInputs<'_>) -> SettingsText {
 fn width_reason(a: &Analysis) -> String {
     let n = a.fingers.iter().map(|f| f.n).min().unwrap_or(0);
     let c = a.settings.confidence;
-    match crate::analysis::describe::t_quantile(c, n.saturating_sub(1)) {
+    match crate::stats::describe::t_quantile(c, n.saturating_sub(1)) {
         Some(t) => format!(
             "With n = {n} the {} t quantile is {} ({} degrees of freedom), not the normal {}.",
-            percent_plain(c),
+            level(c),
             num(t, 2),
             n - 1,
             num(
-                crate::analysis::describe::normal_quantile(1.0 - (1.0 - c) / 2.0),
+                crate::stats::describe::normal_quantile(1.0 - (1.0 - c) / 2.0),
                 2
             )
         ),
         None => format!("With n = {n} no interval can be estimated."),
-    }
-}
-
-/// A confidence level as "95%" (no decimals when whole).
-fn percent_plain(c: f64) -> String {
-    let p = 100.0 * c;
-    if (p - p.round()).abs() < 1e-9 {
-        format!("{}%", p.round() as i64)
-    } else {
-        percent(c)
-    }
-}
-
-fn length_text(l: f64) -> String {
-    if l.fract() == 0.0 && l.abs() < 1e15 {
-        format!("{}", l as i64)
-    } else {
-        l.to_string()
     }
 }
 
@@ -526,7 +529,7 @@ fn stats(f: &crate::analysis::FingerAnalysis) -> StatsFinger {
         .quantities
         .iter()
         .map(|q| {
-            let d = decimals(q.name);
+            let d = decimals(q.name.is_unitless());
             StatsRow {
                 quantity: q.name.label().to_string(),
                 mean: num(q.mean, d),
@@ -537,10 +540,7 @@ fn stats(f: &crate::analysis::FingerAnalysis) -> StatsFinger {
                 se: opt(q.se, d),
                 median: num(q.median, d),
                 cv: q.cv.map_or_else(|| "n/a".to_string(), percent),
-                ci_t: interval(q.ci_t, d),
-                ci_percentile: interval(q.ci_percentile, d),
-                ci_bca: interval(q.ci_bca, d),
-                pi: interval(q.pi, d),
+                intervals: IntervalCells::new(&q.intervals, d),
             }
         })
         .collect();
@@ -614,7 +614,7 @@ fn claims(file: &str, results: &[ClaimResult], note: Option<&str>) -> ClaimsView
 }
 
 fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
-    let d = super::format::length_decimals(length);
+    let d = length_decimals(length);
     let row = |finger: Finger, what: &str, p: &crate::analysis::placement::Placed| PlacementRow {
         finger: finger.display_name().to_string(),
         what: what.to_string(),
@@ -622,13 +622,10 @@ fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
         min: num(p.min, d),
         max: num(p.max, d),
         range: num(p.range, d),
-        ci_t: interval(p.ci_t, d),
-        ci_percentile: interval(p.ci_percentile, d),
-        ci_bca: interval(p.ci_bca, d),
-        pi: interval(p.pi, d),
+        intervals: IntervalCells::new(&p.intervals, d),
     };
     PlacementView {
-        length: length_text(length),
+        length: exact(length),
         joints: ps
             .iter()
             .flat_map(|p| {
@@ -668,7 +665,7 @@ fn coverage(s: &CoverageSettings, rows: &[QuantityCoverage]) -> CoverageView {
             get("t"),
             get("percentile"),
             get("bca"),
-            percent_plain(s.confidence),
+            level(s.confidence),
             get("prediction")
         ));
     }
@@ -719,16 +716,6 @@ fn plot(p: &Plot) -> PlotView {
     }
 }
 
-fn signed(x: f64, d: usize) -> String {
-    let s = format!("{x:+.d$}");
-    // "+0.0000" and "-0.0000" both read as no change.
-    if s[1..].chars().all(|c| c == '0' || c == '.') {
-        format!("{:.d$}", 0.0)
-    } else {
-        s
-    }
-}
-
 fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
     let a = inputs.analysis;
     let snaps = inputs.history;
@@ -761,15 +748,12 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
         let (b, e) = (snaps.len() - 2, snaps.len() - 1);
         let rows = crate::analysis::tracking::changes(&snaps[b], &snaps[e])
             .into_iter()
-            .filter(|ch| ch.quantity != "total")
+            .filter(|ch| ch.quantity != Quantity::Total)
             .map(|ch| {
-                let d = 4;
-                let label = Quantity::parse(&ch.quantity)
-                    .map_or(ch.quantity.clone(), |q| q.label().to_string());
+                let d = decimals(ch.quantity.is_unitless());
                 ChangeRow {
-                    finger: Finger::parse(&ch.finger)
-                        .map_or(ch.finger.clone(), |f| f.display_name().to_string()),
-                    quantity: label,
+                    finger: ch.finger.display_name().to_string(),
+                    quantity: ch.quantity.label().to_string(),
                     n: format!("{} -> {}", ch.n_before, ch.n_after),
                     mean_before: num(ch.mean_before, d),
                     mean_after: num(ch.mean_after, d),
@@ -805,7 +789,7 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
                         quantity: q.name.label().to_string(),
                         n: q.n.to_string(),
                         sd: opt(q.sd, 4),
-                        half_width: opt(q.ci_t.map(|i| i.width() / 2.0), 4),
+                        half_width: opt(q.intervals.ci_t.map(|i| i.width() / 2.0), 4),
                         needed: need.map_or_else(|| "n/a".to_string(), |n| n.to_string()),
                         more: match need {
                             Some(n) if n <= q.n => "reached".to_string(),

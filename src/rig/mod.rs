@@ -671,10 +671,10 @@ impl AuditedRig {
                     let span: f64 = audit.segments.iter().sum();
                     if !(0.005..=0.3).contains(&span) {
                         notes.push(format!(
-                            "{}: its joints span {:.1} mm, unlike a finger: are the file's units metres? \
+                            "{}: its joints span {} mm, unlike a finger: are the file's units metres? \
                              The mm figures would be off; relative values and ratios are not",
                             chain.label(),
-                            span * 1000.0
+                            crate::format::num(span * 1000.0, 1)
                         ));
                     }
                     fingers.push(AuditedFinger {

@@ -9,7 +9,7 @@ use super::{Plot, PlotKind};
 use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
 use crate::dataset::Finger;
 use crate::error::Error;
-use crate::report::format;
+use crate::format;
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged, ValueFormatter};
 use plotters::coord::types::RangedCoordf64;
@@ -82,10 +82,10 @@ impl Kind {
     /// This interval of a quantity, if it exists.
     pub(super) fn of(self, s: &QuantityStats) -> Option<Interval> {
         match self {
-            Kind::T => s.ci_t,
-            Kind::Percentile => s.ci_percentile,
-            Kind::Bca => s.ci_bca,
-            Kind::Prediction => s.pi,
+            Kind::T => s.intervals.ci_t,
+            Kind::Percentile => s.intervals.ci_percentile,
+            Kind::Bca => s.intervals.ci_bca,
+            Kind::Prediction => s.intervals.pi,
         }
     }
 
@@ -111,7 +111,7 @@ impl Kind {
 
     /// Legend text at confidence level `confidence`; `unit` is what a prediction is for.
     pub(super) fn legend(self, confidence: f64, unit: &str) -> String {
-        let level = level(confidence);
+        let level = format::level(confidence);
         match self {
             Kind::T => format!("{level} CI of the mean (Student t)"),
             Kind::Percentile => format!("{level} CI (bootstrap percentile)"),
@@ -651,14 +651,9 @@ where
         .draw()
 }
 
-/// A tick formatter with enough decimals for ticks spaced over `span`.
+/// A tick formatter with enough decimals for ticks spaced over `span` (about 8 ticks).
 pub(super) fn tick_format(span: f64) -> impl Fn(&f64) -> String {
-    let step = span / 8.0;
-    let decimals = if step.is_finite() && step > 0.0 {
-        (-step.log10()).ceil().clamp(0.0, 6.0) as usize
-    } else {
-        2
-    };
+    let decimals = format::step_decimals(span / 8.0);
     move |v: &f64| format::num(*v, decimals)
 }
 
@@ -699,29 +694,12 @@ pub(super) fn stats_values(s: &QuantityStats) -> Vec<f64> {
     v
 }
 
-/// A confidence level as a percentage: 0.95 -> "95%", 0.975 -> "97.5%".
-pub(super) fn level(confidence: f64) -> String {
-    let s = format::num(100.0 * confidence, 2);
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    format!("{s}%")
-}
-
 /// "1 X-ray", "5 X-rays".
 pub(super) fn xrays(n: usize) -> String {
     if n == 1 {
         "1 X-ray".to_string()
     } else {
         format!("{n} X-rays")
-    }
-}
-
-/// A number with at most `d` decimals, trailing zeros removed: 1000.0 -> "1000".
-pub(super) fn short(x: f64, d: usize) -> String {
-    let s = format::num(x, d);
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
     }
 }
 

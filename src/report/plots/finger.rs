@@ -7,13 +7,13 @@
 
 use super::draw::{
     Axes, Categories, Chart, Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, Linear, MARGIN,
-    MUTED, POINT, Pen, Px, Root, Swatch, WIDTH, clip, draw_axes, extent, finish, level, padded,
-    render, stats_values, text_width, tick_format,
+    MUTED, POINT, Pen, Px, Root, Swatch, WIDTH, clip, draw_axes, extent, finish, padded, render,
+    stats_values, text_width, tick_format,
 };
 use super::{Plot, PlotKind, finger_phrase};
 use crate::analysis::{FingerAnalysis, Quantity, QuantityStats};
 use crate::error::Error;
-use crate::report::format;
+use crate::format;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
@@ -226,7 +226,7 @@ fn subtitle(strip: Strip, n: usize, confidence: f64) -> String {
     format!(
         "n = {}. Per segment: {xrays}; the mean with its {} intervals.",
         super::draw::xrays(n),
-        level(confidence)
+        format::level(confidence)
     )
 }
 
@@ -414,7 +414,7 @@ pub(super) fn quantity_sentence(s: &QuantityStats, confidence: f64) -> String {
         format::num(s.mean, 4),
         format::num(s.min, 4),
         format::num(s.max, 4),
-        level(confidence),
+        format::level(confidence),
         intervals.join(", ")
     )
 }

@@ -3,13 +3,13 @@
 
 use super::draw::{
     Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, MUTED, Pen, Px, QuantityRow, Root, Swatch,
-    WIDTH, extent, finish, level, padded, quantity_rows, render, row_chart, stats_values,
-    text_width,
+    WIDTH, extent, finish, padded, quantity_rows, render, row_chart, stats_values, text_width,
 };
 use super::finger::quantity_sentence;
 use super::{Plot, PlotKind};
 use crate::analysis::{Analysis, Quantity, QuantityStats};
 use crate::error::Error;
+use crate::format::level;
 use plotters::style::text_anchor::{HPos, VPos};
 
 /// Height of one row in pixels.

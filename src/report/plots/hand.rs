@@ -4,13 +4,13 @@
 
 use super::draw::{
     Axes, BONE, Categories, Chart, Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, Linear,
-    MARGIN, MUTED, Pen, Px, RANGE, Swatch, WIDTH, draw_axes, extent, finish, level, padded, render,
-    short, tick_format,
+    MARGIN, MUTED, Pen, Px, RANGE, Swatch, WIDTH, draw_axes, extent, finish, padded, render,
+    tick_format,
 };
 use super::{Plot, PlotKind};
 use crate::analysis::placement::{FingerPlacement, JointPosition};
 use crate::error::Error;
-use crate::report::format;
+use crate::format::{self, label_decimals, level, trimmed};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
@@ -31,7 +31,7 @@ pub(super) fn plot(placements: &[FingerPlacement], confidence: f64) -> Result<Pl
     let legend = legend(confidence);
     let title = format!(
         "Joint positions on a model hand (L = {} model units)",
-        short(length, 4)
+        trimmed(length, 4)
     );
     let subtitle = format!(
         "Every finger from its root joint (MCP, at 0) to its tip (at L); inner joints at their mean \
@@ -61,11 +61,6 @@ fn model_length(placements: &[FingerPlacement]) -> f64 {
         .map(|(_, hi)| hi)
         .filter(|&l| l > 0.0)
         .unwrap_or(1.0)
-}
-
-/// Decimals for positions in a model of length `length`: 1 for L = 1000, 2 for L = 50.
-fn decimals(length: f64) -> usize {
-    (4.0 - length.log10().ceil()).clamp(0.0, 6.0) as usize
 }
 
 /// The legend: joints, mean, range, prediction interval.
@@ -112,7 +107,7 @@ fn draw_chart(
     let axes = Axes {
         x_desc: format!(
             "finger (each drawn at the model length L = {})",
-            short(length, 4)
+            trimmed(length, 4)
         ),
         y_desc: "distance from the root joint MCP (model units)".to_string(),
         x_grid: false,
@@ -129,7 +124,12 @@ fn draw_chart(
     }
     for (i, p) in placements.iter().enumerate() {
         // The bone sits left of the tick so that bone and labels centre on it.
-        draw_finger(pen, &|y| at(i as f64 - BONE_SHIFT, y), p, decimals(length))?;
+        draw_finger(
+            pen,
+            &|y| at(i as f64 - BONE_SHIFT, y),
+            p,
+            label_decimals(length),
+        )?;
     }
     Ok(())
 }
@@ -139,7 +139,7 @@ fn y_range(placements: &[FingerPlacement], length: f64) -> (f64, f64) {
     let ends = placements.iter().flat_map(|p| {
         p.joints.iter().flat_map(|j| {
             let pos = &j.position;
-            let pi = pos.pi.map_or([pos.mean; 2], |i| [i.low, i.high]);
+            let pi = pos.intervals.pi.map_or([pos.mean; 2], |i| [i.low, i.high]);
             [pos.min, pos.max, pi[0], pi[1]]
         })
     });
@@ -173,7 +173,7 @@ fn draw_joint(pen: &Pen, at: &dyn Fn(f64) -> Px, j: &JointPosition, d: usize) ->
     let x = at(0.0).0;
     let (low, high) = (at(pos.min).1, at(pos.max).1);
     pen.rect((x - BAND_HALF, high), (x + BAND_HALF, low), RANGE, 0.6)?;
-    if let Some(pi) = pos.pi {
+    if let Some(pi) = pos.intervals.pi {
         let bar_x = x - PI_OFFSET;
         pen.interval(
             (bar_x, at(pi.low).1),
@@ -191,12 +191,12 @@ fn draw_joint(pen: &Pen, at: &dyn Fn(f64) -> Px, j: &JointPosition, d: usize) ->
 
 /// The screen-reader description: every joint's mean, range and prediction interval.
 fn description(placements: &[FingerPlacement], length: f64, confidence: f64) -> String {
-    let d = decimals(length);
+    let d = label_decimals(length);
     let mut out = format!(
         "Model hand: every finger drawn at length L = {} model units, from its root joint \
          (MCP, at 0) to its tip (at {}).",
-        short(length, 4),
-        short(length, 4)
+        trimmed(length, 4),
+        trimmed(length, 4)
     );
     if placements.is_empty() {
         out.push_str(" The data has no finger.");
@@ -214,7 +214,7 @@ fn description(placements: &[FingerPlacement], length: f64, confidence: f64) -> 
                     format::num(pos.min, d),
                     format::num(pos.max, d),
                     level(confidence),
-                    format::interval(pos.pi, d)
+                    format::interval(pos.intervals.pi, d)
                 )
             })
             .collect();
@@ -233,10 +233,8 @@ mod tests {
     use super::*;
 
     #[test]
-    fn decimals_follow_the_model_length() {
-        assert_eq!(decimals(1000.0), 1);
-        assert_eq!(decimals(50.0), 2);
-        assert_eq!(decimals(1.0), 4);
+    fn without_fingers_the_model_length_is_one() {
+        // The label decimals per model length are tested with `format::label_decimals`.
         assert_eq!(model_length(&[]), 1.0);
     }
 }

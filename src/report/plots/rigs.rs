@@ -8,12 +8,13 @@
 
 use super::draw::{
     Dir, DrawResult, Frame, Kind, LegendItem, Pen, QuantityRow, RANGE, Root, Swatch, WIDTH, extent,
-    finish, level, padded, quantity_rows, render, row_chart, short,
+    finish, padded, quantity_rows, render, row_chart,
 };
 use super::{Plot, PlotKind};
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::error::Error;
+use crate::format::{level, trimmed};
 
 const ROW_PX: u32 = 50;
 const AXIS_PX: u32 = 46;
@@ -87,7 +88,7 @@ fn draw_chart(pen: &Pen, area: &Root<'_>, rows: &[Row], rigs: &[RigRatios]) -> D
     let values = rows.iter().flat_map(|r| {
         let s = r.stats;
         let mut v = vec![s.min, s.max, s.mean];
-        if let Some(pi) = s.pi {
+        if let Some(pi) = s.intervals.pi {
             v.extend([pi.low, pi.high]);
         }
         v.extend(rigs.iter().filter_map(|g| value_of(g, r)));
@@ -117,7 +118,7 @@ fn draw_chart(pen: &Pen, area: &Root<'_>, rows: &[Row], rigs: &[RigRatios]) -> D
         let s = row.stats;
         let (a, b) = (at(s.min, y), at(s.max, y));
         pen.rect((a.0, a.1 - 8), (b.0.max(a.0 + 2), b.1 + 8), RANGE, 0.55)?;
-        if let Some(pi) = s.pi {
+        if let Some(pi) = s.intervals.pi {
             let (a, b) = (at(pi.low, y), at(pi.high, y));
             pen.interval(
                 (a.0, a.1 + 14),
@@ -155,20 +156,20 @@ fn description(rows: &[Row], rigs: &[RigRatios], confidence: f64) -> String {
         out.push_str(&format!(
             " {}: X-ray mean {}, range {} to {}",
             row.label,
-            short(s.mean, 3),
-            short(s.min, 3),
-            short(s.max, 3)
+            trimmed(s.mean, 3),
+            trimmed(s.min, 3),
+            trimmed(s.max, 3)
         ));
-        if let Some(pi) = s.pi {
+        if let Some(pi) = s.intervals.pi {
             out.push_str(&format!(
                 ", prediction {} to {}",
-                short(pi.low, 3),
-                short(pi.high, 3)
+                trimmed(pi.low, 3),
+                trimmed(pi.high, 3)
             ));
         }
         let named: Vec<String> = rigs
             .iter()
-            .filter_map(|g| value_of(g, row).map(|v| format!("{} {}", g.name, short(v, 3))))
+            .filter_map(|g| value_of(g, row).map(|v| format!("{} {}", g.name, trimmed(v, 3))))
             .collect();
         if !named.is_empty() {
             out.push_str(&format!("; {}", named.join(", ")));

@@ -1,12 +1,11 @@
 //! Tests of the plots on the paper's data and on synthetic extremes.
 
 use super::*;
-use crate::analysis::bootstrap::Plan;
 use crate::analysis::placement::place_all;
-use crate::analysis::{
-    DatasetInfo, Quantity, Settings, XrayValues, analyse, describe, quantity_stats,
-};
+use crate::analysis::{DatasetInfo, Quantity, Settings, XrayValues, analyse, quantity_stats};
 use crate::dataset::Dataset;
+use crate::stats::bootstrap::Plan;
+use crate::stats::describe;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -341,7 +340,7 @@ fn synthetic(n: usize) -> FingerAnalysis {
     let quantities = Quantity::of(Finger::Middle)
         .iter()
         .map(|&q| {
-            let values: Vec<f64> = xrays.iter().map(|x| q.of_xray(x)).collect();
+            let values: Vec<f64> = xrays.iter().map(|x| x.value(q)).collect();
             // A stand-in bootstrap distribution: means of 64 interleaved subsamples.
             let boot: Vec<f64> = (0..64)
                 .map(|k| {
@@ -419,7 +418,7 @@ fn empty_and_non_finite_inputs_render_without_panicking() {
     let mut f = synthetic(20);
     f.xrays[3].relative[0] = f64::NAN;
     f.quantities[0].mean = f64::INFINITY;
-    f.quantities[1].ci_t = None;
+    f.quantities[1].intervals.ci_t = None;
     let p = finger_plot(&f, 0.95).unwrap();
     assert_accessible(&p);
 }
@@ -430,9 +429,9 @@ fn escape_handles_every_special_character() {
         draw::escape("a<b>&\"c\"'d'\u{1}"),
         "a&lt;b&gt;&amp;&quot;c&quot;&apos;d&apos; "
     );
-    assert_eq!(draw::level(0.95), "95%");
-    assert_eq!(draw::level(0.975), "97.5%");
-    assert_eq!(draw::short(1000.0, 4), "1000");
+    assert_eq!(crate::format::level(0.95), "95%");
+    assert_eq!(crate::format::level(0.975), "97.5%");
+    assert_eq!(crate::format::trimmed(1000.0, 4), "1000");
     assert_eq!(draw::clip("abcdef", 4), "abc\u{2026}");
 }
 

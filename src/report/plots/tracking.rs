@@ -11,13 +11,13 @@
 
 use super::draw::{
     Axes, Categories, Chart, Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, Linear, MARGIN,
-    MUTED, Pen, Px, Root, WIDTH, clip, draw_axes, extent, finish, level, padded, render,
-    text_width, tick_format, xrays,
+    MUTED, Pen, Px, Root, WIDTH, clip, draw_axes, extent, finish, padded, render, text_width,
+    tick_format, xrays,
 };
 use super::{Plot, PlotKind, TrackPoint, TrackSeries, finger_phrase};
 use crate::dataset::Finger;
 use crate::error::Error;
-use crate::report::format;
+use crate::format::{self, level};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
