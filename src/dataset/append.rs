@@ -5,8 +5,8 @@
 //! holds a [`DatasetLock`] from reading to replacing the file, so concurrent
 //! additions serialise instead of losing each other's rows.
 
-use super::csvinput::quote;
-use super::{DataError, Dataset, Problem, Row};
+use super::csvinput::{Columns, quote};
+use super::{Column, DataError, Dataset, Problem, Row};
 use std::collections::HashMap;
 use std::fs::{File, OpenOptions};
 use std::path::{Path, PathBuf};
@@ -146,7 +146,11 @@ pub fn appended_bytes(
                 }
             }
         }
-        for col in super::OPTIONAL_COLUMNS {
+        for col in Column::ALL
+            .iter()
+            .filter(|c| !c.required())
+            .map(|c| c.name())
+        {
             if !current.columns.iter().any(|c| c == col) && !field_of(r, col).is_empty() {
                 problems.push(Problem::line(
                     r.line,
