@@ -1,7 +1,7 @@
 //! `audit --fix`: a copy of a rig with its fingers' middle joints at the mean.
 //!
 //! For each finger the judged inner joints move to their suggested points (on
-//! the rig's own chain, see [`crate::analysis::audit`]); the root, the tip and
+//! the rig's own chain, see [`super::judge`]); the root, the tip and
 //! any joint that was not judged keep their world positions. Only translations
 //! change: a moved node's local translation becomes P'^-1 x (P' its parent's
 //! new world matrix, x the target), and every later chain node is re-pinned
@@ -16,7 +16,7 @@
 //! embedded), every buffer merged into one.
 
 use super::{AuditedFinger, GltfFile, world_matrices};
-use crate::analysis::audit::Point;
+use super::judge::Point;
 use crate::dataset::DataError;
 use base64::Engine;
 use glam::{DMat4, DVec3};

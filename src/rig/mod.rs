@@ -9,11 +9,12 @@
 //! `--map` file ([`map`]) first of all.
 
 pub mod fix;
+pub mod judge;
 pub mod map;
 pub mod naming;
 pub mod reference;
 
-use crate::analysis::audit::{ChainInput, Point};
+use judge::{ChainInput, Point};
 use crate::analysis::placement::Joint;
 use crate::dataset::{DataError, Finger, Problem};
 use glam::{DMat4, DQuat, DVec3};
@@ -641,7 +642,7 @@ impl Rig {
 pub struct AuditedFinger {
     #[serde(flatten)]
     pub chain: FingerChain,
-    pub audit: crate::analysis::audit::FingerAudit,
+    pub audit: judge::FingerAudit,
 }
 
 /// Every finger of a rig judged against the statistics.
@@ -665,7 +666,7 @@ impl AuditedRig {
         let mut notes = notes.to_vec();
         let mut fingers = Vec::new();
         for chain in chains {
-            match crate::analysis::audit::audit(a, &chain.input()) {
+            match judge::audit(a, &chain.input()) {
                 Some(audit) => {
                     let span: f64 = audit.segments.iter().sum();
                     if !(0.005..=0.3).contains(&span) {

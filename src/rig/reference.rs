@@ -237,7 +237,7 @@ mod values {
         let value = |id: &str, finger: Finger, q: Quantity| {
             let r = rigs.iter().find(|r| r.id == id).unwrap();
             let c = r.chains.iter().find(|c| c.finger == finger).unwrap();
-            let audit = crate::analysis::audit::audit(&a, &c.input()).unwrap();
+            let audit = crate::rig::judge::audit(&a, &c.input()).unwrap();
             audit
                 .values
                 .iter()

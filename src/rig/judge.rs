@@ -5,7 +5,7 @@
 //! segments are the chords c_k = |P_k - P_(k-1)| and, with a tip, its length is
 //! L = sum c_k, so J~k = c_k / L (eq. 2 with the rig's segments for the bones).
 //! Each inner joint lies at s = c_1 + ... + c_k from the root, to be compared
-//! with the statistics placed at L (see [`super::placement`]).
+//! with the statistics placed at L (see [`crate::analysis::placement`]).
 //!
 //! Without a tip (VRM, Unreal) L is unknown; a finger is then judged on
 //! r = J2/J1 alone, holding MCP and DIP fixed: the PIP then belongs at
@@ -17,8 +17,8 @@
 //! joints), with root and tip (or DIP) fixed, and are solved so the new chords
 //! have exactly the mean proportions. Pure geometry: no files, no glTF.
 
-use super::placement::Joint;
-use super::{Analysis, Interval, Quantity, QuantityStats};
+use crate::analysis::placement::{Joint, Placed};
+use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
 use crate::dataset::Finger;
 use serde::Serialize;
 
@@ -370,9 +370,9 @@ pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
             measured += segments[k];
             // PIP/IP at J~1 L; DIP at (1 - J~3) L (see placement).
             let placed = if k == 0 {
-                super::placement::Placed::affine(stats(a, finger, Quantity::RelJ1)?, 0.0, length)
+                Placed::affine(stats(a, finger, Quantity::RelJ1)?, 0.0, length)
             } else {
-                super::placement::Placed::affine(
+                Placed::affine(
                     stats(a, finger, Quantity::RelJ3)?,
                     length,
                     -length,
