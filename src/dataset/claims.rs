@@ -276,31 +276,9 @@ impl Claims {
 /// `ids` holds the ids seen so far, with their lines.
 fn read_claim(cells: &mut Cells<'_, '_, Column>, ids: &mut HashMap<String, u64>) -> Option<Claim> {
     let id = read_id(cells, ids);
-    let finger = cells.parse(Column::Finger, |t| {
-        Finger::parse(t).ok_or_else(|| {
-            format!(
-                "unknown finger {}; use one of {}",
-                quote(t),
-                Finger::ACCEPTED
-            )
-        })
-    });
-    let subject = cells.parse(Column::Quantity, |t| {
-        Subject::parse(t).ok_or_else(|| {
-            format!(
-                "unknown quantity {}; use j1, j2, j3, rel_j1, rel_j2, rel_j3 or total",
-                quote(t)
-            )
-        })
-    });
-    let statistic = cells.parse(Column::Statistic, |t| {
-        Statistic::parse(t).ok_or_else(|| {
-            format!(
-                "unknown statistic {}; use value, mean, min, max, range or n",
-                quote(t)
-            )
-        })
-    });
+    let finger = cells.parse(Column::Finger, parse_finger);
+    let subject = cells.parse(Column::Quantity, parse_subject);
+    let statistic = cells.parse(Column::Statistic, parse_statistic);
     let xray = cells
         .text(Column::Xray)
         .filter(|t| !t.is_empty())
@@ -378,6 +356,37 @@ fn read_id(cells: &mut Cells<'_, '_, Column>, ids: &mut HashMap<String, u64>) ->
         ids.insert(id.clone(), cells.line());
     }
     id
+}
+
+/// A finger's name (or one of its aliases).
+fn parse_finger(text: &str) -> Result<Finger, String> {
+    Finger::parse(text).ok_or_else(|| {
+        format!(
+            "unknown finger {}; use one of {}",
+            quote(text),
+            Finger::ACCEPTED
+        )
+    })
+}
+
+/// What the number is about (see [`Subject::name`]).
+fn parse_subject(text: &str) -> Result<Subject, String> {
+    Subject::parse(text).ok_or_else(|| {
+        format!(
+            "unknown quantity {}; use j1, j2, j3, rel_j1, rel_j2, rel_j3 or total",
+            quote(text)
+        )
+    })
+}
+
+/// Which statistic the number is (see [`Statistic::name`]).
+fn parse_statistic(text: &str) -> Result<Statistic, String> {
+    Statistic::parse(text).ok_or_else(|| {
+        format!(
+            "unknown statistic {}; use value, mean, min, max, range or n",
+            quote(text)
+        )
+    })
 }
 
 /// Checks that the finger, quantity, statistic and X-ray of a claim fit together.

@@ -624,6 +624,23 @@ fn finger_chain(
         ));
         return Ok(None);
     }
+    Ok(Some(FingerChain {
+        side,
+        finger,
+        joints: rig_joints(file, names, &label, &wanted, slots)?,
+        has_tip: tip.is_some(),
+    }))
+}
+
+/// The `wanted` joints of a finger (`label`) at their nodes' world positions;
+/// an error when a node's world transform is not finite.
+fn rig_joints(
+    file: &GltfFile,
+    names: &[String],
+    label: &str,
+    wanted: &[(Slot, Joint)],
+    slots: &HashMap<Slot, usize>,
+) -> Result<Vec<RigJoint>, Problem> {
     if let Some(&(slot, j)) = wanted
         .iter()
         .find(|(s, _)| !file.world[slots[s]].is_finite())
@@ -635,7 +652,7 @@ fn finger_chain(
             j.name()
         )));
     }
-    let joints = wanted
+    Ok(wanted
         .iter()
         .map(|&(s, joint)| {
             let node = slots[&s];
@@ -646,13 +663,7 @@ fn finger_chain(
                 position: file.world[node].w_axis.truncate(),
             }
         })
-        .collect();
-    Ok(Some(FingerChain {
-        side,
-        finger,
-        joints,
-        has_tip: tip.is_some(),
-    }))
+        .collect())
 }
 
 /// The error of a file with no complete finger: the names it has (the first
