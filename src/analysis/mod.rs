@@ -6,7 +6,6 @@
 //! Student-t, bootstrap percentile and BCa intervals of the mean, and a
 //! prediction interval for one new X-ray. Knows nothing of files or rendering.
 
-pub mod audit;
 pub mod claims;
 pub mod coverage;
 pub mod groups;

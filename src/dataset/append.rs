@@ -5,8 +5,8 @@
 //! holds a [`DatasetLock`] from reading to replacing the file, so concurrent
 //! additions serialise instead of losing each other's rows.
 
-use super::csvinput::quote;
-use super::{DataError, Dataset, Problem, Row};
+use super::csvinput::{Columns, quote};
+use super::{Column, DataError, Dataset, Problem, Row};
 use std::collections::HashMap;
 use std::fs::{File, OpenOptions};
 use std::path::{Path, PathBuf};
@@ -101,6 +101,21 @@ pub fn appended_bytes(
     current: &Dataset,
     new: &Dataset,
 ) -> Result<(Vec<u8>, Dataset), DataError> {
+    let problems = check_new_rows(current, new);
+    if !problems.is_empty() {
+        return Err(DataError {
+            file: new.path.clone(),
+            problems,
+        });
+    }
+    let out = append_rows(current_bytes, current, new)?;
+    // The result must load as a valid dataset; that dataset is returned with it.
+    let appended = Dataset::from_bytes(&current.path, &out)?;
+    Ok((out, appended))
+}
+
+/// The problems of new rows against the current dataset (see [`appended_bytes`]).
+fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
     let mut problems = Vec::new();
     let existing: HashMap<(&str, super::Finger), &Row> = current
         .rows
@@ -146,7 +161,11 @@ pub fn appended_bytes(
                 }
             }
         }
-        for col in super::OPTIONAL_COLUMNS {
+        for col in Column::ALL
+            .iter()
+            .filter(|c| !c.required())
+            .map(|c| c.name())
+        {
             if !current.columns.iter().any(|c| c == col) && !field_of(r, col).is_empty() {
                 problems.push(Problem::line(
                     r.line,
@@ -158,12 +177,16 @@ pub fn appended_bytes(
             }
         }
     }
-    if !problems.is_empty() {
-        return Err(DataError {
-            file: new.path.clone(),
-            problems,
-        });
-    }
+    problems
+}
+
+/// The current bytes with the new rows written after them, in the file's own
+/// column order and line ends.
+fn append_rows(
+    current_bytes: &[u8],
+    current: &Dataset,
+    new: &Dataset,
+) -> Result<Vec<u8>, DataError> {
     let mut out = current_bytes.to_vec();
     if !out.is_empty() && !out.ends_with(b"\n") {
         out.extend_from_slice(if current_bytes.contains(&b'\r') {
@@ -188,9 +211,7 @@ pub fn appended_bytes(
         .into_inner()
         .map_err(|e| DataError::whole_file(&new.path, e.to_string()))?;
     out.extend_from_slice(&tail);
-    // The result must load as a valid dataset; that dataset is returned with it.
-    let appended = Dataset::from_bytes(&current.path, &out)?;
-    Ok((out, appended))
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -4,26 +4,69 @@
 //! `id,location,refers_to,finger,xray,quantity,statistic,model_length,stated,erratum,note`.
 //! The printed precision is read off `stated` itself (`0.0319` has 4 decimals).
 
-use super::csvinput::{CsvScan, Header, quote, read_input};
+use super::csvinput::{Cells, Columns, quote, read_input, read_table};
 use super::{DataError, Dataset, Finger, Problem};
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
-/// Columns of a claims file; all are required, `xray`, `model_length`, `erratum`
-/// and `note` may be empty.
-pub const CLAIM_COLUMNS: [&str; 11] = [
-    "id",
-    "location",
-    "refers_to",
-    "finger",
-    "xray",
-    "quantity",
-    "statistic",
-    "model_length",
-    "stated",
-    "erratum",
-    "note",
-];
+/// The columns of a claims file; all are required, `xray`, `model_length`,
+/// `erratum` and `note` may be empty.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Column {
+    Id,
+    Location,
+    RefersTo,
+    Finger,
+    Xray,
+    Quantity,
+    Statistic,
+    ModelLength,
+    Stated,
+    Erratum,
+    Note,
+}
+
+impl Columns for Column {
+    const ALL: &'static [Column] = &[
+        Column::Id,
+        Column::Location,
+        Column::RefersTo,
+        Column::Finger,
+        Column::Xray,
+        Column::Quantity,
+        Column::Statistic,
+        Column::ModelLength,
+        Column::Stated,
+        Column::Erratum,
+        Column::Note,
+    ];
+    const EMPTY: &'static str = "is empty; it needs a header line and one row per claim";
+    const NO_ROWS: Option<&'static str> = Some("has a header but no claims");
+
+    fn name(self) -> &'static str {
+        match self {
+            Column::Id => "id",
+            Column::Location => "location",
+            Column::RefersTo => "refers_to",
+            Column::Finger => "finger",
+            Column::Xray => "xray",
+            Column::Quantity => "quantity",
+            Column::Statistic => "statistic",
+            Column::ModelLength => "model_length",
+            Column::Stated => "stated",
+            Column::Erratum => "erratum",
+            Column::Note => "note",
+        }
+    }
+
+    fn required(self) -> bool {
+        true
+    }
+
+    fn index(self) -> usize {
+        self as usize
+    }
+}
 
 /// What a claim's number is about, for one finger.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -142,8 +185,8 @@ pub struct Claim {
 pub struct Claims {
     pub path: String,
     pub claims: Vec<Claim>,
-    /// 1-based column of each of [`CLAIM_COLUMNS`] in the file.
-    pub columns: Vec<usize>,
+    /// 1-based column of each of [`Column::ALL`] in the file.
+    columns: Vec<usize>,
 }
 
 /// Decimal places a number is printed to: `0.0319` -> 4, `31.9` -> 1,
@@ -166,210 +209,23 @@ impl Claims {
 
     /// Validates the bytes of a claims file; `label` names it in errors.
     pub fn from_bytes(label: &str, bytes: &[u8]) -> Result<Claims, DataError> {
-        let mut problems = Vec::new();
-        let mut scan = CsvScan::new(label, bytes)?;
-        let Some(header_rec) = scan.next_record(&mut problems) else {
-            let content = scan.finish().map(|(_, c)| c).unwrap_or(true);
-            return Err(DataError::whole_file(
-                label,
-                if content {
-                    format!(
-                        "has no header line; start it with {}",
-                        CLAIM_COLUMNS.join(",")
-                    )
-                } else {
-                    "is empty; it needs a header line and one row per claim".to_string()
-                },
-            ));
-        };
-        let header = Header::parse(&header_rec, &CLAIM_COLUMNS, &[], &mut problems);
-        let header_ok = problems.is_empty();
         let mut claims = Vec::new();
         let mut ids: HashMap<String, u64> = HashMap::new();
-        let mut records = 0;
-        while let Some(rec) = scan.next_record(&mut problems) {
-            records += 1;
-            if !header_ok {
-                continue;
+        let (header, _) = read_table(label, bytes, |cells| {
+            if let Some(claim) = read_claim(cells, &mut ids) {
+                claims.push(claim);
             }
-            if rec.len() != header.names.len() {
-                problems.push(super::csvinput::field_count_problem(
-                    &rec,
-                    header.names.len(),
-                ));
-                continue;
-            }
-            let before = problems.len();
-            let line = rec.line;
-            let get = |k: usize| header.positions[k].and_then(|p| rec.get(p));
-            let col = |k: usize| header.positions[k].map_or(0, |p| p + 1);
-            let mut bad = |k: usize, msg: String| {
-                problems.push(Problem::field(line, col(k), CLAIM_COLUMNS[k], msg));
-            };
-            let id = get(0).unwrap_or("").to_string();
-            if id.is_empty() {
-                bad(0, "is empty; give every claim a unique id".into());
-            } else if let Some(first) = ids.get(&id) {
-                bad(
-                    0,
-                    format!(
-                        "{} is already used on line {first}; ids must be unique",
-                        quote(&id)
-                    ),
-                );
-            } else {
-                ids.insert(id.clone(), line);
-            }
-            let finger = get(3).and_then(|t| {
-                let f = Finger::parse(t);
-                if f.is_none() {
-                    bad(
-                        3,
-                        format!(
-                            "unknown finger {}; use one of {}",
-                            quote(t),
-                            Finger::ACCEPTED
-                        ),
-                    );
-                }
-                f
-            });
-            let subject = get(5).and_then(|t| {
-                let s = Subject::parse(t);
-                if s.is_none() {
-                    bad(
-                        5,
-                        format!(
-                            "unknown quantity {}; use j1, j2, j3, rel_j1, rel_j2, rel_j3 or total",
-                            quote(t)
-                        ),
-                    );
-                }
-                s
-            });
-            let statistic = get(6).and_then(|t| {
-                let s = Statistic::parse(t);
-                if s.is_none() {
-                    bad(
-                        6,
-                        format!(
-                            "unknown statistic {}; use value, mean, min, max, range or n",
-                            quote(t)
-                        ),
-                    );
-                }
-                s
-            });
-            let xray = get(4).filter(|t| !t.is_empty()).map(str::to_string);
-            if statistic == Some(Statistic::Value) && xray.is_none() {
-                bad(
-                    4,
-                    "is empty, but a 'value' claim is about one X-ray; name it".into(),
-                );
-            }
-            if let (Some(f), Some(s)) = (finger, subject)
-                && s.segment().is_some_and(|k| k >= f.segments())
-            {
-                bad(
-                    5,
-                    format!(
-                        "the {f} has no {}; it has {} segments",
-                        s.name(),
-                        f.segments()
-                    ),
-                );
-            }
-            if matches!(subject, Some(Subject::Length(_)))
-                && statistic.is_some_and(|s| s != Statistic::Value)
-            {
-                bad(
-                    6,
-                    "raw lengths (j1..j3) can only be stated as 'value' claims".into(),
-                );
-            }
-            let model_length = match get(7) {
-                Some("") | None => None,
-                Some(t) => match t.parse::<f64>() {
-                    Ok(v) if v.is_finite() && v > 0.0 => Some(v),
-                    _ => {
-                        bad(
-                            7,
-                            format!(
-                                "{} is not a positive number; give the model's total length or leave it empty",
-                                quote(t)
-                            ),
-                        );
-                        None
-                    }
-                },
-            };
-            let stated_text = get(8).unwrap_or("").to_string();
-            let stated = match stated_text.parse::<f64>() {
-                Ok(v) if v.is_finite() => Some(v),
-                _ => {
-                    bad(
-                        8,
-                        format!(
-                            "{} is not a number; copy the number as printed in the paper",
-                            quote(&stated_text)
-                        ),
-                    );
-                    None
-                }
-            };
-            let decimals = printed_decimals(&stated_text);
-            let erratum = match get(9).unwrap_or("").to_ascii_lowercase().as_str() {
-                "" | "no" => None,
-                "yes" => Some(get(10).unwrap_or("").to_string()),
-                other => {
-                    bad(9, format!("{} must be 'yes' or empty", quote(other)));
-                    None
-                }
-            };
-            if problems.len() > before {
-                continue;
-            }
-            if let (Some(finger), Some(subject), Some(statistic), Some(stated)) =
-                (finger, subject, statistic, stated)
-            {
-                claims.push(Claim {
-                    line,
-                    id,
-                    location: get(1).unwrap_or("").to_string(),
-                    refers_to: get(2).unwrap_or("").to_string(),
-                    finger,
-                    xray,
-                    subject,
-                    statistic,
-                    model_length,
-                    stated,
-                    stated_text,
-                    decimals,
-                    erratum,
-                    note: get(10).unwrap_or("").to_string(),
-                });
-            }
-        }
-        if records == 0 && problems.is_empty() {
-            problems.push(Problem::file("has a header but no claims"));
-        }
-        problems.sort_by_key(|p| (p.line.unwrap_or(0), p.column.unwrap_or(0)));
-        if problems.is_empty() {
-            Ok(Claims {
-                path: label.to_string(),
-                claims,
-                columns: header
-                    .positions
-                    .iter()
-                    .map(|p| p.map_or(0, |p| p + 1))
-                    .collect(),
-            })
-        } else {
-            Err(DataError {
-                file: label.to_string(),
-                problems,
-            })
-        }
+        })?;
+        Ok(Claims {
+            path: label.to_string(),
+            claims,
+            columns: Column::ALL.iter().map(|&c| header.column(c)).collect(),
+        })
+    }
+
+    /// The 1-based column of `c` in the file.
+    pub fn column(&self, c: Column) -> usize {
+        self.columns.get(c.index()).copied().unwrap_or(0)
     }
 
     /// Checks that every claim points at a finger and X-ray the dataset has.
@@ -382,8 +238,8 @@ impl Claims {
             if !fingers.contains(&c.finger) {
                 problems.push(Problem::field(
                     c.line,
-                    self.columns.get(3).copied().unwrap_or(0),
-                    "finger",
+                    self.column(Column::Finger),
+                    Column::Finger.name(),
                     format!(
                         "the dataset {} has no {} rows; fix the claim or the --data path",
                         data.path, c.finger
@@ -394,8 +250,8 @@ impl Claims {
             {
                 problems.push(Problem::field(
                     c.line,
-                    self.columns.get(4).copied().unwrap_or(0),
-                    "xray",
+                    self.column(Column::Xray),
+                    Column::Xray.name(),
                     format!(
                         "the dataset {} has no {} row for X-ray {}",
                         data.path,
@@ -413,6 +269,173 @@ impl Claims {
                 problems,
             })
         }
+    }
+}
+
+/// Validates one claim; reports its problems and returns it when it has none.
+/// `ids` holds the ids seen so far, with their lines.
+fn read_claim(cells: &mut Cells<'_, '_, Column>, ids: &mut HashMap<String, u64>) -> Option<Claim> {
+    let id = read_id(cells, ids);
+    let finger = cells.parse(Column::Finger, parse_finger);
+    let subject = cells.parse(Column::Quantity, parse_subject);
+    let statistic = cells.parse(Column::Statistic, parse_statistic);
+    let xray = cells
+        .text(Column::Xray)
+        .filter(|t| !t.is_empty())
+        .map(str::to_string);
+    check_combination(cells, finger, subject, statistic, xray.is_some());
+    let model_length = cells
+        .parse(Column::ModelLength, parse_model_length)
+        .flatten();
+    let stated_text = cells.text(Column::Stated).unwrap_or("").to_string();
+    let stated = match stated_text.parse::<f64>() {
+        Ok(v) if v.is_finite() => Some(v),
+        _ => {
+            cells.bad(
+                Column::Stated,
+                format!(
+                    "{} is not a number; copy the number as printed in the paper",
+                    quote(&stated_text)
+                ),
+            );
+            None
+        }
+    };
+    let note = cells.text(Column::Note).unwrap_or("").to_string();
+    let erratum = match cells
+        .text(Column::Erratum)
+        .unwrap_or("")
+        .to_ascii_lowercase()
+        .as_str()
+    {
+        "" | "no" => None,
+        "yes" => Some(note.clone()),
+        other => {
+            cells.bad(
+                Column::Erratum,
+                format!("{} must be 'yes' or empty", quote(other)),
+            );
+            None
+        }
+    };
+    if cells.has_problems() {
+        return None;
+    }
+    Some(Claim {
+        line: cells.line(),
+        id,
+        location: cells.text(Column::Location).unwrap_or("").to_string(),
+        refers_to: cells.text(Column::RefersTo).unwrap_or("").to_string(),
+        finger: finger?,
+        xray,
+        subject: subject?,
+        statistic: statistic?,
+        model_length,
+        decimals: printed_decimals(&stated_text),
+        stated: stated?,
+        stated_text,
+        erratum,
+        note,
+    })
+}
+
+/// The claim's id, which must be given and unique.
+fn read_id(cells: &mut Cells<'_, '_, Column>, ids: &mut HashMap<String, u64>) -> String {
+    let id = cells.text(Column::Id).unwrap_or("").to_string();
+    if id.is_empty() {
+        cells.bad(Column::Id, "is empty; give every claim a unique id");
+    } else if let Some(first) = ids.get(&id) {
+        cells.bad(
+            Column::Id,
+            format!(
+                "{} is already used on line {first}; ids must be unique",
+                quote(&id)
+            ),
+        );
+    } else {
+        ids.insert(id.clone(), cells.line());
+    }
+    id
+}
+
+/// A finger's name (or one of its aliases).
+fn parse_finger(text: &str) -> Result<Finger, String> {
+    Finger::parse(text).ok_or_else(|| {
+        format!(
+            "unknown finger {}; use one of {}",
+            quote(text),
+            Finger::ACCEPTED
+        )
+    })
+}
+
+/// What the number is about (see [`Subject::name`]).
+fn parse_subject(text: &str) -> Result<Subject, String> {
+    Subject::parse(text).ok_or_else(|| {
+        format!(
+            "unknown quantity {}; use j1, j2, j3, rel_j1, rel_j2, rel_j3 or total",
+            quote(text)
+        )
+    })
+}
+
+/// Which statistic the number is (see [`Statistic::name`]).
+fn parse_statistic(text: &str) -> Result<Statistic, String> {
+    Statistic::parse(text).ok_or_else(|| {
+        format!(
+            "unknown statistic {}; use value, mean, min, max, range or n",
+            quote(text)
+        )
+    })
+}
+
+/// Checks that the finger, quantity, statistic and X-ray of a claim fit together.
+fn check_combination(
+    cells: &mut Cells<'_, '_, Column>,
+    finger: Option<Finger>,
+    subject: Option<Subject>,
+    statistic: Option<Statistic>,
+    has_xray: bool,
+) {
+    if statistic == Some(Statistic::Value) && !has_xray {
+        cells.bad(
+            Column::Xray,
+            "is empty, but a 'value' claim is about one X-ray; name it",
+        );
+    }
+    if let (Some(f), Some(s)) = (finger, subject)
+        && s.segment().is_some_and(|k| k >= f.segments())
+    {
+        cells.bad(
+            Column::Quantity,
+            format!(
+                "the {f} has no {}; it has {} segments",
+                s.name(),
+                f.segments()
+            ),
+        );
+    }
+    if matches!(subject, Some(Subject::Length(_)))
+        && statistic.is_some_and(|s| s != Statistic::Value)
+    {
+        cells.bad(
+            Column::Statistic,
+            "raw lengths (j1..j3) can only be stated as 'value' claims",
+        );
+    }
+}
+
+/// The model's total length of a worked example: a positive number, or `None` when empty.
+fn parse_model_length(text: &str) -> Result<Option<f64>, String> {
+    if text.is_empty() {
+        return Ok(None);
+    }
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(Some(v)),
+        _ => Err(format!(
+            "{} is not a positive number; give the model's total length or leave it empty",
+            quote(text)
+        )),
     }
 }
 

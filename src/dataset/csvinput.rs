@@ -1,9 +1,15 @@
-//! The one place that configures CSV reading for every input file.
+//! The one CSV table reader: measurements, claims and rig name maps all come through here.
 //!
 //! Accepts a UTF-8 byte-order mark, CRLF or LF line ends, quoted fields and blank
 //! lines anywhere (a line of empty fields counts as blank). Refuses UTF-16 and
 //! binary files up front, and reports non-UTF-8 or NUL bytes per field, so the
-//! callers only ever see clean text.
+//! tables only ever see clean text.
+//!
+//! A table declares its columns ([`Columns`]: name, required or not) and reads
+//! each record's cells by column through [`Cells`], with its own parser per
+//! cell; [`read_table`] does the rest once for every table: the header (missing,
+//! unknown, duplicate or empty column names), field counts, and collecting every
+//! problem of the file as FILE:LINE:COLUMN: FIELD: what to fix.
 
 use super::error::{DataError, Problem};
 use std::path::Path;
@@ -49,7 +55,7 @@ fn io_problem(label: &str, e: &std::io::Error) -> DataError {
 /// The problem of a record whose field count differs from the header's: most
 /// often a quote left open (the field then runs on over commas and line ends),
 /// else fields missing or extra.
-pub fn field_count_problem(rec: &Record<'_>, width: usize) -> Problem {
+fn field_count_problem(rec: &Record<'_>, width: usize) -> Problem {
     let runaway = (0..rec.len()).any(|i| rec.get(i).is_some_and(|f| f.contains([',', '\n', '\r'])));
     let hint = if runaway {
         "a quoted field is not closed, so it runs on over commas or line ends; close the quote (\") or remove it"
@@ -79,7 +85,7 @@ pub fn quote(value: &str) -> String {
 
 /// One data record: its line and its fields (`None` where the field was not
 /// valid text; that problem is already reported).
-pub struct Record<'s> {
+struct Record<'s> {
     pub line: u64,
     fields: Vec<Option<&'s str>>,
 }
@@ -88,11 +94,6 @@ impl<'s> Record<'s> {
     /// Number of fields on the line.
     pub fn len(&self) -> usize {
         self.fields.len()
-    }
-
-    /// True when the record has no fields (never returned by [`CsvScan`]).
-    pub fn is_empty(&self) -> bool {
-        self.fields.is_empty()
     }
 
     /// Field `i` trimmed, `Some("")` when absent or empty, `None` when not valid text.
@@ -108,7 +109,7 @@ impl<'s> Record<'s> {
 /// byte-order mark included), drops a UTF-8 byte-order mark, and remembers where
 /// the line ends are that the CSV reader has not been asked about yet, so line
 /// numbers are exact without holding the file in memory.
-pub struct Source<R> {
+struct Source<R> {
     inner: std::io::BufReader<R>,
     hasher: sha2::Sha256,
     /// Offset (after the byte-order mark) of the next byte to read.
@@ -136,7 +137,7 @@ impl<R: std::io::Read> std::io::Read for Source<R> {
 }
 
 /// A configured CSV reader over one file, read as a stream.
-pub struct CsvScan<R: std::io::Read> {
+struct CsvScan<R: std::io::Read> {
     reader: csv::Reader<Source<R>>,
     record: csv::ByteRecord,
     /// Byte offset and 1-based line number reached so far, for line counting:
@@ -285,31 +286,56 @@ impl<R: std::io::Read> CsvScan<R> {
     }
 }
 
-/// Maps a header line to column positions for a set of known column names.
-pub struct Header {
-    /// Position of each wanted column (`None` when the header lacks it).
-    pub positions: Vec<Option<usize>>,
-    /// Names as written in the header (lower-cased, trimmed), by position.
-    pub names: Vec<String>,
+/// The columns of one kind of table: a fieldless enum, one variant per column,
+/// which the table's code reads cells by.
+pub trait Columns: Copy + 'static {
+    /// Every column in the canonical order (required ones first); `ALL[c.index()] == c`.
+    const ALL: &'static [Self];
+    /// What is said about a file with nothing but white space in it.
+    const EMPTY: &'static str;
+    /// What is said about a file with content but no header record (e.g. only
+    /// commas); `None` for "has no header line; start it with" the required columns.
+    const NO_HEADER: Option<&'static str> = None;
+    /// What is said about a file with a header and no record; `None` when that is fine.
+    const NO_ROWS: Option<&'static str>;
+
+    /// The column's name in a header (lower case; headers are read case-insensitively).
+    fn name(self) -> &'static str;
+    /// True when every file must have the column (its cells may still be empty).
+    fn required(self) -> bool;
+    /// The column's position in [`Columns::ALL`].
+    fn index(self) -> usize;
 }
 
-impl Header {
-    /// Reads the header record. `required` columns must be present; `optional`
-    /// ones may be; any other column, a duplicate or an empty name is a problem.
-    /// Positions are returned for `required` then `optional`, in that order.
-    pub fn parse(
-        record: &Record<'_>,
-        required: &[&str],
-        optional: &[&str],
-        problems: &mut Vec<Problem>,
-    ) -> Header {
-        let known: Vec<&str> = required.iter().chain(optional).copied().collect();
-        let mut positions = vec![None; known.len()];
+/// A header line read against a table's columns.
+pub struct Header<C> {
+    /// Line of the header in the file.
+    pub line: u64,
+    /// Names as written in the header (lower-cased, trimmed), in file order.
+    pub names: Vec<String>,
+    /// Field position of each of `C::ALL` (`None` when the header lacks it).
+    positions: Vec<Option<usize>>,
+    columns: std::marker::PhantomData<C>,
+}
+
+impl<C: Columns> Header<C> {
+    /// Reads the header record. Required columns must be present, optional ones
+    /// may be; any other column, a duplicate or an empty name is a problem.
+    fn parse(record: &Record<'_>, problems: &mut Vec<Problem>) -> Header<C> {
+        debug_assert!(C::ALL.iter().enumerate().all(|(i, c)| c.index() == i));
+        let known = || {
+            C::ALL
+                .iter()
+                .map(|c| c.name())
+                .collect::<Vec<_>>()
+                .join(",")
+        };
+        let mut positions = vec![None; C::ALL.len()];
         let mut names = Vec::with_capacity(record.len());
         for i in 0..record.len() {
             let name = record.get(i).unwrap_or("").to_ascii_lowercase();
             let column = i + 1;
-            match known.iter().position(|k| *k == name) {
+            match C::ALL.iter().position(|c| c.name() == name) {
                 Some(k) if positions[k].is_some() => problems.push(Problem::field(
                     record.line,
                     column,
@@ -323,7 +349,7 @@ impl Header {
                     field: None,
                     message: format!(
                         "header has an empty column name; name it (known columns: {})",
-                        known.join(",")
+                        known()
                     ),
                 }),
                 None => problems.push(Problem {
@@ -333,23 +359,188 @@ impl Header {
                     message: format!(
                         "unknown column {}; the known columns are {}",
                         quote(&name),
-                        known.join(",")
+                        known()
                     ),
                 }),
             }
             names.push(name);
         }
-        for (k, name) in required.iter().enumerate() {
-            if positions[k].is_none() {
+        for (c, position) in C::ALL.iter().zip(&positions) {
+            if c.required() && position.is_none() {
                 problems.push(Problem::line(
                     record.line,
                     format!(
-                        "header lacks the required column '{name}'; the header must name {}",
-                        required.join(",")
+                        "header lacks the required column '{}'; the header must name {}",
+                        c.name(),
+                        required_names::<C>()
                     ),
                 ));
             }
         }
-        Header { positions, names }
+        Header {
+            line: record.line,
+            names,
+            positions,
+            columns: std::marker::PhantomData,
+        }
+    }
+
+    /// The 1-based column of `c` in the file, 0 when the file lacks it.
+    pub fn column(&self, c: C) -> usize {
+        self.positions[c.index()].map_or(0, |p| p + 1)
+    }
+}
+
+/// The required columns of `C`, comma-separated, as a header starts.
+fn required_names<C: Columns>() -> String {
+    let names: Vec<&str> = C::ALL
+        .iter()
+        .filter(|c| c.required())
+        .map(|c| c.name())
+        .collect();
+    names.join(",")
+}
+
+/// The cells of one data record, read by column, with the file's problem list.
+pub struct Cells<'a, 's, C> {
+    record: &'a Record<'s>,
+    header: &'a Header<C>,
+    problems: &'a mut Vec<Problem>,
+    /// Problems found before this record's cells were read (its byte-level ones included).
+    before: usize,
+}
+
+impl<'s, C: Columns> Cells<'_, 's, C> {
+    /// The record's line.
+    pub fn line(&self) -> u64 {
+        self.record.line
+    }
+
+    /// The cell of column `c`, trimmed: `Some("")` when empty or when the file
+    /// lacks the column, `None` when not valid text (already reported).
+    pub fn text(&self, c: C) -> Option<&'s str> {
+        match self.header.positions[c.index()] {
+            Some(p) => self.record.get(p),
+            None => Some(""),
+        }
+    }
+
+    /// The cell of column `c` read by `parse`; its error is reported at the cell.
+    /// `None` when the cell is not valid text or `parse` refuses it.
+    pub fn parse<T>(
+        &mut self,
+        c: C,
+        parse: impl FnOnce(&'s str) -> Result<T, String>,
+    ) -> Option<T> {
+        match parse(self.text(c)?) {
+            Ok(v) => Some(v),
+            Err(message) => {
+                self.bad(c, message);
+                None
+            }
+        }
+    }
+
+    /// Reports a problem with the cell of column `c`.
+    pub fn bad(&mut self, c: C, message: impl Into<String>) {
+        let column = self.header.column(c);
+        self.problems
+            .push(Problem::field(self.record.line, column, c.name(), message));
+    }
+
+    /// Reports a problem with the record as a whole.
+    pub fn bad_line(&mut self, message: impl Into<String>) {
+        self.problems.push(Problem::line(self.record.line, message));
+    }
+
+    /// True when a problem was reported through these cells.
+    pub fn has_problems(&self) -> bool {
+        self.problems.len() > self.before
+    }
+}
+
+/// Reads a table of columns `C` from `input` (`label` names it in errors),
+/// handing each data record to `row`, which reads its cells and reports what
+/// is wrong with them. Returns the header and the file's SHA-256, or every
+/// problem of the file sorted by line and column.
+///
+/// Records are not handed on when the header has a problem (their meaning is
+/// unknown) or when their field count differs from the header's; they are
+/// still read, so byte-level problems of the whole file are reported. Memory:
+/// one record at a time. Cost: O(bytes).
+pub fn read_table<C: Columns>(
+    label: &str,
+    input: impl std::io::Read,
+    mut row: impl FnMut(&mut Cells<'_, '_, C>),
+) -> Result<(Header<C>, String), DataError> {
+    let mut problems = Vec::new();
+    let mut scan = CsvScan::new(label, input)?;
+    let Some(record) = scan.next_record(&mut problems) else {
+        let content = scan.finish().map(|(_, c)| c).unwrap_or(true);
+        if problems.is_empty() {
+            problems.push(Problem::file(match (content, C::NO_HEADER) {
+                (false, _) => C::EMPTY.to_string(),
+                (true, Some(message)) => message.to_string(),
+                (true, None) => format!(
+                    "has no header line; start it with {}",
+                    required_names::<C>()
+                ),
+            }));
+        }
+        return Err(DataError {
+            file: label.to_string(),
+            problems,
+        });
+    };
+    let header = Header::<C>::parse(&record, &mut problems);
+    let header_ok = problems.is_empty();
+    let width = header.names.len();
+    let mut records = 0usize;
+    while let Some(record) = scan.next_record(&mut problems) {
+        records += 1;
+        if !header_ok {
+            continue; // column meanings are unknown; the header problems say why
+        }
+        if record.len() != width {
+            problems.push(field_count_problem(&record, width));
+            continue;
+        }
+        let before = problems.len();
+        row(&mut Cells {
+            record: &record,
+            header: &header,
+            problems: &mut problems,
+            before,
+        });
+    }
+    if records == 0
+        && problems.is_empty()
+        && let Some(message) = C::NO_ROWS
+    {
+        problems.push(Problem::file(message));
+    }
+    // Byte-level problems (non-UTF-8, NUL) know their column; name its field.
+    for p in &mut problems {
+        if let (None, Some(c), Some(l)) = (&p.field, p.column, p.line)
+            && l > header.line
+        {
+            p.field = header.names.get(c - 1).filter(|n| !n.is_empty()).cloned();
+        }
+    }
+    let sha256 = match scan.finish() {
+        Ok((sha, _)) => sha,
+        Err(e) => {
+            problems.push(Problem::file(format!("could not be read to the end ({e})")));
+            String::new()
+        }
+    };
+    if problems.is_empty() {
+        Ok((header, sha256))
+    } else {
+        problems.sort_by_key(|p| (p.line.unwrap_or(0), p.column.unwrap_or(0)));
+        Err(DataError {
+            file: label.to_string(),
+            problems,
+        })
     }
 }

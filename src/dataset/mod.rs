@@ -17,7 +17,7 @@ pub use error::{DataError, Problem};
 pub use finger::Finger;
 pub use quantity::Quantity;
 
-use csvinput::{CsvScan, Header, Record, quote};
+use csvinput::{Cells, Columns, quote};
 use std::collections::HashMap;
 use std::collections::hash_map::Entry;
 use std::path::Path;
@@ -28,10 +28,71 @@ pub const MAX_LENGTH: f64 = 1e100;
 /// Largest accepted ratio between the longest and the shortest segment of a finger.
 pub const MAX_SPREAD: f64 = 1e6;
 
-/// Columns every measurement file must have, in the canonical order.
-pub const REQUIRED_COLUMNS: [&str; 5] = ["xray", "finger", "j1", "j2", "j3"];
-/// Metadata columns a measurement file may have; their values may be empty.
-pub const OPTIONAL_COLUMNS: [&str; 5] = ["sex", "age", "side", "source", "unit"];
+/// The columns of a measurement file: `xray`, `finger`, `j1`, `j2` and `j3` are
+/// required, the metadata `sex`, `age`, `side`, `source` and `unit` optional (and
+/// may be empty).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Column {
+    Xray,
+    Finger,
+    J1,
+    J2,
+    J3,
+    Sex,
+    Age,
+    Side,
+    Source,
+    Unit,
+}
+
+impl Column {
+    /// The segment columns J1, J2, J3.
+    const SEGMENTS: [Column; 3] = [Column::J1, Column::J2, Column::J3];
+}
+
+impl Columns for Column {
+    const ALL: &'static [Column] = &[
+        Column::Xray,
+        Column::Finger,
+        Column::J1,
+        Column::J2,
+        Column::J3,
+        Column::Sex,
+        Column::Age,
+        Column::Side,
+        Column::Source,
+        Column::Unit,
+    ];
+    const EMPTY: &'static str = "is empty; it needs a header line and at least one data row";
+    const NO_ROWS: Option<&'static str> =
+        Some("has a header but no data rows; add one row per X-ray and finger");
+
+    fn name(self) -> &'static str {
+        match self {
+            Column::Xray => "xray",
+            Column::Finger => "finger",
+            Column::J1 => "j1",
+            Column::J2 => "j2",
+            Column::J3 => "j3",
+            Column::Sex => "sex",
+            Column::Age => "age",
+            Column::Side => "side",
+            Column::Source => "source",
+            Column::Unit => "unit",
+        }
+    }
+
+    fn required(self) -> bool {
+        matches!(
+            self,
+            Column::Xray | Column::Finger | Column::J1 | Column::J2 | Column::J3
+        )
+    }
+
+    fn index(self) -> usize {
+        self as usize
+    }
+}
 
 /// Descriptive metadata of one row; every field may be absent.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -196,24 +257,6 @@ impl Interner {
     }
 }
 
-/// Column positions in the canonical order of REQUIRED then OPTIONAL columns.
-const XRAY: usize = 0;
-const FINGER: usize = 1;
-const J: [usize; 3] = [2, 3, 4];
-const SEX: usize = 5;
-const AGE: usize = 6;
-const SIDE: usize = 7;
-const SOURCE: usize = 8;
-const UNIT: usize = 9;
-
-fn column_name(k: usize) -> &'static str {
-    if k < 5 {
-        REQUIRED_COLUMNS[k]
-    } else {
-        OPTIONAL_COLUMNS[k - 5]
-    }
-}
-
 /// Per-X-ray metadata seen so far, to catch rows of one X-ray that disagree.
 struct XrayMeta {
     line: u64,
@@ -229,133 +272,82 @@ fn parse_rows(
     label: &str,
     input: impl std::io::Read,
 ) -> Result<(Vec<String>, Vec<Row>, String), DataError> {
-    let mut problems = Vec::new();
-    let mut scan = CsvScan::new(label, input)?;
-    let (header_line, header) = match scan.next_record(&mut problems) {
-        Some(rec) => (
-            rec.line,
-            Header::parse(&rec, &REQUIRED_COLUMNS, &OPTIONAL_COLUMNS, &mut problems),
-        ),
-        None => {
-            let content = scan.finish().map(|(_, c)| c).unwrap_or(true);
-            if problems.is_empty() {
-                problems.push(Problem::file(if content {
-                    "has no header line; start it with xray,finger,j1,j2,j3"
-                } else {
-                    "is empty; it needs a header line and at least one data row"
-                }));
-            }
-            return Err(DataError {
-                file: label.to_string(),
-                problems,
-            });
-        }
-    };
-    let header_ok = problems.is_empty();
-    let width = header.names.len();
     let mut interner = Interner::default();
     let mut seen: HashMap<(Arc<str>, Finger), u64> = HashMap::new();
     let mut xray_meta: HashMap<Arc<str>, XrayMeta> = HashMap::new();
     let mut rows = Vec::new();
-    let mut records = 0usize;
-    while let Some(rec) = scan.next_record(&mut problems) {
-        records += 1;
-        if !header_ok {
-            continue; // column meanings are unknown; the header problems say why
-        }
-        if rec.len() != width {
-            problems.push(csvinput::field_count_problem(&rec, width));
-            continue;
-        }
-        if let Some(row) = parse_row(&rec, &header, &mut interner, &mut problems) {
-            match seen.entry((row.xray.clone(), row.finger)) {
-                Entry::Occupied(first) => {
-                    problems.push(Problem::field(
-                        row.line,
-                        header.positions[XRAY].map_or(0, |p| p + 1),
-                        "xray",
-                        format!(
-                            "duplicate row: X-ray {} already has {} row on line {}; remove one or correct the X-ray id",
-                            quote(&row.xray),
-                            row.finger.with_article(),
-                            first.get()
-                        ),
-                    ));
-                    continue;
-                }
-                Entry::Vacant(v) => {
-                    v.insert(row.line);
-                }
+    let (header, sha256) = csvinput::read_table(label, input, |cells| {
+        let Some(row) = parse_row(cells, &mut interner) else {
+            return;
+        };
+        match seen.entry((row.xray.clone(), row.finger)) {
+            Entry::Occupied(first) => {
+                cells.bad(
+                    Column::Xray,
+                    format!(
+                        "duplicate row: X-ray {} already has {} row on line {}; remove one or correct the X-ray id",
+                        quote(&row.xray),
+                        row.finger.with_article(),
+                        first.get()
+                    ),
+                );
+                return;
             }
-            check_xray_meta(&row, &header, &mut xray_meta, &mut problems);
-            rows.push(row);
+            Entry::Vacant(v) => {
+                v.insert(row.line);
+            }
         }
+        check_xray_meta(&row, cells, &mut xray_meta);
+        rows.push(row);
+    })?;
+    Ok((header.names, rows, sha256))
+}
+
+/// Validates one record; reports its problems and returns the row when it has none.
+fn parse_row(cells: &mut Cells<'_, '_, Column>, interner: &mut Interner) -> Option<Row> {
+    let xray = cells.text(Column::Xray);
+    if xray == Some("") {
+        cells.bad(
+            Column::Xray,
+            "is empty; give every row the id of its X-ray (e.g. 'Figure 1a')",
+        );
     }
-    if records == 0 && problems.is_empty() {
-        problems.push(Problem::file(
-            "has a header but no data rows; add one row per X-ray and finger",
-        ));
+    check_formulas(cells);
+    let finger = cells.parse(Column::Finger, parse_finger);
+    let lengths = read_lengths(cells, finger);
+    let meta = read_meta(cells, interner);
+    if cells.has_problems() {
+        return None;
     }
-    // Byte-level problems (non-UTF-8, NUL) know their column; name its field.
-    for p in &mut problems {
-        if let (None, Some(c), Some(l)) = (&p.field, p.column, p.line)
-            && l > header_line
-        {
-            p.field = header.names.get(c - 1).filter(|n| !n.is_empty()).cloned();
-        }
-    }
-    let sha256 = match scan.finish() {
-        Ok((sha, _)) => sha,
-        Err(e) => {
-            problems.push(Problem::file(format!("could not be read to the end ({e})")));
-            String::new()
-        }
+    let row = Row {
+        line: cells.line(),
+        xray: interner.get(xray?),
+        finger: finger?,
+        lengths,
+        meta,
     };
-    if problems.is_empty() {
-        Ok((header.names, rows, sha256))
-    } else {
-        problems.sort_by_key(|p| (p.line.unwrap_or(0), p.column.unwrap_or(0)));
-        Err(DataError {
-            file: label.to_string(),
-            problems,
-        })
+    match check_bounds(&row) {
+        Ok(()) => Some(row),
+        Err(message) => {
+            cells.bad_line(message);
+            None
+        }
     }
 }
 
-/// Validates one record; pushes its problems and returns the row when it has none.
-fn parse_row(
-    rec: &Record<'_>,
-    header: &Header,
-    interner: &mut Interner,
-    problems: &mut Vec<Problem>,
-) -> Option<Row> {
-    let before = problems.len();
-    let line = rec.line;
-    // Field k of the canonical order: `Some(text)` (maybe empty) or `None` when unreadable.
-    let field = |k: usize| -> Option<&str> {
-        match header.positions[k] {
-            Some(p) => rec.get(p),
-            None => Some(""),
-        }
-    };
-    let col = |k: usize| header.positions[k].map_or(0, |p| p + 1);
-    let mut bad = |k: usize, msg: String| {
-        problems.push(Problem::field(line, col(k), column_name(k), msg));
-    };
-
-    let xray = field(XRAY);
-    if xray == Some("") {
-        bad(
-            XRAY,
-            "is empty; give every row the id of its X-ray (e.g. 'Figure 1a')".into(),
-        );
-    }
-    // Text that a spreadsheet would run as a formula never enters the dataset, so
-    // no CSV phalanx writes from it (e.g. on 'add') can carry one.
-    for k in [XRAY, SEX, SIDE, SOURCE, UNIT] {
-        if let Some(t) = field(k).filter(|t| looks_like_formula(t)) {
-            bad(
-                k,
+/// Text that a spreadsheet would run as a formula never enters the dataset, so
+/// no CSV phalanx writes from it (e.g. on 'add') can carry one.
+fn check_formulas(cells: &mut Cells<'_, '_, Column>) {
+    for c in [
+        Column::Xray,
+        Column::Sex,
+        Column::Side,
+        Column::Source,
+        Column::Unit,
+    ] {
+        if let Some(t) = cells.text(c).filter(|t| looks_like_formula(t)) {
+            cells.bad(
+                c,
                 format!(
                     "{} starts like a spreadsheet formula; remove the leading '{}'",
                     quote(t),
@@ -364,40 +356,35 @@ fn parse_row(
             );
         }
     }
-    let finger_text = field(FINGER);
-    let finger = match finger_text {
-        Some("") => {
-            bad(
-                FINGER,
-                format!("is empty; name the finger: {}", Finger::ACCEPTED),
-            );
-            None
-        }
-        Some(t) => {
-            let f = Finger::parse(t);
-            if f.is_none() {
-                bad(
-                    FINGER,
-                    format!(
-                        "unknown finger {}; use one of {}",
-                        quote(t),
-                        Finger::ACCEPTED
-                    ),
-                );
-            }
-            f
-        }
-        None => None,
-    };
+}
+
+/// Reads a finger's name (or one of its aliases).
+fn parse_finger(text: &str) -> Result<Finger, String> {
+    if text.is_empty() {
+        return Err(format!("is empty; name the finger: {}", Finger::ACCEPTED));
+    }
+    Finger::parse(text).ok_or_else(|| {
+        format!(
+            "unknown finger {}; use one of {}",
+            quote(text),
+            Finger::ACCEPTED
+        )
+    })
+}
+
+/// Reads J1, J2 and J3 (0 where absent: J3 of the thumb, or a refused value).
+/// Whether J3 must be given depends on the finger; with the finger unknown, an
+/// empty J3 is not reported.
+fn read_lengths(cells: &mut Cells<'_, '_, Column>, finger: Option<Finger>) -> [f64; 3] {
     let mut lengths = [0.0f64; 3];
-    for (s, &k) in J.iter().enumerate() {
-        let Some(text) = field(k) else { continue };
-        if s == 2 {
+    for (s, c) in Column::SEGMENTS.into_iter().enumerate() {
+        let Some(text) = cells.text(c) else { continue };
+        if c == Column::J3 {
             match finger {
                 Some(Finger::Thumb) => {
                     if !text.is_empty() {
-                        bad(
-                            k,
+                        cells.bad(
+                            c,
                             format!(
                                 "the thumb has only J1 and J2, but j3 is {}; leave j3 empty for the thumb",
                                 quote(text)
@@ -412,8 +399,8 @@ fn parse_row(
                     }
                 }
                 Some(f) if text.is_empty() => {
-                    bad(
-                        k,
+                    cells.bad(
+                        c,
                         format!("is empty, but the {f} finger has three segments; enter J3"),
                     );
                     continue;
@@ -423,84 +410,83 @@ fn parse_row(
         }
         match parse_length(text) {
             Ok(v) => lengths[s] = v,
-            Err(msg) => bad(k, msg),
+            Err(message) => cells.bad(c, message),
         }
     }
+    lengths
+}
+
+/// Reads the optional metadata, interning repeated text.
+fn read_meta(cells: &mut Cells<'_, '_, Column>, interner: &mut Interner) -> Meta {
     let mut meta = Meta::default();
-    if let Some(t) = field(SEX) {
+    if let Some(t) = cells.text(Column::Sex) {
         meta.sex = interner.opt(&normalise_sex(t));
     }
-    if let Some(t) = field(AGE).filter(|t| !t.is_empty()) {
-        match t.parse::<f64>() {
-            Ok(a) if a.is_finite() && (0.0..=150.0).contains(&a) => meta.age = Some(a),
-            _ => bad(
-                AGE,
-                format!(
-                    "{} is not an age; give years from 0 to 150, or leave it empty",
-                    quote(t)
-                ),
-            ),
-        }
-    }
-    if let Some(t) = field(SIDE).filter(|t| !t.is_empty()) {
-        match t.to_ascii_lowercase().as_str() {
-            "left" | "l" => meta.side = Some(interner.get("left")),
-            "right" | "r" => meta.side = Some(interner.get("right")),
-            _ => bad(
-                SIDE,
-                format!(
-                    "{} is not a side; use left or right, or leave it empty",
-                    quote(t)
-                ),
-            ),
-        }
-    }
-    if let Some(t) = field(SOURCE) {
+    meta.age = cells.parse(Column::Age, parse_age).flatten();
+    meta.side = cells
+        .parse(Column::Side, parse_side)
+        .flatten()
+        .map(|s| interner.get(s));
+    if let Some(t) = cells.text(Column::Source) {
         meta.source = interner.opt(t);
     }
-    if let Some(t) = field(UNIT) {
+    if let Some(t) = cells.text(Column::Unit) {
         meta.unit = interner.opt(t);
     }
-    if problems.len() > before {
-        return None;
+    meta
+}
+
+/// An age in years from 0 to 150; `None` when empty.
+fn parse_age(text: &str) -> Result<Option<f64>, String> {
+    if text.is_empty() {
+        return Ok(None);
     }
-    let finger = finger?;
-    let row = Row {
-        line,
-        xray: interner.get(xray?),
-        finger,
-        lengths,
-        meta,
-    };
+    match text.parse::<f64>() {
+        Ok(a) if a.is_finite() && (0.0..=150.0).contains(&a) => Ok(Some(a)),
+        _ => Err(format!(
+            "{} is not an age; give years from 0 to 150, or leave it empty",
+            quote(text)
+        )),
+    }
+}
+
+/// `left` or `right` (from `l`/`r` too, any case); `None` when empty.
+fn parse_side(text: &str) -> Result<Option<&'static str>, String> {
+    match text.to_ascii_lowercase().as_str() {
+        "" => Ok(None),
+        "left" | "l" => Ok(Some("left")),
+        "right" | "r" => Ok(Some("right")),
+        _ => Err(format!(
+            "{} is not a side; use left or right, or leave it empty",
+            quote(text)
+        )),
+    }
+}
+
+/// Bounds that keep every statistic finite (sums, squares, ratios) and catch
+/// unit slips; the error says what to check.
+fn check_bounds(row: &Row) -> Result<(), String> {
     if !row.total().is_finite() {
-        problems.push(Problem::line(
-            line,
-            "the lengths add up to more than the largest representable number; check the values",
-        ));
-        return None;
+        return Err(
+            "the lengths add up to more than the largest representable number; check the values"
+                .into(),
+        );
     }
-    // Bounds that keep every statistic finite (squares, ratios) and catch unit slips.
     let segs = row.segments();
     let (lo, hi) = segs.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &l| {
         (lo.min(l), hi.max(l))
     });
     if hi > MAX_LENGTH {
-        problems.push(Problem::line(
-            line,
-            format!("a length of {hi:e} is implausibly large (over {MAX_LENGTH:e}); check the value and its unit"),
+        return Err(format!(
+            "a length of {hi:e} is implausibly large (over {MAX_LENGTH:e}); check the value and its unit"
         ));
-        return None;
     }
     if hi / lo > MAX_SPREAD {
-        problems.push(Problem::line(
-            line,
-            format!(
-                "the lengths differ more than {MAX_SPREAD:e}-fold ({lo:e} to {hi:e}); the segments of one finger are of similar size: check the values"
-            ),
+        return Err(format!(
+            "the lengths differ more than {MAX_SPREAD:e}-fold ({lo:e} to {hi:e}); the segments of one finger are of similar size: check the values"
         ));
-        return None;
     }
-    Some(row)
+    Ok(())
 }
 
 /// True for text a spreadsheet would evaluate: starting with `=`, `+` or `@`
@@ -521,9 +507,8 @@ fn normalise_sex(text: &str) -> String {
 /// Rows of one X-ray describe one hand: their sex, age, side and unit must agree.
 fn check_xray_meta(
     row: &Row,
-    header: &Header,
+    cells: &mut Cells<'_, '_, Column>,
     seen: &mut HashMap<Arc<str>, XrayMeta>,
-    problems: &mut Vec<Problem>,
 ) {
     let entry = seen.entry(row.xray.clone()).or_insert_with(|| XrayMeta {
         line: row.line,
@@ -532,31 +517,29 @@ fn check_xray_meta(
         side: row.meta.side.clone(),
         unit: row.meta.unit.clone(),
     });
-    let mut conflict = |k: usize, ours: String, theirs: String| {
-        problems.push(Problem::field(
-            row.line,
-            header.positions[k].map_or(0, |p| p + 1),
-            column_name(k),
+    let mut conflict = |c: Column, ours: String, theirs: String| {
+        cells.bad(
+            c,
             format!(
                 "is {ours}, but line {} gives {theirs} for the same X-ray {}; one hand has one value",
                 entry.line,
                 quote(&row.xray)
             ),
-        ));
+        );
     };
     let show = |v: &Option<Arc<str>>| v.as_deref().map_or("empty".to_string(), quote);
     if row.meta.sex != entry.sex {
-        conflict(SEX, show(&row.meta.sex), show(&entry.sex));
+        conflict(Column::Sex, show(&row.meta.sex), show(&entry.sex));
     }
     if row.meta.age != entry.age {
         let f = |a: Option<f64>| a.map_or("empty".to_string(), |a| a.to_string());
-        conflict(AGE, f(row.meta.age), f(entry.age));
+        conflict(Column::Age, f(row.meta.age), f(entry.age));
     }
     if row.meta.side != entry.side {
-        conflict(SIDE, show(&row.meta.side), show(&entry.side));
+        conflict(Column::Side, show(&row.meta.side), show(&entry.side));
     }
     if row.meta.unit != entry.unit {
-        conflict(UNIT, show(&row.meta.unit), show(&entry.unit));
+        conflict(Column::Unit, show(&row.meta.unit), show(&entry.unit));
     }
 }
 

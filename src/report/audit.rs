@@ -3,8 +3,8 @@
 //! Rig coordinates are taken as metres (the glTF unit) and shown in millimetres.
 
 use crate::analysis::Quantity;
-use crate::analysis::audit::{Basis, FingerAudit, Standing};
 use crate::format::{level, num};
+use crate::rig::judge::{Basis, FingerAudit, Standing};
 use crate::rig::{AuditedFinger, AuditedRig};
 
 /// Millimetres per rig unit (glTF units are metres).
@@ -81,7 +81,7 @@ pub fn heading(f: &AuditedFinger) -> String {
 }
 
 /// The suggestion for one joint, in words.
-pub fn suggestion(j: &crate::analysis::audit::JointCheck) -> String {
+pub fn suggestion(j: &crate::rig::judge::JointCheck) -> String {
     let towards = if j.shift_along >= 0.0 {
         "towards the tip"
     } else {

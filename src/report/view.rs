@@ -840,7 +840,7 @@ fn groups_view(groups: &[Group]) -> Option<GroupsView> {
 
 fn rigs_view(rigs: &[ReferenceAudit]) -> Option<RigsView> {
     use super::audit::{finger_summary, value_of};
-    use crate::analysis::audit::Basis;
+    use crate::rig::judge::Basis;
     if rigs.is_empty() {
         return None;
     }

@@ -1,7 +1,7 @@
 //! `audit --fix`: a copy of a rig with its fingers' middle joints at the mean.
 //!
 //! For each finger the judged inner joints move to their suggested points (on
-//! the rig's own chain, see [`crate::analysis::audit`]); the root, the tip and
+//! the rig's own chain, see [`super::judge`]); the root, the tip and
 //! any joint that was not judged keep their world positions. Only translations
 //! change: a moved node's local translation becomes P'^-1 x (P' its parent's
 //! new world matrix, x the target), and every later chain node is re-pinned
@@ -16,7 +16,6 @@
 //! embedded), every buffer merged into one.
 
 use super::{AuditedFinger, GltfFile, world_matrices};
-use crate::analysis::audit::Point;
 use crate::dataset::DataError;
 use base64::Engine;
 use glam::{DMat4, DVec3};
@@ -187,19 +186,55 @@ fn pad4(v: &mut Vec<u8>) {
 }
 
 /// Writes the fixed copy. `dir` resolves external buffers; `glb` picks the container.
+///
+/// In steps: the target of every chain node, the nodes moved there (parents
+/// first), their new translations written into the JSON, every buffer merged
+/// into one, new inverse bind matrices for the skins whose joints moved, then
+/// the output container.
 pub fn fix(
     file: &GltfFile,
     fingers: &[AuditedFinger],
     dir: &Path,
     glb: bool,
 ) -> Result<Fixed, DataError> {
-    let mut locals: Vec<DMat4> = file
-        .document
-        .nodes()
-        .map(|nd| super::local_matrix(&nd))
-        .collect();
-    // Targets: moved joints to their suggestions, later chain joints pinned in place.
-    let mut targets: Vec<(usize, Point)> = Vec::new();
+    let (targets, moved) = targets(fingers);
+    let (locals, world) = move_nodes(file, &targets)?;
+    let mut json = file.json.clone();
+    let mut touched: BTreeMap<usize, DVec3> = BTreeMap::new();
+    for &(node, _) in &targets {
+        touched.insert(node, locals[node].w_axis.truncate());
+    }
+    write_translations(&mut json, &touched);
+    let (data, mut bin) = merge_buffers(file, &mut json, dir)?;
+    rebind_skins(file, &mut json, &data, &mut bin, &world)?;
+    let mut buffer = json!({"byteLength": bin.len()});
+    if !glb {
+        buffer["uri"] = json!(format!(
+            "data:application/octet-stream;base64,{}",
+            base64::engine::general_purpose::STANDARD.encode(&bin)
+        ));
+    }
+    if !bin.is_empty() {
+        json["buffers"] = json!([buffer]);
+    }
+    let moved_nodes: Vec<usize> = touched.keys().copied().collect();
+    let warnings = warnings(file, &moved_nodes);
+    let bytes = container(file, &json, bin, glb)?;
+    Ok(Fixed {
+        bytes,
+        moved,
+        warnings,
+    })
+}
+
+/// A node and the world position it goes to.
+type Target = (usize, DVec3);
+
+/// Where each chain node goes: moved joints to their suggestions, later chain
+/// joints pinned where they are (node, world position); and the moved joints'
+/// (name, distance).
+fn targets(fingers: &[AuditedFinger]) -> (Vec<Target>, Vec<(String, f64)>) {
+    let mut targets: Vec<Target> = Vec::new();
     let mut moved = Vec::new();
     for f in fingers {
         let (chain, audit) = (&f.chain, &f.audit);
@@ -220,6 +255,18 @@ pub fn fix(
             }
         }
     }
+    (targets, moved)
+}
+
+/// Moves each node to its target (world position), parents first, by changing
+/// its local translation only; returns the new local and world matrices.
+/// Fails when the transform above a node is singular.
+fn move_nodes(file: &GltfFile, targets: &[Target]) -> Result<(Vec<DMat4>, Vec<DMat4>), DataError> {
+    let mut locals: Vec<DMat4> = file
+        .document
+        .nodes()
+        .map(|nd| super::local_matrix(&nd))
+        .collect();
     let depth = |mut i: usize| {
         let mut d = 0;
         while let Some(p) = file.parent[i] {
@@ -228,12 +275,13 @@ pub fn fix(
         }
         d
     };
-    targets.sort_by_key(|&(node, _)| depth(node));
+    let mut order = targets.to_vec();
+    order.sort_by_key(|&(node, _)| depth(node));
     let mut world = file.world.clone();
-    for &(node, target) in &targets {
+    for &(node, target) in &order {
         let up = file.parent[node].map_or(DMat4::IDENTITY, |p| world[p]);
         let det = up.determinant();
-        let t = up.inverse().transform_point3(DVec3::from_array(target));
+        let t = up.inverse().transform_point3(target);
         if !(det.is_finite() && det.abs() > 1e-300 && t.is_finite()) {
             return Err(DataError::whole_file(
                 &file.label,
@@ -250,12 +298,12 @@ pub fn fix(
         locals[node].w_axis = t.extend(1.0);
         world = world_matrices(&file.parent, &locals).unwrap_or(world);
     }
-    let mut json = file.json.clone();
-    let mut touched: BTreeMap<usize, DVec3> = BTreeMap::new();
-    for &(node, _) in &targets {
-        touched.insert(node, locals[node].w_axis.truncate());
-    }
-    for (&node, t) in &touched {
+    Ok((locals, world))
+}
+
+/// Writes new translations into the nodes' JSON (into `matrix` when a node has one).
+fn write_translations(json: &mut Value, touched: &BTreeMap<usize, DVec3>) {
+    for (&node, t) in touched {
         let nd = &mut json["nodes"][node];
         if let Some(m) = nd.get_mut("matrix").and_then(Value::as_array_mut) {
             for (k, v) in t.to_array().into_iter().enumerate() {
@@ -265,7 +313,15 @@ pub fn fix(
             nd["translation"] = json!(t.to_array());
         }
     }
-    // Merge all buffers into one, then append the new inverse bind matrices.
+}
+
+/// Merges every buffer into one (each start 4-byte aligned) and points the
+/// buffer views into it; returns the buffers as read and the merged bytes.
+fn merge_buffers(
+    file: &GltfFile,
+    json: &mut Value,
+    dir: &Path,
+) -> Result<(Vec<Vec<u8>>, Vec<u8>), DataError> {
     if let Some(k) = json["bufferViews"]
         .as_array()
         .and_then(|v| v.iter().position(|v| v.get("extensions").is_some()))
@@ -303,14 +359,26 @@ pub fn fix(
             v["byteOffset"] = json!(moved);
         }
     }
+    Ok((data, bin))
+}
+
+/// Appends new inverse bind matrices B' = W'^-1 W B for every skin whose joints
+/// moved, as a new accessor, so the mesh keeps its rest shape.
+fn rebind_skins(
+    file: &GltfFile,
+    json: &mut Value,
+    data: &[Vec<u8>],
+    bin: &mut Vec<u8>,
+    world: &[DMat4],
+) -> Result<(), DataError> {
     for skin in file.document.skins() {
         let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
         if !joints.iter().any(|&j| world[j] != file.world[j]) {
             continue;
         }
-        let ibm = inverse_binds(&data, &skin, joints.len())
+        let ibm = inverse_binds(data, &skin, joints.len())
             .map_err(|e| DataError::whole_file(&file.label, e))?;
-        pad4(&mut bin);
+        pad4(bin);
         let offset = bin.len();
         for (&j, b) in joints.iter().zip(&ibm) {
             let new = world[j].inverse() * file.world[j] * *b;
@@ -327,29 +395,24 @@ pub fn fix(
             }
         }
         let view = push(
-            &mut json,
+            json,
             "bufferViews",
             json!({"buffer": 0, "byteOffset": offset, "byteLength": 64 * joints.len()}),
         );
         let accessor = push(
-            &mut json,
+            json,
             "accessors",
             json!({"bufferView": view, "componentType": 5126, "count": joints.len(), "type": "MAT4"}),
         );
         json["skins"][skin.index()]["inverseBindMatrices"] = json!(accessor);
     }
-    let mut buffer = json!({"byteLength": bin.len()});
-    if !glb {
-        buffer["uri"] = json!(format!(
-            "data:application/octet-stream;base64,{}",
-            base64::engine::general_purpose::STANDARD.encode(&bin)
-        ));
-    }
-    if !bin.is_empty() {
-        json["buffers"] = json!([buffer]);
-    }
+    Ok(())
+}
+
+/// Remarks on what the fix cannot carry over: animations that key a moved
+/// joint's translation, and images left as external files.
+fn warnings(file: &GltfFile, moved_nodes: &[usize]) -> Vec<String> {
     let mut warnings = Vec::new();
-    let moved_nodes: Vec<usize> = touched.keys().copied().collect();
     for anim in file.document.animations() {
         let mut keyed: Vec<String> = anim
             .channels()
@@ -377,8 +440,13 @@ pub fn fix(
             "images referenced by file name stay external: copy them beside the output".into(),
         );
     }
+    warnings
+}
+
+/// The output file: the JSON alone (`.gltf`, buffer embedded), or a GLB with the bytes.
+fn container(file: &GltfFile, json: &Value, bin: Vec<u8>, glb: bool) -> Result<Vec<u8>, DataError> {
     let text =
-        serde_json::to_vec(&json).map_err(|e| DataError::whole_file(&file.label, e.to_string()))?;
+        serde_json::to_vec(json).map_err(|e| DataError::whole_file(&file.label, e.to_string()))?;
     let bytes = if glb {
         gltf::binary::Glb {
             header: gltf::binary::Header {
@@ -396,11 +464,7 @@ pub fn fix(
     } else {
         text
     };
-    Ok(Fixed {
-        bytes,
-        moved,
-        warnings,
-    })
+    Ok(bytes)
 }
 
 /// Appends `value` to the array `json[key]` (created when absent); returns its index.

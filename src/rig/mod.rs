@@ -1,4 +1,6 @@
-//! Reading the finger chains of a rigged hand from a glTF 2.0 file.
+//! Rigged hands: reading their finger chains from a glTF 2.0 file, judging
+//! them against the X-ray statistics ([`judge`], on the chain geometry of
+//! [`chain`]) and writing a fixed copy ([`fix`]).
 //!
 //! Joint positions are the world translations of the joint nodes in the
 //! file's node pose (the bind pose of an exported rig), in the file's units
@@ -8,16 +10,18 @@
 //! read by [`naming`], VRM's humanoid bone tables when present, and a
 //! `--map` file ([`map`]) first of all.
 
+pub mod chain;
 pub mod fix;
+pub mod judge;
 pub mod map;
 pub mod naming;
 pub mod reference;
 pub mod session;
 
-use crate::analysis::audit::{ChainInput, Point};
 use crate::analysis::placement::Joint;
 use crate::dataset::{DataError, Finger, Problem};
 use glam::{DMat4, DQuat, DVec3};
+use judge::ChainInput;
 use map::NameMap;
 use naming::{Part, Side, Slot};
 use serde::Serialize;
@@ -33,7 +37,7 @@ pub struct RigJoint {
     /// The node's name.
     pub name: String,
     /// World position in the node pose.
-    pub position: Point,
+    pub position: DVec3,
 }
 
 /// One finger chain found in a rig: root (MCP), inner joints, and the tip when present.
@@ -479,38 +483,13 @@ impl Rig {
         Rig::from_file(GltfFile::load(path)?, map)
     }
 
-    /// Finds the finger chains of a parsed file.
+    /// Finds the finger chains of a parsed file: the best node for each joint
+    /// of each finger, then each finger's chain from those.
     pub fn from_file(file: GltfFile, map: Option<&NameMap>) -> Result<Rig, DataError> {
         let names = file.node_names();
-        let n = names.len();
         let found = recognise(&file, &names, map)?;
-        // Best node per (side, finger, slot).
-        let mut best: BTreeMap<(Option<Side>, Finger, Slot), (u8, usize)> = BTreeMap::new();
-        let mut ties: BTreeMap<(Option<Side>, Finger, Slot), Vec<usize>> = BTreeMap::new();
-        for (i, f) in found.iter().enumerate() {
-            if let Some((side, finger, slot, prio)) = *f {
-                let key = (side, finger, slot);
-                let e = best.entry(key).or_insert((prio, i));
-                if prio < e.0 {
-                    *e = (prio, i);
-                    ties.remove(&key);
-                } else if prio == e.0 && e.1 != i {
-                    ties.entry(key).or_default().push(i);
-                }
-            }
-        }
-        let mut notes = Vec::new();
-        for ((side, finger, slot), others) in &ties {
-            let chosen = best[&(*side, *finger, *slot)].1;
-            let side = side.map_or(String::new(), |s| format!("{} ", s.name()));
-            let also: Vec<String> = others.iter().map(|&i| shown(&names[i])).collect();
-            notes.push(format!(
-                "{side}{finger} {}: {} was used; {} would also fit (give --map to choose)",
-                slot_name(*finger, *slot),
-                shown(&names[chosen]),
-                also.join(", ")
-            ));
-        }
+        let (best, ties) = choose_nodes(&found);
+        let mut notes = tie_notes(&best, &ties, &names);
         let mut groups: BTreeMap<(Option<Side>, Finger), HashMap<Slot, usize>> = BTreeMap::new();
         for (&(side, finger, slot), &(_, node)) in &best {
             groups.entry((side, finger)).or_default().insert(slot, node);
@@ -518,87 +497,11 @@ impl Rig {
         let mut chains = Vec::new();
         let mut bad = Vec::new();
         for ((side, finger), slots) in groups {
-            let label = match side {
-                Some(s) => format!("{} {finger}", s.name()),
-                None => finger.to_string(),
-            };
-            let mut wanted = vec![(Slot::Mcp, Joint::Mcp)];
-            wanted.extend(
-                Joint::inner(finger)
-                    .iter()
-                    .zip([Slot::First, Slot::Second])
-                    .map(|(&j, s)| (s, j)),
-            );
-            let missing: Vec<&str> = wanted
-                .iter()
-                .filter(|(s, _)| !slots.contains_key(s))
-                .map(|(_, j)| j.name())
-                .collect();
-            if !missing.is_empty() {
-                if wanted.iter().any(|(s, _)| slots.contains_key(s)) {
-                    notes.push(format!(
-                        "{label}: no {} joint found, so this finger is left out",
-                        missing.join(" or ")
-                    ));
-                }
-                continue;
+            match finger_chain(&file, &names, side, finger, &slots, &mut notes) {
+                Ok(Some(chain)) => chains.push(chain),
+                Ok(None) => {}
+                Err(problem) => bad.push(problem),
             }
-            let mut tip = slots.get(&Slot::Tip).copied();
-            if let Some(t) = tip {
-                let last = slots[&wanted[wanted.len() - 1].0];
-                if below(&file.parent, t, last) {
-                    wanted.push((Slot::Tip, Joint::Tip));
-                } else {
-                    notes.push(format!(
-                        "{label}: tip {} is not below {} in the node hierarchy, so it is not used",
-                        shown(&names[t]),
-                        shown(&names[last])
-                    ));
-                    tip = None;
-                }
-            }
-            if let Some(w) = wanted
-                .windows(2)
-                .find(|w| !below(&file.parent, slots[&w[1].0], slots[&w[0].0]))
-            {
-                notes.push(format!(
-                    "{label}: {} is not below {} in the node hierarchy, so these are not one finger; left out (give --map to choose)",
-                    shown(&names[slots[&w[1].0]]),
-                    shown(&names[slots[&w[0].0]])
-                ));
-                continue;
-            }
-            if let Some(&(slot, j)) = wanted
-                .iter()
-                .find(|(s, _)| !file.world[slots[s]].is_finite())
-            {
-                bad.push(Problem::file(format!(
-                    "node {} ({label} {}) has a non-finite world transform (a zero rotation quaternion, \
-                     a zero scale above it, or a huge value); fix its transform or its parents'",
-                    shown(&names[slots[&slot]]),
-                    j.name()
-                )));
-                continue;
-            }
-            let joints = wanted
-                .iter()
-                .map(|&(s, joint)| {
-                    let node = slots[&s];
-                    let t = file.world[node].w_axis;
-                    RigJoint {
-                        joint,
-                        node: Some(node),
-                        name: names[node].clone(),
-                        position: [t.x, t.y, t.z],
-                    }
-                })
-                .collect();
-            chains.push(FingerChain {
-                side,
-                finger,
-                joints,
-                has_tip: tip.is_some(),
-            });
         }
         if !bad.is_empty() {
             return Err(DataError {
@@ -607,27 +510,7 @@ impl Rig {
             });
         }
         if chains.is_empty() {
-            const SHOWN: usize = 60;
-            let mut listed: Vec<String> = names.iter().take(SHOWN).map(|s| shown(s)).collect();
-            if n > SHOWN {
-                listed.push(format!("and {} more", n - SHOWN));
-            }
-            let seen = if n == 0 {
-                "no nodes at all".to_string()
-            } else {
-                format!("{n} node names: {}", listed.join(", "))
-            };
-            let mut e = DataError::whole_file(
-                &file.label,
-                format!(
-                    "has no recognisable hand: no finger chain (MCP and its inner joints) was found among its {seen}. \
-                     Known conventions: Mixamo (mixamorig:RightHandIndex1..4), Rigify (f_index.01.R, DEF-f_index.01.R, thumb.01.R), \
-                     VRM (rightIndexProximal), Unreal (index_01_r), WebXR (index-finger-phalanx-proximal); \
-                     for other names give --map FILE (columns node,side,finger,joint)"
-                ),
-            );
-            e.problems.extend(notes.into_iter().map(Problem::file));
-            return Err(e);
+            return Err(no_hand(&file.label, &names, notes));
         }
         Ok(Rig {
             file,
@@ -637,12 +520,186 @@ impl Rig {
     }
 }
 
+/// A joint of a finger of a hand: (side, finger, slot).
+type JointKey = (Option<Side>, Finger, Slot);
+/// The node chosen for each joint, with its priority: joint -> (priority, node).
+type Best = BTreeMap<JointKey, (u8, usize)>;
+/// Other nodes as fit as the chosen one, per joint.
+type Ties = BTreeMap<JointKey, Vec<usize>>;
+
+/// The best node for each joint (lowest priority value, then the first node),
+/// with (priority, node); and the other nodes of the same priority, per joint.
+fn choose_nodes(found: &[Option<Found>]) -> (Best, Ties) {
+    let mut best = Best::new();
+    let mut ties = Ties::new();
+    for (i, f) in found.iter().enumerate() {
+        if let Some((side, finger, slot, prio)) = *f {
+            let key = (side, finger, slot);
+            let e = best.entry(key).or_insert((prio, i));
+            if prio < e.0 {
+                *e = (prio, i);
+                ties.remove(&key);
+            } else if prio == e.0 && e.1 != i {
+                ties.entry(key).or_default().push(i);
+            }
+        }
+    }
+    (best, ties)
+}
+
+/// A note for each joint that other nodes would fit as well as the chosen one.
+fn tie_notes(best: &Best, ties: &Ties, names: &[String]) -> Vec<String> {
+    let mut notes = Vec::new();
+    for ((side, finger, slot), others) in ties {
+        let chosen = best[&(*side, *finger, *slot)].1;
+        let side = side.map_or(String::new(), |s| format!("{} ", s.name()));
+        let also: Vec<String> = others.iter().map(|&i| shown(&names[i])).collect();
+        notes.push(format!(
+            "{side}{finger} {}: {} was used; {} would also fit (give --map to choose)",
+            slot_name(*finger, *slot),
+            shown(&names[chosen]),
+            also.join(", ")
+        ));
+    }
+    notes
+}
+
+/// The chain of one finger from the nodes chosen for its slots. `Ok(None)`, with
+/// a note why when it helps, when the finger lacks a joint or its nodes are not
+/// one chain in the hierarchy; an error when a node's world transform is not finite.
+fn finger_chain(
+    file: &GltfFile,
+    names: &[String],
+    side: Option<Side>,
+    finger: Finger,
+    slots: &HashMap<Slot, usize>,
+    notes: &mut Vec<String>,
+) -> Result<Option<FingerChain>, Problem> {
+    let label = match side {
+        Some(s) => format!("{} {finger}", s.name()),
+        None => finger.to_string(),
+    };
+    let mut wanted = vec![(Slot::Mcp, Joint::Mcp)];
+    wanted.extend(
+        Joint::inner(finger)
+            .iter()
+            .zip([Slot::First, Slot::Second])
+            .map(|(&j, s)| (s, j)),
+    );
+    let missing: Vec<&str> = wanted
+        .iter()
+        .filter(|(s, _)| !slots.contains_key(s))
+        .map(|(_, j)| j.name())
+        .collect();
+    if !missing.is_empty() {
+        if wanted.iter().any(|(s, _)| slots.contains_key(s)) {
+            notes.push(format!(
+                "{label}: no {} joint found, so this finger is left out",
+                missing.join(" or ")
+            ));
+        }
+        return Ok(None);
+    }
+    let mut tip = slots.get(&Slot::Tip).copied();
+    if let Some(t) = tip {
+        let last = slots[&wanted[wanted.len() - 1].0];
+        if below(&file.parent, t, last) {
+            wanted.push((Slot::Tip, Joint::Tip));
+        } else {
+            notes.push(format!(
+                "{label}: tip {} is not below {} in the node hierarchy, so it is not used",
+                shown(&names[t]),
+                shown(&names[last])
+            ));
+            tip = None;
+        }
+    }
+    if let Some(w) = wanted
+        .windows(2)
+        .find(|w| !below(&file.parent, slots[&w[1].0], slots[&w[0].0]))
+    {
+        notes.push(format!(
+            "{label}: {} is not below {} in the node hierarchy, so these are not one finger; left out (give --map to choose)",
+            shown(&names[slots[&w[1].0]]),
+            shown(&names[slots[&w[0].0]])
+        ));
+        return Ok(None);
+    }
+    Ok(Some(FingerChain {
+        side,
+        finger,
+        joints: rig_joints(file, names, &label, &wanted, slots)?,
+        has_tip: tip.is_some(),
+    }))
+}
+
+/// The `wanted` joints of a finger (`label`) at their nodes' world positions;
+/// an error when a node's world transform is not finite.
+fn rig_joints(
+    file: &GltfFile,
+    names: &[String],
+    label: &str,
+    wanted: &[(Slot, Joint)],
+    slots: &HashMap<Slot, usize>,
+) -> Result<Vec<RigJoint>, Problem> {
+    if let Some(&(slot, j)) = wanted
+        .iter()
+        .find(|(s, _)| !file.world[slots[s]].is_finite())
+    {
+        return Err(Problem::file(format!(
+            "node {} ({label} {}) has a non-finite world transform (a zero rotation quaternion, \
+             a zero scale above it, or a huge value); fix its transform or its parents'",
+            shown(&names[slots[&slot]]),
+            j.name()
+        )));
+    }
+    Ok(wanted
+        .iter()
+        .map(|&(s, joint)| {
+            let node = slots[&s];
+            RigJoint {
+                joint,
+                node: Some(node),
+                name: names[node].clone(),
+                position: file.world[node].w_axis.truncate(),
+            }
+        })
+        .collect())
+}
+
+/// The error of a file with no complete finger: the names it has (the first
+/// 60), the conventions known, and the notes on fingers left out.
+fn no_hand(label: &str, names: &[String], notes: Vec<String>) -> DataError {
+    const SHOWN: usize = 60;
+    let n = names.len();
+    let mut listed: Vec<String> = names.iter().take(SHOWN).map(|s| shown(s)).collect();
+    if n > SHOWN {
+        listed.push(format!("and {} more", n - SHOWN));
+    }
+    let seen = if n == 0 {
+        "no nodes at all".to_string()
+    } else {
+        format!("{n} node names: {}", listed.join(", "))
+    };
+    let mut e = DataError::whole_file(
+        label,
+        format!(
+            "has no recognisable hand: no finger chain (MCP and its inner joints) was found among its {seen}. \
+             Known conventions: Mixamo (mixamorig:RightHandIndex1..4), Rigify (f_index.01.R, DEF-f_index.01.R, thumb.01.R), \
+             VRM (rightIndexProximal), Unreal (index_01_r), WebXR (index-finger-phalanx-proximal); \
+             for other names give --map FILE (columns node,side,finger,joint)"
+        ),
+    );
+    e.problems.extend(notes.into_iter().map(Problem::file));
+    e
+}
+
 /// A rig finger with its judgement.
 #[derive(Debug, Clone, Serialize)]
 pub struct AuditedFinger {
     #[serde(flatten)]
     pub chain: FingerChain,
-    pub audit: crate::analysis::audit::FingerAudit,
+    pub audit: judge::FingerAudit,
 }
 
 /// Every finger of a rig judged against the statistics.
@@ -666,7 +723,7 @@ impl AuditedRig {
         let mut notes = notes.to_vec();
         let mut fingers = Vec::new();
         for chain in chains {
-            match crate::analysis::audit::audit(a, &chain.input()) {
+            match judge::audit(a, &chain.input()) {
                 Some(audit) => {
                     let span: f64 = audit.segments.iter().sum();
                     if !(0.005..=0.3).contains(&span) {

@@ -8,6 +8,7 @@ use super::naming::Side;
 use super::{FingerChain, RigJoint};
 use crate::analysis::placement::Joint;
 use crate::dataset::{DataError, Finger, Problem};
+use glam::DVec3;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -50,6 +51,44 @@ pub fn parse(label: &str, id: &str, bytes: &[u8]) -> Result<ReferenceRig, DataEr
         }],
     })?;
     let mut problems = Vec::new();
+    let side = check_provenance(&doc, &mut problems);
+    let mut chains: Vec<FingerChain> = Vec::new();
+    for (fname, joints) in &doc.fingers {
+        let Some(finger) = Finger::parse(fname) else {
+            problems.push(Problem::file(format!(
+                "unknown finger '{fname}'; use {}",
+                Finger::ACCEPTED
+            )));
+            continue;
+        };
+        if chains.iter().any(|c| c.finger == finger) {
+            problems.push(Problem::file(format!(
+                "{fname}: the {finger} is given twice (under two of its names); keep one"
+            )));
+            continue;
+        }
+        chains.push(read_chain(fname, finger, joints, side, &mut problems));
+    }
+    if !problems.is_empty() {
+        return Err(DataError {
+            file: label.to_string(),
+            problems,
+        });
+    }
+    chains.sort_by_key(|c| c.finger);
+    Ok(ReferenceRig {
+        id: id.to_string(),
+        name: doc.name,
+        source: doc.source,
+        url: doc.url,
+        units: doc.units,
+        notes: doc.notes,
+        chains,
+    })
+}
+
+/// Checks the rig's url, side and units; returns the side.
+fn check_provenance(doc: &RigJson, problems: &mut Vec<Problem>) -> Option<Side> {
     if !doc.url.starts_with("https://")
         || doc
             .url
@@ -74,81 +113,61 @@ pub fn parse(label: &str, id: &str, bytes: &[u8]) -> Result<ReferenceRig, DataEr
             doc.units
         )));
     }
-    let mut chains: Vec<FingerChain> = Vec::new();
-    for (fname, joints) in &doc.fingers {
-        let Some(finger) = Finger::parse(fname) else {
-            problems.push(Problem::file(format!(
-                "unknown finger '{fname}'; use {}",
-                Finger::ACCEPTED
-            )));
-            continue;
-        };
-        if chains.iter().any(|c| c.finger == finger) {
-            problems.push(Problem::file(format!(
-                "{fname}: the {finger} is given twice (under two of its names); keep one"
-            )));
-            continue;
-        }
-        let mut order = vec![Joint::Mcp];
-        order.extend_from_slice(Joint::inner(finger));
-        let has_tip = joints.contains_key("tip");
-        if has_tip {
-            order.push(Joint::Tip);
-        }
-        for key in joints.keys() {
-            if !order.iter().any(|j| j.name() == key) {
-                let mut allowed: Vec<&str> = order.iter().map(|j| j.name()).collect();
-                if !has_tip {
-                    allowed.push("tip");
-                }
-                problems.push(Problem::file(format!(
-                    "{fname}: unknown joint '{key}'; use {}",
-                    allowed.join(", ")
-                )));
-            }
-        }
-        let mut chain = Vec::new();
-        for j in order {
-            match joints.get(j.name()) {
-                Some(p) if p.iter().all(|v| v.is_finite()) => chain.push(RigJoint {
-                    joint: j,
-                    node: None,
-                    name: format!("{fname} {}", j.name()),
-                    position: *p,
-                }),
-                Some(_) => problems.push(Problem::file(format!(
-                    "{fname} {}: not a finite point",
-                    j.name()
-                ))),
-                None => problems.push(Problem::file(format!(
-                    "{fname}: joint {} is missing",
-                    j.name()
-                ))),
-            }
-        }
-        chains.push(FingerChain {
-            side,
-            finger,
-            joints: chain,
-            has_tip,
-        });
+    side
+}
+
+/// One finger's joints (`joints` by name) as a chain: MCP, the inner joints,
+/// then the tip when given. Unknown, missing and non-finite joints are problems.
+fn read_chain(
+    fname: &str,
+    finger: Finger,
+    joints: &BTreeMap<String, [f64; 3]>,
+    side: Option<Side>,
+    problems: &mut Vec<Problem>,
+) -> FingerChain {
+    let mut order = vec![Joint::Mcp];
+    order.extend_from_slice(Joint::inner(finger));
+    let has_tip = joints.contains_key("tip");
+    if has_tip {
+        order.push(Joint::Tip);
     }
-    if !problems.is_empty() {
-        return Err(DataError {
-            file: label.to_string(),
-            problems,
-        });
+    for key in joints.keys() {
+        if !order.iter().any(|j| j.name() == key) {
+            let mut allowed: Vec<&str> = order.iter().map(|j| j.name()).collect();
+            if !has_tip {
+                allowed.push("tip");
+            }
+            problems.push(Problem::file(format!(
+                "{fname}: unknown joint '{key}'; use {}",
+                allowed.join(", ")
+            )));
+        }
     }
-    chains.sort_by_key(|c| c.finger);
-    Ok(ReferenceRig {
-        id: id.to_string(),
-        name: doc.name,
-        source: doc.source,
-        url: doc.url,
-        units: doc.units,
-        notes: doc.notes,
-        chains,
-    })
+    let mut chain = Vec::new();
+    for j in order {
+        match joints.get(j.name()) {
+            Some(p) if p.iter().all(|v| v.is_finite()) => chain.push(RigJoint {
+                joint: j,
+                node: None,
+                name: format!("{fname} {}", j.name()),
+                position: DVec3::from_array(*p),
+            }),
+            Some(_) => problems.push(Problem::file(format!(
+                "{fname} {}: not a finite point",
+                j.name()
+            ))),
+            None => problems.push(Problem::file(format!(
+                "{fname}: joint {} is missing",
+                j.name()
+            ))),
+        }
+    }
+    FingerChain {
+        side,
+        finger,
+        joints: chain,
+        has_tip,
+    }
 }
 
 /// Reads every `*.json` in `dir`, in file-name order; an absent directory is no rigs.
@@ -237,7 +256,7 @@ mod values {
         let value = |id: &str, finger: Finger, q: Quantity| {
             let r = rigs.iter().find(|r| r.id == id).unwrap();
             let c = r.chains.iter().find(|c| c.finger == finger).unwrap();
-            let audit = crate::analysis::audit::audit(&a, &c.input()).unwrap();
+            let audit = crate::rig::judge::audit(&a, &c.input()).unwrap();
             audit
                 .values
                 .iter()

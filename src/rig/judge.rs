@@ -5,7 +5,7 @@
 //! segments are the chords c_k = |P_k - P_(k-1)| and, with a tip, its length is
 //! L = sum c_k, so J~k = c_k / L (eq. 2 with the rig's segments for the bones).
 //! Each inner joint lies at s = c_1 + ... + c_k from the root, to be compared
-//! with the statistics placed at L (see [`super::placement`]).
+//! with the statistics placed at L (see [`crate::analysis::placement`]).
 //!
 //! Without a tip (VRM, Unreal) L is unknown; a finger is then judged on
 //! r = J2/J1 alone, holding MCP and DIP fixed: the PIP then belongs at
@@ -15,22 +15,21 @@
 //!
 //! Suggested positions stay on the rig's own chain (the polyline through its
 //! joints), with root and tip (or DIP) fixed, and are solved so the new chords
-//! have exactly the mean proportions. Pure geometry: no files, no glTF.
+//! have exactly the mean proportions (see [`super::chain`]). No files, no glTF.
 
-use super::placement::Joint;
-use super::{Analysis, Interval, Quantity, QuantityStats};
+use super::chain::{arc_positions, on_chain};
+use crate::analysis::placement::{Joint, Placed};
+use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
 use crate::dataset::Finger;
+use glam::DVec3;
 use serde::Serialize;
-
-/// A point in the rig's space.
-pub type Point = [f64; 3];
 
 /// One finger of a rig, as joint centres from the root.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ChainInput {
     pub finger: Finger,
-    /// Root (MCP), the inner joints, then the tip when `has_tip`.
-    pub points: Vec<Point>,
+    /// Root (MCP), the inner joints, then the tip when `has_tip`, in the rig's space.
+    pub points: Vec<DVec3>,
     pub has_tip: bool,
 }
 
@@ -129,7 +128,7 @@ pub struct JointCheck {
     #[serde(flatten)]
     pub standing: Standing,
     /// The joint at the mean, on the rig's chain.
-    pub suggested: Point,
+    pub suggested: DVec3,
     /// Distance from the rig's joint to the suggested one.
     pub shift: f64,
     /// How far the suggestion lies along the chain from the rig's joint:
@@ -163,7 +162,7 @@ impl FingerAudit {
     }
 
     /// The suggested chain: the rig's points with the judged inner joints moved.
-    pub fn suggested_chain(&self, chain: &ChainInput) -> Vec<Point> {
+    pub fn suggested_chain(&self, chain: &ChainInput) -> Vec<DVec3> {
         let mut out = chain.points.clone();
         for (i, j) in self.joints.iter().enumerate() {
             if let Some(p) = out.get_mut(i + 1) {
@@ -172,127 +171,6 @@ impl FingerAudit {
         }
         out
     }
-}
-
-fn dist(a: Point, b: Point) -> f64 {
-    let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
-}
-
-fn lerp(a: Point, b: Point, t: f64) -> Point {
-    [
-        a[0] + (b[0] - a[0]) * t,
-        a[1] + (b[1] - a[1]) * t,
-        a[2] + (b[2] - a[2]) * t,
-    ]
-}
-
-/// The point at arc length `u` along the polyline `points` (clamped to its ends). O(m).
-pub fn point_at(points: &[Point], u: f64) -> Point {
-    let mut left = u.max(0.0);
-    for w in points.windows(2) {
-        let c = dist(w[0], w[1]);
-        if left <= c {
-            return if c > 0.0 {
-                lerp(w[0], w[1], left / c)
-            } else {
-                w[0]
-            };
-        }
-        left -= c;
-    }
-    points.last().copied().unwrap_or([0.0; 3])
-}
-
-/// Arc positions of the vertices of a polyline: 0, c_1, c_1 + c_2, ... O(m).
-fn arc_positions(points: &[Point]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(points.len());
-    let mut acc = 0.0;
-    out.push(0.0);
-    for w in points.windows(2) {
-        acc += dist(w[0], w[1]);
-        out.push(acc);
-    }
-    out
-}
-
-/// The first arc position at or after `u0` whose point lies at distance `d`
-/// from `q`; `None` past the end of the polyline. O(m).
-fn forward_at(points: &[Point], arcs: &[f64], u0: f64, q: Point, d: f64) -> Option<f64> {
-    for (k, w) in points.windows(2).enumerate() {
-        let (a, b) = (w[0], w[1]);
-        let len = arcs[k + 1] - arcs[k];
-        if arcs[k + 1] < u0 || len <= 0.0 {
-            continue;
-        }
-        let t0 = ((u0 - arcs[k]) / len).max(0.0);
-        let ab = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let aq = [a[0] - q[0], a[1] - q[1], a[2] - q[2]];
-        let qa = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
-        let qb = 2.0 * (aq[0] * ab[0] + aq[1] * ab[1] + aq[2] * ab[2]);
-        let qc = aq[0] * aq[0] + aq[1] * aq[1] + aq[2] * aq[2] - d * d;
-        let disc = qb * qb - 4.0 * qa * qc;
-        if disc < 0.0 {
-            continue;
-        }
-        let r = disc.sqrt();
-        let mut roots = [(-qb - r) / (2.0 * qa), (-qb + r) / (2.0 * qa)];
-        roots.sort_by(f64::total_cmp);
-        if let Some(t) = roots
-            .into_iter()
-            .find(|t| *t >= t0 - 1e-12 && *t <= 1.0 + 1e-12)
-        {
-            return Some(arcs[k] + t.clamp(0.0, 1.0) * len);
-        }
-    }
-    None
-}
-
-/// New inner points on the polyline `points` (ends fixed) whose chords have the
-/// proportions `shares` (one per segment, summing to 1), with their arc positions.
-///
-/// For a trial total chord C the points are laid one after the other, each the
-/// first point along the chain at chord distance share_k x C from the one
-/// before, and C is bisected until the last chord is share_m x C; so the points
-/// keep their order on the chain. 200 bisection steps, O(m) each. `None` when
-/// the chain is degenerate (non-finite, zero length) or no such C exists.
-pub fn on_chain(points: &[Point], shares: &[f64]) -> Option<(Vec<Point>, Vec<f64>)> {
-    let m = points.len().checked_sub(1)?;
-    if m < 2 || shares.len() != m || shares.iter().any(|s| !(s.is_finite() && *s > 0.0)) {
-        return None;
-    }
-    let arcs = arc_positions(points);
-    let arc = arcs[m];
-    if !(arc.is_finite() && arc > 0.0) || points.iter().flatten().any(|v| !v.is_finite()) {
-        return None;
-    }
-    let lay = |c: f64| -> Option<(Vec<f64>, f64)> {
-        let mut u = Vec::with_capacity(m - 1);
-        let (mut at, mut q) = (0.0, points[0]);
-        for s in &shares[..m - 1] {
-            at = forward_at(points, &arcs, at, q, s * c)?;
-            q = point_at(points, at);
-            u.push(at);
-        }
-        Some((u, dist(q, points[m]) - shares[m - 1] * c))
-    };
-    let (mut lo, mut hi) = (0.0, arc);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        match lay(mid) {
-            Some((_, f)) if f > 0.0 => lo = mid,
-            _ => hi = mid,
-        }
-    }
-    let (u, f) = lay(lo)?;
-    if f.abs() > 1e-9 * arc {
-        return None;
-    }
-    let mut q = Vec::with_capacity(points.len());
-    q.push(points[0]);
-    q.extend(u.iter().map(|&x| point_at(points, x)));
-    q.push(points[m]);
-    Some((q, u))
 }
 
 /// The statistics of `quantity` for `finger`, when the data has them.
@@ -313,116 +191,139 @@ fn value_check(q: Quantity, measured: f64, s: &QuantityStats) -> ValueCheck {
 }
 
 /// Judges one rig finger. `None` when the data has no such finger or the chain
-/// has the wrong number of points. O(1) apart from the suggested positions.
+/// has the wrong number of points, a non-finite point or a zero-length
+/// segment. O(1) apart from the suggested positions.
 pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
     let finger = chain.finger;
     let fa = a.finger(finger)?;
     if chain.points.len() != ChainInput::expected_points(finger, chain.has_tip) {
         return None;
     }
-    if chain.points.iter().flatten().any(|v| !v.is_finite()) {
+    if chain.points.iter().any(|p| !p.is_finite()) {
         return None;
     }
-    let segments: Vec<f64> = chain.points.windows(2).map(|w| dist(w[0], w[1])).collect();
+    let segments: Vec<f64> = chain
+        .points
+        .windows(2)
+        .map(|w| w[0].distance(w[1]))
+        .collect();
     if segments.iter().any(|&c| !(c.is_finite() && c > 0.0)) {
         return None;
     }
-    let arcs = arc_positions(&chain.points);
-    let inner = Joint::inner(finger);
     let mut out = FingerAudit {
         finger,
         has_tip: chain.has_tip,
         basis: Basis::None,
         n: fa.n,
-        segments: segments.clone(),
+        segments,
         length: None,
         values: Vec::new(),
         joints: Vec::new(),
         unjudged: Vec::new(),
     };
     if chain.has_tip {
-        let length: f64 = segments.iter().sum();
-        if length <= 0.0 {
-            return None;
-        }
-        out.basis = Basis::Relative;
-        out.length = Some(length);
-        for &q in Quantity::of(finger) {
-            let measured = match q {
-                Quantity::RelJ1 => segments[0] / length,
-                Quantity::RelJ2 => segments[1] / length,
-                Quantity::RelJ3 => segments[2] / length,
-                Quantity::RatioJ2J1 => segments[1] / segments[0],
-                Quantity::RatioJ3J2 => segments[2] / segments[1],
-                Quantity::Total => continue,
-            };
-            out.values
-                .push(value_check(q, measured, stats(a, finger, q)?));
-        }
-        let shares: Vec<f64> = [Quantity::RelJ1, Quantity::RelJ2, Quantity::RelJ3]
-            .iter()
-            .take(segments.len())
-            .map(|&q| stats(a, finger, q).map(|s| s.mean))
-            .collect::<Option<_>>()?;
-        let (suggested, at) = on_chain(&chain.points, &shares)?;
-        let mut measured = 0.0;
-        for (k, &joint) in inner.iter().enumerate() {
-            measured += segments[k];
-            // PIP/IP at J~1 L; DIP at (1 - J~3) L (see placement).
-            let placed = if k == 0 {
-                super::placement::Placed::affine(stats(a, finger, Quantity::RelJ1)?, 0.0, length)
-            } else {
-                super::placement::Placed::affine(
-                    stats(a, finger, Quantity::RelJ3)?,
-                    length,
-                    -length,
-                )
-            };
-            let range = Interval::new(placed.min, placed.max);
-            out.joints.push(JointCheck {
-                joint,
-                measured,
-                expected: placed.mean,
-                range,
-                pi: placed.intervals.pi,
-                standing: Standing::of(measured, range, placed.intervals.pi),
-                suggested: suggested[k + 1],
-                shift: dist(chain.points[k + 1], suggested[k + 1]),
-                shift_along: at[k] - arcs[k + 1],
-            });
-        }
+        judge_relative(a, chain, &mut out)?;
     } else if finger != Finger::Thumb {
-        let s = stats(a, finger, Quantity::RatioJ2J1)?;
-        out.basis = Basis::Ratio;
-        let r = segments[1] / segments[0];
-        out.values.push(value_check(Quantity::RatioJ2J1, r, s));
-        let span = segments[0] + segments[1];
-        // A ratio is never negative, even where an interval's formula says so.
-        let at = |r: f64| span / (1.0 + r.max(0.0));
-        let flip = |i: Interval| Interval::new(at(i.high), at(i.low));
-        let range = flip(Interval::new(s.min, s.max));
-        let pi = s.intervals.pi.map(flip);
-        let mean_r = s.mean;
-        let (suggested, at_new) = on_chain(
-            &chain.points,
-            &[1.0 / (1.0 + mean_r), mean_r / (1.0 + mean_r)],
-        )?;
-        out.joints.push(JointCheck {
-            joint: Joint::Pip,
-            measured: segments[0],
-            expected: at(mean_r),
-            range,
-            pi,
-            standing: Standing::of(segments[0], range, pi),
-            suggested: suggested[1],
-            shift: dist(chain.points[1], suggested[1]),
-            shift_along: at_new[0] - arcs[1],
-        });
-        out.unjudged.push(Joint::Dip);
+        judge_ratio(a, chain, &mut out)?;
     } else {
         out.unjudged.push(Joint::Ip);
     }
     Some(out)
+}
+
+/// With a tip: every relative value and ratio against its statistics, and each
+/// inner joint against the placement of the statistics at the rig's length.
+fn judge_relative(a: &Analysis, chain: &ChainInput, out: &mut FingerAudit) -> Option<()> {
+    let finger = chain.finger;
+    let segments = &out.segments;
+    let length: f64 = segments.iter().sum();
+    if length <= 0.0 {
+        return None;
+    }
+    let mut values = Vec::new();
+    for &q in Quantity::of(finger) {
+        let measured = match q {
+            Quantity::RelJ1 => segments[0] / length,
+            Quantity::RelJ2 => segments[1] / length,
+            Quantity::RelJ3 => segments[2] / length,
+            Quantity::RatioJ2J1 => segments[1] / segments[0],
+            Quantity::RatioJ3J2 => segments[2] / segments[1],
+            Quantity::Total => continue,
+        };
+        values.push(value_check(q, measured, stats(a, finger, q)?));
+    }
+    let shares: Vec<f64> = [Quantity::RelJ1, Quantity::RelJ2, Quantity::RelJ3]
+        .iter()
+        .take(segments.len())
+        .map(|&q| stats(a, finger, q).map(|s| s.mean))
+        .collect::<Option<_>>()?;
+    let (suggested, at) = on_chain(&chain.points, &shares)?;
+    let arcs = arc_positions(&chain.points);
+    let mut joints = Vec::new();
+    let mut measured = 0.0;
+    for (k, &joint) in Joint::inner(finger).iter().enumerate() {
+        measured += segments[k];
+        // PIP/IP at J~1 L; DIP at (1 - J~3) L (see placement).
+        let placed = if k == 0 {
+            Placed::affine(stats(a, finger, Quantity::RelJ1)?, 0.0, length)
+        } else {
+            Placed::affine(stats(a, finger, Quantity::RelJ3)?, length, -length)
+        };
+        let range = Interval::new(placed.min, placed.max);
+        joints.push(JointCheck {
+            joint,
+            measured,
+            expected: placed.mean,
+            range,
+            pi: placed.intervals.pi,
+            standing: Standing::of(measured, range, placed.intervals.pi),
+            suggested: suggested[k + 1],
+            shift: chain.points[k + 1].distance(suggested[k + 1]),
+            shift_along: at[k] - arcs[k + 1],
+        });
+    }
+    out.basis = Basis::Relative;
+    out.length = Some(length);
+    out.values = values;
+    out.joints = joints;
+    Some(())
+}
+
+/// Without a tip (not the thumb): J2/J1 against its statistics, and the PIP
+/// against the positions those put it at with MCP and DIP fixed.
+fn judge_ratio(a: &Analysis, chain: &ChainInput, out: &mut FingerAudit) -> Option<()> {
+    let s = stats(a, chain.finger, Quantity::RatioJ2J1)?;
+    let segments = &out.segments;
+    let r = segments[1] / segments[0];
+    let value = value_check(Quantity::RatioJ2J1, r, s);
+    let span = segments[0] + segments[1];
+    // A ratio is never negative, even where an interval's formula says so.
+    let at = |r: f64| span / (1.0 + r.max(0.0));
+    let flip = |i: Interval| Interval::new(at(i.high), at(i.low));
+    let range = flip(Interval::new(s.min, s.max));
+    let pi = s.intervals.pi.map(flip);
+    let mean_r = s.mean;
+    let (suggested, at_new) = on_chain(
+        &chain.points,
+        &[1.0 / (1.0 + mean_r), mean_r / (1.0 + mean_r)],
+    )?;
+    let arcs = arc_positions(&chain.points);
+    let joint = JointCheck {
+        joint: Joint::Pip,
+        measured: segments[0],
+        expected: at(mean_r),
+        range,
+        pi,
+        standing: Standing::of(segments[0], range, pi),
+        suggested: suggested[1],
+        shift: chain.points[1].distance(suggested[1]),
+        shift_along: at_new[0] - arcs[1],
+    };
+    out.basis = Basis::Ratio;
+    out.values.push(value);
+    out.joints.push(joint);
+    out.unjudged.push(Joint::Dip);
+    Some(())
 }
 
 #[cfg(test)]
@@ -430,6 +331,7 @@ mod tests {
     use super::*;
     use crate::analysis::{Settings, analyse};
     use crate::dataset::Dataset;
+    use crate::rig::chain::on_chain;
     use std::path::Path;
 
     fn paper() -> Analysis {
@@ -439,11 +341,11 @@ mod tests {
 
     /// A straight finger along x with the given segment lengths (and a tip).
     fn straight(finger: Finger, segs: &[f64]) -> ChainInput {
-        let mut points = vec![[0.0; 3]];
+        let mut points = vec![DVec3::ZERO];
         let mut x = 0.0;
         for s in segs {
             x += s;
-            points.push([x, 0.0, 0.0]);
+            points.push(DVec3::new(x, 0.0, 0.0));
         }
         ChainInput {
             finger,
@@ -506,71 +408,50 @@ mod tests {
     }
 
     #[test]
-    fn a_bent_chain_gets_exact_mean_proportions_and_keeps_its_ends() {
-        let pts = vec![
-            [0.0, 0.0, 0.0],
-            [40.0, 0.0, 0.0],
-            [60.0, -10.0, 0.0],
-            [70.0, -25.0, 3.0],
-        ];
-        let shares = [0.48, 0.29, 0.23];
-        let (q, _) = on_chain(&pts, &shares).unwrap();
-        assert_eq!(q[0], pts[0]);
-        assert_eq!(q[3], pts[3]);
-        let c: Vec<f64> = q.windows(2).map(|w| dist(w[0], w[1])).collect();
-        let total: f64 = c.iter().sum();
-        for (ck, s) in c.iter().zip(shares) {
-            assert!((ck / total - s).abs() < 1e-12, "{c:?}");
-        }
-    }
-
-    #[test]
     fn sharp_bends_keep_the_joints_in_order_or_decline() {
         // 120 degrees at each joint, segments 20, 40, 40 (a case a per-point
         // correction got out of order).
-        let turn = |a: f64| [a.cos(), a.sin(), 0.0];
-        let mut pts = vec![[0.0; 3]];
+        let turn = |a: f64| DVec3::new(a.cos(), a.sin(), 0.0);
+        let mut pts = vec![DVec3::ZERO];
         let mut dir = 0.0f64;
         for len in [20.0, 40.0, 40.0] {
             let p = *pts.last().unwrap();
-            let d = turn(dir);
-            pts.push([p[0] + len * d[0], p[1] + len * d[1], 0.0]);
+            pts.push(p + len * turn(dir));
             dir += 120f64.to_radians();
         }
         let shares = [0.48, 0.29, 0.23];
         // A finger curled 60 degrees at each joint is solved exactly, in order.
-        let mut bent = vec![[0.0; 3]];
+        let mut bent = vec![DVec3::ZERO];
         let mut dir = 0.0f64;
         for len in [45.0, 28.0, 22.0] {
             let p = *bent.last().unwrap();
-            let d = turn(dir);
-            bent.push([p[0] + len * d[0], p[1] + len * d[1], 0.0]);
+            bent.push(p + len * turn(dir));
             dir += 60f64.to_radians();
         }
         let (q, u) = on_chain(&bent, &shares).expect("a 60-degree curl is solvable");
         assert!(u[0] < u[1]);
-        let c: Vec<f64> = q.windows(2).map(|w| dist(w[0], w[1])).collect();
+        let c: Vec<f64> = q.windows(2).map(|w| w[0].distance(w[1])).collect();
         let total: f64 = c.iter().sum();
         for (ck, s) in c.iter().zip(shares) {
             assert!((ck / total - s).abs() < 1e-9, "{c:?}");
         }
         if let Some((q, u)) = on_chain(&pts, &shares) {
             assert!(u.windows(2).all(|w| w[0] <= w[1]), "{u:?}");
-            let c: Vec<f64> = q.windows(2).map(|w| dist(w[0], w[1])).collect();
+            let c: Vec<f64> = q.windows(2).map(|w| w[0].distance(w[1])).collect();
             let total: f64 = c.iter().sum();
             for (ck, s) in c.iter().zip(shares) {
                 assert!((ck / total - s).abs() < 1e-9, "{c:?}");
             }
         }
         // Degenerate chains are declined, never a panic.
-        assert!(on_chain(&[[0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]], &shares).is_none());
+        assert!(on_chain(&[DVec3::ZERO; 4], &shares).is_none());
         assert!(
             on_chain(
                 &[
-                    [f64::NAN, 0.0, 0.0],
-                    [1.0, 0.0, 0.0],
-                    [2.0, 0.0, 0.0],
-                    [3.0, 0.0, 0.0]
+                    DVec3::new(f64::NAN, 0.0, 0.0),
+                    DVec3::new(1.0, 0.0, 0.0),
+                    DVec3::new(2.0, 0.0, 0.0),
+                    DVec3::new(3.0, 0.0, 0.0)
                 ],
                 &shares
             )
@@ -580,16 +461,21 @@ mod tests {
         let nan = ChainInput {
             finger: Finger::Index,
             points: vec![
-                [0.0; 3],
-                [f64::INFINITY, 0.0, 0.0],
-                [2.0, 0.0, 0.0],
-                [3.0, 0.0, 0.0],
+                DVec3::ZERO,
+                DVec3::new(f64::INFINITY, 0.0, 0.0),
+                DVec3::new(2.0, 0.0, 0.0),
+                DVec3::new(3.0, 0.0, 0.0),
             ],
             has_tip: true,
         };
         assert!(audit(&a, &nan).is_none());
         let zero = ChainInput {
-            points: vec![[0.0; 3], [0.0; 3], [2.0, 0.0, 0.0], [3.0, 0.0, 0.0]],
+            points: vec![
+                DVec3::ZERO,
+                DVec3::ZERO,
+                DVec3::new(2.0, 0.0, 0.0),
+                DVec3::new(3.0, 0.0, 0.0),
+            ],
             ..nan
         };
         assert!(audit(&a, &zero).is_none());
@@ -617,7 +503,11 @@ mod tests {
             .unwrap();
         let chain = ChainInput {
             finger: Finger::Middle,
-            points: vec![[0.0; 3], [0.0, 50.0, 0.0], [0.0, 50.0 + 50.0 * s.mean, 0.0]],
+            points: vec![
+                DVec3::ZERO,
+                DVec3::new(0.0, 50.0, 0.0),
+                DVec3::new(0.0, 50.0 + 50.0 * s.mean, 0.0),
+            ],
             has_tip: false,
         };
         let r = audit(&a, &chain).unwrap();
@@ -627,7 +517,11 @@ mod tests {
         assert!(r.joints[0].shift < 1e-9);
         // A PIP too close to the root makes J2/J1 too large: flagged below.
         let close = ChainInput {
-            points: vec![[0.0; 3], [0.0, 20.0, 0.0], [0.0, 80.0, 0.0]],
+            points: vec![
+                DVec3::ZERO,
+                DVec3::new(0.0, 20.0, 0.0),
+                DVec3::new(0.0, 80.0, 0.0),
+            ],
             ..chain
         };
         let r = audit(&a, &close).unwrap();
@@ -636,7 +530,7 @@ mod tests {
         assert!(r.joints[0].range.low < r.joints[0].range.high);
         let thumb = ChainInput {
             finger: Finger::Thumb,
-            points: vec![[0.0; 3], [1.0, 0.0, 0.0]],
+            points: vec![DVec3::ZERO, DVec3::new(1.0, 0.0, 0.0)],
             has_tip: false,
         };
         let r = audit(&a, &thumb).unwrap();
