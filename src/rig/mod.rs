@@ -8,10 +8,12 @@
 //! read by [`naming`], VRM's humanoid bone tables when present, and a
 //! `--map` file ([`map`]) first of all.
 
+pub mod deform;
 pub mod fix;
 pub mod map;
 pub mod naming;
 pub mod reference;
+pub mod skin;
 
 use crate::analysis::audit::{ChainInput, Point};
 use crate::analysis::placement::Joint;
