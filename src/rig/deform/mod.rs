@@ -25,6 +25,8 @@ pub mod verdict;
 
 mod intersect;
 mod section;
+#[cfg(test)]
+mod webxr_tests;
 
 use crate::analysis::placement::Joint;
 use crate::dataset::Finger;
