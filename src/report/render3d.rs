@@ -373,7 +373,7 @@ mod tests {
             .skeleton
             .position(*rig.chains.fingers[0].tip.as_ref().unwrap());
         let dir = DVec3::Y;
-        for row in 0..2 {
+        for (row, v) in views.iter().enumerate() {
             for col in 0..2 {
                 let (x, y) = fig.project(row, col, tip - dir * 0.003).unwrap();
                 let inside = pixel(&img, x, y);
@@ -389,7 +389,6 @@ mod tests {
                     "row {row} col {col}: drawn past the tip"
                 );
                 // Beside the finger, beyond its radius: background.
-                let v = views[row];
                 let across = if v.right.dot(dir).abs() < 0.5 {
                     v.right
                 } else {

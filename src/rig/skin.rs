@@ -542,7 +542,7 @@ mod tests {
         let mut bin = Vec::new();
         let mut views = Vec::new();
         let mut push = |bin: &mut Vec<u8>, bytes: Vec<u8>| {
-            while bin.len() % 4 != 0 {
+            while !bin.len().is_multiple_of(4) {
                 bin.push(0);
             }
             views.push(json!({"buffer": 0, "byteOffset": bin.len(), "byteLength": bytes.len()}));
@@ -676,7 +676,8 @@ mod tests {
 
     #[test]
     fn malformed_accessors_are_named_not_panicked_on() {
-        let cases: Vec<(Box<dyn Fn(&mut serde_json::Value)>, &str)> = vec![
+        type Edit = Box<dyn Fn(&mut serde_json::Value)>;
+        let cases: Vec<(Edit, &str)> = vec![
             (
                 Box::new(|d| d["accessors"][0]["componentType"] = json!(5123)),
                 "/accessors/0 (POSITION of /meshes/0/primitives/0)",

@@ -13,8 +13,8 @@
 //! crossing of the skin through itself, and both have measure zero.
 //!
 //! Candidates: each triangle's bounding box is entered in the cells of a grid
-//! whose cell is the mean box size; a pair is tested once, in the cell that
-//! holds the low corner of the two boxes' overlap. Pairs sharing a vertex
+//! whose cell is the mean box size (at most 16 cells a side); a pair is tested
+//! once, in the cell that holds the low corner of the two boxes' overlap. Pairs sharing a vertex
 //! (welded by position) are skipped: neighbours meet along edges by design.
 //! Cost about O(triangles x neighbours per cell).
 
@@ -98,8 +98,9 @@ pub(crate) fn crossing_pairs(
     let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
     for (k, (lo, hi)) in boxes.iter().enumerate() {
         let (a, b) = (at(*lo), at(*hi));
-        // A box across more than 32 cells a side is a sliver spanning the mesh: enter it in its low cell's row only.
-        let span = |i: usize| (b[i] - a[i]).clamp(0, 32);
+        // A sliver spanning more than 16 cells a side is entered in its first 16
+        // (bounded work on a torn mesh; a pair whose overlap starts beyond them is missed).
+        let span = |i: usize| (b[i] - a[i]).clamp(0, 15);
         for x in 0..=span(0) {
             for y in 0..=span(1) {
                 for z in 0..=span(2) {
@@ -128,7 +129,11 @@ pub(crate) fn crossing_pairs(
                 let (ti, tj) = (subset[i], subset[j]);
                 let wi = tris[ti].map(|v| welded[v as usize]);
                 let wj = tris[tj].map(|v| welded[v as usize]);
-                if wi.iter().any(|v| wj.contains(v)) {
+                let mut shared = false;
+                for a in wi {
+                    shared |= a == wj[0] || a == wj[1] || a == wj[2];
+                }
+                if shared {
                     continue;
                 }
                 if triangles_cross(&corners(ti), &corners(tj)) {

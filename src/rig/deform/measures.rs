@@ -63,7 +63,7 @@
 //! bone and where it reaches the other, and the peak jumps between them; their
 //! centroid is the middle of the fold. None when nothing strains there.
 
-use super::intersect::crossing_pairs;
+use super::intersect::{crossing_pairs, triangles_cross};
 use super::pose::{PosedFinger, PosedHand};
 use super::section::{self, Plane};
 use crate::analysis::placement::Joint;
@@ -285,10 +285,10 @@ fn measure_finger(
         ));
     }
     let mut axis_points = f.rest_axis();
-    if axis_points.len() < 2 {
-        if let Some(r) = f.root {
-            axis_points.insert(0, r);
-        }
+    if axis_points.len() < 2
+        && let Some(r) = f.root
+    {
+        axis_points.insert(0, r);
     }
     let axis = Axis::new(axis_points);
     let joint_s: Vec<f64> = f.joints.iter().map(|j| axis.project(j.rest)).collect();
@@ -310,13 +310,12 @@ fn measure_finger(
             e.1 += 1;
         }
     }
-    // New crossings.
-    let before: HashSet<(usize, usize)> =
-        crossing_pairs(rest, &mesh.welded, &mesh.triangles, &tris)
-            .into_iter()
-            .collect();
-    let after = crossing_pairs(posed, &mesh.welded, &mesh.triangles, &tris);
-    let new: Vec<(usize, usize)> = after.into_iter().filter(|p| !before.contains(p)).collect();
+    // New crossings: pairs crossing in the pose that did not at rest.
+    let corners = |p: &[DVec3], t: usize| mesh.triangles[t].map(|v| p[v as usize]);
+    let new: Vec<(usize, usize)> = crossing_pairs(posed, &mesh.welded, &mesh.triangles, &tris)
+        .into_iter()
+        .filter(|&(i, j)| !triangles_cross(&corners(rest, i), &corners(rest, j)))
+        .collect();
     let mut crossings_by_zone: BTreeMap<usize, usize> = BTreeMap::new();
     let centroid = |t: usize| {
         mesh.triangles[t]
@@ -418,9 +417,24 @@ fn worst_section(
         0.0
     };
     let offsets = (0..BINS).map(|b| (b as f64 - (BINS / 2) as f64) * step);
+    // Only triangles reaching into the slab of the window's planes can be cut.
+    let reach = if step > 0.0 { w + step } else { 0.0 };
+    let d: Vec<f64> = rest
+        .iter()
+        .map(|p| (*p - j.rest).dot(j.rest_normal))
+        .collect();
+    let slab: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .filter(|t| {
+            let dd = t.map(|v| d[v as usize]);
+            dd.iter().any(|&x| x >= -reach) && dd.iter().any(|&x| x <= reach)
+        })
+        .copied()
+        .collect();
     let mut worst: Option<Section> = None;
     for offset in offsets {
-        let Some(s) = section_at(mesh, rest, posed, f, k, offset, half) else {
+        let Some(s) = section_at(mesh, &slab, rest, posed, f, k, offset, half) else {
             if offset == 0.0 {
                 notes.push(format!(
                     "{label}: at rest no closed section of the skin surrounds the joint \
@@ -442,10 +456,12 @@ fn worst_section(
 }
 
 /// The rest and posed area of the section of joint `k`'s skin `offset` from
-/// the joint (see the module doc); `None` when no loop winds around the plane's
-/// point on the finger at rest.
+/// the joint, cut from `triangles` (see the module doc); `None` when no loop
+/// winds around the plane's point on the finger at rest.
+#[allow(clippy::too_many_arguments)]
 fn section_at(
     mesh: &SkinnedMesh,
+    triangles: &[[u32; 3]],
     rest: &[DVec3],
     posed: &[DVec3],
     f: &PosedFinger,
@@ -456,7 +472,7 @@ fn section_at(
     let j = &f.joints[k];
     let rest_plane = Plane::new(j.rest + j.rest_normal * offset, j.rest_normal, f.axis)?;
     let facing = j.posed_normal(f.axis);
-    let cuts = section::loops(rest, &mesh.welded, &mesh.triangles, &rest_plane);
+    let cuts = section::loops(rest, &mesh.welded, triangles, &rest_plane);
     let flat: Vec<Vec<DVec2>> = cuts
         .iter()
         .map(|l| l.iter().map(|c| c.at).collect())
@@ -472,7 +488,7 @@ fn section_at(
         a_rest += section::shoelace(&r);
         vector += section::vector_area(&clipped.iter().map(|c| c.1).collect::<Vec<_>>());
     }
-    if !(a_rest.abs() > 0.0) {
+    if a_rest == 0.0 || !a_rest.is_finite() {
         return None;
     }
     // Turned inside out (facing against the bisecting plane's normal, relative to rest): negative.

@@ -234,11 +234,9 @@ fn symmetric_eigen(m: DMat3) -> ([f64; 3], [DVec3; 3]) {
                 row[p] = c * x - s * y;
                 row[q] = s * x + c * y;
             }
-            for k in 0..3 {
-                let (x, y) = (a[p][k], a[q][k]);
-                a[p][k] = c * x - s * y;
-                a[q][k] = s * x + c * y;
-            }
+            let (rp, rq) = (a[p], a[q]);
+            a[p] = std::array::from_fn(|k| c * rp[k] - s * rq[k]);
+            a[q] = std::array::from_fn(|k| s * rp[k] + c * rq[k]);
             for row in &mut v {
                 let (x, y) = (row[p], row[q]);
                 row[p] = c * x - s * y;
@@ -313,7 +311,7 @@ pub fn palm_frame(skeleton: &Skeleton, chains: &HandChains) -> Result<PalmFrame,
         .ok_or("no thumb is given; the thumb tells the palm side from the back of the hand")?;
     let t = pos(thumb) - mcp_c;
     let s = n.dot(t.cross(distal));
-    if !(s.abs() > 1e-12 * (t.length() * distal.length()).max(1e-300)) {
+    if !s.is_finite() || s.abs() <= 1e-12 * (t.length() * distal.length()).max(1e-300) {
         return Err(
             "the thumb lies in line with the wrist and the knuckles, so the palm side is unclear"
                 .into(),

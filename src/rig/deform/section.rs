@@ -52,7 +52,7 @@ impl Plane {
     }
 
     /// `p` in the plane's frame (its part along the normal dropped).
-    pub fn to_2d(&self, p: DVec3) -> DVec2 {
+    pub fn to_2d(self, p: DVec3) -> DVec2 {
         let d = p - self.origin;
         DVec2::new(d.dot(self.e1), d.dot(self.e2))
     }

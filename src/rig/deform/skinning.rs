@@ -127,7 +127,7 @@ fn rigid_part(m: &DMat4) -> (DQuat, DVec3, bool) {
 /// R <- (R + R^-T)/2, which converges quadratically from a itself for a
 /// non-singular a); identity when `a` is singular or a reflection.
 fn polar_rotation(a: DMat3) -> DMat3 {
-    if !(a.determinant() > 1e-300) || !a.is_finite() {
+    if !a.is_finite() || a.determinant() <= 1e-300 {
         return DMat3::IDENTITY;
     }
     let mut r = a;
@@ -197,11 +197,11 @@ pub fn dqs(mesh: &SkinnedMesh, skin: &[DMat4]) -> (Vec<DVec3>, Vec<String>) {
             for &(j, w) in infl {
                 let q = pick(j);
                 let s = if q.real.dot(pivot) < 0.0 { -w } else { w };
-                real = real + q.real * s;
-                dual = dual + q.dual * s;
+                real += q.real * s;
+                dual += q.dual * s;
             }
             let n = real.length();
-            if !(n > 1e-12) {
+            if !n.is_finite() || n <= 1e-12 {
                 return p;
             }
             DualQuat {

@@ -161,8 +161,8 @@ pub fn tube_hand(spec: &HandSpec) -> SyntheticRig {
             let t = len * r as f64 / rings as f64;
             // Bone of this ring: the weight passes from bone k-1 to bone k around joint k (k = 1.. inner nodes).
             let mut weights = vec![(0usize, 1.0)];
-            for k in 1..bones.len() {
-                let c = s[k] + spec.weight_shift;
+            for (k, &sk) in s.iter().enumerate().take(bones.len()).skip(1) {
+                let c = sk + spec.weight_shift;
                 let x = smoothstep((t - (c - spec.blend)) / (2.0 * spec.blend));
                 if x <= 0.0 {
                     break;
