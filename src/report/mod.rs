@@ -10,6 +10,7 @@ pub mod json;
 pub mod plots;
 pub mod progress;
 pub mod render;
+pub mod render3d;
 pub mod text;
 pub mod view;
 pub mod writer;

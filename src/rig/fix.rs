@@ -54,7 +54,7 @@ fn percent_decode(uri: &str) -> Option<String> {
 /// specification says), data URIs, or files beside the input. A file URI must
 /// be a relative path that stays beside the input (no `..`, no scheme), and
 /// only the declared byte length is read.
-fn buffers(file: &GltfFile, dir: &Path) -> Result<Vec<Vec<u8>>, DataError> {
+pub(crate) fn buffers(file: &GltfFile, dir: &Path) -> Result<Vec<Vec<u8>>, DataError> {
     let fail = |m: String| DataError::whole_file(&file.label, m);
     file.document
         .buffers()
@@ -126,7 +126,7 @@ fn buffers(file: &GltfFile, dir: &Path) -> Result<Vec<Vec<u8>>, DataError> {
 
 /// The inverse bind matrices of a skin, read with every offset checked
 /// (identity matrices when the skin has none).
-fn inverse_binds(
+pub(crate) fn inverse_binds(
     data: &[Vec<u8>],
     skin: &gltf::Skin<'_>,
     joints: usize,

@@ -11,12 +11,14 @@
 //! `--map` file ([`map`]) first of all.
 
 pub mod chain;
+pub mod deform;
 pub mod fix;
 pub mod judge;
 pub mod map;
 pub mod naming;
 pub mod reference;
 pub mod session;
+pub mod skin;
 
 use crate::analysis::placement::Joint;
 use crate::dataset::{DataError, Finger, Problem};

@@ -1,0 +1,782 @@
+//! The skinned mesh of a glTF skin: positions, triangles, joint influences and
+//! inverse bind matrices, read with every accessor checked first.
+//!
+//! All primitives of every mesh bound to the skin (nodes with both `mesh` and
+//! that `skin`) are read, each mesh once, into one vertex list. Only triangle
+//! primitives give triangles; other modes are skipped with a note. `JOINTS_n` /
+//! `WEIGHTS_n` are read for every set `n` present, decoded by the gltf crate's
+//! reader (unsigned byte and short joints; float, normalised unsigned byte and
+//! normalised unsigned short weights, as the glTF 2.0 specification allows),
+//! merged per vertex, and normalised to sum 1.
+//!
+//! The gltf crate's reader panics or reads garbage on some malformed accessors
+//! (an unexpected component type, a zero count, a stride shorter than the
+//! element, offsets past the view); so every accessor is checked here first
+//! (type, count, bounds with checked arithmetic), and only then handed to it.
+//! Sparse accessors are refused with a message, never read.
+//!
+//! The glTF rule for skinned vertices: a vertex v with influences (j, w) lands
+//! at sum_j w_j W_j B_j v, with W_j the joint node's world matrix and B_j its
+//! inverse bind matrix; the mesh node's own transform is ignored. So the bind
+//! pose skin matrices are M_j = W_j B_j ([`SkinnedMesh::skin_matrices`]).
+
+use super::GltfFile;
+use crate::dataset::{DataError, Problem};
+use glam::{DMat4, DVec3};
+use gltf::accessor::{DataType, Dimensions};
+use gltf::mesh::Mode;
+use std::collections::{BTreeSet, HashMap};
+use std::path::Path;
+
+/// One skinned mesh, as stored in the file (mesh space, the file's units).
+#[derive(Debug, Clone)]
+pub struct SkinnedMesh {
+    /// Index of the skin in the file.
+    pub skin: usize,
+    /// Vertex positions as stored (before skinning).
+    pub positions: Vec<DVec3>,
+    /// Triangles as vertex indices.
+    pub triangles: Vec<[u32; 3]>,
+    /// Each vertex's influences, in `influences[influence_start[v]..influence_start[v + 1]]`:
+    /// (joint slot in [`SkinnedMesh::joints`], weight), weights summing to 1,
+    /// largest first (ties by slot). Empty for a vertex with no weight.
+    pub influences: Vec<(u16, f64)>,
+    /// Offsets into `influences`, one more than there are vertices.
+    pub influence_start: Vec<usize>,
+    /// The skin's joints: node index per joint slot.
+    pub joints: Vec<usize>,
+    /// Inverse bind matrix per joint slot (identity when the skin has none).
+    pub inverse_bind: Vec<DMat4>,
+    /// Per vertex: the lowest index of a vertex at exactly the same position,
+    /// so vertices split along a UV or normal seam count as one.
+    pub welded: Vec<u32>,
+    /// Things read differently from the file or left out, one line each.
+    pub notes: Vec<String>,
+}
+
+impl SkinnedMesh {
+    /// The influences of vertex `v`: (joint slot, weight), largest first.
+    pub fn influences_of(&self, v: usize) -> &[(u16, f64)] {
+        match (self.influence_start.get(v), self.influence_start.get(v + 1)) {
+            (Some(&a), Some(&b)) => &self.influences[a..b],
+            _ => &[],
+        }
+    }
+
+    /// The joint slot with the largest weight on vertex `v`, if any.
+    pub fn dominant(&self, v: usize) -> Option<u16> {
+        self.influences_of(v).first().map(|&(j, _)| j)
+    }
+
+    /// Skin matrices S_j = world[node_j] B_j for given world matrices of all
+    /// nodes (the bind pose M_j with the file's node pose). A joint whose node
+    /// is past the end of `world` gets the identity.
+    pub fn skin_matrices(&self, world: &[DMat4]) -> Vec<DMat4> {
+        self.joints
+            .iter()
+            .zip(&self.inverse_bind)
+            .map(|(&n, b)| world.get(n).map_or(DMat4::IDENTITY, |w| *w * *b))
+            .collect()
+    }
+
+    /// The joint slot of node `node`, if the node is one of the skin's joints.
+    pub fn slot_of(&self, node: usize) -> Option<u16> {
+        self.joints
+            .iter()
+            .position(|&n| n == node)
+            .and_then(|s| u16::try_from(s).ok())
+    }
+
+    /// Reads skin `skin` of `file`; `dir` resolves external buffers (files
+    /// beside the input). Every problem found is reported together.
+    pub fn read(file: &GltfFile, dir: &Path, skin: usize) -> Result<SkinnedMesh, DataError> {
+        let data = super::fix::buffers(file, dir)?;
+        read_with(file, &data, skin).map_err(|problems| DataError {
+            file: file.label.clone(),
+            problems: problems.into_iter().map(Problem::file).collect(),
+        })
+    }
+}
+
+/// The skin whose joints include most of `nodes` (lowest index on a tie);
+/// `None` when the file has no skin with any of them.
+pub fn pick_skin(file: &GltfFile, nodes: &[usize]) -> Option<usize> {
+    file.document
+        .skins()
+        .map(|s| {
+            let joints: BTreeSet<usize> = s.joints().map(|j| j.index()).collect();
+            (
+                nodes.iter().filter(|n| joints.contains(n)).count(),
+                s.index(),
+            )
+        })
+        .filter(|&(k, _)| k > 0)
+        .max_by(|a, b| a.0.cmp(&b.0).then(b.1.cmp(&a.1)))
+        .map(|(_, s)| s)
+}
+
+/// Checks that the gltf crate's reader can iterate `acc` without panicking:
+/// one of the `allowed` (component type, shape) pairs, not sparse, at least
+/// one element, a buffer view, a stride no shorter than the element, and every
+/// byte inside the view and the view inside its buffer (checked arithmetic).
+fn check_accessor(
+    acc: &gltf::Accessor<'_>,
+    what: &str,
+    allowed: &[(DataType, Dimensions)],
+    data: &[Vec<u8>],
+) -> Result<(), String> {
+    let at = format!("/accessors/{} ({what})", acc.index());
+    let shape = (acc.data_type(), acc.dimensions());
+    if !allowed.contains(&shape) {
+        let names: Vec<String> = allowed
+            .iter()
+            .map(|(t, d)| format!("{d:?} of {t:?}"))
+            .collect();
+        return Err(format!(
+            "{at} holds {:?} of {:?}; glTF allows {} here",
+            shape.1,
+            shape.0,
+            names.join(" or ")
+        ));
+    }
+    if acc.sparse().is_some() {
+        return Err(format!(
+            "{at} is a sparse accessor, which is not read here; re-export without sparse storage"
+        ));
+    }
+    let count = acc.count();
+    if count == 0 {
+        return Err(format!("{at} has count 0"));
+    }
+    let view = acc.view().ok_or_else(|| {
+        format!("{at} has no bufferView (all zeros), which cannot describe a mesh")
+    })?;
+    let elem = acc.size();
+    let stride = view.stride().unwrap_or(elem);
+    if stride < elem {
+        return Err(format!(
+            "{at}: its bufferView {} has byteStride {stride}, shorter than one element ({elem} bytes)",
+            view.index()
+        ));
+    }
+    let end = stride
+        .checked_mul(count - 1)
+        .and_then(|x| x.checked_add(elem))
+        .and_then(|x| x.checked_add(acc.offset()));
+    if end.is_none_or(|e| e > view.length()) {
+        return Err(format!(
+            "{at}: {count} elements from byteOffset {} do not fit in bufferView {} ({} bytes)",
+            acc.offset(),
+            view.index(),
+            view.length()
+        ));
+    }
+    let buffer = view.buffer().index();
+    let have = data.get(buffer).map_or(0, Vec::len);
+    if view
+        .offset()
+        .checked_add(view.length())
+        .is_none_or(|e| e > have)
+    {
+        return Err(format!(
+            "{at}: bufferView {} runs past the end of buffer {buffer} ({have} bytes)",
+            view.index()
+        ));
+    }
+    Ok(())
+}
+
+const POSITION: &[(DataType, Dimensions)] = &[(DataType::F32, Dimensions::Vec3)];
+const INDICES: &[(DataType, Dimensions)] = &[
+    (DataType::U8, Dimensions::Scalar),
+    (DataType::U16, Dimensions::Scalar),
+    (DataType::U32, Dimensions::Scalar),
+];
+const JOINTS: &[(DataType, Dimensions)] = &[
+    (DataType::U8, Dimensions::Vec4),
+    (DataType::U16, Dimensions::Vec4),
+];
+const WEIGHTS: &[(DataType, Dimensions)] = &[
+    (DataType::F32, Dimensions::Vec4),
+    (DataType::U8, Dimensions::Vec4),
+    (DataType::U16, Dimensions::Vec4),
+];
+
+/// One primitive's vertices: positions and their (slot, weight) influences, unnormalised.
+type PrimitiveData = (Vec<DVec3>, Vec<Vec<(u16, f64)>>);
+
+/// Reads one triangle primitive's positions and influences, or says what is wrong.
+fn read_vertices(
+    prim: &gltf::Primitive<'_>,
+    at: &str,
+    data: &[Vec<u8>],
+    joints: usize,
+) -> Result<PrimitiveData, Vec<String>> {
+    let mut problems = Vec::new();
+    let reader = prim.reader(|b| data.get(b.index()).map(Vec::as_slice));
+    let Some(pos_acc) = prim.get(&gltf::Semantic::Positions) else {
+        return Err(vec![format!("{at} has no POSITION attribute")]);
+    };
+    check_accessor(&pos_acc, &format!("POSITION of {at}"), POSITION, data).map_err(|e| vec![e])?;
+    let positions: Vec<DVec3> = reader
+        .read_positions()
+        .map(|it| it.map(|p| DVec3::from_array(p.map(f64::from))).collect())
+        .unwrap_or_default();
+    if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+        problems.push(format!(
+            "/accessors/{} (POSITION of {at}): vertex {v} is not finite",
+            pos_acc.index()
+        ));
+    }
+    let n = positions.len();
+    let mut influences: Vec<Vec<(u16, f64)>> = vec![Vec::new(); n];
+    let mut set = 0u32;
+    loop {
+        let j_acc = prim.get(&gltf::Semantic::Joints(set));
+        let w_acc = prim.get(&gltf::Semantic::Weights(set));
+        let (j_acc, w_acc) = match (j_acc, w_acc) {
+            (None, None) => break,
+            (Some(j), Some(w)) => (j, w),
+            (Some(_), None) => {
+                problems.push(format!(
+                    "{at} has JOINTS_{set} but no WEIGHTS_{set}; each joint set needs its weights"
+                ));
+                break;
+            }
+            (None, Some(_)) => {
+                problems.push(format!(
+                    "{at} has WEIGHTS_{set} but no JOINTS_{set}; each weight set needs its joints"
+                ));
+                break;
+            }
+        };
+        let j_what = format!("JOINTS_{set} of {at}");
+        let w_what = format!("WEIGHTS_{set} of {at}");
+        let checks = [
+            check_accessor(&j_acc, &j_what, JOINTS, data),
+            check_accessor(&w_acc, &w_what, WEIGHTS, data),
+        ];
+        let failed: Vec<String> = checks.into_iter().filter_map(Result::err).collect();
+        if !failed.is_empty() {
+            problems.extend(failed);
+            set += 1;
+            continue;
+        }
+        for (acc, what) in [(&j_acc, &j_what), (&w_acc, &w_what)] {
+            if acc.count() != n {
+                problems.push(format!(
+                    "/accessors/{} ({what}) has {} elements for {n} vertices",
+                    acc.index(),
+                    acc.count()
+                ));
+            }
+        }
+        if w_acc.data_type() != DataType::F32 && !w_acc.normalized() {
+            problems.push(format!(
+                "/accessors/{} ({w_what}) stores integer weights without \"normalized\": true, as glTF requires",
+                w_acc.index()
+            ));
+        }
+        let js: Vec<[u16; 4]> = reader
+            .read_joints(set)
+            .map(|it| it.into_u16().collect())
+            .unwrap_or_default();
+        let ws: Vec<[f32; 4]> = reader
+            .read_weights(set)
+            .map(|it| it.into_f32().collect())
+            .unwrap_or_default();
+        let mut bad_joint = None;
+        let mut bad_weight = None;
+        for (v, (j4, w4)) in js.iter().zip(&ws).enumerate().take(n) {
+            for (&j, &w) in j4.iter().zip(w4) {
+                let w = f64::from(w);
+                if !(w.is_finite() && w >= 0.0) {
+                    bad_weight.get_or_insert((v, w));
+                    continue;
+                }
+                if w == 0.0 {
+                    continue;
+                }
+                if usize::from(j) >= joints {
+                    bad_joint.get_or_insert((v, j));
+                    continue;
+                }
+                influences[v].push((j, w));
+            }
+        }
+        if let Some((v, j)) = bad_joint {
+            problems.push(format!(
+                "/accessors/{} ({j_what}): vertex {v} names joint {j}, but the skin has {joints} joints",
+                j_acc.index()
+            ));
+        }
+        if let Some((v, w)) = bad_weight {
+            problems.push(format!(
+                "/accessors/{} ({w_what}): vertex {v} has weight {w}; weights must be finite and not negative",
+                w_acc.index()
+            ));
+        }
+        set += 1;
+    }
+    if set == 0 {
+        problems.push(format!(
+            "{at} has no JOINTS_0/WEIGHTS_0: it is bound to the skin but not weighted to any joint"
+        ));
+    }
+    if problems.is_empty() {
+        Ok((positions, influences))
+    } else {
+        Err(problems)
+    }
+}
+
+/// Reads one primitive's triangles (local vertex indices), or says what is wrong.
+fn read_triangles(
+    prim: &gltf::Primitive<'_>,
+    at: &str,
+    data: &[Vec<u8>],
+    n: usize,
+    notes: &mut Vec<String>,
+) -> Result<Vec<[u32; 3]>, String> {
+    let flat: Vec<u32> = match prim.indices() {
+        Some(acc) => {
+            check_accessor(&acc, &format!("indices of {at}"), INDICES, data)?;
+            let reader = prim.reader(|b| data.get(b.index()).map(Vec::as_slice));
+            let idx: Vec<u32> = reader
+                .read_indices()
+                .map(|it| it.into_u32().collect())
+                .unwrap_or_default();
+            if let Some(&i) = idx.iter().find(|&&i| i as usize >= n) {
+                return Err(format!(
+                    "/accessors/{} (indices of {at}) names vertex {i}, but the primitive has {n}",
+                    acc.index()
+                ));
+            }
+            idx
+        }
+        None => (0..u32::try_from(n).unwrap_or(u32::MAX)).collect(),
+    };
+    if !flat.len().is_multiple_of(3) {
+        notes.push(format!(
+            "{at}: {} indices are not a whole number of triangles; the last {} are ignored",
+            flat.len(),
+            flat.len() % 3
+        ));
+    }
+    Ok(flat
+        .chunks_exact(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .collect())
+}
+
+/// Reads skin `skin` given the file's buffer data; every problem as one line.
+pub(crate) fn read_with(
+    file: &GltfFile,
+    data: &[Vec<u8>],
+    skin: usize,
+) -> Result<SkinnedMesh, Vec<String>> {
+    let Some(sk) = file.document.skins().nth(skin) else {
+        return Err(vec![format!(
+            "has no skin {skin} (it has {})",
+            file.document.skins().count()
+        )]);
+    };
+    let joints: Vec<usize> = sk.joints().map(|j| j.index()).collect();
+    if joints.is_empty() || joints.len() > usize::from(u16::MAX) {
+        return Err(vec![format!(
+            "/skins/{skin} has {} joints; a skin needs 1 to 65535",
+            joints.len()
+        )]);
+    }
+    let mut problems = Vec::new();
+    let inverse_bind = match super::fix::inverse_binds(data, &sk, joints.len()) {
+        Ok(m) => m,
+        Err(e) => {
+            problems.push(format!("/skins/{skin}: {e}"));
+            Vec::new()
+        }
+    };
+    if let Some(k) = inverse_bind.iter().position(|m| !m.is_finite()) {
+        problems.push(format!(
+            "/skins/{skin}: inverse bind matrix {k} is not finite"
+        ));
+    }
+    let mut meshes: Vec<usize> = file
+        .document
+        .nodes()
+        .filter(|n| n.skin().is_some_and(|s| s.index() == skin))
+        .filter_map(|n| n.mesh().map(|m| m.index()))
+        .collect();
+    meshes.sort_unstable();
+    meshes.dedup();
+    if meshes.is_empty() {
+        problems.push(format!(
+            "/skins/{skin} is used by no node with a mesh, so there is no skin to deform"
+        ));
+    }
+    let mut notes = Vec::new();
+    let mut positions = Vec::new();
+    let mut influences: Vec<Vec<(u16, f64)>> = Vec::new();
+    let mut triangles = Vec::new();
+    for m in meshes {
+        let Some(mesh) = file.document.meshes().nth(m) else {
+            continue;
+        };
+        for prim in mesh.primitives() {
+            let at = format!("/meshes/{m}/primitives/{}", prim.index());
+            if prim.mode() != Mode::Triangles {
+                notes.push(format!(
+                    "{at} is drawn as {:?}, not triangles; it is left out",
+                    prim.mode()
+                ));
+                continue;
+            }
+            if prim.morph_targets().next().is_some() {
+                notes.push(format!(
+                    "{at} has morph targets; they are not applied (the mesh is read at its base shape)"
+                ));
+            }
+            let (pos, infl) = match read_vertices(&prim, &at, data, joints.len()) {
+                Ok(v) => v,
+                Err(p) => {
+                    problems.extend(p);
+                    continue;
+                }
+            };
+            let base = positions.len();
+            if base + pos.len() > u32::MAX as usize {
+                problems.push(format!("{at}: more than 2^32 vertices in all"));
+                continue;
+            }
+            match read_triangles(&prim, &at, data, pos.len(), &mut notes) {
+                Ok(tris) => triangles.extend(tris.into_iter().map(|t| t.map(|i| i + base as u32))),
+                Err(e) => {
+                    problems.push(e);
+                    continue;
+                }
+            }
+            positions.extend(pos);
+            influences.extend(infl);
+        }
+    }
+    if problems.is_empty() && triangles.is_empty() {
+        problems.push(format!(
+            "/skins/{skin}: its meshes have no triangles to deform{}",
+            if notes.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", notes.join("; "))
+            }
+        ));
+    }
+    if !problems.is_empty() {
+        return Err(problems);
+    }
+    // Merge repeated joints, normalise, sort largest first.
+    let mut flat = Vec::new();
+    let mut start = Vec::with_capacity(influences.len() + 1);
+    let mut unweighted = 0usize;
+    for mut infl in influences {
+        start.push(flat.len());
+        infl.sort_by_key(|&(j, _)| j);
+        let mut merged: Vec<(u16, f64)> = Vec::with_capacity(infl.len());
+        for (j, w) in infl {
+            match merged.last_mut() {
+                Some(last) if last.0 == j => last.1 += w,
+                _ => merged.push((j, w)),
+            }
+        }
+        let sum: f64 = merged.iter().map(|&(_, w)| w).sum();
+        if !(sum > 0.0 && sum.is_finite()) {
+            unweighted += 1;
+            continue;
+        }
+        merged.iter_mut().for_each(|(_, w)| *w /= sum);
+        merged.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+        flat.extend(merged);
+    }
+    start.push(flat.len());
+    if unweighted > 0 {
+        notes.push(format!(
+            "{unweighted} vertices of /skins/{skin}'s mesh have no weight; they stay where they are stored"
+        ));
+    }
+    let welded = weld(&positions);
+    Ok(SkinnedMesh {
+        skin,
+        positions,
+        triangles,
+        influences: flat,
+        influence_start: start,
+        joints,
+        inverse_bind,
+        welded,
+        notes,
+    })
+}
+
+/// For each position, the lowest index of a position with the same bits. O(n).
+pub fn weld(positions: &[DVec3]) -> Vec<u32> {
+    let mut first: HashMap<[u64; 3], u32> = HashMap::with_capacity(positions.len());
+    positions
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            // +0.0 and -0.0 are one position.
+            let key = p.to_array().map(|x| (x + 0.0).to_bits());
+            *first.entry(key).or_insert(i as u32)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    /// A glTF with one skinned quad (two triangles, four vertices), joints and
+    /// weights in two sets of the given component types, returned as GLB bytes.
+    fn quad(joint_type: u32, weight_type: u32, extra: impl Fn(&mut serde_json::Value)) -> Vec<u8> {
+        let pos: [[f32; 3]; 4] = [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]];
+        let mut bin = Vec::new();
+        let mut views = Vec::new();
+        let mut push = |bin: &mut Vec<u8>, bytes: Vec<u8>| {
+            while !bin.len().is_multiple_of(4) {
+                bin.push(0);
+            }
+            views.push(json!({"buffer": 0, "byteOffset": bin.len(), "byteLength": bytes.len()}));
+            bin.extend(bytes);
+            views.len() - 1
+        };
+        let p = push(
+            &mut bin,
+            pos.iter().flatten().flat_map(|x| x.to_le_bytes()).collect(),
+        );
+        let idx = push(
+            &mut bin,
+            [0u16, 1, 2, 0, 2, 3]
+                .iter()
+                .flat_map(|x| x.to_le_bytes())
+                .collect(),
+        );
+        // Set 0: joints (0, 1), weights (3, 1) -> 0.375/0.125 of the eight parts.
+        // Set 1: joint 1 again and joint 2, weights (2, 2) -> 0.25 each.
+        let sets = [
+            ([0u16, 1, 0, 0], [3.0f32, 1.0, 0.0, 0.0]),
+            ([1, 2, 0, 0], [2.0, 2.0, 0.0, 0.0]),
+        ];
+        let mut accessors = vec![
+            json!({"bufferView": p, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 0.0]}),
+            json!({"bufferView": idx, "componentType": 5123, "count": 6, "type": "SCALAR"}),
+        ];
+        let mut attrs = json!({"POSITION": 0});
+        for (s, (j, w)) in sets.iter().enumerate() {
+            let jb: Vec<u8> = (0..4)
+                .flat_map(|_| {
+                    j.iter().flat_map(|&x| {
+                        if joint_type == 5121 {
+                            vec![x as u8]
+                        } else {
+                            x.to_le_bytes().to_vec()
+                        }
+                    })
+                })
+                .collect();
+            // Weights scaled to 1/8 of the eighths, so each set sums to 1/2 before normalising.
+            let wb: Vec<u8> = (0..4)
+                .flat_map(|_| {
+                    w.iter().flat_map(|&x| {
+                        let f = x / 8.0;
+                        match weight_type {
+                            5121 => vec![(f * 255.0).round() as u8],
+                            5123 => ((f * 65535.0).round() as u16).to_le_bytes().to_vec(),
+                            _ => f.to_le_bytes().to_vec(),
+                        }
+                    })
+                })
+                .collect();
+            let jv = push(&mut bin, jb);
+            let wv = push(&mut bin, wb);
+            accessors.push(
+                json!({"bufferView": jv, "componentType": joint_type, "count": 4, "type": "VEC4"}),
+            );
+            let mut wa =
+                json!({"bufferView": wv, "componentType": weight_type, "count": 4, "type": "VEC4"});
+            if weight_type != 5126 {
+                wa["normalized"] = json!(true);
+            }
+            accessors.push(wa);
+            attrs[format!("JOINTS_{s}")] = json!(accessors.len() - 2);
+            attrs[format!("WEIGHTS_{s}")] = json!(accessors.len() - 1);
+        }
+        let mut doc = json!({
+            "asset": {"version": "2.0"},
+            "nodes": [
+                {"name": "a", "children": [1]}, {"name": "b", "translation": [0.0, 1.0, 0.0]},
+                {"name": "c", "translation": [2.0, 0.0, 0.0]},
+                {"name": "skinned", "mesh": 0, "skin": 0}
+            ],
+            "meshes": [{"primitives": [{"attributes": attrs, "indices": 1}]}],
+            "skins": [{"joints": [0, 1, 2]}],
+            "accessors": accessors,
+            "bufferViews": views,
+            "buffers": [{"byteLength": bin.len()}]
+        });
+        extra(&mut doc);
+        gltf::binary::Glb {
+            header: gltf::binary::Header {
+                magic: *b"glTF",
+                version: 2,
+                length: 0,
+            },
+            json: serde_json::to_vec(&doc).unwrap().into(),
+            bin: Some(bin.into()),
+        }
+        .to_vec()
+        .unwrap()
+    }
+
+    fn read(bytes: &[u8]) -> Result<SkinnedMesh, DataError> {
+        let file = GltfFile::from_bytes("quad.glb", bytes).unwrap();
+        SkinnedMesh::read(&file, Path::new("."), 0)
+    }
+
+    #[test]
+    fn two_sets_of_every_storage_are_merged_and_normalised() {
+        // By hand: set 0 gives joint 0: 3/8, joint 1: 1/8; set 1 gives joint 1: 2/8,
+        // joint 2: 2/8; merged: 0: 0.375, 1: 0.375, 2: 0.25 (sum 1 after dividing by the 1 they sum to).
+        for jt in [5121, 5123] {
+            for wt in [5126, 5121, 5123] {
+                let m = read(&quad(jt, wt, |_| {})).unwrap();
+                assert_eq!(m.positions.len(), 4);
+                assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+                assert_eq!(m.joints, vec![0, 1, 2]);
+                for v in 0..4 {
+                    let infl = m.influences_of(v);
+                    let sum: f64 = infl.iter().map(|x| x.1).sum();
+                    assert!((sum - 1.0).abs() < 1e-12, "{jt} {wt}: {infl:?}");
+                    let w = |j: u16| infl.iter().find(|x| x.0 == j).map_or(0.0, |x| x.1);
+                    let tol = if wt == 5121 { 3e-3 } else { 1e-4 };
+                    assert!(
+                        (w(0) - 0.375).abs() < tol && (w(1) - 0.375).abs() < tol,
+                        "{infl:?}"
+                    );
+                    assert!((w(2) - 0.25).abs() < tol, "{infl:?}");
+                    // Largest first, ties by slot.
+                    assert!(infl.windows(2).all(|p| p[0].1 >= p[1].1));
+                }
+                // No inverse bind matrices: identity; M_j = W_j.
+                let file = GltfFile::from_bytes("q", &quad(jt, wt, |_| {})).unwrap();
+                let s = m.skin_matrices(&file.world);
+                assert_eq!(s[1].w_axis.truncate(), DVec3::new(0.0, 1.0, 0.0));
+            }
+        }
+    }
+
+    #[test]
+    fn malformed_accessors_are_named_not_panicked_on() {
+        type Edit = Box<dyn Fn(&mut serde_json::Value)>;
+        let cases: Vec<(Edit, &str)> = vec![
+            (
+                Box::new(|d| d["accessors"][0]["componentType"] = json!(5123)),
+                "/accessors/0 (POSITION of /meshes/0/primitives/0)",
+            ),
+            (
+                Box::new(|d| d["accessors"][0]["count"] = json!(400)),
+                "do not fit",
+            ),
+            (
+                Box::new(|d| d["accessors"][2]["type"] = json!("VEC3")),
+                "JOINTS_0",
+            ),
+            (
+                Box::new(|d| d["accessors"][3]["componentType"] = json!(5125)),
+                "WEIGHTS_0",
+            ),
+            (
+                Box::new(|d| d["bufferViews"][2]["byteStride"] = json!(4)),
+                "shorter than one element",
+            ),
+            (
+                Box::new(|d| d["accessors"][1]["byteOffset"] = json!(8)),
+                "indices of",
+            ),
+            (
+                Box::new(|d| d["skins"][0]["joints"] = json!([0])),
+                "names joint",
+            ),
+            (
+                Box::new(
+                    |d| d["accessors"][0]["sparse"] = json!({"count": 1, "indices": {"bufferView": 1, "componentType": 5123}, "values": {"bufferView": 0}}),
+                ),
+                "sparse",
+            ),
+            (
+                Box::new(|d| {
+                    d["meshes"][0]["primitives"][0]["attributes"]
+                        .as_object_mut()
+                        .unwrap()
+                        .remove("WEIGHTS_1")
+                        .map(|_| ())
+                        .unwrap_or(())
+                }),
+                "JOINTS_1 but no WEIGHTS_1",
+            ),
+        ];
+        for (edit, expect) in cases {
+            let bytes = quad(5123, 5126, &*edit);
+            match GltfFile::from_bytes("quad.glb", &bytes) {
+                Err(e) => panic!("the file itself should parse for case {expect}: {e}"),
+                Ok(file) => {
+                    let e = SkinnedMesh::read(&file, Path::new("."), 0)
+                        .unwrap_err()
+                        .to_string();
+                    assert!(e.contains(expect), "{expect}: {e}");
+                    assert!(e.contains("quad.glb"), "{e}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn non_triangle_primitives_become_notes() {
+        // The only primitive skipped: nothing is left to deform, and the reason is given.
+        let e = read(&quad(5123, 5126, |d| {
+            d["meshes"][0]["primitives"][0]["mode"] = json!(1)
+        }))
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("no triangles") && e.contains("Lines"), "{e}");
+        let file = GltfFile::from_bytes(
+            "q",
+            &quad(5123, 5126, |d| {
+                let p = d["meshes"][0]["primitives"][0].clone();
+                let mut lines = p.clone();
+                lines["mode"] = json!(1);
+                d["meshes"][0]["primitives"] = json!([p, lines]);
+            }),
+        )
+        .unwrap();
+        let m = SkinnedMesh::read(&file, Path::new("."), 0).unwrap();
+        assert_eq!(m.triangles.len(), 2);
+        assert!(
+            m.notes
+                .iter()
+                .any(|n| n.contains("/meshes/0/primitives/1") && n.contains("Lines")),
+            "{:?}",
+            m.notes
+        );
+    }
+
+    #[test]
+    fn welding_joins_split_seams_only() {
+        let p = [
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::new(-0.0, 0.0, 0.0),
+            DVec3::X * 1.000_000_1,
+        ];
+        assert_eq!(weld(&p), vec![0, 1, 0, 3]);
+    }
+}
