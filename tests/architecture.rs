@@ -85,7 +85,10 @@ fn files(room: &str) -> Vec<PathBuf> {
 /// from the first `#[cfg(test)]` on, which by convention ends each file), and
 /// without files that are test modules themselves (`tests.rs`, `*_tests.rs`).
 fn code(path: &Path) -> String {
-    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+    let name = path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .unwrap_or_default();
     if name.ends_with("tests.rs") {
         return String::new();
     }
