@@ -8,11 +8,14 @@
 
 pub mod audit;
 pub mod bootstrap;
+pub mod budget;
 pub mod claims;
 pub mod coverage;
 pub mod describe;
 pub mod groups;
+pub mod outliers;
 pub mod placement;
+pub mod plausible;
 pub mod rng;
 pub mod tracking;
 

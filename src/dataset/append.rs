@@ -36,18 +36,22 @@ impl DatasetLock {
     }
 }
 
-/// Parses new rows given on the command line as one CSV row; problems name the
-/// option they came from instead of a line.
-pub fn single_row(fields: &[(&str, String)]) -> Result<Dataset, DataError> {
+/// The CSV (header and one row) of a row given on the command line.
+pub fn single_row_bytes(fields: &[(&str, String)]) -> Result<Vec<u8>, DataError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let header: Vec<&str> = fields.iter().map(|(k, _)| *k).collect();
     let values: Vec<&str> = fields.iter().map(|(_, v)| v.as_str()).collect();
-    let bytes = w
-        .write_record(&header)
+    w.write_record(&header)
         .and_then(|_| w.write_record(&values))
         .map_err(|e| e.to_string())
         .and_then(|_| w.into_inner().map_err(|e| e.to_string()))
-        .map_err(|e| DataError::whole_file("<command line>", e))?;
+        .map_err(|e| DataError::whole_file("<command line>", e))
+}
+
+/// Parses new rows given on the command line as one CSV row; problems name the
+/// option they came from instead of a line.
+pub fn single_row(fields: &[(&str, String)]) -> Result<Dataset, DataError> {
+    let bytes = single_row_bytes(fields)?;
     Dataset::from_bytes("<command line>", &bytes).map_err(|mut e| {
         for p in &mut e.problems {
             p.line = None;
@@ -71,6 +75,59 @@ fn option_of(column: &str) -> &str {
 /// Formats a length so that it parses back to the same `f64`.
 fn length_text(x: f64) -> String {
     format!("{x}")
+}
+
+/// The fields of new rows as the user typed them: line -> column -> trimmed
+/// text, read with the loader's own scanner (so the lines are the rows' lines).
+#[derive(Debug, Default)]
+pub struct Typed(HashMap<u64, HashMap<String, String>>);
+
+impl Typed {
+    /// Reads the typed fields of a CSV with a header; unreadable input gives none
+    /// (the loader reports it).
+    pub fn of(bytes: &[u8]) -> Typed {
+        let mut out = HashMap::new();
+        let Ok(mut scan) = super::csvinput::CsvScan::new("", bytes) else {
+            return Typed(out);
+        };
+        let mut ignored = Vec::new();
+        let names: Vec<String> = match scan.next_record(&mut ignored) {
+            Some(h) => (0..h.len())
+                .map(|i| h.get(i).unwrap_or("").to_ascii_lowercase())
+                .collect(),
+            None => return Typed(out),
+        };
+        while let Some(rec) = scan.next_record(&mut ignored) {
+            let fields = names
+                .iter()
+                .enumerate()
+                .filter_map(|(i, n)| Some((n.clone(), rec.get(i)?.to_string())))
+                .collect();
+            out.insert(rec.line, fields);
+        }
+        Typed(out)
+    }
+
+    /// The text typed for a number, when it reads as exactly `value` (so
+    /// `275.00` stays `275.00`); `None` otherwise.
+    fn number(&self, line: u64, column: &str, value: f64) -> Option<String> {
+        let text = self.0.get(&line)?.get(column)?;
+        (text.parse::<f64>().ok()? == value).then(|| text.clone())
+    }
+}
+
+/// One field of a row, by column name, numbers as typed where known.
+fn typed_field_of(row: &Row, column: &str, typed: &Typed) -> String {
+    let number = match column {
+        "j1" => Some(row.lengths[0]),
+        "j2" => Some(row.lengths[1]),
+        "j3" if row.finger.segments() == 3 => Some(row.lengths[2]),
+        "age" => row.meta.age,
+        _ => None,
+    };
+    number
+        .and_then(|v| typed.number(row.line, column, v))
+        .unwrap_or_else(|| field_of(row, column))
 }
 
 /// One field of a row, by column name.
@@ -100,6 +157,18 @@ pub fn appended_bytes(
     current_bytes: &[u8],
     current: &Dataset,
     new: &Dataset,
+) -> Result<(Vec<u8>, Dataset), DataError> {
+    appended_bytes_typed(current_bytes, current, new, &Typed::default())
+}
+
+/// [`appended_bytes`], writing numbers as `typed` holds them (see [`Typed`]).
+/// A new row that leaves sex, age, side or unit empty takes the value of the
+/// X-ray's existing rows (one hand has one value).
+pub fn appended_bytes_typed(
+    current_bytes: &[u8],
+    current: &Dataset,
+    new: &Dataset,
+    typed: &Typed,
 ) -> Result<(Vec<u8>, Dataset), DataError> {
     let mut problems = Vec::new();
     let existing: HashMap<(&str, super::Finger), &Row> = current
@@ -131,16 +200,21 @@ pub fn appended_bytes(
                 ("side", field_of(r, "side"), field_of(old, "side")),
                 ("unit", field_of(r, "unit"), field_of(old, "unit")),
             ] {
-                if ours != theirs {
+                // An empty field takes the X-ray's value (see the writer below).
+                if !ours.is_empty() && ours != theirs {
+                    let theirs = if theirs.is_empty() { "empty".into() } else { quote(&theirs) };
                     problems.push(Problem::line(
                         r.line,
                         format!(
-                            "{name} is {} but {} line {} gives {} for the same X-ray {}; one hand has one value",
-                            if ours.is_empty() { "empty".into() } else { quote(&ours) },
+                            "{name} is {} but {} line {} gives {theirs} for the same X-ray {}; one hand has one value. \
+                             Leave {name} out (omit --{name}, or leave the field empty) and the row takes {theirs}, \
+                             or, if {theirs} is wrong, edit line {} of {} first",
+                            quote(&ours),
                             current.path,
                             old.line,
-                            if theirs.is_empty() { "empty".into() } else { quote(&theirs) },
-                            quote(&r.xray)
+                            quote(&r.xray),
+                            old.line,
+                            current.path,
                         ),
                     ));
                 }
@@ -180,7 +254,19 @@ pub fn appended_bytes(
         })
         .from_writer(Vec::new());
     for r in &new.rows {
-        let rec: Vec<String> = current.columns.iter().map(|c| field_of(r, c)).collect();
+        let rec: Vec<String> = current
+            .columns
+            .iter()
+            .map(|c| {
+                let ours = typed_field_of(r, c, typed);
+                match by_xray.get(&*r.xray) {
+                    Some(old) if ours.is_empty() && ["sex", "age", "side", "unit"].contains(&c.as_str()) => {
+                        field_of(old, c)
+                    }
+                    _ => ours,
+                }
+            })
+            .collect();
         w.write_record(&rec)
             .map_err(|e| DataError::whole_file(&new.path, e.to_string()))?;
     }
