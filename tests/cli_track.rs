@@ -426,12 +426,17 @@ const REFUSALS: &[Refusal] = &[
             "index",
             "--lengths",
             "350,190,170",
+            "--side",
+            "left",
         ],
         says: &[
             "<command line>: X-ray '1a' already has an index row",
-            "<command line>: side is empty but data/measurements.csv line 2 gives 'right'",
+            "<command line>: side is 'left' but data/measurements.csv line 2 gives 'right'",
+            "omit --side",
+            "edit line 2 of data/measurements.csv",
         ],
-        problems: Some(3),
+        // The unit, left out, is taken from the X-ray's rows.
+        problems: Some(2),
     },
     Refusal {
         what: "strict with a tenfold typo",

@@ -272,7 +272,7 @@ fn add_lengths_and_age_at_every_value() {
             let run = wd.run(&["add", "--xray", &x, "--finger", "index", "--lengths", lengths]);
             assert!(matches!(run.code, Some(0 | 2)), "{lengths}: {:?}", run.code);
             if run.code == Some(2) {
-                run.stderr_has("--lengths");
+                run.stderr_has("lengths");
             }
         }
         let x = format!("a{i}");
