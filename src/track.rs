@@ -76,8 +76,8 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     let n = current.xray_count() + new.xray_count();
     analysis::budget::check_bootstrap(n, req.settings.resamples).map_err(Error::Usage)?;
     let from_options = matches!(req.rows, NewRows::Fields(_));
-    let (bytes, after) =
-        append::appended_bytes_typed(&current_bytes, &current, &new, &typed).map_err(|mut e| {
+    let (bytes, after) = append::appended_bytes_typed(&current_bytes, &current, &new, &typed)
+        .map_err(|mut e| {
             if from_options {
                 e.problems.iter_mut().for_each(|p| p.line = None);
             }

@@ -169,9 +169,26 @@ fn refused_values_state_the_range_in_the_message_and_the_help() {
         .data_error()
         .stderr_has("from 1 to 100000");
     for (cmd, words) in [
-        ("stats", &["1 to 1000000", "0 to 18446744073709551615", "0.0001 to 0.9999", "comma-separated", "each from 0 to 150"][..]),
+        (
+            "stats",
+            &[
+                "1 to 1000000",
+                "0 to 18446744073709551615",
+                "0.0001 to 0.9999",
+                "comma-separated",
+                "each from 0 to 150",
+            ][..],
+        ),
         ("coverage", &["1 to 100000", "1 to 1000000"]),
-        ("report", &["1 to 100000", "at most 1e9", "greater than 0, at most 1", "comma-separated"]),
+        (
+            "report",
+            &[
+                "1 to 100000",
+                "at most 1e9",
+                "greater than 0, at most 1",
+                "comma-separated",
+            ],
+        ),
         ("place", &["at most 1e9"]),
         ("synth", &["1 to 1000000", "0 to 18446744073709551615"]),
     ] {
@@ -180,7 +197,11 @@ fn refused_values_state_the_range_in_the_message_and_the_help() {
         for w in words {
             // The help wraps lines: compare with white space collapsed.
             let flat = help.stdout.split_whitespace().collect::<Vec<_>>().join(" ");
-            assert!(flat.contains(w), "{cmd} --help lacks {w:?}:\n{}", help.stdout);
+            assert!(
+                flat.contains(w),
+                "{cmd} --help lacks {w:?}:\n{}",
+                help.stdout
+            );
         }
     }
 }
@@ -195,7 +216,12 @@ fn model_lengths_targets_and_age_bins() {
     let report: &[&str] = &["report", "--sims", "5", "--out", out];
     probe(&wd, report, &MODEL_LENGTH, &values(&MODEL_LENGTH));
     probe(&wd, report, &TARGET, &values(&TARGET));
-    probe(&wd, &["place", "--finger", "index"], &LENGTH, &values(&LENGTH));
+    probe(
+        &wd,
+        &["place", "--finger", "index"],
+        &LENGTH,
+        &values(&LENGTH),
+    );
     for v in values(&LENGTH) {
         let hand = format!("index={v}");
         let run = wd.run(&["place", "--hand", &hand]);
@@ -204,13 +230,34 @@ fn model_lengths_targets_and_age_bins() {
             run.stderr_has(LENGTH.range);
         }
     }
-    probe(&wd, &["stats", "--group-by", "age"], &AGE_BINS, &values(&AGE_BINS));
-    probe(&wd, &["report", "--sims", "5", "--out", out, "--group-by", "age", "--format", "json"], &AGE_BINS, &values(&AGE_BINS));
+    probe(
+        &wd,
+        &["stats", "--group-by", "age"],
+        &AGE_BINS,
+        &values(&AGE_BINS),
+    );
+    probe(
+        &wd,
+        &[
+            "report",
+            "--sims",
+            "5",
+            "--out",
+            out,
+            "--group-by",
+            "age",
+            "--format",
+            "json",
+        ],
+        &AGE_BINS,
+        &values(&AGE_BINS),
+    );
     // Semicolons are refused with the format that is expected.
     wd.run(&["stats", "--group-by", "age", "--age-bins", "0;18"])
         .data_error()
         .stderr_has("comma-separated");
-    wd.run(&["stats", "--group-by", "age", "--age-bins", "0,18,40"]).ok();
+    wd.run(&["stats", "--group-by", "age", "--age-bins", "0,18,40"])
+        .ok();
 }
 
 #[test]
@@ -221,11 +268,19 @@ fn sims_at_every_value_including_the_largest() {
     let out = wd.path().join("site");
     let out = out.to_str().unwrap();
     probe(&wd, &["coverage"], &SIMS, &values_but_max(&SIMS));
-    probe(&wd, &["report", "--out", out, "--format", "json"], &SIMS, &values_but_max(&SIMS));
+    probe(
+        &wd,
+        &["report", "--out", out, "--format", "json"],
+        &SIMS,
+        &values_but_max(&SIMS),
+    );
     // The largest, on two X-rays: 10^5 simulated datasets.
-    wd.run(&["coverage", "--data", "tiny.csv", "--sims", SIMS.max]).ok();
-    wd.run(&["report", "--data", "tiny.csv", "--out", out, "--format", "json", "--sims", SIMS.max])
+    wd.run(&["coverage", "--data", "tiny.csv", "--sims", SIMS.max])
         .ok();
+    wd.run(&[
+        "report", "--data", "tiny.csv", "--out", out, "--format", "json", "--sims", SIMS.max,
+    ])
+    .ok();
 }
 
 #[test]
@@ -235,13 +290,26 @@ fn a_bootstrap_too_large_to_serve_is_refused_with_what_fits() {
     // coverage simulation of 10^5 datasets x 10^6 resamples does not.
     let mut text = String::from("xray,finger,j1,j2,j3\n");
     for i in 0..12 {
-        text.push_str(&format!("x{i},index,{},{},{}\n", 340 + i, 190 + i % 3, 170 + i % 5));
+        text.push_str(&format!(
+            "x{i},index,{},{},{}\n",
+            340 + i,
+            190 + i % 3,
+            170 + i % 5
+        ));
     }
     wd.write("twelve.csv", &text);
-    wd.run(&["coverage", "--data", "twelve.csv", "--sims", "100000", "--resamples", "1000000"])
-        .data_error()
-        .stderr_has("more than 10000000000")
-        .stderr_has("give --sims 833 or fewer");
+    wd.run(&[
+        "coverage",
+        "--data",
+        "twelve.csv",
+        "--sims",
+        "100000",
+        "--resamples",
+        "1000000",
+    ])
+    .data_error()
+    .stderr_has("more than 10000000000")
+    .stderr_has("give --sims 833 or fewer");
 }
 
 #[test]
@@ -249,14 +317,20 @@ fn synth_options() {
     let wd = Workdir::new();
     let base: &[&str] = &["synth", "--out", "s.csv"];
     probe(&wd, base, &XRAYS, &values_but_max(&XRAYS));
-    probe(&wd, &["synth", "--xrays", "2", "--out", "s.csv"], &SEED, &values(&SEED));
+    probe(
+        &wd,
+        &["synth", "--xrays", "2", "--out", "s.csv"],
+        &SEED,
+        &values(&SEED),
+    );
 }
 
 #[test]
 #[ignore = "slow: writes 5 million rows (run with --ignored, in release)"]
 fn synth_at_its_largest() {
     let wd = Workdir::new();
-    wd.run(&["synth", "--out", "s.csv", "--xrays", XRAYS.max]).ok();
+    wd.run(&["synth", "--out", "s.csv", "--xrays", XRAYS.max])
+        .ok();
 }
 
 #[test]
@@ -269,14 +343,32 @@ fn add_lengths_and_age_at_every_value() {
             .enumerate()
         {
             let x = format!("l{i}{j}");
-            let run = wd.run(&["add", "--xray", &x, "--finger", "index", "--lengths", lengths]);
+            let run = wd.run(&[
+                "add",
+                "--xray",
+                &x,
+                "--finger",
+                "index",
+                "--lengths",
+                lengths,
+            ]);
             assert!(matches!(run.code, Some(0 | 2)), "{lengths}: {:?}", run.code);
             if run.code == Some(2) {
                 run.stderr_has("lengths");
             }
         }
         let x = format!("a{i}");
-        let run = wd.run(&["add", "--xray", &x, "--finger", "index", "--lengths", "352.1,201.4,178.0", "--age", v]);
+        let run = wd.run(&[
+            "add",
+            "--xray",
+            &x,
+            "--finger",
+            "index",
+            "--lengths",
+            "352.1,201.4,178.0",
+            "--age",
+            v,
+        ]);
         assert!(matches!(run.code, Some(0 | 2)), "--age {v}: {:?}", run.code);
         if run.code == Some(2) {
             run.stderr_has("from 0 to 150");

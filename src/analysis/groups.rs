@@ -203,10 +203,14 @@ mod tests {
 
     #[test]
     fn no_values_no_groups() {
-        let d = Dataset::from_bytes("n.csv", b"xray,finger,j1,j2,j3,sex
+        let d = Dataset::from_bytes(
+            "n.csv",
+            b"xray,finger,j1,j2,j3,sex
 a,index,4,3,3,
 b,index,5,3,3,
-").unwrap();
+",
+        )
+        .unwrap();
         let note = nothing_to_group(&d, &GroupBy::Sex).unwrap();
         assert!(note.contains("no row of n.csv has a sex value"), "{note}");
         assert!(nothing_to_group(&data(), &GroupBy::Sex).is_none());

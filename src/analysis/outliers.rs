@@ -141,18 +141,14 @@ impl Reference {
         let mut constant = Vec::with_capacity(k);
         let mut medians = Vec::with_capacity(k);
         for j in 0..k {
-            let rel: Vec<f64> = rows
-                .iter()
-                .map(|r| r[j] / r.iter().sum::<f64>())
-                .collect();
+            let rel: Vec<f64> = rows.iter().map(|r| r[j] / r.iter().sum::<f64>()).collect();
             let mean = describe::mean(&rel)?;
             let (lo, hi) = describe::min_max(&rel)?;
             let same = n >= 2 && hi - lo <= SAME * mean.abs();
             let interval = if same {
                 Some(Interval::point(mean))
             } else {
-                describe::sd(&rel)
-                    .and_then(|s| describe::prediction_interval(mean, s, n, level))
+                describe::sd(&rel).and_then(|s| describe::prediction_interval(mean, s, n, level))
             };
             relative.push((mean, interval));
             constant.push(same);

@@ -50,7 +50,13 @@ mod tests {
         let w = warnings(&analyse(&d, &Settings::default()));
         // Index: every X-ray; ring: one of two, so no warning.
         assert_eq!(w.len(), 1, "{w:?}");
-        assert!(w[0].starts_with("index: J3 (distal) is longer than J1 (proximal) in every one of its 2 X-rays"), "{}", w[0]);
+        assert!(
+            w[0].starts_with(
+                "index: J3 (distal) is longer than J1 (proximal) in every one of its 2 X-rays"
+            ),
+            "{}",
+            w[0]
+        );
         assert!(w[0].contains("j1 and j3 look swapped"), "{}", w[0]);
     }
 }

@@ -61,7 +61,8 @@ pub(crate) struct AgeBins(pub(crate) Vec<f64>);
 
 /// Comma-separated age band edges: each a number of years from 0 to 150, strictly ascending.
 pub(crate) fn parse_age_bins(text: &str) -> Result<AgeBins, String> {
-    let usage = "give comma-separated ages in years from 0 to 150, strictly ascending, e.g. 0,18,40,65";
+    let usage =
+        "give comma-separated ages in years from 0 to 150, strictly ascending, e.g. 0,18,40,65";
     let mut edges = Vec::new();
     for part in text.split(',').map(str::trim) {
         match part.parse::<f64>() {
@@ -193,8 +194,16 @@ mod tests {
             parse_age_bins("0,18,40,65").unwrap().0,
             groups::DEFAULT_AGE_BINS.to_vec()
         );
-        assert!(parse_age_bins("0;18").unwrap_err().contains("comma-separated"));
-        assert!(parse_age_bins("18,0").unwrap_err().contains("strictly ascending"));
+        assert!(
+            parse_age_bins("0;18")
+                .unwrap_err()
+                .contains("comma-separated")
+        );
+        assert!(
+            parse_age_bins("18,0")
+                .unwrap_err()
+                .contains("strictly ascending")
+        );
         assert!(parse_age_bins("0,,18").unwrap_err().contains("empty edge"));
         assert!(parse_age_bins("151").unwrap_err().contains("from 0 to 150"));
     }

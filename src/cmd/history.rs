@@ -37,7 +37,12 @@ fn parse_quantity(text: &str) -> Result<Quantity, String> {
 }
 
 /// Why `--finger`/`--quantity` select nothing from non-empty snapshots.
-fn why_empty(path: &std::path::Path, snaps: &[Snapshot], finger: Option<Finger>, quantity: Option<Quantity>) -> String {
+fn why_empty(
+    path: &std::path::Path,
+    snaps: &[Snapshot],
+    finger: Option<Finger>,
+    quantity: Option<Quantity>,
+) -> String {
     let names = |qs: &[Quantity]| qs.iter().map(|q| q.name()).collect::<Vec<_>>().join(", ");
     if let (Some(f), Some(q)) = (finger, quantity)
         && !Quantity::of(f).contains(&q)
@@ -65,7 +70,11 @@ fn why_empty(path: &std::path::Path, snaps: &[Snapshot], finger: Option<Finger>,
         "none of the {} snapshots in {} has {what} (fingers recorded: {})",
         snaps.len(),
         path.display(),
-        if fingers.is_empty() { "none".to_string() } else { fingers.join(", ") }
+        if fingers.is_empty() {
+            "none".to_string()
+        } else {
+            fingers.join(", ")
+        }
     )
 }
 

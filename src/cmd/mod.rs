@@ -67,7 +67,8 @@ pub(crate) fn warn_implausible(a: &Analysis) {
 
 /// Refuses a bootstrap too large to serve (see [`analysis::budget`]).
 pub(crate) fn within_budget(dataset: &Dataset, settings: &Settings) -> Result<(), Error> {
-    analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples).map_err(Error::Usage)
+    analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)
+        .map_err(Error::Usage)
 }
 
 /// Loads a dataset and analyses it.

@@ -202,7 +202,11 @@ pub fn appended_bytes_typed(
             ] {
                 // An empty field takes the X-ray's value (see the writer below).
                 if !ours.is_empty() && ours != theirs {
-                    let theirs = if theirs.is_empty() { "empty".into() } else { quote(&theirs) };
+                    let theirs = if theirs.is_empty() {
+                        "empty".into()
+                    } else {
+                        quote(&theirs)
+                    };
                     problems.push(Problem::line(
                         r.line,
                         format!(
@@ -260,7 +264,10 @@ pub fn appended_bytes_typed(
             .map(|c| {
                 let ours = typed_field_of(r, c, typed);
                 match by_xray.get(&*r.xray) {
-                    Some(old) if ours.is_empty() && ["sex", "age", "side", "unit"].contains(&c.as_str()) => {
+                    Some(old)
+                        if ours.is_empty()
+                            && ["sex", "age", "side", "unit"].contains(&c.as_str()) =>
+                    {
                         field_of(old, c)
                     }
                     _ => ours,

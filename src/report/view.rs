@@ -800,11 +800,12 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
                 .iter()
                 .filter(|q| q.name.is_relative())
                 .map(move |q| {
-                    use crate::analysis::tracking::{ASSURANCE, xrays_needed, xrays_needed_assured};
+                    use crate::analysis::tracking::{
+                        ASSURANCE, xrays_needed, xrays_needed_assured,
+                    };
                     let need = q.sd.and_then(|sd| xrays_needed(sd, inputs.target, c));
-                    let assured = q
-                        .sd
-                        .and_then(|sd| xrays_needed_assured(sd, inputs.target, c, ASSURANCE));
+                    let assured =
+                        q.sd.and_then(|sd| xrays_needed_assured(sd, inputs.target, c, ASSURANCE));
                     NeededRow {
                         finger: f.finger.display_name().to_string(),
                         quantity: q.name.label().to_string(),

@@ -82,7 +82,11 @@ fn simulate(model: &Model, n: usize, reps: usize, seed: u64) -> (usize, usize) {
             model.draw(&mut r, &mut new);
             let alarm = !reference.check(&new).is_empty();
             let j = rng::index(&mut r, k as u32) as usize;
-            new[j] *= if rng::index(&mut r, 2) == 0 { 10.0 } else { 0.1 };
+            new[j] *= if rng::index(&mut r, 2) == 0 {
+                10.0
+            } else {
+                0.1
+            };
             let caught = !reference.check(&new).is_empty();
             (alarm, caught)
         })
@@ -154,7 +158,10 @@ fn every_tenfold_typo_in_the_papers_data_is_caught_by_each_rule() {
         let r = Reference::new(&refs).unwrap();
         assert_eq!(r.n, 5);
         for row in &rows {
-            assert!(r.check(row).is_empty(), "{finger} {row:?}: a genuine row is flagged");
+            assert!(
+                r.check(row).is_empty(),
+                "{finger} {row:?}: a genuine row is flagged"
+            );
             for j in 0..row.len() {
                 for factor in [10.0, 0.1, 100.0, 0.01] {
                     let mut typo = row.clone();
@@ -172,7 +179,11 @@ fn every_tenfold_typo_in_the_papers_data_is_caught_by_each_rule() {
                             (o.value - m).abs() / (pi.width() / 2.0)
                         })
                         .fold(0.0, f64::max);
-                    assert!(margin > 2.5, "{finger} j{} x{factor}: margin {margin}", j + 1);
+                    assert!(
+                        margin > 2.5,
+                        "{finger} j{} x{factor}: margin {margin}",
+                        j + 1
+                    );
                     // The typo rule names the length.
                     assert_eq!(found.typos.len(), 1, "{finger} j{} x{factor}", j + 1);
                     assert_eq!(found.typos[0].segment, j);
@@ -214,14 +225,36 @@ fn one_message_per_row_names_every_value_outside_and_its_interval() {
     assert!(!f.outside.is_empty());
     for o in &f.outside {
         // Never a value beside an interval that contains it.
-        assert!(!(o.interval[0] <= o.value && o.value <= o.interval[1]), "{o:?}");
+        assert!(
+            !(o.interval[0] <= o.value && o.value <= o.interval[1]),
+            "{o:?}"
+        );
         let text = format!("is outside [{:.4}, {:.4}]", o.interval[0], o.interval[1]);
         assert!(f.reason.contains(&text), "{}", f.reason);
     }
-    assert!(f.reason.starts_with("index X-ray 'new': J~1 = 0.9"), "{}", f.reason);
-    assert!(f.reason.contains("99.67% prediction intervals of the current 5 X-rays"), "{}", f.reason);
-    assert!(f.reason.contains("j1 = 3399.6 is 9.5 times the median j1 of the current X-rays (359.67)"), "{}", f.reason);
-    assert!(f.reason.ends_with("j1 looks 10 times too large (a misplaced decimal point?)"), "{}", f.reason);
+    assert!(
+        f.reason.starts_with("index X-ray 'new': J~1 = 0.9"),
+        "{}",
+        f.reason
+    );
+    assert!(
+        f.reason
+            .contains("99.67% prediction intervals of the current 5 X-rays"),
+        "{}",
+        f.reason
+    );
+    assert!(
+        f.reason
+            .contains("j1 = 3399.6 is 9.5 times the median j1 of the current X-rays (359.67)"),
+        "{}",
+        f.reason
+    );
+    assert!(
+        f.reason
+            .ends_with("j1 looks 10 times too large (a misplaced decimal point?)"),
+        "{}",
+        f.reason
+    );
     assert!(!f.reason.contains("robust"), "{}", f.reason);
 }
 
@@ -231,9 +264,17 @@ fn a_thumb_typo_is_told_apart_by_the_median_length() {
     // the lengths against their medians do not.
     let a = analyse(&paper(), &Settings::default());
     let flags = flag_rows(&a, &[one_row("t,thumb,270.5,2310.2,")]);
-    assert!(flags[0].reason.contains("j2 looks 10 times too large"), "{}", flags[0].reason);
+    assert!(
+        flags[0].reason.contains("j2 looks 10 times too large"),
+        "{}",
+        flags[0].reason
+    );
     let flags = flag_rows(&a, &[one_row("t,thumb,27.05,231.02,")]);
-    assert!(flags[0].reason.contains("j1 looks 10 times too small"), "{}", flags[0].reason);
+    assert!(
+        flags[0].reason.contains("j1 looks 10 times too small"),
+        "{}",
+        flags[0].reason
+    );
 }
 
 #[test]
@@ -244,11 +285,24 @@ fn a_second_typo_is_caught_after_a_first_has_widened_the_intervals() {
     let second = one_row("y,ring,3729.8,226.72,212.12");
     let r = reference(&a, Finger::Ring).unwrap();
     let found = r.check(second.segments());
-    assert!(found.outside.is_empty(), "premise: inside the widened intervals");
+    assert!(
+        found.outside.is_empty(),
+        "premise: inside the widened intervals"
+    );
     let flags = flag_rows(&a, &[second]);
     assert_eq!(flags.len(), 1);
-    assert!(flags[0].reason.contains("j1 = 3729.8 is 9.9 times the median j1 of the current X-rays (377.555)"), "{}", flags[0].reason);
-    assert!(flags[0].reason.contains("j1 looks 10 times too large"), "{}", flags[0].reason);
+    assert!(
+        flags[0]
+            .reason
+            .contains("j1 = 3729.8 is 9.9 times the median j1 of the current X-rays (377.555)"),
+        "{}",
+        flags[0].reason
+    );
+    assert!(
+        flags[0].reason.contains("j1 looks 10 times too large"),
+        "{}",
+        flags[0].reason
+    );
 }
 
 #[test]
@@ -260,12 +314,26 @@ fn zero_spread_flags_any_other_value_and_says_so() {
     assert!(flag_rows(&a, &[one_row("d,index,5,3.75,3.75")]).is_empty());
     let flags = flag_rows(&a, &[one_row("e,index,4.1,3,3")]);
     assert_eq!(flags.len(), 1);
-    assert!(flags[0].reason.contains("J~1 = 0.4059 differs from 0.4000, the value of every current X-ray (zero spread"), "{}", flags[0].reason);
+    assert!(
+        flags[0].reason.contains(
+            "J~1 = 0.4059 differs from 0.4000, the value of every current X-ray (zero spread"
+        ),
+        "{}",
+        flags[0].reason
+    );
     // One X-ray: no interval, the typo rule alone, and a note says so.
     let one = Dataset::from_bytes("o.csv", b"xray,finger,j1,j2,j3\na,index,4,3,3\n").unwrap();
     let a = analyse(&one, &Settings::default());
-    assert!(limits(&a, Finger::Index).unwrap().contains("only checked for tenfold typos"));
-    assert!(limits(&a, Finger::Thumb).unwrap().contains("cannot be checked"));
+    assert!(
+        limits(&a, Finger::Index)
+            .unwrap()
+            .contains("only checked for tenfold typos")
+    );
+    assert!(
+        limits(&a, Finger::Thumb)
+            .unwrap()
+            .contains("cannot be checked")
+    );
     assert!(flag_rows(&a, &[one_row("b,index,4.5,3,2.5")]).is_empty());
     assert_eq!(flag_rows(&a, &[one_row("b,index,40,3,3")]).len(), 1);
 }
