@@ -32,9 +32,9 @@
 //! or 0.1): any genuine length within a factor of 3.16 of the median that is
 //! typed 10 times too large or too small is caught, and a genuine length is
 //! flagged only if it is itself 3.16 times away from the median: in the
-//! paper's data every length lies within 1.25 times its median (segment CVs
-//! 4-9%, so 3.16 times is more than 20 SDs away; its measured false-alarm
-//! rate is 0 and is included in the simulation). The median does not move when
+//! paper's data every length lies within 1.2 times its median (0.90 to 1.19;
+//! segment CVs 3-9%, so 3.16 times is more than 20 SDs away; the simulation
+//! counts its false alarms with the rest and asserts that it has none). The median does not move when
 //! an earlier typo has entered the data (it ignores up to half the rows), while
 //! that typo inflates s_j and so widens the prediction intervals: this rule
 //! still catches the second typo. It also names the length to fix.

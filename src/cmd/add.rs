@@ -32,8 +32,8 @@ pub struct Args {
     /// Sex of the hand (female, male, ...)
     #[arg(long)]
     sex: Option<String>,
-    /// Age in years
-    #[arg(long)]
+    /// Age in years, from 0 to 150
+    #[arg(long, allow_negative_numbers = true)]
     age: Option<String>,
     /// left or right
     #[arg(long)]

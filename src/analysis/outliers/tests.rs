@@ -65,13 +65,14 @@ impl Model {
 
 /// Per repetition: n genuine rows and one genuine new row from the model; the
 /// new row is checked (false alarm?), then the same row with one length (drawn
-/// at random) times 10 or 0.1 (caught?). Returns (false alarms, typos caught).
-fn simulate(model: &Model, n: usize, reps: usize, seed: u64) -> (usize, usize) {
+/// at random) times 10 or 0.1 (caught?). Returns (false alarms, false alarms
+/// of the typo rule, typos caught).
+fn simulate(model: &Model, n: usize, reps: usize, seed: u64) -> (usize, usize, usize) {
     let k = model.mean.len();
-    let outcomes: Vec<(bool, bool)> = (0..reps)
+    let outcomes: Vec<(bool, bool, bool)> = (0..reps)
         .into_par_iter()
         .map(|rep| {
-            let mut r = rng::stream(seed, 0x0_7_1_1E5 ^ n as u64, rep as u64);
+            let mut r = rng::stream(seed, 0x0007_11E5 ^ n as u64, rep as u64);
             let mut flat = vec![0.0; n * k];
             for row in flat.chunks_mut(k) {
                 model.draw(&mut r, row);
@@ -80,7 +81,8 @@ fn simulate(model: &Model, n: usize, reps: usize, seed: u64) -> (usize, usize) {
             let reference = Reference::new(&rows).unwrap();
             let mut new = vec![0.0; k];
             model.draw(&mut r, &mut new);
-            let alarm = !reference.check(&new).is_empty();
+            let found = reference.check(&new);
+            let (alarm, typo_alarm) = (!found.is_empty(), !found.typos.is_empty());
             let j = rng::index(&mut r, k as u32) as usize;
             new[j] *= if rng::index(&mut r, 2) == 0 {
                 10.0
@@ -88,12 +90,13 @@ fn simulate(model: &Model, n: usize, reps: usize, seed: u64) -> (usize, usize) {
                 0.1
             };
             let caught = !reference.check(&new).is_empty();
-            (alarm, caught)
+            (alarm, typo_alarm, caught)
         })
         .collect();
     (
         outcomes.iter().filter(|o| o.0).count(),
         outcomes.iter().filter(|o| o.1).count(),
+        outcomes.iter().filter(|o| o.2).count(),
     )
 }
 
@@ -107,7 +110,7 @@ fn false_alarms(sizes: &[(usize, usize)]) {
     for finger in [Finger::Index, Finger::Thumb] {
         let model = Model::fit(&lengths_of(&d, finger));
         for &(n, reps) in sizes {
-            let (alarms, caught) = simulate(&model, n, reps, 20_130_101);
+            let (alarms, typo_alarms, caught) = simulate(&model, n, reps, 20_130_101);
             let rate = alarms as f64 / reps as f64;
             let se = (ROW_ALPHA * (1.0 - ROW_ALPHA) / reps as f64).sqrt();
             println!(
@@ -118,6 +121,11 @@ fn false_alarms(sizes: &[(usize, usize)]) {
             assert!(
                 rate <= ROW_ALPHA + 3.0 * se,
                 "{finger} n = {n}: {alarms} false alarms in {reps} rows"
+            );
+            // A genuine length 3.16 times its median is over 20 SDs away.
+            assert_eq!(
+                typo_alarms, 0,
+                "{finger} n = {n}: the typo rule flagged a genuine row"
             );
             if n >= 5 {
                 assert_eq!(caught, reps, "{finger} n = {n}: a tenfold typo was missed");
