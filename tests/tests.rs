@@ -11,6 +11,8 @@ mod confidence_level;
 mod coverage;
 mod crash_report;
 mod data;
+mod everyday;
+mod option_ranges;
 mod options;
 mod place;
 mod properties;

@@ -6,10 +6,13 @@
 //! Student-t, bootstrap percentile and BCa intervals of the mean, and a
 //! prediction interval for one new X-ray. Knows nothing of files or rendering.
 
+pub mod budget;
 pub mod claims;
 pub mod coverage;
 pub mod groups;
+pub mod outliers;
 pub mod placement;
+pub mod plausible;
 pub mod tracking;
 
 /// The interval type of [`crate::stats`] and the quantities of [`crate::dataset`],

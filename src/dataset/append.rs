@@ -36,18 +36,22 @@ impl DatasetLock {
     }
 }
 
-/// Parses new rows given on the command line as one CSV row; problems name the
-/// option they came from instead of a line.
-pub fn single_row(fields: &[(&str, String)]) -> Result<Dataset, DataError> {
+/// The CSV (header and one row) of a row given on the command line.
+pub fn single_row_bytes(fields: &[(&str, String)]) -> Result<Vec<u8>, DataError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let header: Vec<&str> = fields.iter().map(|(k, _)| *k).collect();
     let values: Vec<&str> = fields.iter().map(|(_, v)| v.as_str()).collect();
-    let bytes = w
-        .write_record(&header)
+    w.write_record(&header)
         .and_then(|_| w.write_record(&values))
         .map_err(|e| e.to_string())
         .and_then(|_| w.into_inner().map_err(|e| e.to_string()))
-        .map_err(|e| DataError::whole_file("<command line>", e))?;
+        .map_err(|e| DataError::whole_file("<command line>", e))
+}
+
+/// Parses new rows given on the command line as one CSV row; problems name the
+/// option they came from instead of a line.
+pub fn single_row(fields: &[(&str, String)]) -> Result<Dataset, DataError> {
+    let bytes = single_row_bytes(fields)?;
     Dataset::from_bytes("<command line>", &bytes).map_err(|mut e| {
         for p in &mut e.problems {
             p.line = None;
@@ -71,6 +75,49 @@ fn option_of(column: &str) -> &str {
 /// Formats a length so that it parses back to the same `f64`.
 fn length_text(x: f64) -> String {
     crate::format::full(Some(x))
+}
+
+/// The fields of new rows as the user typed them: line -> column -> trimmed
+/// text, read with the loader's own table reader (so the lines are the rows' lines).
+#[derive(Debug, Default)]
+pub struct Typed(HashMap<u64, HashMap<&'static str, String>>);
+
+impl Typed {
+    /// Reads the typed fields of a measurement CSV; unreadable input gives none
+    /// (the loader reports it).
+    pub fn of(bytes: &[u8]) -> Typed {
+        let mut out = HashMap::new();
+        let _ = super::csvinput::read_table::<Column>("", bytes, |cells| {
+            let fields = Column::ALL
+                .iter()
+                .filter_map(|&c| Some((c.name(), cells.text(c)?.to_string())))
+                .filter(|(_, text)| !text.is_empty())
+                .collect();
+            out.insert(cells.line(), fields);
+        });
+        Typed(out)
+    }
+
+    /// The text typed for a number, when it reads as exactly `value` (so
+    /// `275.00` stays `275.00`); `None` otherwise.
+    fn number(&self, line: u64, column: &str, value: f64) -> Option<String> {
+        let text = self.0.get(&line)?.get(column)?;
+        (text.parse::<f64>().ok()? == value).then(|| text.clone())
+    }
+}
+
+/// One field of a row, by column name, numbers as typed where known.
+fn typed_field_of(row: &Row, column: &str, typed: &Typed) -> String {
+    let number = match column {
+        "j1" => Some(row.lengths[0]),
+        "j2" => Some(row.lengths[1]),
+        "j3" if row.finger.segments() == 3 => Some(row.lengths[2]),
+        "age" => row.meta.age,
+        _ => None,
+    };
+    number
+        .and_then(|v| typed.number(row.line, column, v))
+        .unwrap_or_else(|| field_of(row, column))
 }
 
 /// One field of a row, by column name.
@@ -101,6 +148,18 @@ pub fn appended_bytes(
     current: &Dataset,
     new: &Dataset,
 ) -> Result<(Vec<u8>, Dataset), DataError> {
+    appended_bytes_typed(current_bytes, current, new, &Typed::default())
+}
+
+/// [`appended_bytes`], writing numbers as `typed` holds them (see [`Typed`]).
+/// A new row that leaves sex, age, side or unit empty takes the value of the
+/// X-ray's existing rows (one hand has one value).
+pub fn appended_bytes_typed(
+    current_bytes: &[u8],
+    current: &Dataset,
+    new: &Dataset,
+    typed: &Typed,
+) -> Result<(Vec<u8>, Dataset), DataError> {
     let problems = check_new_rows(current, new);
     if !problems.is_empty() {
         return Err(DataError {
@@ -108,7 +167,7 @@ pub fn appended_bytes(
             problems,
         });
     }
-    let out = append_rows(current_bytes, current, new)?;
+    let out = append_rows(current_bytes, current, new, typed)?;
     // The result must load as a valid dataset; that dataset is returned with it.
     let appended = Dataset::from_bytes(&current.path, &out)?;
     Ok((out, appended))
@@ -146,16 +205,25 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
                 ("side", field_of(r, "side"), field_of(old, "side")),
                 ("unit", field_of(r, "unit"), field_of(old, "unit")),
             ] {
-                if ours != theirs {
+                // An empty field takes the X-ray's value (see append_rows).
+                if !ours.is_empty() && ours != theirs {
+                    let theirs = if theirs.is_empty() {
+                        "empty".into()
+                    } else {
+                        quote(&theirs)
+                    };
                     problems.push(Problem::line(
                         r.line,
                         format!(
-                            "{name} is {} but {} line {} gives {} for the same X-ray {}; one hand has one value",
-                            if ours.is_empty() { "empty".into() } else { quote(&ours) },
+                            "{name} is {} but {} line {} gives {theirs} for the same X-ray {}; one hand has one value. \
+                             Leave {name} out (omit --{name}, or leave the field empty) and the row takes {theirs}, \
+                             or, if {theirs} is wrong, edit line {} of {} first",
+                            quote(&ours),
                             current.path,
                             old.line,
-                            if theirs.is_empty() { "empty".into() } else { quote(&theirs) },
-                            quote(&r.xray)
+                            quote(&r.xray),
+                            old.line,
+                            current.path,
                         ),
                     ));
                 }
@@ -186,7 +254,12 @@ fn append_rows(
     current_bytes: &[u8],
     current: &Dataset,
     new: &Dataset,
+    typed: &Typed,
 ) -> Result<Vec<u8>, DataError> {
+    let mut by_xray: HashMap<&str, &Row> = HashMap::new();
+    for r in &current.rows {
+        by_xray.entry(&r.xray).or_insert(r);
+    }
     let mut out = current_bytes.to_vec();
     if !out.is_empty() && !out.ends_with(b"\n") {
         out.extend_from_slice(if current_bytes.contains(&b'\r') {
@@ -203,7 +276,22 @@ fn append_rows(
         })
         .from_writer(Vec::new());
     for r in &new.rows {
-        let rec: Vec<String> = current.columns.iter().map(|c| field_of(r, c)).collect();
+        let rec: Vec<String> = current
+            .columns
+            .iter()
+            .map(|c| {
+                let ours = typed_field_of(r, c, typed);
+                match by_xray.get(&*r.xray) {
+                    Some(old)
+                        if ours.is_empty()
+                            && ["sex", "age", "side", "unit"].contains(&c.as_str()) =>
+                    {
+                        field_of(old, c)
+                    }
+                    _ => ours,
+                }
+            })
+            .collect();
         w.write_record(&rec)
             .map_err(|e| DataError::whole_file(&new.path, e.to_string()))?;
     }
