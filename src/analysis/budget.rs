@@ -42,20 +42,37 @@ pub fn check_bootstrap(n: usize, resamples: usize) -> Result<(), String> {
 /// Refuses a coverage simulation of `sims` datasets at each sample size in
 /// `sizes` that would exceed [`MAX_WORK`] in total, saying how many fit.
 pub fn check_coverage(sizes: &[usize], sims: usize, resamples: usize) -> Result<(), String> {
-    let per_sim: u128 = sizes.iter().map(|&n| bootstrap_work(n, resamples)).sum();
+    let runs: Vec<(usize, usize)> = sizes.iter().map(|&n| (n, resamples)).collect();
+    check_coverage_runs(&runs, sims, resamples)
+}
+
+/// [`check_coverage`] for simulations of `sims` datasets at sample sizes with
+/// their own resamples, `(n, resamples)` each (the coverage curve uses fewer);
+/// `asked` is the `--resamples` the message quotes.
+pub fn check_coverage_runs(
+    runs: &[(usize, usize)],
+    sims: usize,
+    asked: usize,
+) -> Result<(), String> {
+    let per_sim: u128 = runs.iter().map(|&(n, b)| bootstrap_work(n, b)).sum();
     let work = per_sim * sims as u128;
     if work <= MAX_WORK {
         return Ok(());
     }
     let fits = (MAX_WORK / per_sim.max(1)).max(1);
     Err(format!(
-        "--sims {sims} with --resamples {resamples} at n = {} is {work} resample-X-ray pairs, more than {MAX_WORK} \
+        "--sims {sims} with --resamples {asked} at n = {} is {work} resample-X-ray pairs, more than {MAX_WORK} \
          (about a minute of work): give --sims {fits} or fewer, or fewer --resamples",
-        sizes
-            .iter()
-            .map(usize::to_string)
-            .collect::<Vec<_>>()
-            .join(", ")
+        {
+            let mut sizes: Vec<usize> = runs.iter().map(|&(n, _)| n).collect();
+            sizes.sort_unstable();
+            sizes.dedup();
+            sizes
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        }
     ))
 }
 
