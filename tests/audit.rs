@@ -35,7 +35,7 @@ fn a_mixamo_hand_with_tips_is_read_and_lies_inside_the_xray_range() {
     let wd = Workdir::new();
     wd.copy_paper_data();
     wd.write("hand.glb", build(&HandSpec::new(Naming::Mixamo)));
-    let run = wd.run(&["audit", "hand.glb"]);
+    let run = wd.run(&["audit", "hand.glb", "--wide"]);
     run.ok()
         .stdout_has("right index (mixamorig:RightHandIndex1, mixamorig:RightHandIndex2, mixamorig:RightHandIndex3, mixamorig:RightHandIndex4)")
         .stdout_has("judged on relative values")
@@ -125,7 +125,7 @@ fn a_far_off_joint_is_flagged_with_its_direction_and_distance() {
         .moved("index", 1, 1.0)
         .moved("ring", 2, -0.8);
     wd.write("far.glb", build(&spec));
-    let run = wd.run(&["audit", "far.glb"]);
+    let run = wd.run(&["audit", "far.glb", "--wide"]);
     run.ok()
         .stdout_has("OUTSIDE: too far towards the tip, ")
         .stdout_has("OUTSIDE: too close to the root, ")
@@ -565,7 +565,7 @@ fn hostile_rigs_get_clear_errors_and_never_a_panic() {
             j["nodes"][i]["scale"] = serde_json::json!([0.0, 0.0, 0.0]);
         }),
     );
-    wd.run(&["audit", "flat.glb"])
+    wd.run(&["audit", "flat.glb", "--wide"])
         .ok()
         .stdout_has("zero length");
     // --fix: a buffer outside the input's folder is never read.
@@ -597,13 +597,14 @@ fn hostile_rigs_get_clear_errors_and_never_a_panic() {
     assert!(!wd.path().join("m.glb").exists());
 }
 
-/// The README shows real output: its audit example is what the binary prints.
+/// The README shows real output: its audit example is what the binary prints
+/// (with every column: `--wide`).
 #[test]
 fn the_readme_audit_example_is_current() {
     let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
     let out = Workdir::new();
     let run = out
-        .command(&["audit", "docs/examples/hand.glb"])
+        .command(&["audit", "docs/examples/hand.glb", "--wide"])
         .current_dir(manifest_dir())
         .output()
         .unwrap();

@@ -7,6 +7,7 @@
 pub mod audit;
 pub mod csv_out;
 pub mod json;
+pub mod layout;
 pub mod plots;
 pub mod progress;
 pub mod render;
@@ -52,6 +53,12 @@ pub fn render(
         plots.extend(tracking_plots(inputs)?);
         if !inputs.rigs.is_empty() {
             plots.push(plots::rigs_plot(inputs.analysis, &rig_ratios(inputs.rigs))?);
+        }
+        if !inputs.coverage.is_empty() {
+            plots.push(plots::coverage_plot(
+                inputs.coverage,
+                inputs.coverage_settings.confidence,
+            )?);
         }
         let view = view::build(inputs, &plots);
         if formats.html {
