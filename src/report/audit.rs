@@ -186,7 +186,7 @@ pub fn text(
     for c in CAVEATS {
         out.push_str(&format!("  - {c}\n"));
     }
-    out.push_str(&hidden.note(width));
+    hidden.append_to(&mut out, width);
     super::layout::fit_text(&out, width)
 }
 

@@ -134,35 +134,26 @@ impl Grid {
         if let Width::Fit(max) = width.less(indent)
             && table_width(&natural, &shown) > max
         {
-            // Still too wide: wrap the sentence columns, numbers only if that is not enough.
-            let wrap_only_sentences = {
-                let fixed: usize = self
-                    .columns
-                    .iter()
-                    .zip(&natural)
-                    .zip(&shown)
-                    .filter(|((c, _), s)| **s && c.give != Give::Wrap)
-                    .map(|((_, w), _)| w + 3)
-                    .sum();
-                let wrapping = self
-                    .columns
-                    .iter()
-                    .zip(&shown)
-                    .filter(|(c, s)| **s && c.give == Give::Wrap)
-                    .count();
-                wrapping > 0 && fixed + 1 + wrapping * (3 + 12) <= max
-            };
+            // Still too wide: wrap the sentence columns; if that is not enough, the
+            // labels too; numbers only as a last resort.
+            let tier = [Tier::Sentences, Tier::Labels, Tier::Everything]
+                .into_iter()
+                .find(|&tier| self.narrowest(&natural, &shown, tier) <= max)
+                .unwrap_or(Tier::Everything);
             let constraints: Vec<ColumnConstraint> = self
                 .columns
                 .iter()
                 .zip(&shown)
-                .map(|(c, s)| match (s, c.give) {
-                    (false, _) => ColumnConstraint::Hidden,
-                    (true, Give::Wrap) => {
-                        ColumnConstraint::LowerBoundary(comfy_table::Width::Fixed(12))
+                .map(|(c, &s)| {
+                    if !s {
+                        return ColumnConstraint::Hidden;
                     }
-                    (true, _) if wrap_only_sentences => ColumnConstraint::ContentWidth,
-                    (true, _) => ColumnConstraint::LowerBoundary(comfy_table::Width::Fixed(1)),
+                    match tier.least(c) {
+                        Some(w) => ColumnConstraint::LowerBoundary(comfy_table::Width::Fixed(
+                            u16::try_from(w).unwrap_or(u16::MAX),
+                        )),
+                        None => ColumnConstraint::ContentWidth,
+                    }
                 })
                 .collect();
             table
@@ -178,6 +169,18 @@ impl Grid {
             out.push('\n');
         }
         out
+    }
+
+    /// The narrowest the shown columns can be when `tier` may wrap.
+    fn narrowest(&self, natural: &[usize], shown: &[bool], tier: Tier) -> usize {
+        1 + self
+            .columns
+            .iter()
+            .zip(natural)
+            .zip(shown)
+            .filter(|(_, s)| **s)
+            .map(|((c, &w), _)| tier.least(c).map_or(w, |least| least.min(w)) + 3)
+            .sum::<usize>()
     }
 
     /// The comfy-table of the shown columns (hidden ones get the `Hidden` constraint).
@@ -226,6 +229,29 @@ impl Grid {
     }
 }
 
+/// What may wrap when a table is still too wide with its columns dropped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Tier {
+    /// The [`Give::Wrap`] columns (sentences).
+    Sentences,
+    /// Those and the left-aligned columns (labels, names).
+    Labels,
+    /// Every column, numbers too.
+    Everything,
+}
+
+impl Tier {
+    /// The narrowest `c` may wrap to at this tier; `None` when it keeps its width.
+    fn least(self, c: &Column) -> Option<usize> {
+        match (self, c.give, c.align) {
+            (_, Give::Wrap, _) => Some(12),
+            (Tier::Labels, _, Align::Left) => Some(8),
+            (Tier::Everything, _, _) => Some(4),
+            _ => None,
+        }
+    }
+}
+
 /// Width of a Markdown-style table of the shown columns: `| a | b |`.
 fn table_width(natural: &[usize], shown: &[bool]) -> usize {
     1 + natural
@@ -266,7 +292,19 @@ impl Hidden {
         self.0.is_empty()
     }
 
-    /// The line naming the hidden columns (with a line feed), or nothing.
+    /// Appends the note naming the hidden columns to `out`, after one blank line.
+    pub fn append_to(&self, out: &mut String, width: Width) {
+        if self.0.is_empty() {
+            return;
+        }
+        while out.ends_with('\n') {
+            out.pop();
+        }
+        out.push('\n');
+        out.push_str(&self.note(width));
+    }
+
+    /// The paragraph naming the hidden columns (a blank line, then the note), or nothing.
     pub fn note(&self, width: Width) -> String {
         if self.0.is_empty() {
             return String::new();

@@ -15,12 +15,12 @@ use crate::format::{
 /// The statistics of every finger, 4 decimals for relative values as in the paper.
 ///
 /// Too wide for `width`, the percentile and BCa intervals go first, then the
-/// range, the SE and the t interval: the mean, SD, min, max and prediction
-/// interval stay.
+/// range, the SE and the t interval, then (below about 75 columns) the min
+/// and max: the mean, SD and prediction interval stay.
 pub fn stats(a: &Analysis, width: Width) -> String {
     let mut hidden = Hidden::new();
     let mut out = stats_body(a, width, &mut hidden);
-    out.push_str(&hidden.note(width));
+    hidden.append_to(&mut out, width);
     fit_text(&out, width)
 }
 
@@ -43,8 +43,8 @@ fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden) -> String {
         let mut t = Grid::new()
             .col("quantity", Align::Left, Give::Keep)
             .col("mean", Align::Right, Give::Keep)
-            .col("min", Align::Right, Give::Keep)
-            .col("max", Align::Right, Give::Keep)
+            .col("min", Align::Right, Give::Drop(7))
+            .col("max", Align::Right, Give::Drop(6))
             .col("range", Align::Right, Give::Drop(3))
             .col("sd", Align::Right, Give::Keep)
             .col("se", Align::Right, Give::Drop(4))
@@ -101,7 +101,7 @@ pub fn stats_with_groups(
                 .map_or(body.as_str(), |(_, rest)| rest),
         );
     }
-    out.push_str(&hidden.note(width));
+    hidden.append_to(&mut out, width);
     fit_text(&out, width)
 }
 
@@ -156,7 +156,7 @@ pub fn check(results: &[ClaimResult], width: Width) -> String {
         "\n{} claims: {} match, {} match from rounded values, {} known errata, {} new mismatches\n",
         s.claims, s.matches, s.matches_rounded, s.known_errata, s.mismatches
     ));
-    out.push_str(&hidden.note(width));
+    hidden.append_to(&mut out, width);
     fit_text(&out, width)
 }
 
@@ -212,12 +212,12 @@ pub fn coverage(
         out.push_str(&advice);
         out.push('\n');
     }
-    out.push_str(&hidden.note(width));
+    hidden.append_to(&mut out, width);
     fit_text(&out, width)
 }
 
 /// The history of each selected quantity, snapshot by snapshot. Too wide for
-/// `width`, the CI width goes first, then the SD.
+/// `width`, the CI width goes first, then the SD, the event and the shift.
 pub fn history(
     path: &std::path::Path,
     snaps: &[Snapshot],
@@ -242,13 +242,13 @@ pub fn history(
         let mut t = Grid::new()
             .col("#", Align::Right, Give::Keep)
             .col("time", Align::Left, Give::Keep)
-            .col("event", Align::Left, Give::Keep)
+            .col("event", Align::Left, Give::Drop(3))
             .col("n", Align::Right, Give::Keep)
             .col("mean", Align::Right, Give::Keep)
             .col("sd", Align::Right, Give::Drop(2))
             .col("t CI", Align::Right, Give::Keep)
             .col("CI width", Align::Right, Give::Drop(1))
-            .col("mean shift", Align::Right, Give::Keep);
+            .col("mean shift", Align::Right, Give::Drop(4));
         let mut previous: Option<f64> = None;
         for (i, s) in snaps.iter().enumerate() {
             let Some(r) = s
@@ -274,12 +274,13 @@ pub fn history(
         }
         out.push_str(&t.render(width, 0, &mut hidden));
     }
-    out.push_str(&hidden.note(width));
+    hidden.append_to(&mut out, width);
     fit_text(&out, width)
 }
 
 /// Joint positions and segment lengths of model fingers, one table each. Too
-/// wide for `width`, the percentile and BCa intervals go first, then the range.
+/// wide for `width`, the percentile and BCa intervals go first, then the
+/// range, the max and the min.
 pub fn placement(
     ps: &[crate::analysis::placement::FingerPlacement],
     confidence: f64,
@@ -299,8 +300,8 @@ pub fn placement(
         let mut t = Grid::new()
             .col("", Align::Left, Give::Keep)
             .col("mean", Align::Right, Give::Keep)
-            .col("min", Align::Right, Give::Keep)
-            .col("max", Align::Right, Give::Keep)
+            .col("min", Align::Right, Give::Drop(5))
+            .col("max", Align::Right, Give::Drop(4))
             .col("range", Align::Right, Give::Drop(3))
             .col(format!("t CI {c}"), Align::Right, Give::Keep)
             .col("percentile CI", Align::Right, Give::Drop(1))
@@ -330,6 +331,6 @@ pub fn placement(
         out.push_str(&t.render(width, 0, &mut hidden));
         out.push('\n');
     }
-    out.push_str(&hidden.note(width));
+    hidden.append_to(&mut out, width);
     fit_text(&out, width)
 }

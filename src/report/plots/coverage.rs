@@ -119,12 +119,14 @@ fn draw_chart(
     let at = |x: f64, y: f64| chart.backend_coord(&(x, y));
     let nominal = 100.0 * confidence;
     pen.dashed(at(x0, nominal), at(x1, nominal), MUTED, 1)?;
+    // Labelled at the left end, where the lines of the smallest sizes spread apart below it.
+    let left = at(x0, nominal);
     pen.text(
-        at(x1, nominal),
+        (left.0 + 6, left.1 - 4),
         &format!("nominal {}", level(confidence)),
         Font::new(11.0)
             .colour(MUTED)
-            .anchor(HPos::Right, VPos::Bottom),
+            .anchor(HPos::Left, VPos::Bottom),
     )?;
     for p in points.iter().filter(|p| p.in_data) {
         let x = ln(p.n);
