@@ -372,6 +372,95 @@ mod tests {
     }
 
     #[test]
+    fn the_curve_has_every_size_once_and_a_smaller_bootstrap_off_the_data() {
+        let s = CoverageSettings {
+            resamples: 10_000,
+            ..settings(20)
+        };
+        let points = curve(&[5, 12], &s);
+        let sizes: Vec<usize> = points.iter().map(|p| p.n).collect();
+        assert_eq!(sizes, [3, 4, 5, 6, 8, 10, 12, 15, 20, 30, 50]);
+        for p in &points {
+            assert_eq!(p.in_data, p.n == 5 || p.n == 12, "{}", p.n);
+            assert_eq!(p.coverage.sims, 20);
+            // C(2n-1, n) distinct resamples: enumerated up to n = 5 at 200, 10,000 from n = 8.
+            let want = match p.n {
+                3 => bootstrap::Plan::Exact { distinct: 10 },
+                4 => bootstrap::Plan::Exact { distinct: 35 },
+                5 => bootstrap::Plan::Exact { distinct: 126 },
+                12 => bootstrap::Plan::Random { resamples: 10_000 },
+                _ => bootstrap::Plan::Random {
+                    resamples: CURVE_RESAMPLES,
+                },
+            };
+            assert_eq!(p.coverage.bootstrap, want, "n = {}", p.n);
+        }
+        // The data's size is the same simulation as of_analysis's (same streams), up
+        // to the last bit of the data: N(0, 1) here, N(0.5, 0.01^2) there.
+        let five = &points[2].coverage;
+        let direct = simulate(5, 0.5, 0.01, &s).unwrap();
+        for (a, b) in five.methods.iter().zip(&direct.methods) {
+            assert!((a.coverage - b.coverage).abs() <= 1.0 / 20.0, "{a:?} {b:?}");
+        }
+        // The budget counts what the curve runs: the data's sizes at the resamples asked for.
+        let runs = curve_runs(&[5, 12], &s);
+        assert!(runs.contains(&(12, 10_000)) && runs.contains(&(50, CURVE_RESAMPLES)));
+        assert!(!runs.contains(&(5, CURVE_RESAMPLES)));
+        assert_eq!(runs.len(), 11);
+    }
+
+    #[test]
+    fn holding_the_level_allows_monte_carlo_noise_only() {
+        let m = |coverage: f64, sims: f64| MethodCoverage {
+            method: "t",
+            target: "mean",
+            nominal: 0.95,
+            coverage,
+            mc_se: (coverage * (1.0 - coverage) / sims).sqrt(),
+            undefined: 0,
+        };
+        assert!(holds(&m(0.95, 4000.0)));
+        assert!(holds(&m(0.941, 4000.0)));
+        assert!(!holds(&m(0.843, 4000.0)));
+        // At 100 simulations 3 SE are 9 to 12 points: 0.9 still holds, 0.8 does not.
+        assert!(holds(&m(0.90, 100.0)));
+        assert!(!holds(&m(0.80, 100.0)));
+    }
+
+    /// The curve's 200 resamples against 2000 at n = 10 and 20, with the same
+    /// 4000 simulated datasets: within a percentage point (measured -0.35 and
+    /// -0.3 at n = 10; see CURVE_RESAMPLES).
+    #[test]
+    #[ignore = "slow: 2 x 4000 bootstraps of 2000 resamples (run by .ci/run)"]
+    fn two_hundred_resamples_move_the_coverage_by_under_a_point() {
+        for n in [10, 20] {
+            let many = CoverageSettings {
+                resamples: 2000,
+                ..settings(4000)
+            };
+            let few = CoverageSettings {
+                resamples: CURVE_RESAMPLES,
+                ..many
+            };
+            let a = simulate(n, 0.0, 1.0, &many).unwrap();
+            let b = simulate(n, 0.0, 1.0, &few).unwrap();
+            for (x, y) in a.methods.iter().zip(&b.methods) {
+                let d = x.coverage - y.coverage;
+                assert!(
+                    d.abs() < 0.01,
+                    "n = {n} {}: {} vs {}",
+                    x.method,
+                    x.coverage,
+                    y.coverage
+                );
+                if x.method == "t" || x.method == "prediction" {
+                    assert_eq!(d, 0.0, "{} does not use the bootstrap", x.method);
+                }
+            }
+        }
+    }
+
+    #[test]
     fn large_samples_are_skipped_beyond_the_limit() {
         use crate::analysis::{Settings, analyse};
         let text: String = std::iter::once("xray,finger,j1,j2,j3\n".to_string())
