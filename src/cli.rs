@@ -40,6 +40,9 @@ pub enum Command {
     History(cmd::history::Args),
     Completions(cmd::completions::Args),
     Man(cmd::man::Args),
+    // Writes docs/schema/ (for contributors; hidden from help and completions).
+    #[command(hide = true)]
+    Schema(cmd::schema::Args),
 }
 
 /// Runs phalanx with the process arguments; returns the exit status.
@@ -77,5 +80,6 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
         Command::History(args) => cmd::history::run(&args),
         Command::Completions(args) => cmd::completions::run(&args, Cli::command()),
         Command::Man(args) => cmd::man::run(&args, Cli::command()),
+        Command::Schema(args) => cmd::schema::run(&args),
     }
 }

@@ -2,6 +2,7 @@
 
 use super::{Analysis, Settings, analyse};
 use crate::dataset::Dataset;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// What to group X-rays by.
@@ -146,7 +147,7 @@ pub fn analyse_groups(data: &Dataset, by: &GroupBy, settings: &Settings) -> Vec<
 }
 
 /// One group as it appears in JSON.
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 pub struct GroupSummary<'a> {
     pub group: &'a str,
     pub xrays: usize,

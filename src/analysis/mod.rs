@@ -24,6 +24,7 @@ use crate::dataset::{Dataset, Finger, Row};
 use crate::stats::Intervals;
 use crate::stats::bootstrap::{self, Plan, Sorted};
 use crate::stats::describe;
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -87,7 +88,7 @@ impl Settings {
 }
 
 /// The derived values of one X-ray for one finger (eqs. 1-2).
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct XrayValues {
     pub xray: Arc<str>,
     /// J1, J2[, J3] in data units.
@@ -113,7 +114,7 @@ impl XrayValues {
 }
 
 /// Every statistic of one quantity over the X-rays of a finger.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct QuantityStats {
     pub name: Quantity,
     pub n: usize,
@@ -141,7 +142,7 @@ pub struct QuantityStats {
 }
 
 /// The analysis of one finger.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct FingerAnalysis {
     pub finger: Finger,
     /// Number of X-rays with this finger.
@@ -160,7 +161,7 @@ impl FingerAnalysis {
 }
 
 /// What an analysis was computed from: enough to cite the dataset, not its rows.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, JsonSchema)]
 pub struct DatasetInfo {
     /// The path as given.
     pub path: String,

@@ -11,6 +11,7 @@ pub mod plots;
 pub mod progress;
 pub mod render;
 pub mod render3d;
+pub mod schema;
 pub mod text;
 pub mod view;
 pub mod writer;

@@ -26,12 +26,13 @@ use glam::{DMat4, DQuat, DVec3};
 use judge::ChainInput;
 use map::NameMap;
 use naming::{Part, Side, Slot};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 /// One joint of a rig finger.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct RigJoint {
     pub joint: Joint,
     /// Index of the node in the glTF file (`None` for reference rigs).
@@ -39,11 +40,12 @@ pub struct RigJoint {
     /// The node's name.
     pub name: String,
     /// World position in the node pose.
+    #[schemars(with = "[f64; 3]")]
     pub position: DVec3,
 }
 
 /// One finger chain found in a rig: root (MCP), inner joints, and the tip when present.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct FingerChain {
     /// `None` when the names do not say (a one-hand file such as WebXR's).
     pub side: Option<Side>,
@@ -697,7 +699,7 @@ fn no_hand(label: &str, names: &[String], notes: Vec<String>) -> DataError {
 }
 
 /// A rig finger with its judgement.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct AuditedFinger {
     #[serde(flatten)]
     pub chain: FingerChain,
@@ -705,7 +707,7 @@ pub struct AuditedFinger {
 }
 
 /// Every finger of a rig judged against the statistics.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct AuditedRig {
     /// The file (or reference rig) the chains come from.
     pub label: String,

@@ -19,11 +19,12 @@
 
 use crate::dataset::Finger;
 use regex::Regex;
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::sync::LazyLock;
 
 /// Which hand.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Side {
     Left,

@@ -12,6 +12,7 @@ use super::Interval;
 use super::describe::{normal_cdf, normal_quantile};
 use super::rng;
 use rayon::prelude::*;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// Resamples per random stream. Chunk `k` always holds resamples
@@ -19,7 +20,7 @@ use serde::Serialize;
 pub const CHUNK: usize = 64;
 
 /// How the bootstrap distribution was obtained.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 #[serde(tag = "method", rename_all = "lowercase")]
 pub enum Plan {
     /// Every distinct resample enumerated with its multinomial weight.
