@@ -11,14 +11,14 @@
 //! number shown becomes text.
 
 pub mod analysis;
-pub mod atomic;
+pub(crate) mod atomic;
 pub mod cli;
 mod cmd;
 pub mod dataset;
 pub mod error;
-pub mod format;
+pub(crate) mod format;
 pub mod report;
 pub mod rig;
 pub mod stats;
 pub mod synth;
-pub mod track;
+pub(crate) mod track;

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 /// Write the JSON Schema of every JSON document phalanx writes (for docs/schema/)
 #[derive(clap::Args, Debug)]
 #[command(after_help = "Examples:\n  phalanx schema\n  phalanx schema --out /tmp/schema")]
-pub struct Args {
+pub(crate) struct Args {
     /// Directory to write <document>.schema.json into
     #[arg(long, value_name = "DIR", default_value = "docs/schema")]
     out: PathBuf,

@@ -92,12 +92,12 @@ struct Record<'s> {
 
 impl<'s> Record<'s> {
     /// Number of fields on the line.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.fields.len()
     }
 
     /// Field `i` trimmed, `Some("")` when absent or empty, `None` when not valid text.
-    pub fn get(&self, i: usize) -> Option<&'s str> {
+    pub(crate) fn get(&self, i: usize) -> Option<&'s str> {
         match self.fields.get(i) {
             Some(f) => f.map(str::trim),
             None => Some(""),
@@ -148,7 +148,7 @@ struct CsvScan<R: std::io::Read> {
 impl<R: std::io::Read> CsvScan<R> {
     /// Prepares `input` for reading; a UTF-16 file is an error here. Memory: the
     /// reader's buffers and the line ends read ahead, not the file.
-    pub fn new(label: &str, input: R) -> Result<Self, DataError> {
+    pub(crate) fn new(label: &str, input: R) -> Result<Self, DataError> {
         let mut inner = std::io::BufReader::with_capacity(64 * 1024, input);
         let mut hasher = <sha2::Sha256 as sha2::Digest>::new();
         let head = std::io::BufRead::fill_buf(&mut inner)
@@ -183,7 +183,7 @@ impl<R: std::io::Read> CsvScan<R> {
 
     /// Reads what is left and returns the file's SHA-256 (lower-case hex), and
     /// whether it held anything but white space.
-    pub fn finish(self) -> std::io::Result<(String, bool)> {
+    pub(crate) fn finish(self) -> std::io::Result<(String, bool)> {
         let mut source = self.reader.into_inner();
         std::io::copy(&mut source, &mut std::io::sink())?;
         let digest = sha2::Digest::finalize(source.hasher);
@@ -230,7 +230,7 @@ impl<R: std::io::Read> CsvScan<R> {
 
     /// The next non-blank record, or `None` at the end. Problems with the
     /// record's bytes are pushed to `problems`.
-    pub fn next_record(&mut self, problems: &mut Vec<Problem>) -> Option<Record<'_>> {
+    pub(crate) fn next_record(&mut self, problems: &mut Vec<Problem>) -> Option<Record<'_>> {
         loop {
             match self.reader.read_byte_record(&mut self.record) {
                 Ok(false) => return None,
