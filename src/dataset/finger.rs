@@ -46,7 +46,7 @@ impl Finger {
     }
 
     /// The name with its indefinite article: "an index", "a ring".
-    pub fn with_article(self) -> String {
+    pub(crate) fn with_article(self) -> String {
         match self {
             Finger::Index => "an index".to_string(),
             other => format!("a {}", other.name()),

@@ -131,7 +131,7 @@ pub fn read(path: &Path) -> Result<Vec<Snapshot>, DataError> {
 
 /// The history file's bytes with one snapshot appended as a JSON line (a
 /// missing file is empty; a last line without its line end is completed).
-pub fn appended_bytes(path: &Path, snapshot: &Snapshot) -> std::io::Result<Vec<u8>> {
+pub(crate) fn appended_bytes(path: &Path, snapshot: &Snapshot) -> std::io::Result<Vec<u8>> {
     let mut bytes = match std::fs::read(path) {
         Ok(b) => b,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Vec::new(),
@@ -148,7 +148,7 @@ pub fn appended_bytes(path: &Path, snapshot: &Snapshot) -> std::io::Result<Vec<u
 /// Appends one snapshot as a JSON line. The file is replaced atomically (old
 /// lines, then the new one), so an interrupted append leaves the old history,
 /// never a torn line. Cost: O(size of the history).
-pub fn append(path: &Path, snapshot: &Snapshot) -> std::io::Result<()> {
+pub(crate) fn append(path: &Path, snapshot: &Snapshot) -> std::io::Result<()> {
     crate::atomic::replace(path, &appended_bytes(path, snapshot)?)
 }
 
