@@ -16,7 +16,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 /// Decimals the paper rounds relative values to before computing with them.
-pub const PAPER_ROUNDING: i32 = 4;
+pub(crate) const PAPER_ROUNDING: i32 = 4;
 
 /// The outcome of checking one claim.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
@@ -101,7 +101,7 @@ impl CheckSummary {
 }
 
 /// True when `computed` rounds to `stated` at `decimals` places (half a unit, plus float slack).
-pub fn agrees(computed: f64, stated: f64, decimals: usize) -> bool {
+pub(crate) fn agrees(computed: f64, stated: f64, decimals: usize) -> bool {
     let half = 0.5 * 10f64.powi(-(decimals as i32));
     (computed - stated).abs() <= half * (1.0 + 1e-9) + 1e-12
 }

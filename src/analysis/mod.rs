@@ -6,14 +6,14 @@
 //! Student-t, bootstrap percentile and BCa intervals of the mean, and a
 //! prediction interval for one new X-ray. Knows nothing of files or rendering.
 
-pub mod budget;
+pub(crate) mod budget;
 pub mod claims;
 pub mod coverage;
 pub mod groups;
-pub mod outliers;
+pub(crate) mod outliers;
 pub mod placement;
-pub mod plausible;
-pub mod tracking;
+pub(crate) mod plausible;
+pub(crate) mod tracking;
 
 /// The interval type of [`crate::stats`] and the quantities of [`crate::dataset`],
 /// also here for the analysis's callers.
@@ -299,7 +299,7 @@ pub fn analyse_with(
 }
 
 /// Eqs. (1)-(2) for one row.
-pub fn xray_values(row: &Row) -> XrayValues {
+pub(crate) fn xray_values(row: &Row) -> XrayValues {
     let lengths = row.segments().to_vec();
     let total = row.total();
     let relative = lengths.iter().map(|l| l / total).collect();
@@ -316,7 +316,7 @@ pub fn xray_values(row: &Row) -> XrayValues {
 /// Degenerate cases: with n = 1 every interval and SD-based statistic is null
 /// (no spread can be estimated); with zero spread every interval collapses to
 /// the common value. Each case leaves a note.
-pub fn quantity_stats(
+pub(crate) fn quantity_stats(
     name: Quantity,
     values: &[f64],
     boot: &[f64],

@@ -71,7 +71,7 @@ pub struct Placed {
 
 impl Placed {
     /// The statistics of `offset + scale * x`, from those of x. O(1).
-    pub fn affine(s: &QuantityStats, offset: f64, scale: f64) -> Placed {
+    pub(crate) fn affine(s: &QuantityStats, offset: f64, scale: f64) -> Placed {
         let map = |x: f64| offset + scale * x;
         let (a, b) = (map(s.min), map(s.max));
         Placed {
