@@ -10,7 +10,7 @@
 //! read by [`naming`], VRM's humanoid bone tables when present, and a
 //! `--map` file ([`map`]) first of all.
 
-pub mod chain;
+pub(crate) mod chain;
 pub mod deform;
 pub mod fix;
 pub mod judge;
@@ -89,7 +89,7 @@ pub struct GltfFile {
 }
 
 /// The local matrix of a node, in f64.
-pub fn local_matrix(node: &gltf::Node<'_>) -> DMat4 {
+pub(crate) fn local_matrix(node: &gltf::Node<'_>) -> DMat4 {
     match node.transform() {
         gltf::scene::Transform::Matrix { matrix } => {
             DMat4::from_cols_array_2d(&matrix.map(|c| c.map(f64::from)))
@@ -288,7 +288,7 @@ fn below(parent: &[Option<usize>], node: usize, ancestor: usize) -> bool {
 
 /// A node name fit for a message or a terminal: quoted, control characters
 /// replaced, at most 80 characters.
-pub fn shown(name: &str) -> String {
+pub(crate) fn shown(name: &str) -> String {
     let clean: String = name
         .chars()
         .map(|c| if c.is_control() { '\u{FFFD}' } else { c })
@@ -321,7 +321,7 @@ fn quietly<T>(f: impl FnOnce() -> T) -> Option<T> {
 }
 
 /// World matrices from parents and local matrices; `None` on a cycle. O(n depth).
-pub fn world_matrices(parent: &[Option<usize>], locals: &[DMat4]) -> Option<Vec<DMat4>> {
+pub(crate) fn world_matrices(parent: &[Option<usize>], locals: &[DMat4]) -> Option<Vec<DMat4>> {
     let n = locals.len();
     let mut world: Vec<Option<DMat4>> = vec![None; n];
     for start in 0..n {
