@@ -16,7 +16,7 @@ pub const SCHEMA_VERSION: u32 = 1;
 
 /// The settings block of every JSON document.
 #[derive(Serialize, JsonSchema)]
-pub struct SettingsView<'a> {
+pub(crate) struct SettingsView<'a> {
     pub resamples: usize,
     pub seed: u64,
     pub confidence: f64,
@@ -26,7 +26,7 @@ pub struct SettingsView<'a> {
 
 impl SettingsView<'static> {
     /// The settings block for analysis settings.
-    pub fn of(s: &Settings) -> Self {
+    pub(crate) fn of(s: &Settings) -> Self {
         SettingsView {
             resamples: s.resamples,
             seed: s.seed,
@@ -131,7 +131,7 @@ pub(crate) struct CoverageDocument<'a> {
 }
 
 /// What the coverage simulation assumes, for outputs.
-pub const COVERAGE_MODEL: &str = "normal model N(mean, sd^2) fitted to each quantity; n values drawn per simulated dataset; confidence intervals checked against the model mean, the prediction interval against one further draw";
+pub(crate) const COVERAGE_MODEL: &str = "normal model N(mean, sd^2) fitted to each quantity; n values drawn per simulated dataset; confidence intervals checked against the model mean, the prediction interval against one further draw";
 
 /// The document of `phalanx coverage --format json`.
 pub fn coverage(

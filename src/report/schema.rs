@@ -15,11 +15,11 @@ use schemars::generate::SchemaSettings;
 use schemars::{JsonSchema, Schema};
 
 /// A document's schema generator.
-pub type Generator = fn() -> Schema;
+pub(crate) type Generator = fn() -> Schema;
 
 /// Every JSON document phalanx writes: its name (the schema file is
 /// `<name>.schema.json`) and the schema of the type that writes it.
-pub const DOCUMENTS: &[(&str, Generator)] = &[
+pub(crate) const DOCUMENTS: &[(&str, Generator)] = &[
     ("stats", of::<json::StatsDocument<'static>>),
     ("check", of::<json::CheckDocument<'static>>),
     ("coverage", of::<json::CoverageDocument<'static>>),
@@ -31,7 +31,7 @@ pub const DOCUMENTS: &[(&str, Generator)] = &[
 
 /// The JSON Schema (draft 2020-12) of what serialising a `T` writes: a field
 /// serde may skip is optional, every other field required.
-pub fn of<T: JsonSchema>() -> Schema {
+pub(crate) fn of<T: JsonSchema>() -> Schema {
     SchemaSettings::draft2020_12()
         .for_serialize()
         .into_generator()
@@ -40,7 +40,7 @@ pub fn of<T: JsonSchema>() -> Schema {
 
 /// The schema files, `<name>.schema.json` for each of [`DOCUMENTS`]: pretty
 /// JSON ending in a newline.
-pub fn files() -> Result<Vec<OutputFile>, Error> {
+pub(crate) fn files() -> Result<Vec<OutputFile>, Error> {
     DOCUMENTS
         .iter()
         .map(|(name, schema)| {
