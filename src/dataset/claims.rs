@@ -229,7 +229,7 @@ impl Claims {
     }
 
     /// Checks that every claim points at a finger and X-ray the dataset has.
-    pub(crate) fn check_against(&self, data: &Dataset) -> Result<(), DataError> {
+    pub fn check_against(&self, data: &Dataset) -> Result<(), DataError> {
         let fingers: HashSet<Finger> = data.rows.iter().map(|r| r.finger).collect();
         let rows: HashSet<(&str, Finger)> =
             data.rows.iter().map(|r| (&*r.xray, r.finger)).collect();

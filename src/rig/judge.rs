@@ -15,7 +15,7 @@
 //!
 //! Suggested positions stay on the rig's own chain (the polyline through its
 //! joints), with root and tip (or DIP) fixed, and are solved so the new chords
-//! have exactly the mean proportions (see [`super::chain`]). No files, no glTF.
+//! have exactly the mean proportions (see `rig::chain`). No files, no glTF.
 
 use super::chain::{arc_positions, on_chain};
 use crate::analysis::placement::{Joint, Placed};

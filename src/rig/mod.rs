@@ -1,6 +1,6 @@
 //! Rigged hands: reading their finger chains from a glTF 2.0 file, judging
 //! them against the X-ray statistics ([`judge`], on the chain geometry of
-//! [`chain`]) and writing a fixed copy ([`fix`]).
+//! `chain`) and writing a fixed copy ([`fix`]).
 //!
 //! Joint positions are the world translations of the joint nodes in the
 //! file's node pose (the bind pose of an exported rig), in the file's units
