@@ -17,6 +17,7 @@ mod options;
 mod place;
 mod properties;
 mod report;
+mod schema;
 mod stats;
 mod synth;
 mod track;

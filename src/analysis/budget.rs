@@ -12,22 +12,22 @@
 use crate::stats::bootstrap::Plan;
 
 /// Most bootstrap resamples (memory: 8 bytes x quantities per resample).
-pub const MAX_RESAMPLES: usize = 1_000_000;
+pub(crate) const MAX_RESAMPLES: usize = 1_000_000;
 
 /// Most simulated datasets of a coverage simulation (Monte-Carlo SE 0.0007 at 10^5).
-pub const MAX_SIMS: usize = 100_000;
+pub(crate) const MAX_SIMS: usize = 100_000;
 
 /// Most resample-X-ray pairs one command may cost: about a minute on two cores.
-pub const MAX_WORK: u128 = 10_000_000_000;
+pub(crate) const MAX_WORK: u128 = 10_000_000_000;
 
 /// Resample-X-ray pairs of one bootstrap of n X-rays with `resamples` asked for.
-pub fn bootstrap_work(n: usize, resamples: usize) -> u128 {
+pub(crate) fn bootstrap_work(n: usize, resamples: usize) -> u128 {
     Plan::choose(n, resamples.max(1)).len() as u128 * n as u128
 }
 
 /// Refuses a bootstrap of n X-rays that would exceed [`MAX_WORK`], saying how
 /// many resamples fit.
-pub fn check_bootstrap(n: usize, resamples: usize) -> Result<(), String> {
+pub(crate) fn check_bootstrap(n: usize, resamples: usize) -> Result<(), String> {
     let work = bootstrap_work(n, resamples);
     if work <= MAX_WORK {
         return Ok(());
@@ -41,7 +41,7 @@ pub fn check_bootstrap(n: usize, resamples: usize) -> Result<(), String> {
 
 /// Refuses a coverage simulation of `sims` datasets at each sample size in
 /// `sizes` that would exceed [`MAX_WORK`] in total, saying how many fit.
-pub fn check_coverage(sizes: &[usize], sims: usize, resamples: usize) -> Result<(), String> {
+pub(crate) fn check_coverage(sizes: &[usize], sims: usize, resamples: usize) -> Result<(), String> {
     let per_sim: u128 = sizes.iter().map(|&n| bootstrap_work(n, resamples)).sum();
     let work = per_sim * sims as u128;
     if work <= MAX_WORK {

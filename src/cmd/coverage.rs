@@ -11,7 +11,7 @@ use crate::report;
 #[command(
     after_help = "Examples:\n  phalanx coverage\n  phalanx coverage --sims 20000 --format json"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]
