@@ -19,7 +19,7 @@ use crate::error::Error;
 use std::path::{Path, PathBuf};
 
 /// Where new rows come from.
-pub enum NewRows {
+pub(crate) enum NewRows {
     /// A CSV file in the dataset's format (with its own header).
     File(PathBuf),
     /// One row given as options: (column, value) pairs.
@@ -27,7 +27,7 @@ pub enum NewRows {
 }
 
 /// What `add` is asked to do.
-pub struct AddRequest {
+pub(crate) struct AddRequest {
     pub data: PathBuf,
     pub history: PathBuf,
     pub rows: NewRows,
@@ -38,7 +38,7 @@ pub struct AddRequest {
 
 /// What `add` did.
 #[derive(Debug)]
-pub struct AddOutcome {
+pub(crate) struct AddOutcome {
     pub added: usize,
     pub xrays_before: usize,
     pub xrays_after: usize,
@@ -48,16 +48,15 @@ pub struct AddOutcome {
     pub notes: Vec<String>,
     /// Implausible data in the resulting dataset (e.g. swapped columns).
     pub implausible: Vec<String>,
-    pub snapshot: Snapshot,
 }
 
 /// The current UTC time, RFC 3339, for history records.
-pub fn now() -> String {
+pub(crate) fn now() -> String {
     humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
 }
 
 /// Adds new rows to a dataset, then appends a snapshot to its history.
-pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
+pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     let (new, typed) = match &req.rows {
         NewRows::File(p) => {
             let new = Dataset::load(p)?;
@@ -115,7 +114,6 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         flags,
         notes,
         implausible: analysis::plausible::warnings(&a),
-        snapshot,
     })
 }
 
@@ -146,7 +144,11 @@ fn refusal(new: &Dataset, flags: &[Flag], from_options: bool) -> DataError {
 
 /// Appends a snapshot of the dataset's current statistics to its history
 /// (for data edited by hand). Holds the dataset's lock while it reads.
-pub fn snapshot(data: &Path, history_path: &Path, settings: &Settings) -> Result<Snapshot, Error> {
+pub(crate) fn snapshot(
+    data: &Path,
+    history_path: &Path,
+    settings: &Settings,
+) -> Result<Snapshot, Error> {
     csvinput::open_input(data)?; // a missing dataset is reported before any lock file is made
     let _lock = DatasetLock::acquire(data).map_err(Error::write(data))?;
     let dataset = Dataset::load(data)?;

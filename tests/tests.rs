@@ -18,6 +18,7 @@ mod place;
 mod properties;
 mod readable;
 mod report;
+mod schema;
 mod stats;
 mod synth;
 mod track;

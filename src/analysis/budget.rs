@@ -12,22 +12,22 @@
 use crate::stats::bootstrap::Plan;
 
 /// Most bootstrap resamples (memory: 8 bytes x quantities per resample).
-pub const MAX_RESAMPLES: usize = 1_000_000;
+pub(crate) const MAX_RESAMPLES: usize = 1_000_000;
 
 /// Most simulated datasets of a coverage simulation (Monte-Carlo SE 0.0007 at 10^5).
-pub const MAX_SIMS: usize = 100_000;
+pub(crate) const MAX_SIMS: usize = 100_000;
 
 /// Most resample-X-ray pairs one command may cost: about a minute on two cores.
-pub const MAX_WORK: u128 = 10_000_000_000;
+pub(crate) const MAX_WORK: u128 = 10_000_000_000;
 
 /// Resample-X-ray pairs of one bootstrap of n X-rays with `resamples` asked for.
-pub fn bootstrap_work(n: usize, resamples: usize) -> u128 {
+pub(crate) fn bootstrap_work(n: usize, resamples: usize) -> u128 {
     Plan::choose(n, resamples.max(1)).len() as u128 * n as u128
 }
 
 /// Refuses a bootstrap of n X-rays that would exceed [`MAX_WORK`], saying how
 /// many resamples fit.
-pub fn check_bootstrap(n: usize, resamples: usize) -> Result<(), String> {
+pub(crate) fn check_bootstrap(n: usize, resamples: usize) -> Result<(), String> {
     let work = bootstrap_work(n, resamples);
     if work <= MAX_WORK {
         return Ok(());
@@ -39,17 +39,11 @@ pub fn check_bootstrap(n: usize, resamples: usize) -> Result<(), String> {
     ))
 }
 
-/// Refuses a coverage simulation of `sims` datasets at each sample size in
-/// `sizes` that would exceed [`MAX_WORK`] in total, saying how many fit.
-pub fn check_coverage(sizes: &[usize], sims: usize, resamples: usize) -> Result<(), String> {
-    let runs: Vec<(usize, usize)> = sizes.iter().map(|&n| (n, resamples)).collect();
-    check_coverage_runs(&runs, sims, resamples)
-}
-
-/// [`check_coverage`] for simulations of `sims` datasets at sample sizes with
-/// their own resamples, `(n, resamples)` each (the coverage curve uses fewer);
-/// `asked` is the `--resamples` the message quotes.
-pub fn check_coverage_runs(
+/// Refuses a coverage simulation of `sims` datasets at sample sizes with their
+/// own resamples, `(n, resamples)` each (the coverage curve uses fewer), that
+/// would exceed [`MAX_WORK`] in total, saying how many fit; `asked` is the
+/// `--resamples` the message quotes.
+pub(crate) fn check_coverage_runs(
     runs: &[(usize, usize)],
     sims: usize,
     asked: usize,
@@ -90,8 +84,8 @@ mod tests {
         let e = check_bootstrap(1_000_001, 10_000).unwrap_err();
         assert!(e.contains("give --resamples 9999 or fewer"), "{e}");
         // Coverage: 4000 sims x 10^4 resamples x 200 X-rays = 8e9 fits; 300 X-rays does not.
-        assert!(check_coverage(&[200], 4000, 10_000).is_ok());
-        let e = check_coverage(&[5, 300], 4000, 10_000).unwrap_err();
+        assert!(check_coverage_runs(&[(200, 10_000)], 4000, 10_000).is_ok());
+        let e = check_coverage_runs(&[(5, 10_000), (300, 10_000)], 4000, 10_000).unwrap_err();
         assert!(e.contains("at n = 5, 300"), "{e}");
         assert!(e.contains("give --sims 3332 or fewer"), "{e}");
     }

@@ -2,6 +2,7 @@
 
 use super::{Analysis, Settings, analyse};
 use crate::dataset::Dataset;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// What to group X-rays by.
@@ -66,7 +67,7 @@ pub fn validate_age_bins(edges: &[f64]) -> Result<(), String> {
 /// Why grouping by `by` would say nothing, if it would: no row has a value in
 /// that column, so every X-ray would fall in one "unknown" group, a copy of the
 /// whole analysis.
-pub fn nothing_to_group(data: &Dataset, by: &GroupBy) -> Option<String> {
+pub(crate) fn nothing_to_group(data: &Dataset, by: &GroupBy) -> Option<String> {
     data.rows
         .iter()
         .all(|r| by.label(&r.meta) == "unknown")
@@ -146,8 +147,8 @@ pub fn analyse_groups(data: &Dataset, by: &GroupBy, settings: &Settings) -> Vec<
 }
 
 /// One group as it appears in JSON.
-#[derive(Serialize)]
-pub struct GroupSummary<'a> {
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct GroupSummary<'a> {
     pub group: &'a str,
     pub xrays: usize,
     pub seed: u64,
@@ -157,7 +158,7 @@ pub struct GroupSummary<'a> {
 
 impl Group {
     /// The JSON view of this group.
-    pub fn summary(&self) -> GroupSummary<'_> {
+    pub(crate) fn summary(&self) -> GroupSummary<'_> {
         GroupSummary {
             group: &self.label,
             xrays: self.xrays,

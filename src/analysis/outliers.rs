@@ -63,10 +63,10 @@ use crate::stats::describe;
 use serde::Serialize;
 
 /// Family-wise false-alarm rate of the prediction rule per genuine row.
-pub const ROW_ALPHA: f64 = 0.01;
+pub(crate) const ROW_ALPHA: f64 = 0.01;
 
 /// A length this many times its median, or 1/this times, looks like a typo: sqrt(10).
-pub const TYPO_RATIO: f64 = 3.162_277_660_168_379_5;
+pub(crate) const TYPO_RATIO: f64 = 3.162_277_660_168_379_5;
 
 /// Relative tolerance under which two relative values count as equal (zero spread).
 const SAME: f64 = 1e-9;
@@ -78,7 +78,7 @@ fn relative(j: usize) -> Quantity {
 
 /// What the current X-rays of one finger say a genuine new row looks like.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Reference {
+pub(crate) struct Reference {
     /// Current X-rays.
     pub n: usize,
     /// Level of each relative value's prediction interval: 1 - ROW_ALPHA / k.
@@ -93,7 +93,7 @@ pub struct Reference {
 
 /// One relative value outside its interval.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Outside {
+pub(crate) struct Outside {
     /// Segment, 0-based.
     pub segment: usize,
     pub value: f64,
@@ -104,7 +104,7 @@ pub struct Outside {
 
 /// One length that looks like a typo.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Typo {
+pub(crate) struct Typo {
     /// Segment, 0-based.
     pub segment: usize,
     pub value: f64,
@@ -115,14 +115,14 @@ pub struct Typo {
 
 /// What the rules found in one row.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct Findings {
+pub(crate) struct Findings {
     pub outside: Vec<Outside>,
     pub typos: Vec<Typo>,
 }
 
 impl Findings {
     /// True when neither rule fired.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.outside.is_empty() && self.typos.is_empty()
     }
 }
@@ -131,7 +131,7 @@ impl Reference {
     /// The reference of the current X-rays, each given by its segment lengths
     /// (all of the same count k >= 2, every length positive). `None` for no rows.
     /// Cost: O(k n log n).
-    pub fn new(rows: &[&[f64]]) -> Option<Reference> {
+    pub(crate) fn new(rows: &[&[f64]]) -> Option<Reference> {
         let k = rows.first()?.len();
         if k < 2 || rows.iter().any(|r| r.len() != k) {
             return None;
@@ -166,7 +166,7 @@ impl Reference {
     }
 
     /// Applies both rules to a new row's segment lengths (k of them). O(k).
-    pub fn check(&self, lengths: &[f64]) -> Findings {
+    pub(crate) fn check(&self, lengths: &[f64]) -> Findings {
         let total: f64 = lengths.iter().sum();
         let mut found = Findings::default();
         for (j, &len) in lengths.iter().enumerate().take(self.medians.len()) {
@@ -203,7 +203,7 @@ impl Reference {
 
 /// A relative value outside its interval, as reported.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct OutsideValue {
+pub(crate) struct OutsideValue {
     /// `rel_j1`, ...
     pub quantity: String,
     pub value: f64,
@@ -213,7 +213,7 @@ pub struct OutsideValue {
 
 /// A length that looks like a typo, as reported.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct TypoLength {
+pub(crate) struct TypoLength {
     /// `j1`, `j2` or `j3`.
     pub length: String,
     pub value: f64,
@@ -225,7 +225,7 @@ pub struct TypoLength {
 
 /// A new row that the current data says is likely wrong: one per row.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Flag {
+pub(crate) struct Flag {
     pub xray: String,
     pub finger: String,
     /// Current X-rays of the finger.
@@ -239,7 +239,7 @@ pub struct Flag {
 }
 
 /// The reference of one finger of an analysis. `None` when the data lacks the finger.
-pub fn reference(a: &Analysis, finger: Finger) -> Option<Reference> {
+pub(crate) fn reference(a: &Analysis, finger: Finger) -> Option<Reference> {
     let fa = a.finger(finger)?;
     let rows: Vec<&[f64]> = fa.xrays.iter().map(|x| x.lengths.as_slice()).collect();
     Reference::new(&rows)
@@ -248,7 +248,7 @@ pub fn reference(a: &Analysis, finger: Finger) -> Option<Reference> {
 /// Flags every new row that either rule finds unusual, one [`Flag`] per row,
 /// in the order of `rows`. Rows of a finger the data lacks are not flagged
 /// (see [`limits`]). Cost: O(n log n) per finger plus O(k) per row.
-pub fn flag_rows(a: &Analysis, rows: &[Row]) -> Vec<Flag> {
+pub(crate) fn flag_rows(a: &Analysis, rows: &[Row]) -> Vec<Flag> {
     let references: Vec<(Finger, Option<Reference>)> = Finger::ALL
         .into_iter()
         .map(|f| (f, reference(a, f)))
@@ -269,7 +269,7 @@ pub fn flag_rows(a: &Analysis, rows: &[Row]) -> Vec<Flag> {
 /// Why rows of a finger cannot be checked fully, if they cannot: fewer than 2
 /// current X-rays give no prediction interval (only the typo rule applies),
 /// none give no check at all.
-pub fn limits(a: &Analysis, finger: Finger) -> Option<String> {
+pub(crate) fn limits(a: &Analysis, finger: Finger) -> Option<String> {
     let n = a.finger(finger).map_or(0, |f| f.n);
     match n {
         0 => Some(format!(

@@ -9,7 +9,7 @@ use super::{Analysis, FingerAnalysis};
 
 /// The warning for a finger whose J3 exceeds J1 in every X-ray, if it does.
 /// The thumb (two segments) is never warned about. O(n).
-pub fn swapped_segments(f: &FingerAnalysis) -> Option<String> {
+pub(crate) fn swapped_segments(f: &FingerAnalysis) -> Option<String> {
     if f.finger.segments() != 3 || f.xrays.is_empty() {
         return None;
     }
@@ -31,7 +31,7 @@ pub fn swapped_segments(f: &FingerAnalysis) -> Option<String> {
 }
 
 /// Every such warning of an analysis, thumb first.
-pub fn warnings(a: &Analysis) -> Vec<String> {
+pub(crate) fn warnings(a: &Analysis) -> Vec<String> {
     a.fingers.iter().filter_map(swapped_segments).collect()
 }
 

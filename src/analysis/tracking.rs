@@ -8,7 +8,7 @@ use crate::stats::describe;
 use serde::Serialize;
 
 /// The history record of an analysis.
-pub fn snapshot(a: &Analysis, time: String, event: Event) -> Snapshot {
+pub(crate) fn snapshot(a: &Analysis, time: String, event: Event) -> Snapshot {
     Snapshot {
         time,
         event,
@@ -47,7 +47,7 @@ pub fn snapshot(a: &Analysis, time: String, event: Event) -> Snapshot {
 
 /// How one quantity moved between two snapshots.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Change {
+pub(crate) struct Change {
     pub finger: Finger,
     pub quantity: Quantity,
     pub n_before: usize,
@@ -62,7 +62,7 @@ pub struct Change {
 }
 
 /// Changes of every quantity present in both snapshots, in the order of `after`.
-pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
+pub(crate) fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
     after
         .quantities
         .iter()
@@ -89,14 +89,14 @@ pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
 
 /// One quantity's history: (X-rays, mean, t interval) per snapshot, in order.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct QuantityHistory {
+pub(crate) struct QuantityHistory {
     pub finger: Finger,
     pub quantity: Quantity,
     pub points: Vec<(usize, f64, Option<Interval>)>,
 }
 
 /// The history of every quantity present in the snapshots, in first-seen order.
-pub fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
+pub(crate) fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
     let mut out: Vec<QuantityHistory> = Vec::new();
     for s in snaps {
         for q in &s.quantities {
@@ -119,7 +119,7 @@ pub fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
 
 /// The (finger, quantity) pairs present in a history, in first-seen order,
 /// narrowed to one finger and/or quantity.
-pub fn selected(
+pub(crate) fn selected(
     snaps: &[Snapshot],
     finger: Option<Finger>,
     quantity: Option<Quantity>,
@@ -139,10 +139,10 @@ pub fn selected(
 }
 
 /// Largest n [`xrays_needed`] and [`xrays_needed_assured`] search.
-pub const MAX_NEEDED: usize = 100_000_000;
+pub(crate) const MAX_NEEDED: usize = 100_000_000;
 
 /// The assurance the report asks for: the target is met in 80% of studies.
-pub const ASSURANCE: f64 = 0.8;
+pub(crate) const ASSURANCE: f64 = 0.8;
 
 /// The smallest number of X-rays n >= 2 whose t interval half-width
 /// t_{(1+c)/2, n-1} * sd / sqrt(n) is at most `target`, taking the SD as known
@@ -150,7 +150,7 @@ pub const ASSURANCE: f64 = 0.8;
 /// target is met only about half the time; see [`xrays_needed_assured`]).
 /// `None` when more than [`MAX_NEEDED`] would be needed or the input is unusable.
 /// Cost: O(log n) quantile evaluations (bisection on a monotone function).
-pub fn xrays_needed(sd: f64, target: f64, confidence: f64) -> Option<usize> {
+pub(crate) fn xrays_needed(sd: f64, target: f64, confidence: f64) -> Option<usize> {
     if !(sd.is_finite() && target.is_finite() && target > 0.0 && sd >= 0.0) {
         return None;
     }
@@ -168,7 +168,7 @@ pub fn xrays_needed(sd: f64, target: f64, confidence: f64) -> Option<usize> {
 ///
 /// since (n - 1) S^2 / sd^2 ~ chi2(n - 1) for normal data (t_{n-1} is the
 /// (1+c)/2 quantile). `None` for n < 2 or unusable input.
-pub fn assurance(n: usize, sd: f64, target: f64, confidence: f64) -> Option<f64> {
+pub(crate) fn assurance(n: usize, sd: f64, target: f64, confidence: f64) -> Option<f64> {
     if n < 2 || !(sd.is_finite() && sd >= 0.0 && target.is_finite() && target > 0.0) {
         return None;
     }
@@ -194,7 +194,12 @@ pub fn assurance(n: usize, sd: f64, target: f64, confidence: f64) -> Option<f64>
 /// `sd` being the current estimate of the SD. The left side grows with n, so
 /// the search is a bisection. `None` when more than [`MAX_NEEDED`] would be
 /// needed or the input is unusable. Cost: O(log n) quantile and CDF evaluations.
-pub fn xrays_needed_assured(sd: f64, target: f64, confidence: f64, level: f64) -> Option<usize> {
+pub(crate) fn xrays_needed_assured(
+    sd: f64,
+    target: f64,
+    confidence: f64,
+    level: f64,
+) -> Option<usize> {
     if !(level > 0.0 && level < 1.0) {
         return None;
     }

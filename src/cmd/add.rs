@@ -16,7 +16,7 @@ use std::path::PathBuf;
                   of that length (a misplaced decimal point): one warning per row, or a refusal with --strict.\n\n\
                   Examples:\n  phalanx add new_xrays.csv\n  phalanx add --xray 2a --finger index --lengths 352.1,201.4,178.0 --sex female --age 34\n  phalanx add --strict --xray 2a --finger thumb --lengths 270.1,233.9"
 )]
-pub struct Args {
+pub(crate) struct Args {
     /// CSV file of new rows, in the dataset's format (with a header)
     #[arg(value_name = "FILE.csv", conflicts_with_all = ["xray", "finger", "lengths"])]
     file: Option<PathBuf>,

@@ -14,7 +14,7 @@ use crate::report::layout::Width;
                   --format json gives the simulation at the data's n for every finger and quantity.\n\n\
                   Examples:\n  phalanx coverage\n  phalanx coverage --sims 20000 --format json"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]

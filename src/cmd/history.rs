@@ -14,7 +14,7 @@ use crate::report::layout::Width;
 #[command(
     after_help = "Examples:\n  phalanx history\n  phalanx history --finger index --quantity rel_j1\n  phalanx history --format json"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]

@@ -15,6 +15,7 @@ pub(crate) mod history;
 pub(crate) mod man;
 pub(crate) mod place;
 pub(crate) mod report;
+pub(crate) mod schema;
 pub(crate) mod snapshot;
 pub(crate) mod stats;
 pub(crate) mod synth;

@@ -15,7 +15,7 @@ use crate::report::layout::Width;
                   the tip at L; the thumb's IP joint at J~1 x L. Lengths are in your model's units.\n\n\
                   Examples:\n  phalanx place --finger index --length 1000\n  phalanx place --hand thumb=5.1,index=7.9,middle=8.6,ring=8.1,little=6.4\n  phalanx place --finger ring --length 81.5 --format json"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]

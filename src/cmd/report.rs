@@ -28,7 +28,7 @@ const DEFAULT_RIGS: &str = "data/rigs";
                   Files are replaced atomically; a failed run leaves the previous report as it was.\n\n\
                   Examples:\n  phalanx report\n  phalanx report --out /tmp/site --model-length 87.5 --format html\n  phalanx report --templates my_templates/"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     /// The claims file checked in the "Reproducing the paper" section

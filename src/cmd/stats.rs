@@ -13,7 +13,7 @@ use clap::ValueEnum;
 #[command(
     after_help = "Examples:\n  phalanx stats\n  phalanx stats --format json > stats.json\n  phalanx stats --format csv --resamples 20000 --seed 7 --confidence 0.9"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]

@@ -14,7 +14,7 @@ use std::path::PathBuf;
                   correlated segments) is documented in src/synth.rs and the README.\n\n\
                   Examples:\n  phalanx synth --xrays 10000 --seed 1 --out /tmp/hands.csv\n  phalanx synth --xrays 20 --no-metadata"
 )]
-pub struct Args {
+pub(crate) struct Args {
     /// Number of X-rays (hands), 1 to 1000000; each has the five fingers
     #[arg(long, value_name = "N", value_parser = parse_xrays, allow_negative_numbers = true)]
     xrays: u64,

@@ -13,15 +13,14 @@ use std::path::{Path, PathBuf};
 
 /// An exclusive advisory lock on a dataset (on `<dataset>.lock` beside it,
 /// since the dataset itself is replaced by rename). Released when dropped.
-pub struct DatasetLock {
+pub(crate) struct DatasetLock {
     _file: File,
-    pub path: PathBuf,
 }
 
 impl DatasetLock {
     /// Blocks until the lock on `data` is ours. A link is followed, so every
     /// path to the same file shares one lock.
-    pub fn acquire(data: &Path) -> std::io::Result<DatasetLock> {
+    pub(crate) fn acquire(data: &Path) -> std::io::Result<DatasetLock> {
         let data = crate::atomic::resolve(data);
         let mut name = data.as_os_str().to_owned();
         name.push(".lock");
@@ -32,12 +31,12 @@ impl DatasetLock {
             .write(true)
             .open(&path)?;
         file.lock()?;
-        Ok(DatasetLock { _file: file, path })
+        Ok(DatasetLock { _file: file })
     }
 }
 
 /// The CSV (header and one row) of a row given on the command line.
-pub fn single_row_bytes(fields: &[(&str, String)]) -> Result<Vec<u8>, DataError> {
+pub(crate) fn single_row_bytes(fields: &[(&str, String)]) -> Result<Vec<u8>, DataError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let header: Vec<&str> = fields.iter().map(|(k, _)| *k).collect();
     let values: Vec<&str> = fields.iter().map(|(_, v)| v.as_str()).collect();
@@ -50,7 +49,7 @@ pub fn single_row_bytes(fields: &[(&str, String)]) -> Result<Vec<u8>, DataError>
 
 /// Parses new rows given on the command line as one CSV row; problems name the
 /// option they came from instead of a line.
-pub fn single_row(fields: &[(&str, String)]) -> Result<Dataset, DataError> {
+pub(crate) fn single_row(fields: &[(&str, String)]) -> Result<Dataset, DataError> {
     let bytes = single_row_bytes(fields)?;
     Dataset::from_bytes("<command line>", &bytes).map_err(|mut e| {
         for p in &mut e.problems {
@@ -80,12 +79,12 @@ fn length_text(x: f64) -> String {
 /// The fields of new rows as the user typed them: line -> column -> trimmed
 /// text, read with the loader's own table reader (so the lines are the rows' lines).
 #[derive(Debug, Default)]
-pub struct Typed(HashMap<u64, HashMap<&'static str, String>>);
+pub(crate) struct Typed(HashMap<u64, HashMap<&'static str, String>>);
 
 impl Typed {
     /// Reads the typed fields of a measurement CSV; unreadable input gives none
     /// (the loader reports it).
-    pub fn of(bytes: &[u8]) -> Typed {
+    pub(crate) fn of(bytes: &[u8]) -> Typed {
         let mut out = HashMap::new();
         let _ = super::csvinput::read_table::<Column>("", bytes, |cells| {
             let fields = Column::ALL
@@ -142,19 +141,11 @@ fn field_of(row: &Row, column: &str) -> String {
 /// fit it: no (X-ray, finger) already present, the same sex/age/side/unit as
 /// existing rows of the same X-ray, and no metadata for a column the file lacks.
 /// Problems name the new rows' lines in `new.path`. Returns the new bytes and
-/// the dataset they hold (validated once).
-pub fn appended_bytes(
-    current_bytes: &[u8],
-    current: &Dataset,
-    new: &Dataset,
-) -> Result<(Vec<u8>, Dataset), DataError> {
-    appended_bytes_typed(current_bytes, current, new, &Typed::default())
-}
-
-/// [`appended_bytes`], writing numbers as `typed` holds them (see [`Typed`]).
+/// the dataset they hold (validated once). Numbers are written as `typed` holds
+/// them (see [`Typed`]; with `Typed::default()`, in their shortest exact form).
 /// A new row that leaves sex, age, side or unit empty takes the value of the
 /// X-ray's existing rows (one hand has one value).
-pub fn appended_bytes_typed(
+pub(crate) fn appended_bytes_typed(
     current_bytes: &[u8],
     current: &Dataset,
     new: &Dataset,
@@ -173,7 +164,7 @@ pub fn appended_bytes_typed(
     Ok((out, appended))
 }
 
-/// The problems of new rows against the current dataset (see [`appended_bytes`]).
+/// The problems of new rows against the current dataset (see [`appended_bytes_typed`]).
 fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
     let mut problems = Vec::new();
     let existing: HashMap<(&str, super::Finger), &Row> = current
@@ -316,7 +307,8 @@ mod tests {
     fn appends_in_the_file_column_order_keeping_old_bytes() {
         let cur = ds("d.csv", OLD);
         let new = ds("n.csv", "finger,xray,j2,j1,j3,sex\nring,b,2.5,5.25,2,m\n");
-        let (out, appended) = appended_bytes(OLD.as_bytes(), &cur, &new).unwrap();
+        let (out, appended) =
+            appended_bytes_typed(OLD.as_bytes(), &cur, &new, &Typed::default()).unwrap();
         assert_eq!(appended.rows.len(), 3);
         let text = String::from_utf8(out).unwrap();
         assert!(text.starts_with(OLD));
@@ -328,7 +320,12 @@ mod tests {
         let old = "xray,finger,j1,j2,j3\r\na,index,4,3,3";
         let cur = ds("d.csv", old);
         let new = ds("n.csv", "xray,finger,j1,j2,j3\nb,index,1,2,3\n");
-        let out = String::from_utf8(appended_bytes(old.as_bytes(), &cur, &new).unwrap().0).unwrap();
+        let out = String::from_utf8(
+            appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default())
+                .unwrap()
+                .0,
+        )
+        .unwrap();
         assert_eq!(out, format!("{old}\r\nb,index,1,2,3\r\n"));
     }
 
@@ -339,7 +336,7 @@ mod tests {
             "n.csv",
             "xray,finger,j1,j2,j3,sex,age\na,index,1,2,3,f,\nc,ring,1,2,3,,40\n",
         );
-        let e = appended_bytes(OLD.as_bytes(), &cur, &new).unwrap_err();
+        let e = appended_bytes_typed(OLD.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
         assert_eq!(e.file, "n.csv");
         let lines: Vec<u64> = e.problems.iter().filter_map(|p| p.line).collect();
         assert_eq!(lines, vec![2, 3], "{e}");
@@ -353,7 +350,7 @@ mod tests {
             "n.csv",
             "xray,finger,j1,j2,j3,sex\nb,ring,1,2,3,f\na,ring,1,2,3,m\n",
         );
-        let e = appended_bytes(OLD.as_bytes(), &cur, &new).unwrap_err();
+        let e = appended_bytes_typed(OLD.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
         assert_eq!(e.problems.len(), 1, "{e}");
         assert_eq!(e.problems[0].line, Some(3));
         assert!(
@@ -397,7 +394,9 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let data = dir.path().join("d.csv");
         let held = DatasetLock::acquire(&data).unwrap();
-        let f = OpenOptions::new().write(true).open(&held.path).unwrap();
+        // The lock file sits beside the dataset.
+        let lock_file = dir.path().join("d.csv.lock");
+        let f = OpenOptions::new().write(true).open(&lock_file).unwrap();
         assert!(f.try_lock().is_err(), "a second lock was granted");
         drop(held);
         assert!(f.try_lock().is_ok());

@@ -17,13 +17,6 @@ use crate::format::{
 /// Too wide for `width`, the percentile and BCa intervals go first, then the
 /// range, the SE and the t interval, then (below about 75 columns) the min
 /// and max: the mean, SD and prediction interval stay.
-pub fn stats(a: &Analysis, width: Width) -> String {
-    let mut hidden = Hidden::new();
-    let mut out = stats_body(a, width, &mut hidden);
-    hidden.append_to(&mut out, width);
-    fit_text(&out, width)
-}
-
 fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden) -> String {
     let c = level(a.settings.confidence);
     let mut out = format!(
@@ -77,7 +70,7 @@ fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden) -> String {
 }
 
 /// The statistics of the whole dataset, then of each group (`--group-by`).
-pub fn stats_with_groups(
+pub(crate) fn stats_with_groups(
     a: &Analysis,
     groups: &[crate::analysis::groups::Group],
     width: Width,
@@ -107,7 +100,7 @@ pub fn stats_with_groups(
 
 /// The claim-by-claim check, then a summary line. Too wide for `width`, the
 /// "where" and "verdict" columns wrap.
-pub fn check(results: &[ClaimResult], width: Width) -> String {
+pub(crate) fn check(results: &[ClaimResult], width: Width) -> String {
     let mut t = Grid::new()
         .col("claim", Align::Left, Give::Keep)
         .col("where", Align::Left, Give::Wrap)
@@ -163,7 +156,7 @@ pub fn check(results: &[ClaimResult], width: Width) -> String {
 /// The simulated coverage of each interval method, one row per sample size
 /// (the dataset's own sizes marked), then why any of the data's sizes is not
 /// simulated (`notes`) and which interval to use.
-pub fn coverage(
+pub(crate) fn coverage(
     points: &[CurvePoint],
     settings: &CoverageSettings,
     notes: &[String],
@@ -218,7 +211,7 @@ pub fn coverage(
 
 /// The history of each selected quantity, snapshot by snapshot. Too wide for
 /// `width`, the CI width goes first, then the SD, the event and the shift.
-pub fn history(
+pub(crate) fn history(
     path: &std::path::Path,
     snaps: &[Snapshot],
     finger: Option<Finger>,
@@ -281,7 +274,7 @@ pub fn history(
 /// Joint positions and segment lengths of model fingers, one table each. Too
 /// wide for `width`, the percentile and BCa intervals go first, then the
 /// range, the max and the min.
-pub fn placement(
+pub(crate) fn placement(
     ps: &[crate::analysis::placement::FingerPlacement],
     confidence: f64,
     width: Width,

@@ -213,7 +213,7 @@ pub struct IntervalCells {
 }
 
 impl IntervalCells {
-    /// The cells of `iv` with `d` decimals (from [`interval_cells`]).
+    /// The cells of `iv` with `d` decimals (from `format::interval_cells`).
     pub fn new(iv: &Intervals, d: usize) -> IntervalCells {
         let [ci_t, ci_percentile, ci_bca, pi] = interval_cells(iv, d);
         IntervalCells {
