@@ -627,3 +627,39 @@ fn the_readme_audit_example_is_current() {
         );
     }
 }
+
+/// The README's `--fix` example is what the command prints: the audit of the
+/// rig as it was on standard output, then the "wrote" line on standard error.
+#[test]
+fn the_readme_fix_example_is_current() {
+    let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
+    let block: String = readme
+        .split("```")
+        .find(|b| b.contains("$ phalanx audit docs/examples/hand.glb --fix hand-fixed.glb"))
+        .expect("README has the --fix example")
+        .to_string();
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.write(
+        "docs/examples/hand.glb",
+        std::fs::read(manifest_dir().join("docs/examples/hand.glb")).unwrap(),
+    );
+    let run = wd.run(&["audit", "docs/examples/hand.glb", "--fix", "hand-fixed.glb"]);
+    run.ok();
+    assert!(wd.path().join("hand-fixed.glb").exists());
+    let shown = run
+        .stdout
+        .lines()
+        .take(2)
+        .chain(run.stdout.lines().filter(|l| l.starts_with("Summary")))
+        .chain(run.stderr.lines().filter(|l| l.starts_with("wrote")));
+    let mut lines = 0;
+    for line in shown {
+        lines += 1;
+        assert!(
+            block.contains(line),
+            "the README's --fix example lacks the line:\n{line}\n{block}"
+        );
+    }
+    assert_eq!(lines, 4, "{}\n{}", run.stdout, run.stderr);
+}

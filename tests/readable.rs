@@ -419,3 +419,45 @@ fn outside_the_checkout_the_error_says_what_to_do() {
         .data_error()
         .stderr_has("nope.csv: no such file; check the path");
 }
+
+/// The README's set-up states the minimum Rust version Cargo.toml declares, that
+/// the first build takes minutes, and what happens outside the checkout (the
+/// message quoted is the one the binary prints).
+#[test]
+fn the_readme_setup_states_rust_version_first_build_and_outside_the_checkout() {
+    let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
+    let cargo = std::fs::read_to_string(manifest_dir().join("Cargo.toml")).unwrap();
+    let msrv = cargo
+        .lines()
+        .find_map(|l| l.strip_prefix("rust-version = "))
+        .expect("Cargo.toml declares rust-version")
+        .trim_matches('"');
+    let setup = readme
+        .split("## Set-up")
+        .nth(1)
+        .and_then(|s| s.split("\n## ").next())
+        .expect("README has a Set-up section");
+    assert!(
+        setup.contains(&format!("version {msrv} or later")),
+        "Set-up does not state rust-version {msrv}"
+    );
+    assert!(setup.contains("takes several minutes"));
+    let wd = Workdir::new();
+    let run = wd.run(&["stats"]);
+    run.data_error();
+    // The directory differs from the README's /tmp; the rest of the line does not.
+    let line = run.stderr.lines().next().unwrap();
+    let (head, tail) = line
+        .split_once(": phalanx reads")
+        .expect("the message says where phalanx reads from");
+    assert!(
+        head.starts_with("error: data/measurements.csv is not in "),
+        "{line}"
+    );
+    assert!(
+        setup.contains(&format!(
+            "error: data/measurements.csv is not in /tmp: phalanx reads{tail}"
+        )),
+        "README's outside-the-checkout example differs from:\n{line}"
+    );
+}
