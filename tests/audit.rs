@@ -35,7 +35,7 @@ fn a_mixamo_hand_with_tips_is_read_and_lies_inside_the_xray_range() {
     let wd = Workdir::new();
     wd.copy_paper_data();
     wd.write("hand.glb", build(&HandSpec::new(Naming::Mixamo)));
-    let run = wd.run(&["audit", "hand.glb"]);
+    let run = wd.run(&["audit", "hand.glb", "--wide"]);
     run.ok()
         .stdout_has("right index (mixamorig:RightHandIndex1, mixamorig:RightHandIndex2, mixamorig:RightHandIndex3, mixamorig:RightHandIndex4)")
         .stdout_has("judged on relative values")
@@ -125,7 +125,7 @@ fn a_far_off_joint_is_flagged_with_its_direction_and_distance() {
         .moved("index", 1, 1.0)
         .moved("ring", 2, -0.8);
     wd.write("far.glb", build(&spec));
-    let run = wd.run(&["audit", "far.glb"]);
+    let run = wd.run(&["audit", "far.glb", "--wide"]);
     run.ok()
         .stdout_has("OUTSIDE: too far towards the tip, ")
         .stdout_has("OUTSIDE: too close to the root, ")
@@ -565,7 +565,7 @@ fn hostile_rigs_get_clear_errors_and_never_a_panic() {
             j["nodes"][i]["scale"] = serde_json::json!([0.0, 0.0, 0.0]);
         }),
     );
-    wd.run(&["audit", "flat.glb"])
+    wd.run(&["audit", "flat.glb", "--wide"])
         .ok()
         .stdout_has("zero length");
     // --fix: a buffer outside the input's folder is never read.
@@ -597,13 +597,14 @@ fn hostile_rigs_get_clear_errors_and_never_a_panic() {
     assert!(!wd.path().join("m.glb").exists());
 }
 
-/// The README shows real output: its audit example is what the binary prints.
+/// The README shows real output: its audit example is what the binary prints
+/// (with every column: `--wide`).
 #[test]
 fn the_readme_audit_example_is_current() {
     let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
     let out = Workdir::new();
     let run = out
-        .command(&["audit", "docs/examples/hand.glb"])
+        .command(&["audit", "docs/examples/hand.glb", "--wide"])
         .current_dir(manifest_dir())
         .output()
         .unwrap();
@@ -625,4 +626,40 @@ fn the_readme_audit_example_is_current() {
             "README lacks the current line:\n{line}"
         );
     }
+}
+
+/// The README's `--fix` example is what the command prints: the audit of the
+/// rig as it was on standard output, then the "wrote" line on standard error.
+#[test]
+fn the_readme_fix_example_is_current() {
+    let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
+    let block: String = readme
+        .split("```")
+        .find(|b| b.contains("$ phalanx audit docs/examples/hand.glb --fix hand-fixed.glb"))
+        .expect("README has the --fix example")
+        .to_string();
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.write(
+        "docs/examples/hand.glb",
+        std::fs::read(manifest_dir().join("docs/examples/hand.glb")).unwrap(),
+    );
+    let run = wd.run(&["audit", "docs/examples/hand.glb", "--fix", "hand-fixed.glb"]);
+    run.ok();
+    assert!(wd.path().join("hand-fixed.glb").exists());
+    let shown = run
+        .stdout
+        .lines()
+        .take(2)
+        .chain(run.stdout.lines().filter(|l| l.starts_with("Summary")))
+        .chain(run.stderr.lines().filter(|l| l.starts_with("wrote")));
+    let mut lines = 0;
+    for line in shown {
+        lines += 1;
+        assert!(
+            block.contains(line),
+            "the README's --fix example lacks the line:\n{line}\n{block}"
+        );
+    }
+    assert_eq!(lines, 4, "{}\n{}", run.stdout, run.stderr);
 }

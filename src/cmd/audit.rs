@@ -4,6 +4,7 @@ use super::args::{BootArgs, DataArgs, TextFormat};
 use super::out;
 use crate::error::{EXIT_FAILURE, Error};
 use crate::report;
+use crate::report::layout::Width;
 use crate::rig::session::{self, Audit, AuditRequest, FixOutcome};
 use std::path::PathBuf;
 
@@ -44,7 +45,7 @@ pub(crate) struct Args {
     format: TextFormat,
 }
 
-pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
+pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> {
     let audit = session::audit(&AuditRequest {
         rig: &args.rig,
         map: args.map.as_deref(),
@@ -53,7 +54,7 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         settings: args.boot.settings()?,
     })?;
     let bytes = match args.format {
-        TextFormat::Table => table(&audit).into_bytes(),
+        TextFormat::Table => table(&audit, width).into_bytes(),
         TextFormat::Json => json(&audit)?,
     };
     out::print(&bytes)?;
@@ -71,10 +72,16 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
 }
 
 /// The audit table.
-fn table(audit: &Audit) -> String {
+fn table(audit: &Audit, width: Width) -> String {
     let a = &audit.analysis;
-    let n_note = format!("{} X-rays", a.dataset.xrays);
-    report::audit::text(&audit.rig, &a.dataset.path, &n_note, a.settings.confidence)
+    let n_note = crate::format::xrays(a.dataset.xrays);
+    report::audit::text(
+        &audit.rig,
+        &a.dataset.path,
+        &n_note,
+        a.settings.confidence,
+        width,
+    )
 }
 
 /// The audit document, with what the fix did.

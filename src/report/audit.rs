@@ -100,8 +100,17 @@ pub(crate) fn suggestion(j: &crate::rig::judge::JointCheck) -> String {
     }
 }
 
-/// The terminal report of `phalanx audit`.
-pub(crate) fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> String {
+/// The terminal report of `phalanx audit`, fitted to `width` (the X-ray range
+/// goes first, then the standings wrap; see [`super::layout`]).
+pub(crate) fn text(
+    rig: &AuditedRig,
+    data: &str,
+    n_note: &str,
+    confidence: f64,
+    width: super::layout::Width,
+) -> String {
+    use super::layout::{Align, Give, Grid, Hidden};
+    let mut hidden = Hidden::new();
     let c = level(confidence);
     let mut out = format!(
         "Rig audit of {} against {data} ({n_note}); lengths in mm (glTF units are metres), {c} prediction intervals\n",
@@ -112,12 +121,16 @@ pub(crate) fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) 
         if f.audit.joints.is_empty() {
             continue;
         }
-        let pi_head = format!("prediction {c}");
-        let header = ["", "rig", "X-ray mean", "X-ray range", &pi_head, "standing"];
         // Left-aligned throughout, as the standings are sentences.
-        let mut t = super::text::table(&header, header.len());
+        let mut t = Grid::new()
+            .col("", Align::Left, Give::Keep)
+            .col("rig", Align::Left, Give::Keep)
+            .col("X-ray mean", Align::Left, Give::Keep)
+            .col("X-ray range", Align::Left, Give::Drop(1))
+            .col(format!("prediction {c}"), Align::Left, Give::Keep)
+            .col("standing", Align::Left, Give::Wrap);
         for j in &f.audit.joints {
-            t.add_row(vec![
+            t.row(vec![
                 format!("{} from root (mm)", j.joint.name()),
                 num(j.measured * MM, 2),
                 num(j.expected * MM, 2),
@@ -133,7 +146,7 @@ pub(crate) fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) 
             ]);
         }
         for v in &f.audit.values {
-            t.add_row(vec![
+            t.row(vec![
                 v.quantity.label().to_string(),
                 num(v.measured, 4),
                 num(v.mean, 4),
@@ -144,11 +157,7 @@ pub(crate) fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) 
                 value_standing(v.standing),
             ]);
         }
-        for line in t.to_string().lines() {
-            out.push_str("  ");
-            out.push_str(line);
-            out.push('\n');
-        }
+        out.push_str(&t.render(width, 2, &mut hidden));
         for j in &f.audit.joints {
             out.push_str(&format!(
                 "  suggested {}: {}\n",
@@ -177,7 +186,8 @@ pub(crate) fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) 
     for c in CAVEATS {
         out.push_str(&format!("  - {c}\n"));
     }
-    out
+    hidden.append_to(&mut out, width);
+    super::layout::fit_text(&out, width)
 }
 
 /// The standing of a whole finger in one phrase, naming whatever lies outside.
