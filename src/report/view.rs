@@ -956,84 +956,99 @@ fn plot(p: &Plot) -> PlotView {
 }
 
 fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
-    let a = inputs.analysis;
     let snaps = inputs.history;
-    let c = a.settings.confidence;
-    let describe_snap = |i: usize| {
-        let s = &snaps[i];
-        format!(
-            "snapshot {} ({}, {}, {} X-rays)",
-            i + 1,
-            s.time,
-            s.event,
-            s.xrays
-        )
-    };
     let (note, compared, changes) = if snaps.len() < 2 {
-        (
-            Some(format!(
-                "{} in {}: changes and plots appear once there are two. 'phalanx add' records one per addition; 'phalanx snapshot' one on demand.",
-                match snaps.len() {
-                    0 => "No snapshot yet".to_string(),
-                    1 => "One snapshot".to_string(),
-                    k => format!("{k} snapshots"),
-                },
-                inputs.history_file
-            )),
-            String::new(),
-            Vec::new(),
-        )
+        let count = match snaps.len() {
+            0 => "No snapshot yet".to_string(),
+            1 => "One snapshot".to_string(),
+            k => format!("{k} snapshots"),
+        };
+        let note = format!(
+            "{count} in {}: changes and plots appear once there are two. 'phalanx add' records one per addition; 'phalanx snapshot' one on demand.",
+            inputs.history_file
+        );
+        (Some(note), String::new(), Vec::new())
     } else {
         let (b, e) = (snaps.len() - 2, snaps.len() - 1);
-        let rows = crate::analysis::tracking::changes(&snaps[b], &snaps[e])
-            .into_iter()
-            .filter(|ch| ch.quantity != Quantity::Total)
-            .map(|ch| {
-                let d = decimals(ch.quantity.is_unitless());
-                ChangeRow {
-                    finger: ch.finger.display_name().to_string(),
-                    quantity: ch.quantity.label().to_string(),
-                    n: format!("{} -> {}", ch.n_before, ch.n_after),
-                    mean_before: num(ch.mean_before, d),
-                    mean_after: num(ch.mean_after, d),
-                    shift: signed(ch.mean_shift, d),
-                    width_before: opt(ch.ci_width_before, d),
-                    width_after: opt(ch.ci_width_after, d),
-                    width_change: match (ch.ci_width_before, ch.ci_width_after) {
-                        (Some(x), Some(y)) => signed(y - x, d),
-                        _ => "n/a".to_string(),
-                    },
-                }
-            })
-            .collect();
-        (
-            None,
-            format!("{} against {}", describe_snap(e), describe_snap(b)),
-            rows,
-        )
+        let compared = format!(
+            "{} against {}",
+            describe_snapshot(snaps, e),
+            describe_snapshot(snaps, b)
+        );
+        (None, compared, change_rows(&snaps[b], &snaps[e]))
     };
-    let needed = a
-        .fingers
+    TrackingView {
+        file: inputs.history_file.to_string(),
+        snapshots: snaps.len().to_string(),
+        note,
+        compared,
+        changes,
+        target: num(inputs.target, 4),
+        needed: needed_rows(inputs.analysis, inputs.target),
+    }
+}
+
+/// "snapshot 3 (time, event, 7 X-rays)" for snapshot `i` of `snaps`.
+fn describe_snapshot(snaps: &[Snapshot], i: usize) -> String {
+    let s = &snaps[i];
+    format!(
+        "snapshot {} ({}, {}, {} X-rays)",
+        i + 1,
+        s.time,
+        s.event,
+        s.xrays
+    )
+}
+
+/// One row per finger and relative quantity: how it changed from `before` to `after`.
+fn change_rows(before: &Snapshot, after: &Snapshot) -> Vec<ChangeRow> {
+    crate::analysis::tracking::changes(before, after)
+        .into_iter()
+        .filter(|ch| ch.quantity != Quantity::Total)
+        .map(|ch| {
+            let d = decimals(ch.quantity.is_unitless());
+            ChangeRow {
+                finger: ch.finger.display_name().to_string(),
+                quantity: ch.quantity.label().to_string(),
+                n: format!("{} -> {}", ch.n_before, ch.n_after),
+                mean_before: num(ch.mean_before, d),
+                mean_after: num(ch.mean_after, d),
+                shift: signed(ch.mean_shift, d),
+                width_before: opt(ch.ci_width_before, d),
+                width_after: opt(ch.ci_width_after, d),
+                width_change: match (ch.ci_width_before, ch.ci_width_after) {
+                    (Some(x), Some(y)) => signed(y - x, d),
+                    _ => "n/a".to_string(),
+                },
+            }
+        })
+        .collect()
+}
+
+/// The X-rays needed for a t interval of half-width `target`, plug-in and
+/// with 80% assurance, per finger and relative quantity.
+fn needed_rows(a: &Analysis, target: f64) -> Vec<NeededRow> {
+    use crate::analysis::tracking::{ASSURANCE, xrays_needed, xrays_needed_assured};
+    let c = a.settings.confidence;
+    let count = |n: Option<usize>| n.map_or_else(|| "n/a".to_string(), |n| n.to_string());
+    a.fingers
         .iter()
         .flat_map(|f| {
             f.quantities
                 .iter()
                 .filter(|q| q.name.is_relative())
                 .map(move |q| {
-                    use crate::analysis::tracking::{
-                        ASSURANCE, xrays_needed, xrays_needed_assured,
-                    };
-                    let need = q.sd.and_then(|sd| xrays_needed(sd, inputs.target, c));
+                    let need = q.sd.and_then(|sd| xrays_needed(sd, target, c));
                     let assured =
-                        q.sd.and_then(|sd| xrays_needed_assured(sd, inputs.target, c, ASSURANCE));
+                        q.sd.and_then(|sd| xrays_needed_assured(sd, target, c, ASSURANCE));
                     NeededRow {
                         finger: f.finger.display_name().to_string(),
                         quantity: q.name.label().to_string(),
                         n: q.n.to_string(),
                         sd: opt(q.sd, 4),
                         half_width: opt(q.intervals.ci_t.map(|i| i.width() / 2.0), 4),
-                        needed: need.map_or_else(|| "n/a".to_string(), |n| n.to_string()),
-                        assured: assured.map_or_else(|| "n/a".to_string(), |n| n.to_string()),
+                        needed: count(need),
+                        assured: count(assured),
                         more: match assured {
                             Some(n) if n <= q.n => "reached".to_string(),
                             Some(n) => format!("{} more", n - q.n),
@@ -1042,16 +1057,7 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
                     }
                 })
         })
-        .collect();
-    TrackingView {
-        file: inputs.history_file.to_string(),
-        snapshots: snaps.len().to_string(),
-        note,
-        compared,
-        changes,
-        target: num(inputs.target, 4),
-        needed,
-    }
+        .collect()
 }
 
 fn groups_view(groups: &[Group]) -> Option<GroupsView> {
