@@ -52,6 +52,11 @@ use std::collections::HashSet;
 /// moves.
 pub const BEND_TOLERANCE_MM: f64 = 3.0;
 
+/// Shares are averaged in bins this fraction of the finger's length wide
+/// (about 1 mm): a mesh's rings of vertices lie a few mm apart, and each
+/// ring's vertices straddle its mean position.
+const BIN: f64 = 0.01;
+
 /// Where the skin bends at one joint.
 #[derive(Debug, Clone, Serialize)]
 pub struct Bend {
@@ -271,34 +276,51 @@ pub fn skin_end(chain: &FingerChain, weights: &SkinWeights) -> Option<f64> {
 }
 
 /// Where the shares `samples` (arc position, share of the distal side) cross
-/// 1/2: the isotonic fit's crossing, interpolated between the last sample
-/// below 1/2 and the first at or above it. `None` without a crossing (all on
-/// one side). O(n log n).
-pub fn crossing(samples: &mut [(f64, f64)]) -> Option<f64> {
+/// 1/2: the samples are averaged in bins `bin` wide along the finger (so a
+/// ring of vertices, whose vertices' shares straddle its mean, counts as one
+/// sample), the bins' means are fitted by the closest non-decreasing sequence
+/// (pool-adjacent-violators, weighted by the bins' counts), and the crossing
+/// is interpolated between the centres (mean arc positions) of the last
+/// pooled block below 1/2 and the first at or above it. `None` without a
+/// crossing (all on one side). O(n log n).
+pub fn crossing(samples: &mut [(f64, f64)], bin: f64) -> Option<f64> {
     samples.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // Pool adjacent violators: blocks of (sum, count, first u, last u).
-    let mut blocks: Vec<(f64, usize, f64, f64)> = Vec::new();
+    let index = |u: f64| if bin > 0.0 { (u / bin).floor() } else { u };
+    // Bins: (sum of shares, count, sum of u), one per bin index met.
+    let mut bins: Vec<(f64, f64, f64)> = Vec::new();
+    let mut last = None;
     for &(u, s) in samples.iter() {
-        blocks.push((s, 1, u, u));
+        if last != Some(index(u)) {
+            bins.push((0.0, 0.0, 0.0));
+            last = Some(index(u));
+        }
+        if let Some(b) = bins.last_mut() {
+            *b = (b.0 + s, b.1 + 1.0, b.2 + u);
+        }
+    }
+    // Pool adjacent violators over the bins: (sum s, count, sum u).
+    let mut blocks: Vec<(f64, f64, f64)> = Vec::new();
+    for b in bins {
+        blocks.push(b);
         while blocks.len() >= 2 {
-            let (b, a) = (blocks[blocks.len() - 1], blocks[blocks.len() - 2]);
-            if a.0 / a.1 as f64 <= b.0 / b.1 as f64 {
+            let (y, x) = (blocks[blocks.len() - 1], blocks[blocks.len() - 2]);
+            if x.0 / x.1 <= y.0 / y.1 {
                 break;
             }
             blocks.pop();
             let last = blocks.len() - 1;
-            blocks[last] = (a.0 + b.0, a.1 + b.1, a.2, b.3);
+            blocks[last] = (x.0 + y.0, x.1 + y.1, x.2 + y.2);
         }
     }
-    let mean = |b: &(f64, usize, f64, f64)| b.0 / b.1 as f64;
+    let mean = |b: &(f64, f64, f64)| b.0 / b.1;
+    let centre = |b: &(f64, f64, f64)| b.2 / b.1;
     let i = blocks.iter().position(|b| mean(b) >= 0.5)?;
     if i == 0 {
         return None;
     }
     let (lo, hi) = (blocks[i - 1], blocks[i]);
-    let (m1, m2) = (mean(&lo), mean(&hi));
-    let t = (0.5 - m1) / (m2 - m1);
-    Some(lo.3 + t * (hi.2 - lo.3))
+    let t = (0.5 - mean(&lo)) / (mean(&hi) - mean(&lo));
+    Some(centre(&lo) + t * (centre(&hi) - centre(&lo)))
 }
 
 /// The bend at every joint of `chain` that has a bone on both sides (the
@@ -340,7 +362,7 @@ pub fn bends(chain: &FingerChain, weights: &SkinWeights, tolerance: f64) -> Vec<
             })
             .collect();
         let count = samples.len();
-        let at = crossing(&mut samples);
+        let at = crossing(&mut samples, BIN * axis.joint(nodes.len() - 1));
         let offset = at.map(|u| u - axis.joint(k));
         out.push(Bend {
             joint: chain.joints[k].joint,
@@ -361,18 +383,24 @@ mod tests {
     fn the_crossing_of_smooth_hard_and_noisy_shares() {
         // Linear from 0 at u = 0 to 1 at u = 10: crosses 1/2 at 5 (by hand).
         let mut s: Vec<(f64, f64)> = (0..=10).map(|i| (i as f64, i as f64 / 10.0)).collect();
-        assert!((crossing(&mut s).unwrap() - 5.0).abs() < 1e-12);
+        assert!((crossing(&mut s, 0.1).unwrap() - 5.0).abs() < 1e-12);
         // Hard weights: 0 up to u = 4, 1 from u = 6: midway, 5.
         let mut s = vec![(0.0, 0.0), (2.0, 0.0), (4.0, 0.0), (6.0, 1.0), (8.0, 1.0)];
-        assert!((crossing(&mut s).unwrap() - 5.0).abs() < 1e-12);
-        // A dip out of order pools: (3, 0.6), (4, 0.4) pool to 0.5 at [3, 4];
-        // the fit reaches 1/2 at u = 3 exactly.
+        assert!((crossing(&mut s, 0.1).unwrap() - 5.0).abs() < 1e-12);
+        // A dip out of order pools: (3, 0.6), (4, 0.4) pool to 0.5 centred at
+        // 3.5; the fit reaches 1/2 there.
         let mut s = vec![(1.0, 0.1), (2.0, 0.2), (3.0, 0.6), (4.0, 0.4), (5.0, 0.9)];
-        assert!((crossing(&mut s).unwrap() - 3.0).abs() < 1e-12);
+        assert!((crossing(&mut s, 0.1).unwrap() - 3.5).abs() < 1e-12);
+        // A ring of vertices at 2.1-2.3 with shares 0.2-0.6 is one sample of
+        // 0.4 at 2.2 in a bin 1 wide; the next ring, 0.8 at 3.05: crossing at
+        // 2.2 + (0.1 / 0.4) x 0.85 = 2.4125.
+        let mut s = vec![(2.1, 0.2), (2.2, 0.4), (2.3, 0.6), (3.0, 0.8), (3.1, 0.8)];
+        let x = crossing(&mut s, 1.0).unwrap();
+        assert!((x - 2.4125).abs() < 1e-12, "{x}");
         // All on one side: no crossing.
-        assert!(crossing(&mut [(0.0, 0.7), (1.0, 0.9)]).is_none());
-        assert!(crossing(&mut [(0.0, 0.1), (1.0, 0.2)]).is_none());
-        assert!(crossing(&mut []).is_none());
+        assert!(crossing(&mut [(0.0, 0.7), (1.0, 0.9)], 0.1).is_none());
+        assert!(crossing(&mut [(0.0, 0.1), (1.0, 0.2)], 0.1).is_none());
+        assert!(crossing(&mut [], 0.1).is_none());
     }
 
     #[test]

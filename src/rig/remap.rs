@@ -9,12 +9,15 @@
 //! linear between those pieces (the segments stretch or shrink); the axis'
 //! start and whatever lies past the tip stay. r_k is a quarter of the shorter
 //! of the joint's neighbouring segments, old or new. A vertex at u takes the
-//! weights the old rig had at phi(u): those of the point at the same distance
-//! and direction from the axis at phi(u), interpolated from the 4 nearest
-//! finger vertices by inverse squared distance (a vertex whose phi(u) = u keeps
-//! its own weights exactly). The influences are merged by node, cut to the
-//! slots the vertex has (4 per JOINTS_n/WEIGHTS_n set, largest kept) and
-//! renormalised.
+//! weights the old rig had at phi(u) on its own side of the finger: the
+//! vertices around the axis are sorted into 8 sectors of 45 degrees (angles
+//! about the MCP-to-tip direction), and within the vertex's sector the old
+//! weights are interpolated linearly in u between the two vertices on either
+//! side of phi(u) (the nearest one past the sector's ends; by inverse squared
+//! distance from the 4 nearest vertices when the sector is empty). A vertex
+//! whose phi(u) = u keeps its own weights exactly. The influences are merged
+//! by node, cut to the slots the vertex has (4 per JOINTS_n/WEIGHTS_n set,
+//! largest kept) and renormalised.
 //!
 //! **The rest shape is kept.** A vertex rests at sum_j w_j M_j v; when every
 //! node it is weighted to, before and after, has the same rest skin matrix M
@@ -113,8 +116,9 @@ pub fn remap(weights: &SkinWeights, moves: &[FingerMove<'_>]) -> (Remapped, Vec<
             ));
             continue;
         };
-        // The finger's vertices: (primitive, vertex, u, position).
+        // The finger's vertices: (primitive, vertex, u).
         let found = super::bend::finger_vertices_at(&axis, weights, &nodes, &before);
+        let sectors = Sectors::new(&axis, weights, &found, points[points.len() - 1] - points[0]);
         let mut skipped = 0usize;
         for &(pi, v, u) in &found {
             let target = phi(&knots, u);
@@ -122,8 +126,10 @@ pub fn remap(weights: &SkinWeights, moves: &[FingerMove<'_>]) -> (Remapped, Vec<
                 continue;
             }
             let p = weights.primitives[pi].rest[v];
-            let source = axis.point(target) + (p - axis.point(u));
-            let infl = interpolate(weights, &found, source);
+            let infl = match sectors.along(weights, sectors.of(&axis, p, u), target) {
+                Some(i) => i,
+                None => interpolate(weights, &found, axis.point(target) + (p - axis.point(u))),
+            };
             match fit_to_skin(weights, pi, v, infl) {
                 Some(list) => {
                     out.insert((pi, v), list);
@@ -141,6 +147,76 @@ pub fn remap(weights: &SkinWeights, moves: &[FingerMove<'_>]) -> (Remapped, Vec<
         }
     }
     (out, notes)
+}
+
+/// Sectors around a finger's axis, each its vertices sorted by arc position.
+struct Sectors {
+    /// Two directions across the finger, for the angle about it.
+    across: (DVec3, DVec3),
+    lists: Vec<Vec<(f64, usize, usize)>>,
+}
+
+impl Sectors {
+    const COUNT: usize = 8;
+
+    fn new(axis: &FingerAxis, weights: &SkinWeights, found: &[(usize, usize, f64)], along: DVec3) -> Sectors {
+        let d = along.normalize_or_zero();
+        // The world axis least aligned with the finger, made perpendicular to it.
+        let e = [DVec3::X, DVec3::Y, DVec3::Z]
+            .into_iter()
+            .min_by(|a, b| a.dot(d).abs().total_cmp(&b.dot(d).abs()))
+            .unwrap_or(DVec3::X);
+        let r = (e - e.dot(d) * d).normalize_or_zero();
+        let mut s = Sectors {
+            across: (r, d.cross(r)),
+            lists: vec![Vec::new(); Self::COUNT],
+        };
+        for &(pi, v, u) in found {
+            let k = s.of(axis, weights.primitives[pi].rest[v], u);
+            s.lists[k].push((u, pi, v));
+        }
+        for l in &mut s.lists {
+            l.sort_by(|a, b| a.0.total_cmp(&b.0));
+        }
+        s
+    }
+
+    /// The sector of a vertex at `p` with arc position `u`.
+    fn of(&self, axis: &FingerAxis, p: DVec3, u: f64) -> usize {
+        let rho = p - axis.point(u);
+        let angle = rho.dot(self.across.1).atan2(rho.dot(self.across.0));
+        let k = ((angle + std::f64::consts::PI) / std::f64::consts::TAU * Self::COUNT as f64) as usize;
+        k.min(Self::COUNT - 1)
+    }
+
+    /// The influences at arc position `u` in sector `k`: linear between the
+    /// vertices either side of it, the nearest past an end; `None` when empty.
+    fn along(&self, weights: &SkinWeights, k: usize, u: f64) -> Option<Vec<(usize, f64)>> {
+        let list = &self.lists[k];
+        let infl = |i: usize| &weights.primitives[list[i].1].influences[list[i].2];
+        let after = list.partition_point(|x| x.0 < u);
+        if list.is_empty() {
+            return None;
+        }
+        if after == 0 {
+            return Some(infl(0).clone());
+        }
+        if after == list.len() {
+            return Some(infl(list.len() - 1).clone());
+        }
+        let (a, b) = (after - 1, after);
+        let span = list[b].0 - list[a].0;
+        let t = if span > 0.0 { (u - list[a].0) / span } else { 0.5 };
+        let mut merged: BTreeMap<usize, f64> = BTreeMap::new();
+        for (i, f) in [(a, 1.0 - t), (b, t)] {
+            for &(n, w) in infl(i) {
+                *merged.entry(n).or_default() += f * w;
+            }
+        }
+        let mut out: Vec<(usize, f64)> = merged.into_iter().filter(|x| x.1 > 0.0).collect();
+        out.sort_by(|x, y| y.1.total_cmp(&x.1).then(x.0.cmp(&y.0)));
+        Some(out)
+    }
 }
 
 /// The influences at `at`, from the 4 vertices of `found` nearest to it by
