@@ -1,5 +1,7 @@
 //! `phalanx audit`: rigs built by the tests (tests/audit/hand.rs) judged against the paper's data.
 
+mod conventions;
+mod fixing;
 mod hand;
 mod webxr;
 

@@ -778,12 +778,39 @@ pub fn skinned_rest_vertices(bytes: &[u8]) -> Vec<DVec3> {
     skinned_vertices(bytes, None)
 }
 
+/// `doc` with its nodes posed by keyframe `key` of animation 0 (unchanged
+/// for `None`): each channel's output element `key` (linear keys) replaces
+/// its node's translation, rotation or scale.
+pub fn posed(mut doc: Value, bin: &[u8], key: Option<usize>) -> Value {
+    let Some(k) = key else { return doc };
+    let f32_at = |o: usize| f32::from_le_bytes(bin[o..o + 4].try_into().unwrap()) as f64;
+    let anim = doc["animations"][0].clone();
+    for ch in anim["channels"].as_array().unwrap() {
+        let s = &anim["samplers"][ch["sampler"].as_u64().unwrap() as usize];
+        let a = &doc["accessors"][s["output"].as_u64().unwrap() as usize];
+        let v = &doc["bufferViews"][a["bufferView"].as_u64().unwrap() as usize];
+        let o = v["byteOffset"].as_u64().unwrap_or(0) as usize
+            + a["byteOffset"].as_u64().unwrap_or(0) as usize;
+        let path = ch["target"]["path"].as_str().unwrap();
+        let n = match path {
+            "translation" | "scale" => 3,
+            "rotation" => 4,
+            _ => continue,
+        };
+        let vals: Vec<f64> = (0..n).map(|c| f32_at(o + 4 * (n * k + c))).collect();
+        let node = ch["target"]["node"].as_u64().unwrap() as usize;
+        doc["nodes"][node][path] = json!(vals);
+    }
+    doc
+}
+
 /// Every vertex of skin 0's mesh (first primitive), with the nodes posed by
 /// keyframe `key` of animation 0 when given: each channel's output element
 /// `key` (linear keys) replaces its node's translation, rotation or scale.
 /// Written here from the glTF 2.0 specification, independently of phalanx.
 pub fn skinned_vertices(bytes: &[u8], key: Option<usize>) -> Vec<DVec3> {
-    let (mut doc, bin) = read_glb(bytes);
+    let (doc, bin) = read_glb(bytes);
+    let doc = posed(doc, &bin, key);
     let f32_at = |o: usize| f32::from_le_bytes(bin[o..o + 4].try_into().unwrap()) as f64;
     // (byte offset, count, stride in bytes or 0 when packed, componentType).
     let accessor = |doc: &Value, i: usize| -> (usize, usize, usize, u64) {
@@ -798,22 +825,6 @@ pub fn skinned_vertices(bytes: &[u8], key: Option<usize>) -> Vec<DVec3> {
             a["componentType"].as_u64().unwrap(),
         )
     };
-    if let Some(k) = key {
-        let anim = doc["animations"][0].clone();
-        for ch in anim["channels"].as_array().unwrap() {
-            let s = &anim["samplers"][ch["sampler"].as_u64().unwrap() as usize];
-            let (o, _, _, _) = accessor(&doc, s["output"].as_u64().unwrap() as usize);
-            let path = ch["target"]["path"].as_str().unwrap();
-            let n = match path {
-                "translation" | "scale" => 3,
-                "rotation" => 4,
-                _ => continue,
-            };
-            let v: Vec<f64> = (0..n).map(|c| f32_at(o + 4 * (n * k + c))).collect();
-            let node = ch["target"]["node"].as_u64().unwrap() as usize;
-            doc["nodes"][node][path] = json!(v);
-        }
-    }
     let nodes = doc["nodes"].as_array().unwrap();
     let world = world_of(nodes);
     let skin = &doc["skins"][0];
