@@ -3,6 +3,7 @@
 mod conventions;
 mod fixing;
 mod hand;
+mod validator;
 mod webxr;
 
 use crate::common;
