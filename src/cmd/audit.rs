@@ -4,10 +4,10 @@ use super::args::{BootArgs, DataArgs, TextFormat};
 use super::out;
 use crate::error::{EXIT_FAILURE, Error};
 use crate::report;
+use crate::rig::AuditOptions;
 use crate::rig::bend::BEND_TOLERANCE_MM;
 use crate::rig::judge::{DEFAULT_SOFT_TISSUE_MM, JudgeOptions, TipKind};
 use crate::rig::session::{self, Audit, AuditRequest, FixOutcome};
-use crate::rig::AuditOptions;
 use std::path::PathBuf;
 
 /// What a rig's tip nodes mark.
@@ -130,7 +130,12 @@ fn options(args: &Args) -> Result<AuditOptions, Error> {
             )?,
             ..JudgeOptions::default()
         },
-        bend_tolerance: mm("bend-tolerance", args.bend_tolerance, BEND_TOLERANCE_MM, false)?,
+        bend_tolerance: mm(
+            "bend-tolerance",
+            args.bend_tolerance,
+            BEND_TOLERANCE_MM,
+            false,
+        )?,
         measure_tip: args.tip == Tip::Auto,
     })
 }

@@ -100,7 +100,11 @@ pub fn tip_words(t: &JudgeOptions) -> String {
             "Rig tips read as {} tips, compared {} mm {} for the fingertip's soft tissue; {data}.",
             kind(t.rig_tip),
             num(c.abs() * MM, 1),
-            if c > 0.0 { "nearer the root" } else { "further out" }
+            if c > 0.0 {
+                "nearer the root"
+            } else {
+                "further out"
+            }
         )
     }
 }
@@ -198,7 +202,11 @@ pub fn explanation_words(a: &FingerAudit) -> String {
         .iter()
         .filter(|j| j.moves)
         .map(|j| {
-            let side = if j.shift_along < 0.0 { "distal" } else { "proximal" };
+            let side = if j.shift_along < 0.0 {
+                "distal"
+            } else {
+                "proximal"
+            };
             let web = if j.joint == Joint::Mcp && j.shift_along < 0.0 {
                 " (at the finger web, not the knuckle?)"
             } else {
@@ -211,21 +219,22 @@ pub fn explanation_words(a: &FingerAudit) -> String {
             )
         })
         .collect();
-    let names = |moving: bool| -> Vec<String> {
+    let names = |moving: bool, article: bool| -> Vec<String> {
         a.joints
             .iter()
             .filter(|j| j.moves == moving)
-            .map(|j| match j.joint {
-                Joint::Tip => "the tip".to_string(),
-                k => k.name().to_string(),
+            .map(|j| match (j.joint, article) {
+                (Joint::Tip, _) => "the tip".to_string(),
+                (k, true) => format!("the {}", k.name()),
+                (k, false) => k.name().to_string(),
             })
             .collect()
     };
-    let mut accounted = names(true);
+    let mut accounted = names(true, true);
     if soft {
         accounted.push("the soft tissue".into());
     }
-    let others = names(false);
+    let others = names(false, false);
     let mut out = if e.consistent {
         let verb = |l: &[String]| if l.len() == 1 { "is" } else { "are" };
         format!(
@@ -248,7 +257,10 @@ pub fn explanation_words(a: &FingerAudit) -> String {
             .iter()
             .map(|set| and_list(&set.iter().map(|j| j.name().to_string()).collect::<Vec<_>>()))
             .collect();
-        out.push_str(&format!(" Moving {} would also fit.", alt.join(" or ")));
+        out.push_str(&format!(
+            " Moving the {} instead would also fit.",
+            alt.join(" or the ")
+        ));
     }
     out
 }
@@ -266,7 +278,11 @@ pub fn bend_words(bends: &[Bend], tolerance: f64) -> String {
                 } else {
                     String::new()
                 };
-                format!("{} {} mm {side}{flag}", b.joint.name(), num(o.abs() * MM, 2))
+                format!(
+                    "{} {} mm {side}{flag}",
+                    b.joint.name(),
+                    num(o.abs() * MM, 2)
+                )
             }
         })
         .collect();
@@ -310,7 +326,8 @@ fn columns(rows: &[Vec<String>], right: &[bool], indent: &str) -> String {
 /// The table of one finger: each joint (mm from the rig's MCP) and each value.
 fn finger_table(a: &FingerAudit, c: &str) -> String {
     let mm = |x: f64| num(x * MM, 2);
-    let interval = |i: Interval, f: &dyn Fn(f64) -> String| format!("[{}, {}]", f(i.low), f(i.high));
+    let interval =
+        |i: Interval, f: &dyn Fn(f64) -> String| format!("[{}, {}]", f(i.low), f(i.high));
     let mut rows = vec![vec![
         String::new(),
         "rig".into(),
@@ -378,7 +395,11 @@ pub fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> Stri
             out.push_str(&wrap(&suggestion(j), "  ", "    "));
         }
         if !f.bends.is_empty() {
-            out.push_str(&wrap(&bend_words(&f.bends, rig.bend_tolerance), "  ", "    "));
+            out.push_str(&wrap(
+                &bend_words(&f.bends, rig.bend_tolerance),
+                "  ",
+                "    ",
+            ));
         }
     }
     if !rig.notes.is_empty() {

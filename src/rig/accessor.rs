@@ -90,14 +90,24 @@ impl Span {
             .map(|k| {
                 let o = self.at(i, k);
                 match self.component {
-                    5126 => f64::from(f32::from_le_bytes([bin[o], bin[o + 1], bin[o + 2], bin[o + 3]])),
+                    5126 => f64::from(f32::from_le_bytes([
+                        bin[o],
+                        bin[o + 1],
+                        bin[o + 2],
+                        bin[o + 3],
+                    ])),
                     5121 if self.normalized => f64::from(bin[o]) / 255.0,
                     5121 => f64::from(bin[o]),
                     5123 => {
                         let v = f64::from(u16::from_le_bytes([bin[o], bin[o + 1]]));
                         if self.normalized { v / 65535.0 } else { v }
                     }
-                    5125 => f64::from(u32::from_le_bytes([bin[o], bin[o + 1], bin[o + 2], bin[o + 3]])),
+                    5125 => f64::from(u32::from_le_bytes([
+                        bin[o],
+                        bin[o + 1],
+                        bin[o + 2],
+                        bin[o + 3],
+                    ])),
                     5120 => f64::from(bin[o] as i8),
                     _ => f64::from(i16::from_le_bytes([bin[o], bin[o + 1]])),
                 }
@@ -156,7 +166,10 @@ pub fn references(json: &Value) -> HashMap<usize, usize> {
                 .for_each(|(_, v)| add(v));
             add(&prim["indices"]);
             for t in list(&prim["targets"]) {
-                t.as_object().into_iter().flatten().for_each(|(_, v)| add(v));
+                t.as_object()
+                    .into_iter()
+                    .flatten()
+                    .for_each(|(_, v)| add(v));
             }
         }
     }

@@ -38,8 +38,18 @@ fn animation_name(json: &Value, a: usize) -> String {
 /// Every channel of every animation. O(channels).
 pub fn channels(json: &Value) -> Vec<Channel> {
     let mut out = Vec::new();
-    for (a, anim) in json["animations"].as_array().into_iter().flatten().enumerate() {
-        for (c, ch) in anim["channels"].as_array().into_iter().flatten().enumerate() {
+    for (a, anim) in json["animations"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .enumerate()
+    {
+        for (c, ch) in anim["channels"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
             out.push(Channel {
                 animation: a,
                 channel: c,
@@ -102,7 +112,8 @@ pub fn offset_translations(
     let mut constant: BTreeMap<usize, usize> = BTreeMap::new();
     let all = channels(json);
     for ch in &all {
-        let (Some(node), Some(sampler), Some("translation")) = (ch.node, ch.sampler, ch.path.as_deref())
+        let (Some(node), Some(sampler), Some("translation")) =
+            (ch.node, ch.sampler, ch.path.as_deref())
         else {
             continue;
         };
@@ -133,14 +144,10 @@ pub fn offset_translations(
         // In place when no other sampler or channel uses these keys.
         let users = all
             .iter()
-            .filter(|c| {
-                c.animation == ch.animation && c.sampler == Some(sampler)
-            })
+            .filter(|c| c.animation == ch.animation && c.sampler == Some(sampler))
             .count();
         let exclusive = accessor::references(json).get(&output) == Some(&1) && users == 1;
-        let values: Vec<usize> = (0..span.count)
-            .filter(|i| !cubic || i % 3 == 1)
-            .collect();
+        let values: Vec<usize> = (0..span.count).filter(|i| !cubic || i % 3 == 1).collect();
         let keys: Vec<DVec3> = values
             .iter()
             .map(|&i| DVec3::from_slice(&span.read(bin, i)))
@@ -159,7 +166,8 @@ pub fn offset_translations(
                     let mut s2 = json["animations"][ch.animation]["samplers"][sampler].clone();
                     s2["output"] = json!(t.0);
                     let new = push(&mut json["animations"][ch.animation]["samplers"], s2);
-                    json["animations"][ch.animation]["channels"][ch.channel]["sampler"] = json!(new);
+                    json["animations"][ch.animation]["channels"][ch.channel]["sampler"] =
+                        json!(new);
                     t
                 }
                 None => continue,
@@ -167,7 +175,9 @@ pub fn offset_translations(
         };
         for (&i, k) in values.iter().zip(&keys) {
             let v = *k + d;
-            target.1.write_f32(bin, i, &[v.x as f32, v.y as f32, v.z as f32]);
+            target
+                .1
+                .write_f32(bin, i, &[v.x as f32, v.y as f32, v.z as f32]);
         }
         accessor::refresh_bounds(json, target.0, &target.1, bin);
     }
@@ -192,7 +202,12 @@ pub fn offset_translations(
 
 /// Appends a copy of a float accessor's elements (tightly packed, 4-byte
 /// aligned) with its own view; returns the new accessor and its span.
-fn copy_accessor(json: &mut Value, bin: &mut Vec<u8>, acc: usize, span: &Span) -> Option<(usize, Span)> {
+fn copy_accessor(
+    json: &mut Value,
+    bin: &mut Vec<u8>,
+    acc: usize,
+    span: &Span,
+) -> Option<(usize, Span)> {
     while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }

@@ -33,9 +33,9 @@
 //! of the MCP's bend. Cost: O(V m) for V vertices and m chain points, and a
 //! sort per joint.
 
+use super::FingerChain;
 use super::chain::{arc_positions, point_at, project};
 use super::weights::SkinWeights;
-use super::FingerChain;
 use crate::analysis::placement::Joint;
 use glam::DVec3;
 use serde::Serialize;
@@ -339,7 +339,11 @@ pub fn bends(chain: &FingerChain, weights: &SkinWeights, tolerance: f64) -> Vec<
     let first = if before.is_empty() { 1 } else { 0 };
     let mut out = Vec::new();
     for k in first..last {
-        let lo = if k == 0 { axis.start() } else { axis.joint(k - 1) };
+        let lo = if k == 0 {
+            axis.start()
+        } else {
+            axis.joint(k - 1)
+        };
         let hi = if k + 1 < nodes.len() {
             axis.joint(k + 1)
         } else {

@@ -85,7 +85,11 @@ pub fn backward_at(points: &[DVec3], arcs: &[f64], u0: f64, q: DVec3, d: f64) ->
 /// The arc position of the point of the polyline nearest to `p`, and that
 /// point. Ties go to the earlier segment. O(m).
 pub fn project(points: &[DVec3], arcs: &[f64], p: DVec3) -> (f64, DVec3) {
-    let mut best = (f64::INFINITY, 0.0, points.first().copied().unwrap_or(DVec3::ZERO));
+    let mut best = (
+        f64::INFINITY,
+        0.0,
+        points.first().copied().unwrap_or(DVec3::ZERO),
+    );
     for (k, w) in points.windows(2).enumerate() {
         let ab = w[1] - w[0];
         let len2 = ab.length_squared();

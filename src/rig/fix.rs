@@ -239,11 +239,12 @@ pub fn fix_with(
     // Node -> (old, new) local translation.
     let mut touched: BTreeMap<usize, (DVec3, DVec3)> = BTreeMap::new();
     for &(node, _) in &plan.targets {
-        let old = super::local_matrix(&file.document.nodes().nth(node).ok_or_else(|| {
-            DataError::whole_file(&file.label, format!("has no node {node}"))
-        })?)
-        .w_axis
-        .truncate();
+        let old =
+            super::local_matrix(&file.document.nodes().nth(node).ok_or_else(|| {
+                DataError::whole_file(&file.label, format!("has no node {node}"))
+            })?)
+            .w_axis
+            .truncate();
         let new = locals[node].w_axis.truncate();
         touched.insert(node, (old, new));
     }
@@ -483,9 +484,10 @@ fn rebind_skins(
             }
             new.push(m.to_cols_array().map(|v| v as f32));
         }
-        let own = skin.inverse_bind_matrices().map(|a| a.index()).filter(|&a| {
-            super::accessor::references(json).get(&a) == Some(&1)
-        });
+        let own = skin
+            .inverse_bind_matrices()
+            .map(|a| a.index())
+            .filter(|&a| super::accessor::references(json).get(&a) == Some(&1));
         let span = own.and_then(|a| super::accessor::span(json, a, bin.len()).map(|s| (a, s)));
         match span {
             Some((a, span)) if span.component == 5126 && span.components == 16 => {

@@ -513,7 +513,9 @@ fn relative_standings(
     let rel1 = stats(a, finger, Quantity::RelJ1)?;
     let rel_last = stats(a, finger, last)?;
     // A monotone increasing map of a relative value's statistics onto positions.
-    let mapped = |s: &QuantityStats, f: &dyn Fn(f64) -> Option<f64>| -> Option<(f64, Interval, Option<Interval>)> {
+    let mapped = |s: &QuantityStats,
+                  f: &dyn Fn(f64) -> Option<f64>|
+     -> Option<(f64, Interval, Option<Interval>)> {
         let mean = f(s.mean)?;
         let range = Interval::new(f(s.min)?, f(s.max)?);
         let pi = match s.intervals.pi {
@@ -526,7 +528,9 @@ fn relative_standings(
     let mut out = Vec::new();
     // MCP: at s_1 - J1, J1 = (L - s_1) x / (1 - x), decreasing in x.
     let rest = length - compared[0];
-    let (mean, range, pi) = mapped(rel1, &|x| share_to_length(rest, x).map(|j1| compared[0] - j1))?;
+    let (mean, range, pi) = mapped(rel1, &|x| {
+        share_to_length(rest, x).map(|j1| compared[0] - j1)
+    })?;
     out.push((Joint::Mcp, 0.0, mean, flip(range), pi.map(flip)));
     let mut measured = 0.0;
     for (k, &joint) in Joint::inner(finger).iter().enumerate() {
@@ -688,12 +692,12 @@ fn explain(axis: &Axis, quantities: &[(Quantity, &QuantityStats)], basis: Basis)
         segments: Some(axis.segments(&u0)),
         ..none_like()
     });
-    for k in 0..kinds.len() {
+    for (k, &kind) in kinds.iter().enumerate() {
         if let Some(u) = solve_one(axis, quantities, &u0, k) {
             let s = axis.segments(&u);
             let (score, inside) = fit(quantities, &s);
             tried[1].push(Solved {
-                moved: vec![kinds[k]],
+                moved: vec![kind],
                 consistent: inside,
                 score,
                 arcs: Some(u),
@@ -719,9 +723,9 @@ fn explain(axis: &Axis, quantities: &[(Quantity, &QuantityStats)], basis: Basis)
         }
     }
     let movement = |s: &Solved| -> f64 {
-        s.arcs
-            .as_ref()
-            .map_or(f64::INFINITY, |a| a.iter().zip(&u0).map(|(x, y)| (x - y).abs()).sum())
+        s.arcs.as_ref().map_or(f64::INFINITY, |a| {
+            a.iter().zip(&u0).map(|(x, y)| (x - y).abs()).sum()
+        })
     };
     let better = |a: &Solved, b: &Solved| -> bool {
         if (a.score - b.score).abs() > 1e-6 {
@@ -786,7 +790,7 @@ fn solve_one(
     } else {
         (u0[k - 1] + gap, u0[k + 1] - gap)
     };
-    if !(lo < hi) {
+    if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
         return None;
     }
     let mut u = u0.to_vec();
@@ -840,7 +844,12 @@ fn solve_pair(
     u0: &[f64],
     pair: [usize; 2],
 ) -> Option<Vec<f64>> {
-    let mean = |q: Quantity| quantities.iter().find(|(x, _)| *x == q).map(|(_, s)| s.mean);
+    let mean = |q: Quantity| {
+        quantities
+            .iter()
+            .find(|(x, _)| *x == q)
+            .map(|(_, s)| s.mean)
+    };
     let m = [
         mean(Quantity::RelJ1)?,
         mean(Quantity::RelJ2)?,
@@ -972,7 +981,12 @@ mod tests {
         let mcp = r.joint(Joint::Mcp).unwrap();
         assert!(mcp.moves && mcp.shift_along > 0.0 && !pip.moves);
         assert!((mcp.suggested[0] - mcp.shift_along).abs() < 1e-9);
-        assert!(r.explanation.values.iter().all(|v| v.standing.is_consistent()));
+        assert!(
+            r.explanation
+                .values
+                .iter()
+                .all(|v| v.standing.is_consistent())
+        );
     }
 
     #[test]
@@ -1172,7 +1186,12 @@ mod tests {
         // Moved back towards the root by about the 10 units it was pushed.
         assert!(mcp.moves && (mcp.shift_along + 10.0).abs() < 3.0, "{mcp:?}");
         assert!(!r.joint(Joint::Pip).unwrap().moves);
-        assert!(r.explanation.values.iter().all(|v| v.standing.is_consistent()));
+        assert!(
+            r.explanation
+                .values
+                .iter()
+                .all(|v| v.standing.is_consistent())
+        );
         // Its X-rays' own proportions restored would be inside the range: the
         // solution lies inside every prediction interval.
         assert!(r.explanation.score <= 1.0);

@@ -150,9 +150,10 @@ impl GltfFile {
     /// The data of every buffer, when all can be read: from the GLB chunk
     /// and data URIs, and from files beside it when read from a file.
     pub fn buffer_data(&self) -> Option<Vec<Vec<u8>>> {
-        let external = self.document.buffers().any(
-            |b| matches!(b.source(), gltf::buffer::Source::Uri(u) if !u.starts_with("data:")),
-        );
+        let external = self
+            .document
+            .buffers()
+            .any(|b| matches!(b.source(), gltf::buffer::Source::Uri(u) if !u.starts_with("data:")));
         let dir = match (&self.dir, external) {
             (Some(d), _) => d.clone(),
             (None, false) => PathBuf::from("."),
@@ -769,7 +770,11 @@ fn weight_note(best: &Best, found: &[Option<Found>], names: &[String]) -> Option
             .map(|(i, _)| i)
             .collect();
         if let Some(&l) = losers.first() {
-            pairs.push(format!("{} over {}", shown(&names[chosen]), shown(&names[l])));
+            pairs.push(format!(
+                "{} over {}",
+                shown(&names[chosen]),
+                shown(&names[l])
+            ));
         }
     }
     if pairs.is_empty() {

@@ -297,9 +297,11 @@ pub fn parse_hand(name: &str) -> Option<HandBone> {
     let prefix = m.name("prefix").map_or("", |p| p.as_str());
     // A prefix that ends in a finger's name is no hand (`RightIndexHand`?):
     // only plain prefixes (namespaces, `def`, `jbip`, `ccbase`) are read.
-    if ["thumb", "index", "middle", "ring", "pinky", "little", "finger"]
-        .iter()
-        .any(|f| prefix.contains(f))
+    if [
+        "thumb", "index", "middle", "ring", "pinky", "little", "finger",
+    ]
+    .iter()
+    .any(|f| prefix.contains(f))
     {
         return None;
     }

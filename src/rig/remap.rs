@@ -52,7 +52,10 @@ fn knots(old: &[f64], new: &[f64], start: f64, end: Option<f64>) -> Option<Vec<(
     let mut k = vec![(start, start)];
     for i in 0..n {
         let mut gap = f64::INFINITY;
-        for (lo, hi) in [(i.checked_sub(1), Some(i)), (Some(i), (i + 1 < n).then_some(i + 1))] {
+        for (lo, hi) in [
+            (i.checked_sub(1), Some(i)),
+            (Some(i), (i + 1 < n).then_some(i + 1)),
+        ] {
             if let (Some(a), Some(b)) = (lo, hi) {
                 gap = gap.min(old[b] - old[a]).min(new[b] - new[a]);
             }
@@ -61,10 +64,14 @@ fn knots(old: &[f64], new: &[f64], start: f64, end: Option<f64>) -> Option<Vec<(
             gap = gap.min(old[0] - start).min(new[0] - start);
         }
         let r = 0.25 * gap;
-        if !(r > 0.0) {
+        if r.is_nan() || r <= 0.0 {
             return None;
         }
-        k.extend([(new[i] - r, old[i] - r), (new[i], old[i]), (new[i] + r, old[i] + r)]);
+        k.extend([
+            (new[i] - r, old[i] - r),
+            (new[i], old[i]),
+            (new[i] + r, old[i] + r),
+        ]);
     }
     if let Some(e) = end {
         k.push((e, e));
@@ -159,7 +166,12 @@ struct Sectors {
 impl Sectors {
     const COUNT: usize = 8;
 
-    fn new(axis: &FingerAxis, weights: &SkinWeights, found: &[(usize, usize, f64)], along: DVec3) -> Sectors {
+    fn new(
+        axis: &FingerAxis,
+        weights: &SkinWeights,
+        found: &[(usize, usize, f64)],
+        along: DVec3,
+    ) -> Sectors {
         let d = along.normalize_or_zero();
         // The world axis least aligned with the finger, made perpendicular to it.
         let e = [DVec3::X, DVec3::Y, DVec3::Z]
@@ -185,7 +197,8 @@ impl Sectors {
     fn of(&self, axis: &FingerAxis, p: DVec3, u: f64) -> usize {
         let rho = p - axis.point(u);
         let angle = rho.dot(self.across.1).atan2(rho.dot(self.across.0));
-        let k = ((angle + std::f64::consts::PI) / std::f64::consts::TAU * Self::COUNT as f64) as usize;
+        let k =
+            ((angle + std::f64::consts::PI) / std::f64::consts::TAU * Self::COUNT as f64) as usize;
         k.min(Self::COUNT - 1)
     }
 
@@ -206,7 +219,11 @@ impl Sectors {
         }
         let (a, b) = (after - 1, after);
         let span = list[b].0 - list[a].0;
-        let t = if span > 0.0 { (u - list[a].0) / span } else { 0.5 };
+        let t = if span > 0.0 {
+            (u - list[a].0) / span
+        } else {
+            0.5
+        };
         let mut merged: BTreeMap<usize, f64> = BTreeMap::new();
         for (i, f) in [(a, 1.0 - t), (b, t)] {
             for &(n, w) in infl(i) {
@@ -271,13 +288,12 @@ fn fit_to_skin(
         .collect();
     list.truncate(slots);
     let total: f64 = list.iter().map(|x| x.1).sum();
-    if !(total > 0.0) {
+    if total.is_nan() || total <= 0.0 {
         return None;
     }
     list.iter_mut().for_each(|x| x.1 /= total);
-    let matrix = |n: usize| -> Option<DMat4> {
-        joints.iter().position(|&j| j == n).map(|s| matrices[s])
-    };
+    let matrix =
+        |n: usize| -> Option<DMat4> { joints.iter().position(|&j| j == n).map(|s| matrices[s]) };
     let used: BTreeSet<usize> = list
         .iter()
         .chain(&prim.influences[v])
@@ -295,6 +311,9 @@ fn fit_to_skin(
     same.then_some(list)
 }
 
+/// A vertex of a primitive and its new influences by node.
+type VertexInfluences<'a> = (usize, &'a Vec<(usize, f64)>);
+
 /// Writes the new influences into their primitives' JOINTS_n / WEIGHTS_n
 /// accessors in the merged buffer. A primitive whose accessors cannot be
 /// written in place (shared with another skin's mesh, sparse, or a joint slot
@@ -306,7 +325,7 @@ pub fn write(
     remapped: &Remapped,
 ) -> Vec<String> {
     let mut notes = Vec::new();
-    let mut by_prim: BTreeMap<usize, Vec<(usize, &Vec<(usize, f64)>)>> = BTreeMap::new();
+    let mut by_prim: BTreeMap<usize, Vec<VertexInfluences<'_>>> = BTreeMap::new();
     for ((pi, v), infl) in remapped {
         by_prim.entry(*pi).or_default().push((*v, infl));
     }
@@ -315,15 +334,21 @@ pub fn write(
         let prim = &weights.primitives[pi];
         let at = format!("/meshes/{}/primitives/{}", prim.mesh, prim.primitive);
         let shared = prim.sets.iter().any(|&(j, w)| {
-            users(json, j)
-                .into_iter()
-                .chain(users(json, w))
-                .any(|m| skins_of_mesh.get(&m).is_none_or(|s| s.len() != 1 || !s.contains(&Some(prim.skin))))
+            users(json, j).into_iter().chain(users(json, w)).any(|m| {
+                skins_of_mesh
+                    .get(&m)
+                    .is_none_or(|s| s.len() != 1 || !s.contains(&Some(prim.skin)))
+            })
         });
         let spans: Option<Vec<(accessor::Span, accessor::Span)>> = prim
             .sets
             .iter()
-            .map(|&(j, w)| Some((accessor::span(json, j, bin.len())?, accessor::span(json, w, bin.len())?)))
+            .map(|&(j, w)| {
+                Some((
+                    accessor::span(json, j, bin.len())?,
+                    accessor::span(json, w, bin.len())?,
+                ))
+            })
             .collect();
         let Some(spans) = spans.filter(|_| !shared) else {
             notes.push(format!(
@@ -342,7 +367,8 @@ pub fn write(
                 .map(|&(n, w)| joints.iter().position(|&j| j == n).map(|s| (s as u32, w)))
                 .collect();
             let Some(slots) = slots.filter(|s| {
-                s.iter().all(|&(j, _)| spans.iter().all(|(js, _)| j <= js.uint_max()))
+                s.iter()
+                    .all(|&(j, _)| spans.iter().all(|(js, _)| j <= js.uint_max()))
             }) else {
                 unwritable += 1;
                 continue;

@@ -55,7 +55,8 @@ impl SkinWeights {
             let ibm = match super::fix::inverse_binds(data, &skin, joints.len()) {
                 Ok(m) => m,
                 Err(e) => {
-                    out.notes.push(format!("/skins/{s}: {e}; its weights are not read"));
+                    out.notes
+                        .push(format!("/skins/{s}: {e}; its weights are not read"));
                     continue;
                 }
             };
@@ -98,7 +99,8 @@ impl SkinWeights {
                     }
                     match super::skin::read_vertices(&prim, &at, data, joints.len()) {
                         Ok((positions, influences)) => {
-                            let (rest, influences) = by_node(&positions, influences, &joints, &matrices);
+                            let (rest, influences) =
+                                by_node(&positions, influences, &joints, &matrices);
                             out.primitives.push(WeightedPrimitive {
                                 skin: s,
                                 mesh: m,

@@ -23,7 +23,10 @@ fn a_ue5_hand_with_leaf_tips_is_judged_on_relative_values() {
         let pinky = if name == "little" { "pinky" } else { name };
         assert_eq!(f["audit"]["basis"], "relative", "{side} {name}");
         let joints = f["joints"].as_array().unwrap();
-        assert_eq!(joints.last().unwrap()["name"], format!("{pinky}_04_leaf_{s}"));
+        assert_eq!(
+            joints.last().unwrap()["name"],
+            format!("{pinky}_04_leaf_{s}")
+        );
         assert_eq!(joints.last().unwrap()["joint"], "tip");
         let mc = if name == "thumb" {
             format!("thumb_01_{s}")
@@ -52,8 +55,14 @@ fn rigify_uses_the_weighted_def_bone_over_its_unweighted_org_twin_and_says_so() 
     assert_eq!(thumb["joints"][0]["weighted"], true);
     assert_eq!(thumb["joints"][1]["name"], "DEF-thumb.03.R");
     assert_eq!(thumb["metacarpal"]["name"], "DEF-thumb.01.R");
-    assert_eq!(finger_of(&doc, "index")["metacarpal"]["name"], "DEF-palm.01.R");
-    assert_eq!(finger_of(&doc, "little")["metacarpal"]["name"], "DEF-palm.04.R");
+    assert_eq!(
+        finger_of(&doc, "index")["metacarpal"]["name"],
+        "DEF-palm.01.R"
+    );
+    assert_eq!(
+        finger_of(&doc, "little")["metacarpal"]["name"],
+        "DEF-palm.04.R"
+    );
     assert_eq!(thumb["wrist"]["name"], "DEF-hand.R");
     let notes = doc["rig"]["notes"].to_string();
     assert!(
@@ -98,15 +107,29 @@ fn sibling_joints_are_read_by_name_and_through_a_map() {
     }
     wd.write("names.csv", &map);
     let doc = wd
-        .run(&["audit", "bones.glb", "--map", "names.csv", "--format", "json"])
+        .run(&[
+            "audit",
+            "bones.glb",
+            "--map",
+            "names.csv",
+            "--format",
+            "json",
+        ])
         .ok()
         .json();
     let idx = finger_of(&doc, "index");
     assert_eq!(idx["hierarchy"], false);
     assert_eq!(joint_of(idx, "PIP")["standing"], "above");
-    wd.run(&["audit", "bones.glb", "--map", "names.csv", "--fix", "out.glb"])
-        .ok()
-        .stderr_has("0 of 1 fingers outside");
+    wd.run(&[
+        "audit",
+        "bones.glb",
+        "--map",
+        "names.csv",
+        "--fix",
+        "out.glb",
+    ])
+    .ok()
+    .stderr_has("0 of 1 fingers outside");
     assert!(worst_vertex_move(&input, &wd.read("out.glb")) < 1e-5);
 }
 
@@ -120,7 +143,10 @@ fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
     wd.write("web.glb", &input);
     let doc = audit_json(&wd, "web.glb");
     let idx = finger_of(&doc, "index");
-    assert_eq!(idx["audit"]["explanation"]["moved"], serde_json::json!(["MCP"]));
+    assert_eq!(
+        idx["audit"]["explanation"]["moved"],
+        serde_json::json!(["MCP"])
+    );
     let mcp = joint_of(idx, "MCP");
     assert_eq!(mcp["standing"], "above");
     // Moved back towards the root by about the 10 mm it was pushed.
@@ -129,11 +155,17 @@ fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
     assert_eq!(joint_of(idx, "PIP")["moves"], false);
     assert_eq!(joint_of(idx, "DIP")["moves"], false);
     // The words, however the lines wrap.
-    let words = wd.run(&["audit", "web.glb"]).ok().stdout.split_whitespace().collect::<Vec<_>>().join(" ");
+    let words = wd
+        .run(&["audit", "web.glb"])
+        .ok()
+        .stdout
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
     for needle in [
         "Explanation: the MCP sits ",
         " mm distal of where the X-rays put it (at the finger web, not the knuckle?); PIP, DIP and \
-         the tip are consistent with the X-rays once MCP and the soft tissue are accounted for.",
+         the tip are consistent with the X-rays once the MCP and the soft tissue are accounted for.",
         "move MCP ",
     ] {
         assert!(words.contains(needle), "{needle}\n{words}");
@@ -160,5 +192,8 @@ fn a_rig_in_centimetres_gets_a_warning_naming_the_unit() {
         .stdout_has("Warning: its fingers are ");
     // In metres: no warning.
     wd.write("m.glb", build(&HandSpec::new(Naming::Mixamo)));
-    assert_eq!(audit_json(&wd, "m.glb")["rig"]["warnings"], serde_json::json!([]));
+    assert_eq!(
+        audit_json(&wd, "m.glb")["rig"]["warnings"],
+        serde_json::json!([])
+    );
 }

@@ -35,7 +35,10 @@ fn bend(bytes: &[u8], chain: &[&str], hand: &str, joint: usize) -> f64 {
     let nodes = doc["nodes"].as_array().unwrap();
     let world = world_of(nodes);
     let index = |name: &str| nodes.iter().position(|n| n["name"] == name).unwrap();
-    let pts: Vec<DVec3> = chain.iter().map(|n| world[index(n)].w_axis.truncate()).collect();
+    let pts: Vec<DVec3> = chain
+        .iter()
+        .map(|n| world[index(n)].w_axis.truncate())
+        .collect();
     let skin: Vec<usize> = doc["skins"][0]["joints"]
         .as_array()
         .unwrap()
@@ -71,7 +74,11 @@ fn bend(bytes: &[u8], chain: &[&str], hand: &str, joint: usize) -> f64 {
         let pos = DVec3::new(f(p + 12 * v), f(p + 12 * v + 4), f(p + 12 * v + 8));
         let (mut d, mut q) = (0.0, 0.0);
         for k in 0..4 {
-            let s = u16::from_le_bytes(bin[j + 8 * v + 2 * k..j + 8 * v + 2 * k + 2].try_into().unwrap()) as usize;
+            let s = u16::from_le_bytes(
+                bin[j + 8 * v + 2 * k..j + 8 * v + 2 * k + 2]
+                    .try_into()
+                    .unwrap(),
+            ) as usize;
             let x = f(w + 16 * v + 4 * k);
             if distal.contains(&s) {
                 d += x;
@@ -127,7 +134,9 @@ fn mixamo_chain(finger: &str) -> Vec<String> {
             1,
         ),
     };
-    (first..=4).map(|k| format!("mixamorig:RightHand{f}{k}")).collect()
+    (first..=4)
+        .map(|k| format!("mixamorig:RightHand{f}{k}"))
+        .collect()
 }
 
 #[test]
@@ -152,26 +161,49 @@ fn moved_joints_keep_their_bends_close() {
     let moved = moved_nodes(&wd, "smooth.glb", "fixed.glb", &[]);
     assert_eq!(
         moved,
-        ["mixamorig:RightHandIndex2", "mixamorig:RightHandMiddle1", "mixamorig:RightHandRing3"]
+        [
+            "mixamorig:RightHandIndex2",
+            "mixamorig:RightHandMiddle1",
+            "mixamorig:RightHandRing3"
+        ]
     );
     let fixed = wd.read("fixed.glb");
     assert!(worst_vertex_move(&input, &fixed) < 1e-5);
-    for (finger, joint, set) in [("index", 1, 0.0015), ("middle", 0, 0.002), ("ring", 2, 0.002)] {
+    for (finger, joint, set) in [
+        ("index", 1, 0.0015),
+        ("middle", 0, 0.002),
+        ("ring", 2, 0.002),
+    ] {
         let chain = mixamo_chain(finger);
         let chain: Vec<&str> = chain.iter().map(String::as_str).collect();
         let before = bend(&input, &chain, "mixamorig:RightHand", joint);
         let after = bend(&fixed, &chain, "mixamorig:RightHand", joint);
-        eprintln!("{finger} joint {joint}: bend {:.3} mm from it before, {:.3} mm after the fix", before * 1e3, after * 1e3);
+        eprintln!(
+            "{finger} joint {joint}: bend {:.3} mm from it before, {:.3} mm after the fix",
+            before * 1e3,
+            after * 1e3
+        );
         // The test's own reading of the weights finds the bend the builder set.
         assert!((before - set).abs() < 2e-4, "{finger}: {before}");
         // No further from the moved joint than before (to 0.1 mm, the
         // resolution of the resampled weights' rings).
-        assert!(after.abs() <= before.abs() + 1e-4, "{finger}: {before} -> {after}");
+        assert!(
+            after.abs() <= before.abs() + 1e-4,
+            "{finger}: {before} -> {after}"
+        );
     }
     // The audit agrees: no inner joint is flagged, before or after.
-    let doc = wd.run(&["audit", "fixed.glb", "--format", "json"]).ok().json();
+    let doc = wd
+        .run(&["audit", "fixed.glb", "--format", "json"])
+        .ok()
+        .json();
     let index = finger_of(&doc, "index");
-    let pip = index["bends"].as_array().unwrap().iter().find(|b| b["joint"] == "PIP").unwrap();
+    let pip = index["bends"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|b| b["joint"] == "PIP")
+        .unwrap();
     assert!((num(&pip["offset"]) - 0.0015).abs() < 3e-4, "{pip}");
 }
 
@@ -180,7 +212,10 @@ fn keyframes_agree(a: &[u8], b: &[u8], keys: usize) -> f64 {
     (0..keys)
         .map(|k| {
             let (va, vb) = (skinned_vertices(a, Some(k)), skinned_vertices(b, Some(k)));
-            va.iter().zip(&vb).map(|(x, y)| x.distance(*y)).fold(0.0, f64::max)
+            va.iter()
+                .zip(&vb)
+                .map(|(x, y)| x.distance(*y))
+                .fold(0.0, f64::max)
         })
         .fold(0.0, f64::max)
 }
@@ -211,7 +246,12 @@ fn constant_translation_keys_follow_the_moved_joints() {
     // equal the new rest translation.
     let (doc, bin) = read_glb(&fixed);
     let node = |name: &str| {
-        doc["nodes"].as_array().unwrap().iter().position(|n| n["name"] == name).unwrap()
+        doc["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .position(|n| n["name"] == name)
+            .unwrap()
     };
     let mcp = node("mixamorig:RightHandMiddle1");
     let rest: Vec<f64> = doc["nodes"][mcp]["translation"]
@@ -231,7 +271,10 @@ fn constant_translation_keys_follow_the_moved_joints() {
     wd.run(&["audit", "fixed.glb", "--fix", "again.glb"])
         .ok()
         .stderr_has("0 joints moved");
-    assert!(wd.read("again.glb") == fixed, "a second fix changed the file");
+    assert!(
+        wd.read("again.glb") == fixed,
+        "a second fix changed the file"
+    );
 }
 
 #[test]
@@ -247,16 +290,31 @@ fn varying_translation_keys_move_the_joints_as_before() {
     wd.write("anim.glb", &input);
     wd.run(&["audit", "anim.glb", "--fix", "fixed.glb"])
         .ok()
-        .stderr_has("the translation keys of 'mixamorig:RightHandIndex2', 'mixamorig:RightHandIndex3' vary");
+        .stderr_has(
+            "the translation keys of 'mixamorig:RightHandIndex2', 'mixamorig:RightHandIndex3' vary",
+        );
     let fixed = wd.read("fixed.glb");
     let (a, abin) = read_glb(&input);
     let (b, bbin) = read_glb(&fixed);
     for key in 0..2 {
-        let wa = world_of(posed(a.clone(), &abin, Some(key))["nodes"].as_array().unwrap());
-        let wb = world_of(posed(b.clone(), &bbin, Some(key))["nodes"].as_array().unwrap());
+        let wa = world_of(
+            posed(a.clone(), &abin, Some(key))["nodes"]
+                .as_array()
+                .unwrap(),
+        );
+        let wb = world_of(
+            posed(b.clone(), &bbin, Some(key))["nodes"]
+                .as_array()
+                .unwrap(),
+        );
         // Every node but the moved PIP is where it was at this keyframe; the
         // PIP is where its move put it, plus the key's own 3 mm.
-        let names: Vec<&str> = a["nodes"].as_array().unwrap().iter().map(|n| n["name"].as_str().unwrap_or("")).collect();
+        let names: Vec<&str> = a["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| n["name"].as_str().unwrap_or(""))
+            .collect();
         for (i, name) in names.iter().enumerate() {
             let d = wa[i].w_axis.truncate().distance(wb[i].w_axis.truncate());
             if *name == "mixamorig:RightHandIndex2" {
@@ -286,8 +344,10 @@ fn channels_with_unknown_paths_are_reported_and_left_alone() {
     let input = edit(&build(&spec), |j| {
         let chs = j["animations"][0]["channels"].as_array_mut().unwrap();
         chs[1]["target"]["path"] = serde_json::json!("rottaion");
-        chs.push(serde_json::json!({"sampler": 0, "target": {"path": "pointer",
-            "extensions": {"KHR_animation_pointer": {"pointer": "/nodes/5/translation"}}}}));
+        chs.push(
+            serde_json::json!({"sampler": 0, "target": {"path": "pointer",
+            "extensions": {"KHR_animation_pointer": {"pointer": "/nodes/5/translation"}}}}),
+        );
         j["extensionsUsed"] = serde_json::json!(["KHR_animation_pointer"]);
     });
     wd.write("odd.glb", &input);
@@ -298,7 +358,10 @@ fn channels_with_unknown_paths_are_reported_and_left_alone() {
         .stderr_has("left alone");
     let (a, _) = read_glb(&input);
     let (b, _) = read_glb(&wd.read("fixed.glb"));
-    assert_eq!(a["animations"][0]["channels"], b["animations"][0]["channels"]);
+    assert_eq!(
+        a["animations"][0]["channels"],
+        b["animations"][0]["channels"]
+    );
     // The fixed copy reads back, its mesh unchanged.
     assert!(worst_vertex_move(&input, &wd.read("fixed.glb")) < 1e-5);
 }
@@ -310,16 +373,32 @@ fn only_outside_moves_only_joints_outside_their_interval() {
     // Ring PIP 2.5 mm towards the root, DIP 3 mm towards the tip: the finger
     // is outside, the PIP alone explains it, yet the PIP itself stands inside
     // its prediction interval.
-    let input = build(&HandSpec::new(Naming::Mixamo).moved("ring", 1, -0.25).moved("ring", 2, 0.3));
+    let input = build(
+        &HandSpec::new(Naming::Mixamo)
+            .moved("ring", 1, -0.25)
+            .moved("ring", 2, 0.3),
+    );
     wd.write("ring.glb", &input);
     let doc = super::audit_json(&wd, "ring.glb");
     let ring = finger_of(&doc, "ring");
-    assert_eq!(ring["audit"]["explanation"]["moved"], serde_json::json!(["PIP"]));
+    assert_eq!(
+        ring["audit"]["explanation"]["moved"],
+        serde_json::json!(["PIP"])
+    );
     assert_eq!(super::joint_of(ring, "PIP")["standing"], "in_prediction");
     assert_eq!(doc["fingers_outside"], 1);
-    assert_eq!(moved_nodes(&wd, "ring.glb", "all.glb", &[]), ["mixamorig:RightHandRing2"]);
+    assert_eq!(
+        moved_nodes(&wd, "ring.glb", "all.glb", &[]),
+        ["mixamorig:RightHandRing2"]
+    );
     assert!(moved_nodes(&wd, "ring.glb", "outside.glb", &["--only-outside"]).is_empty());
-    wd.run(&["audit", "ring.glb", "--fix", "outside.glb", "--only-outside"])
-        .ok()
-        .stderr_has("0 joints moved; re-audited, 1 of 5 fingers outside");
+    wd.run(&[
+        "audit",
+        "ring.glb",
+        "--fix",
+        "outside.glb",
+        "--only-outside",
+    ])
+    .ok()
+    .stderr_has("0 joints moved; re-audited, 1 of 5 fingers outside");
 }

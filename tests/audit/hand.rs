@@ -464,8 +464,16 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
     if let Some(offsets) = &spec.smooth {
         for (root, chain) in &chains {
             let finger = tags.iter().find(|t| t.0 == chain[0]).map_or("", |t| t.1);
-            let has_tip = chain.len() == XRAY_1B.iter().find(|f| f.0 == finger).map_or(0, |f| f.1.len() + 1);
-            let bending = if has_tip { chain.len() - 1 } else { chain.len() };
+            let has_tip = chain.len()
+                == XRAY_1B
+                    .iter()
+                    .find(|f| f.0 == finger)
+                    .map_or(0, |f| f.1.len() + 1);
+            let bending = if has_tip {
+                chain.len() - 1
+            } else {
+                chain.len()
+            };
             let pts: Vec<DVec3> = chain.iter().map(|&n| world[n].w_axis.truncate()).collect();
             let bends: Vec<f64> = (0..bending)
                 .map(|k| {
@@ -477,7 +485,15 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
                 .collect();
             let mut owners = vec![*root];
             owners.extend(chain.iter().take(bending).copied());
-            tube(&pts, has_tip, &bends, &owners.iter().map(|&n| slot(n)).collect::<Vec<_>>(), &mut positions, &mut joint_ids, &mut weights);
+            tube(
+                &pts,
+                has_tip,
+                &bends,
+                &owners.iter().map(|&n| slot(n)).collect::<Vec<_>>(),
+                &mut positions,
+                &mut joint_ids,
+                &mut weights,
+            );
         }
     } else {
         // Two vertices per weighted joint, 3 mm off its centre, weighted 0.6 to
@@ -537,11 +553,17 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
         for &(node, finger, k) in &tags {
             let n = &nodes[node];
             let t = n["translation"].as_array().map_or([0.0; 3], |a| {
-                [a[0].as_f64().unwrap(), a[1].as_f64().unwrap(), a[2].as_f64().unwrap()]
+                [
+                    a[0].as_f64().unwrap(),
+                    a[1].as_f64().unwrap(),
+                    a[2].as_f64().unwrap(),
+                ]
             });
             let r: Vec<f32> = n["rotation"]
                 .as_array()
-                .map_or(vec![0.0, 0.0, 0.0, 1.0], |a| a.iter().map(|x| x.as_f64().unwrap() as f32).collect());
+                .map_or(vec![0.0, 0.0, 0.0, 1.0], |a| {
+                    a.iter().map(|x| x.as_f64().unwrap() as f32).collect()
+                });
             let mut t2 = t;
             if spec.varying.contains(&(finger, k)) {
                 t2[1] += 0.3;
@@ -550,9 +572,13 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
             let v_t = push_view(&mut bin, &f32s(&keys));
             let v_r = push_view(&mut bin, &f32s(&[r.clone(), r].concat()));
             for (view, ty, path) in [(v_t, "VEC3", "translation"), (v_r, "VEC4", "rotation")] {
-                anim_accessors.push(json!({"bufferView": view, "componentType": 5126, "count": 2, "type": ty}));
+                anim_accessors.push(
+                    json!({"bufferView": view, "componentType": 5126, "count": 2, "type": ty}),
+                );
                 samplers.push(json!({"input": 4, "output": 4 + anim_accessors.len() - 1, "interpolation": "LINEAR"}));
-                channels.push(json!({"sampler": samplers.len() - 1, "target": {"node": node, "path": path}}));
+                channels.push(
+                    json!({"sampler": samplers.len() - 1, "target": {"node": node, "path": path}}),
+                );
             }
         }
     }
@@ -591,7 +617,10 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
         doc["extensions"] = json!({"VRM": {"humanoid": {"humanBones": vrm0_table}}});
     }
     if spec.animate {
-        doc["accessors"].as_array_mut().unwrap().extend(anim_accessors);
+        doc["accessors"]
+            .as_array_mut()
+            .unwrap()
+            .extend(anim_accessors);
         doc["animations"] = json!([{"name": "Idle", "samplers": samplers, "channels": channels}]);
     }
     for (k, v) in &spec.extra {

@@ -38,13 +38,20 @@ fn validator() -> Result<std::path::PathBuf, String> {
 }
 
 /// Issue counts by (code, severity) of each file, in order.
-fn issues(tools: &std::path::Path, files: &[std::path::PathBuf]) -> Vec<BTreeMap<(String, u64), usize>> {
+fn issues(
+    tools: &std::path::Path,
+    files: &[std::path::PathBuf],
+) -> Vec<BTreeMap<(String, u64), usize>> {
     let out = Command::new("node")
         .arg(tools.join("validate.mjs"))
         .args(files)
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8(out.stdout)
         .unwrap()
         .lines()
@@ -52,7 +59,10 @@ fn issues(tools: &std::path::Path, files: &[std::path::PathBuf]) -> Vec<BTreeMap
             let doc: Value = serde_json::from_str(l).unwrap();
             let mut count = BTreeMap::new();
             for i in doc["issues"].as_array().unwrap() {
-                let key = (i["code"].as_str().unwrap().to_string(), i["severity"].as_u64().unwrap());
+                let key = (
+                    i["code"].as_str().unwrap().to_string(),
+                    i["severity"].as_u64().unwrap(),
+                );
                 *count.entry(key).or_default() += 1;
             }
             count
@@ -114,7 +124,10 @@ fn a_fix_adds_no_validator_issue() {
         for out in &reports[3 * k + 1..3 * k + 3] {
             for (key, &n) in out {
                 let had = input.get(key).copied().unwrap_or(0);
-                assert!(n <= had, "{name}: the fix adds {key:?} ({had} -> {n}); input {input:?}, fixed {out:?}");
+                assert!(
+                    n <= had,
+                    "{name}: the fix adds {key:?} ({had} -> {n}); input {input:?}, fixed {out:?}"
+                );
             }
         }
         eprintln!("{name}: input {input:?}; fixed {:?}", reports[3 * k + 1]);

@@ -100,7 +100,11 @@ fn both_hands_have_every_finger_found_and_judged_by_name() {
         // The text fits 100 columns.
         let text = wd.run(&["audit", &file]).ok().stdout.clone();
         for line in text.lines() {
-            assert!(line.chars().count() <= 100, "{} columns: {line}", line.len());
+            assert!(
+                line.chars().count() <= 100,
+                "{} columns: {line}",
+                line.len()
+            );
         }
     }
 }
@@ -145,5 +149,8 @@ fn a_fix_moves_sibling_joints_alone_and_keeps_the_mesh() {
     wd.run(&["audit", "fixed.glb", "--tip", "skin", "--fix", "again.glb"])
         .ok()
         .stderr_has("0 joints moved");
-    assert!(wd.read("again.glb") == fixed, "a second fix changed the file");
+    assert!(
+        wd.read("again.glb") == fixed,
+        "a second fix changed the file"
+    );
 }

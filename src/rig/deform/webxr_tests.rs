@@ -93,9 +93,7 @@ fn table(label: &str, m: &HandMeasures) {
 #[test]
 fn the_webxr_hands_curl_into_a_fist() {
     let Some(dir) = rig_dir() else {
-        eprintln!(
-            "skipped: the WebXR generic hands are not in data/rigs/webxr-generic-hand"
-        );
+        eprintln!("skipped: the WebXR generic hands are not in data/rigs/webxr-generic-hand");
         return;
     };
     let out = std::env::var_os("PHALANX_RENDER_DIR").map(PathBuf::from);
