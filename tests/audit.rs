@@ -2,7 +2,7 @@
 
 mod conventions;
 mod fixing;
-mod hand;
+pub(crate) mod hand;
 mod validator;
 mod webxr;
 

@@ -11,13 +11,14 @@
 use crate::stats::bootstrap::{self, Sorted};
 use crate::stats::{Interval, Intervals, describe, rng};
 use rayon::prelude::*;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// Key of the random streams used by the simulation (separate from the bootstrap's).
 const COVERAGE_KEY: u64 = 0xC0_7E_4A_6E;
 
 /// Settings of a coverage simulation.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct CoverageSettings {
     /// Simulated datasets.
     pub sims: usize,
@@ -35,7 +36,7 @@ pub struct CoverageSettings {
 pub const REPORT_MAX_N: usize = 200;
 
 /// The estimated coverage of one interval method.
-#[derive(Debug, Clone, Serialize, PartialEq)]
+#[derive(Debug, Clone, Serialize, JsonSchema, PartialEq)]
 pub struct MethodCoverage {
     /// `t`, `percentile`, `bca` or `prediction`.
     pub method: &'static str,
@@ -51,7 +52,7 @@ pub struct MethodCoverage {
 }
 
 /// Coverage of every method at one sample size.
-#[derive(Debug, Clone, Serialize, PartialEq)]
+#[derive(Debug, Clone, Serialize, JsonSchema, PartialEq)]
 pub struct Coverage {
     pub n: usize,
     pub sims: usize,
@@ -118,7 +119,7 @@ pub fn simulate(n: usize, mean: f64, sd: f64, s: &CoverageSettings) -> Option<Co
 }
 
 /// The simulated coverage for one quantity of one finger.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct QuantityCoverage {
     pub finger: crate::dataset::Finger,
     pub quantity: super::Quantity,

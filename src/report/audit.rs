@@ -10,23 +10,23 @@ use crate::rig::judge::{Basis, FingerAudit, JudgeOptions, Standing, TipKind};
 use crate::rig::{AuditedFinger, AuditedRig};
 
 /// Millimetres per rig unit (glTF units are metres).
-pub const MM: f64 = 1000.0;
+pub(crate) const MM: f64 = 1000.0;
 
 /// The caveats every audit carries.
-pub const CAVEATS: [&str; 3] = [
+pub(crate) const CAVEATS: [&str; 3] = [
     "The statistics come from X-rays of right hands; a left hand is judged as their mirror image.",
     "A rig's joints are rotation centres, while the X-ray lengths run between bone ends; the two differ by a few per cent, so read the prediction interval as a guide, not a verdict.",
     "A rig's tip usually sits at the skin and so includes the fingertip's soft tissue, which the distal phalanx on an X-ray does not; it is taken off the last segment (4 mm unless --tip-soft-tissue says otherwise, an assumption: no measured mean was found).",
 ];
 
 /// The width every line of the audit's text fits in.
-pub const WIDTH: usize = 100;
+pub(crate) const WIDTH: usize = 100;
 
 /// `text` wrapped at word boundaries to `WIDTH` columns, the first line
 /// starting with `first`, the others with `rest`. A word longer than a line
 /// stays whole. (Greedy wrapping of plain ASCII-ish prose: one small
 /// function, so no wrapping crate for it.)
-pub fn wrap(text: &str, first: &str, rest: &str) -> String {
+pub(crate) fn wrap(text: &str, first: &str, rest: &str) -> String {
     let mut out = String::new();
     let mut line = first.to_string();
     let mut empty = true;
@@ -50,7 +50,7 @@ pub fn wrap(text: &str, first: &str, rest: &str) -> String {
 }
 
 /// "in range", "OUT, 5.30 mm too distal": how a joint stands, short for the table.
-pub fn joint_standing(s: Standing, scale: f64) -> String {
+pub(crate) fn joint_standing(s: Standing, scale: f64) -> String {
     match s {
         Standing::InRange => "in range".into(),
         Standing::InPrediction => "in prediction".into(),
@@ -60,7 +60,7 @@ pub fn joint_standing(s: Standing, scale: f64) -> String {
 }
 
 /// How a unitless value stands, short for the table.
-pub fn value_standing(s: Standing) -> String {
+pub(crate) fn value_standing(s: Standing) -> String {
     match s {
         Standing::InRange => "in range".into(),
         Standing::InPrediction => "in prediction".into(),
@@ -70,7 +70,7 @@ pub fn value_standing(s: Standing) -> String {
 }
 
 /// What a finger was judged on, in words.
-pub fn basis_words(a: &FingerAudit) -> String {
+pub(crate) fn basis_words(a: &FingerAudit) -> String {
     match a.basis {
         Basis::Relative => "judged on relative values (the rig has a tip)".into(),
         Basis::Ratio => "judged on J2/J1 only: the rig has no tip, so the finger's length, its DIP and J3 cannot be judged".into(),
@@ -79,7 +79,7 @@ pub fn basis_words(a: &FingerAudit) -> String {
 }
 
 /// How the tips are compared, in words.
-pub fn tip_words(t: &JudgeOptions) -> String {
+pub(crate) fn tip_words(t: &JudgeOptions) -> String {
     let kind = |k: TipKind| match k {
         TipKind::Skin => "skin",
         TipKind::Bone => "bone",
@@ -110,7 +110,7 @@ pub fn tip_words(t: &JudgeOptions) -> String {
 }
 
 /// A finger's heading: label and node names (wrapped), then its segments.
-pub fn heading(f: &AuditedFinger) -> String {
+pub(crate) fn heading(f: &AuditedFinger) -> String {
     let names: Vec<String> = f
         .chain
         .joints
@@ -158,7 +158,7 @@ pub fn heading(f: &AuditedFinger) -> String {
 }
 
 /// The suggestion for one joint, in words.
-pub fn suggestion(j: &crate::rig::judge::JointCheck) -> String {
+pub(crate) fn suggestion(j: &crate::rig::judge::JointCheck) -> String {
     let towards = if j.shift_along >= 0.0 {
         "towards the tip"
     } else {
@@ -184,7 +184,7 @@ fn and_list(items: &[String]) -> String {
 }
 
 /// The explanation of a finger's misfit, in words.
-pub fn explanation_words(a: &FingerAudit) -> String {
+pub(crate) fn explanation_words(a: &FingerAudit) -> String {
     let e = &a.explanation;
     let soft = a.tip_correction != 0.0;
     if a.basis == Basis::None {
@@ -266,7 +266,7 @@ pub fn explanation_words(a: &FingerAudit) -> String {
 }
 
 /// Where the skin bends, in words: one clause per joint.
-pub fn bend_words(bends: &[Bend], tolerance: f64) -> String {
+pub(crate) fn bend_words(bends: &[Bend], tolerance: f64) -> String {
     let parts: Vec<String> = bends
         .iter()
         .map(|b| match b.offset {
@@ -362,7 +362,7 @@ fn finger_table(a: &FingerAudit, c: &str) -> String {
 
 /// The terminal report of `phalanx audit`, every line within [`WIDTH`] columns
 /// (node names longer than a line excepted).
-pub fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> String {
+pub(crate) fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> String {
     let c = level(confidence);
     let mut out = wrap(
         &format!("Rig audit of {} against {data} ({n_note})", rig.label),
@@ -436,7 +436,7 @@ pub fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> Stri
 }
 
 /// The standing of a whole finger in one phrase, naming whatever lies outside.
-pub fn finger_summary(a: &FingerAudit) -> String {
+pub(crate) fn finger_summary(a: &FingerAudit) -> String {
     if a.basis == Basis::None {
         return "not judged (no tip)".into();
     }
@@ -504,7 +504,7 @@ pub fn finger_summary(a: &FingerAudit) -> String {
 }
 
 /// The measured value of `q` for a finger, when judged.
-pub fn value_of(a: &FingerAudit, q: Quantity) -> Option<f64> {
+pub(crate) fn value_of(a: &FingerAudit, q: Quantity) -> Option<f64> {
     a.values
         .iter()
         .find(|v| v.quantity == q)

@@ -38,6 +38,7 @@ use super::chain::{arc_positions, point_at, project};
 use super::weights::SkinWeights;
 use crate::analysis::placement::Joint;
 use glam::DVec3;
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::collections::HashSet;
 
@@ -58,13 +59,14 @@ pub const BEND_TOLERANCE_MM: f64 = 3.0;
 const BIN: f64 = 0.01;
 
 /// Where the skin bends at one joint.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct Bend {
     pub joint: Joint,
     /// Distance along the chain from the joint to where the skin bends
     /// (+ towards the tip); `None` when no crossing was found near the joint.
     pub offset: Option<f64>,
     /// The point on the finger's axis where the skin bends.
+    #[schemars(with = "Option<[f64; 3]>")]
     pub at: Option<DVec3>,
     /// Vertices the bend was found from.
     pub vertices: usize,

@@ -44,13 +44,14 @@
 //! explanations of the same size the better fit wins, then the smaller total
 //! move. Joints move along the rig's own chain (the polyline through its
 //! joints), the MCP along the first segment's backward extension (at most one
-//! segment back, half a segment forward). See [`super::chain`]. No files, no glTF.
+//! segment back, half a segment forward). See `rig::chain`. No files, no glTF.
 
 use super::chain::{arc_positions, backward_at, on_chain, point_at};
 use crate::analysis::placement::{Joint, Placed};
 use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
 use crate::dataset::Finger;
 use glam::DVec3;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// Soft tissue between the bone tip (the distal phalanx's tuft) and the skin
@@ -68,7 +69,7 @@ use serde::Serialize;
 pub const DEFAULT_SOFT_TISSUE_MM: f64 = 4.0;
 
 /// What the tip node of a rig (or the end of an X-ray's J3) marks.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum TipKind {
     /// The skin at the end of the finger (most rigs; WebXR's `*-tip`).
@@ -78,7 +79,7 @@ pub enum TipKind {
 }
 
 /// How a rig is compared with the data.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct JudgeOptions {
     /// What the rig's tip nodes mark.
     pub rig_tip: TipKind,
@@ -124,7 +125,7 @@ impl ChainInput {
 }
 
 /// What a finger was judged on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Basis {
     /// Relative values J~k: the rig has a tip.
@@ -136,7 +137,7 @@ pub enum Basis {
 }
 
 /// Where a measured value stands against the statistics.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 #[serde(tag = "standing", rename_all = "snake_case")]
 pub enum Standing {
     /// Inside the observed range [min, max] of the X-rays.
@@ -186,7 +187,7 @@ impl Standing {
 }
 
 /// One quantity of a rig finger against the X-rays.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct ValueCheck {
     pub quantity: Quantity,
     pub measured: f64,
@@ -199,7 +200,7 @@ pub struct ValueCheck {
 
 /// One joint of a rig finger against the X-rays, in the rig's units, given
 /// the rest of the finger as the rig has it (see the module notes).
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct JointCheck {
     pub joint: Joint,
     /// Distance from the rig's MCP along the chain, as the rig has it (0 for the MCP).
@@ -214,6 +215,7 @@ pub struct JointCheck {
     /// True when the explanation moves this joint.
     pub moves: bool,
     /// Where the explanation puts the joint (the rig's joint when it does not move it).
+    #[schemars(with = "[f64; 3]")]
     pub suggested: DVec3,
     /// Distance from the rig's joint to the suggested one.
     pub shift: f64,
@@ -223,15 +225,16 @@ pub struct JointCheck {
 }
 
 /// The fewest joints whose moves bring the finger inside the X-rays' prediction intervals.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct Explanation {
     /// The joints that move, root first (empty: nothing needs to move).
     pub moved: Vec<Joint>,
     /// True when, with those moved, every value is inside its prediction interval.
     pub consistent: bool,
     /// The largest normalised distance of a value from its mean after the
-    /// moves: 0 at the mean, 1 at a prediction limit.
-    pub score: f64,
+    /// moves: 0 at the mean, 1 at a prediction limit (`None` when no value
+    /// could be judged).
+    pub score: Option<f64>,
     /// The values after the moves.
     pub values: Vec<ValueCheck>,
     /// Other sets of as many joints that would also bring the finger inside.
@@ -239,7 +242,7 @@ pub struct Explanation {
 }
 
 /// A rig finger judged against the X-ray statistics.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct FingerAudit {
     pub finger: Finger,
     pub has_tip: bool,
@@ -459,7 +462,7 @@ pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Opti
     let explanation = Explanation {
         moved: explanation.moved,
         consistent: explanation.consistent,
-        score: explanation.score,
+        score: explanation.score.is_finite().then_some(explanation.score),
         values: explanation
             .segments
             .map(|s| {
@@ -1194,7 +1197,7 @@ mod tests {
         );
         // Its X-rays' own proportions restored would be inside the range: the
         // solution lies inside every prediction interval.
-        assert!(r.explanation.score <= 1.0);
+        assert!(r.explanation.score.is_some_and(|s| s <= 1.0));
     }
 
     #[test]
@@ -1204,7 +1207,11 @@ mod tests {
         let r = audit_with(&a, &straight(Finger::Middle, &[60.0, 10.0, 30.0]), &bone()).unwrap();
         assert_eq!(r.explanation.moved.len(), 2, "{:?}", r.explanation);
         // The ratios of the means are not the means of the ratios: close, not 0.
-        assert!(r.explanation.score < 0.05, "{:?}", r.explanation);
+        assert!(
+            r.explanation.score.is_some_and(|s| s < 0.05),
+            "{:?}",
+            r.explanation
+        );
         let f = a.finger(Finger::Middle).unwrap();
         for v in &r.explanation.values {
             if v.quantity.is_relative() {
