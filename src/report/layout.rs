@@ -326,7 +326,7 @@ impl Hidden {
 /// `text` with every line that is not a table line (one starting with `|`
 /// after its indentation) wrapped at spaces to `width`. A wrapped line keeps
 /// its indentation and continues two columns further in (past the bullet of
-/// a `- ` item). A word longer than the width is broken.
+/// a `- ` item). Hyphenated words stay whole; a word longer than the width is broken.
 pub fn fit_text(text: &str, width: Width) -> String {
     let Width::Fit(max) = width else {
         return text.to_string();
@@ -349,6 +349,8 @@ pub fn fit_text(text: &str, width: Width) -> String {
         let options = textwrap::Options::new(max)
             .initial_indent(indent)
             .subsequent_indent(&hanging)
+            // Names such as `index-finger-phalanx-distal` stay whole: break at spaces only.
+            .word_splitter(textwrap::WordSplitter::NoHyphenation)
             .break_words(true);
         out.push_str(&textwrap::fill(body, options));
         out.push_str(eol);
