@@ -9,6 +9,7 @@
 pub mod audit;
 pub mod bootstrap;
 pub mod claims;
+pub mod compare;
 pub mod coverage;
 pub mod describe;
 pub mod groups;
