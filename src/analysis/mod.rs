@@ -14,6 +14,7 @@ pub mod coverage;
 pub mod describe;
 pub mod groups;
 pub mod placement;
+pub mod population;
 pub mod rng;
 pub mod tracking;
 
