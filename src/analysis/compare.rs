@@ -5,7 +5,8 @@
 //!
 //! - n, mean and SD of each cohort;
 //! - the difference of means with a Welch t interval ([`welch`]) and a bootstrap interval
-//!   that resamples each cohort on its own ([`bootstrap_difference`]);
+//!   that resamples each cohort on its own ([`bootstrap_differences`]; quantities measured
+//!   on the same X-rays share its resamples, [`compare_all`]);
 //! - Hedges' g with its interval ([`hedges_g`]);
 //! - external coverage ([`external_coverage`]): the share of B's values inside A's
 //!   prediction interval for one new X-ray, and of A's inside B's. This is what a user of
@@ -92,8 +93,8 @@ pub struct Comparison {
     pub difference: f64,
     pub confidence: f64,
     pub welch: Option<Welch>,
-    /// Percentile interval of the bootstrap differences ([`bootstrap_difference`]).
-    pub bootstrap: Option<Interval>,
+    /// Percentile interval of the bootstrap differences ([`bootstrap_differences`]).
+    pub bootstrap: Interval,
     /// Bootstrap resamples drawn.
     pub resamples: usize,
     pub hedges_g: Option<HedgesG>,
@@ -105,40 +106,66 @@ pub struct Comparison {
     pub notes: Vec<String>,
 }
 
-/// Compares cohorts A and B on one quantity. `key` separates the bootstrap streams of
-/// different quantities under one seed (give each its own, below 2^56).
-/// `None` when a cohort is empty or holds a value that is not finite.
+/// Compares cohorts A and B on one quantity: [`compare_all`] with one column.
 /// Cost: O(R (n_A + n_B)) for R = `settings.resamples`.
 pub fn compare(a: &[f64], b: &[f64], settings: &Settings, key: u64) -> Option<Comparison> {
-    let (ca, cb) = (Cohort::of(a)?, Cohort::of(b)?);
+    compare_all(&[a], &[b], settings, key)?.pop()
+}
+
+/// Compares cohorts A and B on several quantities measured on the same X-rays: column k
+/// of `a` and of `b` holds quantity k, and every column of a cohort lists its X-rays in
+/// one order (e.g. J~1, J~2, J~3 of a finger, or every quantity of every finger when each
+/// X-ray has all fingers). The quantities share one bootstrap ([`bootstrap_differences`]).
+/// `key` separates the bootstrap streams of different calls under one seed (below 2^56).
+///
+/// `None` when there are no columns, the columns of a cohort differ in length, a cohort
+/// is empty, or a value is not finite. Cost: O(R (n_A + n_B) q) for R = `settings.resamples`
+/// and q quantities.
+pub fn compare_all(
+    a: &[&[f64]],
+    b: &[&[f64]],
+    settings: &Settings,
+    key: u64,
+) -> Option<Vec<Comparison>> {
+    if a.is_empty() || a.len() != b.len() {
+        return None;
+    }
     let c = settings.confidence;
-    let mut notes = Vec::new();
-    for (name, x) in [("A", &ca), ("B", &cb)] {
-        match x.sd {
-            None => notes.push(format!(
-                "cohort {name} has one X-ray: no spread, so no t interval, effect size or prediction interval"
-            )),
-            Some(0.0) => notes.push(format!("cohort {name}'s values are all equal")),
-            Some(_) => {}
-        }
-    }
-    let welch = welch(&ca, &cb, c);
-    if welch.is_none() && ca.sd.is_some() && cb.sd.is_some() {
-        notes.push("neither cohort varies: no Welch interval".into());
-    }
-    Some(Comparison {
-        a: ca,
-        b: cb,
-        difference: cb.mean - ca.mean,
-        confidence: c,
-        welch,
-        bootstrap: bootstrap_difference(a, b, settings.resamples, settings.seed, key, c),
-        resamples: settings.resamples,
-        hedges_g: hedges_g(&ca, &cb, c),
-        b_in_a: external_coverage(a, b, c),
-        a_in_b: external_coverage(b, a, c),
-        notes,
-    })
+    let boot = bootstrap_differences(a, b, settings.resamples, settings.seed, key, c)?;
+    a.iter()
+        .zip(b)
+        .zip(boot)
+        .map(|((a, b), bootstrap)| {
+            let (ca, cb) = (Cohort::of(a)?, Cohort::of(b)?);
+            let mut notes = Vec::new();
+            for (name, x) in [("A", &ca), ("B", &cb)] {
+                match x.sd {
+                    None => notes.push(format!(
+                        "cohort {name} has one X-ray: no spread, so no t interval, effect size or prediction interval"
+                    )),
+                    Some(0.0) => notes.push(format!("cohort {name}'s values are all equal")),
+                    Some(_) => {}
+                }
+            }
+            let welch = welch(&ca, &cb, c);
+            if welch.is_none() && ca.sd.is_some() && cb.sd.is_some() {
+                notes.push("neither cohort varies: no Welch interval".into());
+            }
+            Some(Comparison {
+                a: ca,
+                b: cb,
+                difference: cb.mean - ca.mean,
+                confidence: c,
+                welch,
+                bootstrap,
+                resamples: settings.resamples,
+                hedges_g: hedges_g(&ca, &cb, c),
+                b_in_a: external_coverage(a, b, c),
+                a_in_b: external_coverage(b, a, c),
+                notes,
+            })
+        })
+        .collect()
 }
 
 /// Welch's t interval of mean_B - mean_A (Welch 1947):
@@ -218,15 +245,8 @@ pub fn external_coverage(
     })
 }
 
-/// Percentile bootstrap interval of mean_B - mean_A, each cohort resampled on its own.
-///
-/// Resample j draws n_A values of A, then n_B values of B, with replacement, and takes
-/// the difference of their means. Resamples come in chunks of [`bootstrap::CHUNK`]: chunk
-/// k draws from ChaCha8 stream k of key (seed, tag ^ `key`) with the crate's unbiased index
-/// draw ([`rng::index`]), so the interval is the same on every machine and thread count.
-/// The interval is the (1-c)/2 and (1+c)/2 quantiles ([`bootstrap::percentile_interval`]).
-/// `None` for an empty cohort, a cohort of 2^32 values or more, or no resamples.
-/// Cost: O(R (n_A + n_B)).
+/// Percentile bootstrap interval of mean_B - mean_A, each cohort resampled on its own:
+/// [`bootstrap_differences`] with one column.
 pub fn bootstrap_difference(
     a: &[f64],
     b: &[f64],
@@ -235,32 +255,99 @@ pub fn bootstrap_difference(
     key: u64,
     confidence: f64,
 ) -> Option<Interval> {
-    let (na, nb) = (u32::try_from(a.len()).ok()?, u32::try_from(b.len()).ok()?);
-    if na == 0 || nb == 0 || resamples == 0 {
+    bootstrap_differences(&[a], &[b], resamples, seed, key, confidence)?.pop()
+}
+
+/// Percentile bootstrap intervals of mean_B - mean_A for several quantities measured on
+/// the same X-rays (columns as in [`compare_all`]), each cohort resampled on its own.
+///
+/// The unit resampled is the X-ray: resample j draws n_A X-rays of A, then n_B X-rays of
+/// B, with replacement, and every quantity takes the difference of its means over those
+/// X-rays. Resamples come in chunks of [`bootstrap::CHUNK`]: chunk k draws from ChaCha8
+/// stream k of key (seed, tag ^ `key`) with the crate's unbiased index draw
+/// ([`rng::index`]). The draws do not depend on the number of columns, so a quantity gets
+/// the same interval alone or with others, on every machine and thread count. Each
+/// interval is the (1-c)/2 and (1+c)/2 quantiles of its R differences
+/// ([`bootstrap::percentile_interval`]).
+///
+/// `None` for no columns, columns of a cohort of different lengths, an empty cohort, a
+/// cohort of 2^32 X-rays or more, or no resamples. Cost: O(R (n_A + n_B) q) time,
+/// O(R q) memory.
+pub fn bootstrap_differences(
+    a: &[&[f64]],
+    b: &[&[f64]],
+    resamples: usize,
+    seed: u64,
+    key: u64,
+    confidence: f64,
+) -> Option<Vec<Interval>> {
+    let q = a.len();
+    let (ra, na) = row_major(a)?;
+    let (rb, nb) = row_major(b)?;
+    if b.len() != q || resamples == 0 {
         return None;
     }
-    let mean_of = |xs: &[f64], n: u32, r: &mut rand_chacha::ChaCha8Rng| {
-        (0..n).map(|_| xs[rng::index(r, n) as usize]).sum::<f64>() / f64::from(n)
-    };
     let chunks: Vec<Vec<f64>> = (0..resamples.div_ceil(bootstrap::CHUNK))
         .into_par_iter()
-        .map(|k| {
-            let mut r = rng::stream(seed, COMPARE_TAG ^ key, k as u64);
-            let len = bootstrap::CHUNK.min(resamples - k * bootstrap::CHUNK);
-            (0..len)
-                .map(|_| {
-                    let ma = mean_of(a, na, &mut r);
-                    mean_of(b, nb, &mut r) - ma
-                })
-                .collect()
-        })
+        .map_init(
+            || (vec![0.0; q], vec![0.0; q]),
+            |(sa, sb), k| {
+                let mut r = rng::stream(seed, COMPARE_TAG ^ key, k as u64);
+                let len = bootstrap::CHUNK.min(resamples - k * bootstrap::CHUNK);
+                let mut out = Vec::with_capacity(len * q);
+                for _ in 0..len {
+                    resampled_sums(&ra, na, &mut r, sa);
+                    resampled_sums(&rb, nb, &mut r, sb);
+                    let (fa, fb) = (f64::from(na), f64::from(nb));
+                    out.extend(sa.iter().zip(sb.iter()).map(|(x, y)| y / fb - x / fa));
+                }
+                out
+            },
+        )
         .collect();
-    let diffs: Vec<f64> = chunks.concat();
-    let weights = vec![1.0 / diffs.len() as f64; diffs.len()];
-    Some(bootstrap::percentile_interval(
-        &Sorted::new(&diffs, &weights),
-        confidence,
-    ))
+    let weights = vec![1.0 / resamples as f64; resamples];
+    Some(
+        (0..q)
+            .map(|k| {
+                let diffs: Vec<f64> = chunks
+                    .iter()
+                    .flat_map(|c| c.iter().skip(k).step_by(q))
+                    .copied()
+                    .collect();
+                bootstrap::percentile_interval(&Sorted::new(&diffs, &weights), confidence)
+            })
+            .collect(),
+    )
+}
+
+/// Columns of one length n (0 < n < 2^32) copied row-major: X-ray i's quantities side by
+/// side at `i * q`. `None` otherwise.
+fn row_major(columns: &[&[f64]]) -> Option<(Vec<f64>, u32)> {
+    let n = columns.first()?.len();
+    if n == 0 || columns.iter().any(|c| c.len() != n) {
+        return None;
+    }
+    let n32 = u32::try_from(n).ok()?;
+    let q = columns.len();
+    let mut rows = vec![0.0; n * q];
+    for (k, col) in columns.iter().enumerate() {
+        for (i, &x) in col.iter().enumerate() {
+            rows[i * q + k] = x;
+        }
+    }
+    Some((rows, n32))
+}
+
+/// Draws n X-rays (indices from `r`) and writes each quantity's sum over them to `sums`.
+fn resampled_sums(rows: &[f64], n: u32, r: &mut rand_chacha::ChaCha8Rng, sums: &mut [f64]) {
+    let q = sums.len();
+    sums.fill(0.0);
+    for _ in 0..n {
+        let i = rng::index(r, n) as usize;
+        for (s, x) in sums.iter_mut().zip(&rows[i * q..(i + 1) * q]) {
+            *s += x;
+        }
+    }
 }
 
 /// The fingertip offset that would explain a difference of the last segment.
