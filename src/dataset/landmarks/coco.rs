@@ -270,9 +270,19 @@ fn id_text(v: &Value) -> Option<String> {
     }
 }
 
-/// A JSON value for a message, shortened.
+/// A JSON value for a message: text quoted, anything else as JSON; long values shortened.
 fn short(v: &Value) -> String {
-    quote(&v.to_string())
+    match v {
+        Value::String(s) => quote(s),
+        other => {
+            let json = other.to_string();
+            if json.chars().count() <= 40 {
+                json
+            } else {
+                quote(&json)
+            }
+        }
+    }
 }
 
 /// The images: their names in file order, and the index of each id.
