@@ -7,9 +7,11 @@
 //! prediction interval for one new X-ray. Knows nothing of files or rendering.
 
 pub mod claims;
+pub mod compare;
 pub mod coverage;
 pub mod groups;
 pub mod placement;
+pub mod population;
 pub mod tracking;
 
 /// The interval type of [`crate::stats`] and the quantities of [`crate::dataset`],

@@ -11,6 +11,7 @@ pub mod csvinput;
 pub mod error;
 pub mod finger;
 pub mod history;
+pub mod landmarks;
 pub mod quantity;
 
 pub use error::{DataError, Problem};
