@@ -15,8 +15,8 @@
 //! would make the values of a sample slightly dependent (a finite-population correction
 //! of sqrt(1 - n/N), 0.997 for n = 5 of 910), which none of the intervals assumes.
 
-use super::coverage::{Coverage, CoverageSettings, MethodCoverage};
-use crate::stats::bootstrap::{self, Enumeration, Plan, Sorted};
+use super::coverage::{Coverage, CoverageSettings, one_sample, stream_key as key, tally};
+use crate::stats::bootstrap::{Enumeration, Plan};
 use crate::stats::{describe, rng};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -27,13 +27,6 @@ const SAMPLE_TAG: u64 = 0x50;
 const BOOTSTRAP_TAG: u64 = 0x51;
 /// Largest sample size simulated (the key holds it in 24 bits).
 pub const MAX_N: usize = (1 << 24) - 1;
-
-/// The random key of stream family `tag` for sample size `n` and simulation `sim`:
-/// tag in bits 56-63, n in bits 32-55, sim in bits 0-31 (so no two families, sizes or
-/// simulations share a stream).
-fn key(tag: u64, n: usize, sim: u64) -> u64 {
-    (tag << 56) | ((n as u64 & 0xFF_FFFF) << 32) | (sim & 0xFFFF_FFFF)
-}
 
 /// The coverage of every interval method on samples of one size from a population.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -93,29 +86,6 @@ pub fn simulate(population: &[f64], n: usize, s: &CoverageSettings) -> Option<Po
             },
         )
         .collect();
-    let names = [
-        ("t", "the population mean"),
-        ("percentile", "the population mean"),
-        ("bca", "the population mean"),
-        ("prediction", "one further X-ray of the population"),
-    ];
-    let methods = names
-        .iter()
-        .enumerate()
-        .map(|(m, &(method, target))| {
-            let hits = outcomes.iter().filter(|o| o[m] == Some(true)).count();
-            let undefined = outcomes.iter().filter(|o| o[m].is_none()).count();
-            let p = hits as f64 / s.sims as f64;
-            MethodCoverage {
-                method,
-                target,
-                nominal: s.confidence,
-                coverage: p,
-                mc_se: (p * (1.0 - p) / s.sims as f64).sqrt(),
-                undefined,
-            }
-        })
-        .collect();
     Some(PopulationCoverage {
         population: population.len(),
         mean,
@@ -124,46 +94,19 @@ pub fn simulate(population: &[f64], n: usize, s: &CoverageSettings) -> Option<Po
             n,
             sims: s.sims,
             bootstrap: plan,
-            methods,
+            methods: tally(
+                &outcomes,
+                ["the population mean", "one further X-ray of the population"],
+                s,
+            ),
         },
     })
-}
-
-/// Whether each interval of one sample holds its target: t, percentile and BCa the
-/// population mean, the prediction interval the further value; `None` when the method
-/// gives no interval. The intervals are those of [`super::quantity_stats`]
-/// ([`describe::t_interval`], [`describe::prediction_interval`],
-/// [`bootstrap::percentile_interval`], [`bootstrap::bca_interval`]), as in
-/// [`super::coverage`]'s simulation.
-fn one_sample(
-    xs: &[f64],
-    further: f64,
-    truth: f64,
-    s: &CoverageSettings,
-    boot_key: u64,
-    enumeration: Option<&Enumeration>,
-) -> [Option<bool>; 4] {
-    let n = xs.len();
-    let (Some(m), Some(sd)) = (describe::mean(xs), describe::sd(xs)) else {
-        return [None; 4];
-    };
-    let t = describe::t_interval(m, sd, n, s.confidence).map(|i| i.contains(truth));
-    let pi = describe::prediction_interval(m, sd, n, s.confidence).map(|i| i.contains(further));
-    let dist = match enumeration {
-        Some(e) => e.distribution(&[xs]),
-        None => bootstrap::resample_means(&[xs], s.resamples, s.seed, boot_key),
-    };
-    let sorted = Sorted::new(&dist.means[0], &dist.weights);
-    let pct = Some(bootstrap::percentile_interval(&sorted, s.confidence).contains(truth));
-    let bca = bootstrap::bca_interval(&sorted, xs, m, s.confidence)
-        .ok()
-        .map(|i| i.contains(truth));
-    [t, pct, bca, pi]
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::analysis::coverage::MethodCoverage;
     use crate::dataset::Finger;
     use crate::dataset::landmarks::{self, Layout};
 
