@@ -30,6 +30,7 @@ mod output;
 pub use names::{Joint, Landmark};
 pub use output::{OUTPUT_COLUMNS, length_text, write_csv};
 
+pub use super::TipKind;
 use super::csvinput::{self, quote};
 use super::{DataError, Finger, Problem};
 use serde::Serialize;
@@ -118,39 +119,6 @@ impl Side {
         match text.trim().to_ascii_lowercase().as_str() {
             "left" | "l" => Some(Side::Left),
             "right" | "r" => Some(Side::Right),
-            _ => None,
-        }
-    }
-}
-
-/// Where a dataset's fingertips are: the last segment (J3, the thumb's J2) ends there.
-///
-/// Written in the measurement file's `tip` column as `bone` or `skin`, or left empty when
-/// unknown. A tip at the skin includes the soft tissue beyond the distal phalanx and makes
-/// the last segment longer than a tip at the bone.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum TipKind {
-    /// At the end of the distal phalanx (landmarks on the bone).
-    Bone,
-    /// At the skin's outline (soft tissue included).
-    Skin,
-}
-
-impl TipKind {
-    /// `bone` or `skin`.
-    pub fn name(self) -> &'static str {
-        match self {
-            TipKind::Bone => "bone",
-            TipKind::Skin => "skin",
-        }
-    }
-
-    /// Parses `bone` or `skin`, case-insensitively.
-    pub fn parse(text: &str) -> Option<TipKind> {
-        match text.trim().to_ascii_lowercase().as_str() {
-            "bone" => Some(TipKind::Bone),
-            "skin" => Some(TipKind::Skin),
             _ => None,
         }
     }
