@@ -31,6 +31,9 @@ pub fn stats(a: &Analysis) -> String {
         "phalanx statistics of {} ({} X-rays, {} rows); confidence {c}, seed {}\n",
         a.dataset.path, a.dataset.xrays, a.dataset.rows, a.settings.seed
     );
+    for line in dataset_notes(a) {
+        out.push_str(&format!("note: {line}\n"));
+    }
     for f in &a.fingers {
         out.push_str(&format!(
             "\n{} - n = {}; bootstrap {}\n",
@@ -78,6 +81,22 @@ pub fn stats(a: &Analysis) -> String {
     }
     out
 }
+
+/// What a reader must know about a dataset's lengths before reading its statistics:
+/// that pixel lengths are not averaged, and where the fingertips are when recorded.
+pub fn dataset_notes(a: &Analysis) -> Vec<String> {
+    let mut notes = Vec::new();
+    if a.pixel_lengths() {
+        notes.push(PIXEL_NOTE.to_string());
+    }
+    if a.tips.bone + a.tips.skin > 0 {
+        notes.push(format!("fingertips: {}", a.tips.describe()));
+    }
+    notes
+}
+
+/// Why a dataset in pixels has no total length J.
+pub const PIXEL_NOTE: &str = "lengths are in pixels (px) of images whose scale differs, so the total length J and the metacarpal are not comparable across X-rays and are not averaged; the relative values and ratios are. Import with --pixel-spacing MM for lengths in millimetres";
 
 /// The statistics of the whole dataset, then of each group (`--group-by`).
 pub fn stats_with_groups(a: &Analysis, groups: &[crate::analysis::groups::Group]) -> String {

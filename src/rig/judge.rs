@@ -248,7 +248,8 @@ fn judge_relative(a: &Analysis, chain: &ChainInput, out: &mut FingerAudit) -> Op
             Quantity::RelJ3 => segments[2] / length,
             Quantity::RatioJ2J1 => segments[1] / segments[0],
             Quantity::RatioJ3J2 => segments[2] / segments[1],
-            Quantity::Total => continue,
+            // Lengths and the metacarpal are not proportions of the finger's chain.
+            Quantity::Total | Quantity::RatioMcJ | Quantity::RatioJ1Mc => continue,
         };
         values.push(value_check(q, measured, stats(a, finger, q)?));
     }
