@@ -23,6 +23,9 @@ pub enum NewRows {
     File(PathBuf),
     /// One row given as options: (column, value) pairs.
     Fields(Vec<(&'static str, String)>),
+    /// Rows made by the program (e.g. imported from landmarks), already validated as
+    /// a dataset; problems name their X-ray, not a line of a file nobody wrote.
+    Rows(Dataset),
 }
 
 /// What `add` is asked to do.
@@ -53,18 +56,26 @@ pub fn now() -> String {
 
 /// Adds new rows to a dataset, then appends a snapshot to its history.
 pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
+    let loaded;
     let new = match &req.rows {
-        NewRows::File(p) => Dataset::load(p)?,
-        NewRows::Fields(fields) => append::single_row(fields)?,
+        NewRows::File(p) => {
+            loaded = Dataset::load(p)?;
+            &loaded
+        }
+        NewRows::Fields(fields) => {
+            loaded = append::single_row(fields)?;
+            &loaded
+        }
+        NewRows::Rows(rows) => rows,
     };
     csvinput::open_input(&req.data)?; // a missing dataset is reported before any lock file is made
     let _lock = DatasetLock::acquire(&req.data).map_err(Error::write(&req.data))?;
     let current_bytes = csvinput::read_input(&req.data)?;
     let label = req.data.display().to_string();
     let current = Dataset::from_bytes(&label, &current_bytes)?;
-    let from_options = matches!(req.rows, NewRows::Fields(_));
+    let from_options = !matches!(req.rows, NewRows::File(_));
     let (bytes, after) =
-        append::appended_bytes(&current_bytes, &current, &new).map_err(|mut e| {
+        append::appended_bytes(&current_bytes, &current, new).map_err(|mut e| {
             if from_options {
                 e.problems.iter_mut().for_each(|p| p.line = None);
             }
@@ -77,7 +88,7 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         .flat_map(|r| tracking::flag_row(&before, r))
         .collect();
     if req.strict && !flags.is_empty() {
-        return Err(refusal(&new, &flags, from_options).into());
+        return Err(refusal(new, &flags, from_options).into());
     }
     let a = analysis::analyse(&after, &req.settings);
     let snapshot = tracking::snapshot(&a, now(), Event::Add);

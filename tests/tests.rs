@@ -11,6 +11,7 @@ mod confidence_level;
 mod coverage;
 mod crash_report;
 mod data;
+mod import;
 mod options;
 mod place;
 mod properties;

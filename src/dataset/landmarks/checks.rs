@@ -18,6 +18,7 @@
 use super::names::{Joint, chain};
 use super::{Hand, LandmarkRow, Mark, Side, Slot, TipKind, quote};
 use crate::dataset::{Finger, MAX_LENGTH, Problem};
+use crate::format::num;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
@@ -233,10 +234,12 @@ fn geometry(
         if far <= near {
             let (jp, jk) = (joints[k], joints[k + 1]);
             problems.push(marks[k].place.problem(format!(
-                "image {image}: the {} is no farther from the {} MCP ({far:.1} px) than the {} is ({near:.1} px); the joints run {} from the MCP outwards: are two landmarks swapped?",
+                "image {image}: the {} is no farther from the {} MCP ({} px) than the {} is ({} px); the joints run {} from the MCP outwards: are two landmarks swapped?",
                 name(finger, jk, marks[k]),
                 finger.name(),
+                num(far, 1),
                 name(finger, jp, marks[k - 1]),
+                num(near, 1),
                 joints[1..]
                     .iter()
                     .map(|j| j.name())
@@ -255,13 +258,15 @@ fn geometry(
         let turn = cos.clamp(-1.0, 1.0).acos().to_degrees();
         if turn > MAX_FOLD_DEGREES {
             problems.push(b.place.problem(format!(
-                "image {image}: the {} finger folds back by {turn:.0} degrees at the {} (between its {}-{} and {}-{} segments); no finger on a radiograph bends over {MAX_FOLD_DEGREES:.0} degrees: are landmarks swapped or misplaced?",
+                "image {image}: the {} finger folds back by {} degrees at the {} (between its {}-{} and {}-{} segments); no finger on a radiograph bends over {} degrees: are landmarks swapped or misplaced?",
                 finger.name(),
+                num(turn, 0),
                 name(finger, jb, b),
                 ja.name(),
                 jb.name(),
                 jb.name(),
-                jc.name()
+                jc.name(),
+                num(MAX_FOLD_DEGREES, 0)
             )));
         }
     }
@@ -282,15 +287,16 @@ fn geometry(
         let shown: Vec<String> = segs
             .iter()
             .enumerate()
-            .map(|(i, s)| format!("J{} = {s:.1}", i + 1))
+            .map(|(i, s)| format!("J{} = {}", i + 1, num(*s, 1)))
             .collect();
         problems.push(hand.place.problem(format!(
-            "image {image}: the {} finger's segments ({} px) make no plausible finger: J{} is {:.1} times J{} (over {MAX_SEGMENT_RATIO:.0} times); check its landmarks",
+            "image {image}: the {} finger's segments ({} px) make no plausible finger: J{} is {} times J{} (over {} times); check its landmarks",
             finger.name(),
             shown.join(", "),
             hi.0 + 1,
-            hi.1 / lo.1,
-            lo.0 + 1
+            num(hi.1 / lo.1, 1),
+            lo.0 + 1,
+            num(MAX_SEGMENT_RATIO, 0)
         )));
         return None;
     }

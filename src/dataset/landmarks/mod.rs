@@ -28,7 +28,7 @@ pub mod names;
 mod output;
 
 pub use names::{Joint, Landmark};
-pub use output::{OUTPUT_COLUMNS, length_text, write_csv};
+pub use output::{OUTPUT_COLUMNS, write_csv};
 
 pub use super::TipKind;
 use super::csvinput::{self, quote};

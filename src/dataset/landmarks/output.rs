@@ -6,35 +6,20 @@
 //! fingertips are: `bone`, `skin`, or empty when unknown) at the end. `j3` is empty for the
 //! thumb; `sex` and `age` are empty (landmark files do not hold them).
 //!
-//! Lengths are written by [`length_text`]: at least 6 decimals and 7 significant digits,
+//! Lengths are written by [`crate::format::measured`]: at least 6 decimals and 7 significant digits,
 //! trailing zeros dropped. A pixel distance of 339.96000412 px is written `339.960004`: the
 //! written value is within 5e-7 of the unit (a millionth of a pixel) for lengths of 1 and
 //! over, and within a relative 5e-7 below, far finer than any landmark is clicked.
 
 use super::LandmarkRow;
 use crate::dataset::Finger;
+use crate::format::measured as length_text;
 use std::io::Write;
 
 /// The columns written, in order.
 pub const OUTPUT_COLUMNS: [&str; 12] = [
     "xray", "finger", "j1", "j2", "j3", "mc", "sex", "age", "side", "source", "unit", "tip",
 ];
-
-/// A length as written in the file: see the module documentation.
-pub fn length_text(x: f64) -> String {
-    let decimals = if x.abs() >= 1.0 || x == 0.0 || !x.is_finite() {
-        6
-    } else {
-        // 7 significant digits: one more decimal per factor of 10 below 1, at most 20.
-        (6.0 - x.abs().log10().floor()).clamp(6.0, 20.0) as usize
-    };
-    let s = format!("{x:.decimals$}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    }
-}
 
 /// Writes a header and one line per row (CSV, LF line ends, fields quoted where needed).
 pub fn write_csv(rows: &[LandmarkRow], out: impl Write) -> std::io::Result<()> {

@@ -369,10 +369,10 @@ fn the_writer_puts_mc_after_j3_and_tip_last() {
     assert!(lines[2].starts_with("3142,index,341.118748,210.192769,144.013888,603.367218,"));
     assert_eq!(lines.len(), 6);
     assert!(!out.contains('\r'));
-    assert_eq!(length_text(339.96), "339.96");
-    assert_eq!(length_text(12.0), "12");
-    assert_eq!(length_text(0.012_345_678_9), "0.01234568");
-    assert_eq!(length_text(2.0 / 3.0), "0.6666667");
+    assert_eq!(crate::format::measured(339.96), "339.96");
+    assert_eq!(crate::format::measured(12.0), "12");
+    assert_eq!(crate::format::measured(0.012_345_678_9), "0.01234568");
+    assert_eq!(crate::format::measured(2.0 / 3.0), "0.6666667");
 }
 
 // ---- bad annotations: each named with its place ----
