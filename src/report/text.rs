@@ -307,6 +307,11 @@ pub fn placement(ps: &[crate::analysis::placement::FingerPlacement], confidence:
                 p.segments
                     .iter()
                     .map(|s| (format!("segment {}", s.segment.to_uppercase()), &s.length)),
+            )
+            .chain(
+                p.metacarpal
+                    .iter()
+                    .map(|m| ("MCP from the CMC".to_string(), &m.position)),
             );
         let d = length_decimals(p.length);
         for (what, v) in rows {
@@ -324,7 +329,15 @@ pub fn placement(ps: &[crate::analysis::placement::FingerPlacement], confidence:
             col.set_cell_alignment(CellAlignment::Left);
         }
         out.push_str(&t.to_string());
-        out.push_str("\n\n");
+        out.push('\n');
+        if let Some(m) = &p.metacarpal {
+            out.push_str(&format!(
+                "MCP from the CMC: the metacarpal, (mc/J) x {}, from the {} X-rays that measure it; the CMC is the metacarpal's base at the wrist\n",
+                exact(p.length),
+                m.n
+            ));
+        }
+        out.push('\n');
     }
     out
 }
