@@ -30,6 +30,7 @@ pub struct Cli {
 pub enum Command {
     Stats(cmd::stats::Args),
     Check(cmd::check::Args),
+    Compare(cmd::compare::Args),
     Coverage(cmd::coverage::Args),
     Report(cmd::report::Args),
     Add(cmd::add::Args),
@@ -68,6 +69,7 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
     match cli.command {
         Command::Stats(args) => cmd::stats::run(&args, quiet),
         Command::Check(args) => cmd::check::run(&args),
+        Command::Compare(args) => cmd::compare::run(&args),
         Command::Coverage(args) => cmd::coverage::run(&args),
         Command::Report(args) => cmd::report::run(&args, quiet),
         Command::Add(args) => cmd::add::run(&args),

@@ -14,17 +14,20 @@
 //!
 //! [`soft_tissue_offset`] turns a difference of the last segment into the fingertip offset
 //! that would explain it.
+//!
+//! [`cohorts`] compares two whole datasets finger by finger and quantity by quantity.
 
-use super::{Interval, Settings};
+use super::{Block, Interval, Quantity, Settings, blocks, group_by, same_xrays};
+use crate::dataset::{Dataset, Finger, TipCounts, TipKind, is_pixel_unit};
 use crate::stats::bootstrap::{self, Sorted};
-use crate::stats::{describe, rng};
-use rayon::prelude::*;
+use crate::stats::describe;
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
-/// Tag in the top byte of the random key of [`bootstrap_difference`], apart from every
-/// other stream of the crate.
+/// Tags in the top byte of the random keys of [`bootstrap_differences`] (cohort A, cohort
+/// B), apart from every other stream of the crate.
 const COMPARE_TAG: u64 = 0x43 << 56;
+const COMPARE_B_TAG: u64 = 0x44 << 56;
 
 /// Degrees of freedom above which the t quantile of [`welch`] comes from
 /// [`describe::t_quantile`] (integer df, its 1/df expansion) instead of `statrs`.
@@ -262,12 +265,13 @@ pub fn bootstrap_difference(
 /// Percentile bootstrap intervals of mean_B - mean_A for several quantities measured on
 /// the same X-rays (columns as in [`compare_all`]), each cohort resampled on its own.
 ///
-/// The unit resampled is the X-ray: resample j draws n_A X-rays of A, then n_B X-rays of
-/// B, with replacement, and every quantity takes the difference of its means over those
-/// X-rays. Resamples come in chunks of [`bootstrap::CHUNK`]: chunk k draws from ChaCha8
-/// stream k of key (seed, tag ^ `key`) with the crate's unbiased index draw
-/// ([`rng::index`]). The draws do not depend on the number of columns, so a quantity gets
-/// the same interval alone or with others, on every machine and thread count. Each
+/// The unit resampled is the X-ray: resample j draws n_A X-rays of A and, independently,
+/// n_B X-rays of B, with replacement, and every quantity takes the difference of its
+/// means over those X-rays. Each cohort's resamples come from the statistics' bootstrap
+/// kernel ([`bootstrap::resample_means_random`], chunks of [`bootstrap::CHUNK`] resamples
+/// on their own ChaCha8 streams), A's under key (seed, tag A ^ `key`) and B's under
+/// (seed, tag B ^ `key`). The draws do not depend on the number of columns, so a quantity
+/// gets the same interval alone or with others, on every machine and thread count. Each
 /// interval is the (1-c)/2 and (1+c)/2 quantiles of its R differences
 /// ([`bootstrap::percentile_interval`]).
 ///
@@ -283,72 +287,26 @@ pub fn bootstrap_differences(
     confidence: f64,
 ) -> Option<Vec<Interval>> {
     let q = a.len();
-    let (ra, na) = row_major(a)?;
-    let (rb, nb) = row_major(b)?;
-    if b.len() != q || resamples == 0 {
+    let usable = |cols: &[&[f64]]| {
+        let n = cols.first().map_or(0, |c| c.len());
+        n > 0 && u32::try_from(n).is_ok() && cols.iter().all(|c| c.len() == n)
+    };
+    if q == 0 || b.len() != q || resamples == 0 || !usable(a) || !usable(b) {
         return None;
     }
-    let chunks: Vec<Vec<f64>> = (0..resamples.div_ceil(bootstrap::CHUNK))
-        .into_par_iter()
-        .map_init(
-            || (vec![0.0; q], vec![0.0; q]),
-            |(sa, sb), k| {
-                let mut r = rng::stream(seed, COMPARE_TAG ^ key, k as u64);
-                let len = bootstrap::CHUNK.min(resamples - k * bootstrap::CHUNK);
-                let mut out = Vec::with_capacity(len * q);
-                for _ in 0..len {
-                    resampled_sums(&ra, na, &mut r, sa);
-                    resampled_sums(&rb, nb, &mut r, sb);
-                    let (fa, fb) = (f64::from(na), f64::from(nb));
-                    out.extend(sa.iter().zip(sb.iter()).map(|(x, y)| y / fb - x / fa));
-                }
-                out
-            },
-        )
-        .collect();
+    let da = bootstrap::resample_means_random(a, resamples, seed, COMPARE_TAG ^ key);
+    let db = bootstrap::resample_means_random(b, resamples, seed, COMPARE_B_TAG ^ key);
     let weights = vec![1.0 / resamples as f64; resamples];
     Some(
-        (0..q)
-            .map(|k| {
-                let diffs: Vec<f64> = chunks
-                    .iter()
-                    .flat_map(|c| c.iter().skip(k).step_by(q))
-                    .copied()
-                    .collect();
+        da.means
+            .iter()
+            .zip(&db.means)
+            .map(|(ma, mb)| {
+                let diffs: Vec<f64> = mb.iter().zip(ma).map(|(y, x)| y - x).collect();
                 bootstrap::percentile_interval(&Sorted::new(&diffs, &weights), confidence)
             })
             .collect(),
     )
-}
-
-/// Columns of one length n (0 < n < 2^32) copied row-major: X-ray i's quantities side by
-/// side at `i * q`. `None` otherwise.
-fn row_major(columns: &[&[f64]]) -> Option<(Vec<f64>, u32)> {
-    let n = columns.first()?.len();
-    if n == 0 || columns.iter().any(|c| c.len() != n) {
-        return None;
-    }
-    let n32 = u32::try_from(n).ok()?;
-    let q = columns.len();
-    let mut rows = vec![0.0; n * q];
-    for (k, col) in columns.iter().enumerate() {
-        for (i, &x) in col.iter().enumerate() {
-            rows[i * q + k] = x;
-        }
-    }
-    Some((rows, n32))
-}
-
-/// Draws n X-rays (indices from `r`) and writes each quantity's sum over them to `sums`.
-fn resampled_sums(rows: &[f64], n: u32, r: &mut rand_chacha::ChaCha8Rng, sums: &mut [f64]) {
-    let q = sums.len();
-    sums.fill(0.0);
-    for _ in 0..n {
-        let i = rng::index(r, n) as usize;
-        for (s, x) in sums.iter_mut().zip(&rows[i * q..(i + 1) * q]) {
-            *s += x;
-        }
-    }
 }
 
 /// The fingertip offset that would explain a difference of the last segment.
@@ -404,3 +362,287 @@ pub fn soft_tissue_offset(
 
 #[cfg(test)]
 mod tests;
+
+/// What a comparison says about one of its datasets.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CohortInfo {
+    /// The path as given.
+    pub path: String,
+    pub sha256: String,
+    pub xrays: usize,
+    pub rows: usize,
+    /// The unit the rows name, if any.
+    pub unit: Option<String>,
+    /// Where the rows put their fingertips.
+    pub tips: TipCounts,
+}
+
+impl CohortInfo {
+    fn of(data: &Dataset) -> CohortInfo {
+        CohortInfo {
+            path: data.path.clone(),
+            sha256: data.sha256.clone(),
+            xrays: data.xray_count(),
+            rows: data.rows.len(),
+            unit: data.unit().map(str::to_string),
+            tips: data.tips(),
+        }
+    }
+}
+
+/// One quantity of one finger compared.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct QuantityComparison {
+    pub quantity: Quantity,
+    #[serde(flatten)]
+    pub comparison: Comparison,
+}
+
+/// Which cohort's fingertips a [`LastSegment`] offset puts at the skin, and why.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TipBasis {
+    /// The recorded tips: one cohort's at the bone, the other's at the skin or not recorded.
+    Recorded,
+    /// Neither cohort's tips tell them apart: the cohort with the longer last segment is
+    /// taken as the one measured to the skin.
+    LongerLastSegment,
+}
+
+/// The last segment of a finger (J~3, the thumb's J~2) and the soft tissue that would
+/// explain its difference.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LastSegment {
+    pub quantity: Quantity,
+    /// mean_B - mean_A of the relative last segment.
+    pub difference: f64,
+    /// `a` or `b`: the cohort taken as measured to the skin.
+    pub skin: &'static str,
+    pub basis: TipBasis,
+    /// The offset, with A and B as in [`soft_tissue_offset`] when `skin` is `a` (else
+    /// swapped: `share_of_a` is then the share of B's length).
+    pub offset: TipOffset,
+}
+
+/// Both cohorts compared on one finger.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FingerComparison {
+    pub finger: Finger,
+    /// X-rays of each cohort with this finger.
+    pub n_a: usize,
+    pub n_b: usize,
+    pub quantities: Vec<QuantityComparison>,
+    /// The fingertip offset that would explain the last segment's difference.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub last_segment: Option<LastSegment>,
+}
+
+impl FingerComparison {
+    /// The comparison of one quantity, if both cohorts have it.
+    pub fn quantity(&self, q: Quantity) -> Option<&Comparison> {
+        self.quantities
+            .iter()
+            .find(|c| c.quantity == q)
+            .map(|c| &c.comparison)
+    }
+}
+
+/// Two datasets compared finger by finger: what [`cohorts`] returns.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Cohorts {
+    pub a: CohortInfo,
+    pub b: CohortInfo,
+    pub settings: Settings,
+    /// Fingers both cohorts have, thumb first.
+    pub fingers: Vec<FingerComparison>,
+    /// What was not compared and why.
+    pub notes: Vec<String>,
+}
+
+/// Compares datasets A and B: for every finger both have, every quantity both measure
+/// ([`compare_all`]; differences B - A), and the soft tissue that would explain the
+/// difference of the last segment ([`soft_tissue_offset`]).
+///
+/// The total length J is compared only when both datasets name the same unit and it is not
+/// per-image pixels; the metacarpal's quantities only when both measure it. Fingers whose
+/// X-rays are the same in each cohort (e.g. five fingers per hand) share one bootstrap,
+/// keyed by the leading finger. Cost: O(R (n_A + n_B) q) for R resamples and q quantities
+/// (no bootstrap of either dataset's own statistics is needed).
+pub fn cohorts(a: &Dataset, b: &Dataset, settings: &Settings) -> Cohorts {
+    let (info_a, info_b) = (CohortInfo::of(a), CohortInfo::of(b));
+    let mut notes = Vec::new();
+    let same_unit = match (&info_a.unit, &info_b.unit) {
+        (Some(x), Some(y)) => x == y && !is_pixel_unit(x),
+        _ => false,
+    };
+    if !same_unit {
+        notes.push(total_note(&info_a.unit, &info_b.unit));
+    }
+    let (blocks_a, blocks_b) = (blocks(a), blocks(b));
+    // Pairs of blocks (A's, B's) of a finger with the quantities both measure.
+    let mut pairs: Vec<(Block, Block)> = Vec::new();
+    let mut mc_missing: Vec<&str> = Vec::new();
+    for f in Finger::ALL {
+        let of = |bs: &[Block]| {
+            bs.iter()
+                .filter(|b| b.finger == f)
+                .cloned()
+                .collect::<Vec<_>>()
+        };
+        let (fa, fb) = (of(&blocks_a), of(&blocks_b));
+        if fa.is_empty() || fb.is_empty() {
+            if !(fa.is_empty() && fb.is_empty()) {
+                notes.push(format!(
+                    "{}: only cohort {} has it, so it is not compared",
+                    f.name(),
+                    if fa.is_empty() { "B" } else { "A" }
+                ));
+            }
+            continue;
+        }
+        let has_mc = |bs: &[Block]| bs.iter().any(|b| b.quantities.iter().any(|q| q.needs_mc()));
+        if has_mc(&fa) != has_mc(&fb) {
+            mc_missing.push(f.name());
+        }
+        for x in &fa {
+            for y in &fb {
+                let quantities: Vec<Quantity> = x
+                    .quantities
+                    .iter()
+                    .copied()
+                    .filter(|q| y.quantities.contains(q))
+                    .filter(|&q| q != Quantity::Total || same_unit)
+                    .collect();
+                if !quantities.is_empty() {
+                    pairs.push((
+                        Block {
+                            quantities: quantities.clone(),
+                            ..x.clone()
+                        },
+                        Block {
+                            quantities,
+                            ..y.clone()
+                        },
+                    ));
+                }
+            }
+        }
+    }
+    if !mc_missing.is_empty() {
+        notes.push(format!(
+            "mc/J and J1/mc ({}): only one cohort measures the metacarpal, so they are not compared",
+            mc_missing.join(", ")
+        ));
+    }
+    // Pairs whose X-rays are the same in A and in B share one bootstrap.
+    let groups = group_by(&pairs, |p, q| {
+        same_xrays(&p.0.xrays, &q.0.xrays) && same_xrays(&p.1.xrays, &q.1.xrays)
+    });
+    let mut results: Vec<Vec<QuantityComparison>> = vec![Vec::new(); pairs.len()];
+    for g in &groups {
+        let cols_a: Vec<Vec<Vec<f64>>> = g.iter().map(|&i| pairs[i].0.columns()).collect();
+        let cols_b: Vec<Vec<Vec<f64>>> = g.iter().map(|&i| pairs[i].1.columns()).collect();
+        let flat_a: Vec<&[f64]> = cols_a.iter().flatten().map(Vec::as_slice).collect();
+        let flat_b: Vec<&[f64]> = cols_b.iter().flatten().map(Vec::as_slice).collect();
+        let key = pairs[g[0]].0.key();
+        let Some(mut all) = compare_all(&flat_a, &flat_b, settings, key) else {
+            continue;
+        };
+        for &i in g.iter().rev() {
+            let q = &pairs[i].0.quantities;
+            let tail = all.split_off(all.len() - q.len());
+            results[i] = q
+                .iter()
+                .zip(tail)
+                .map(|(&quantity, comparison)| QuantityComparison {
+                    quantity,
+                    comparison,
+                })
+                .collect();
+        }
+    }
+    let mut fingers: Vec<FingerComparison> = Vec::new();
+    for ((x, y), r) in pairs.iter().zip(results) {
+        match fingers.iter_mut().find(|f| f.finger == x.finger) {
+            Some(f) => f.quantities.extend(r),
+            None => fingers.push(FingerComparison {
+                finger: x.finger,
+                n_a: x.xrays.len(),
+                n_b: y.xrays.len(),
+                quantities: r,
+                last_segment: None,
+            }),
+        }
+    }
+    for f in &mut fingers {
+        f.last_segment = last_segment(f, &info_a.tips, &info_b.tips, &pairs);
+    }
+    Cohorts {
+        a: info_a,
+        b: info_b,
+        settings: *settings,
+        fingers,
+        notes,
+    }
+}
+
+/// Why the total length J is not compared.
+fn total_note(a: &Option<String>, b: &Option<String>) -> String {
+    let show = |u: &Option<String>| {
+        u.as_deref()
+            .map_or("no unit".to_string(), |u| format!("'{u}'"))
+    };
+    match (a, b) {
+        (Some(x), Some(y)) if x == y => format!(
+            "J (total length): both cohorts are in per-image pixels ('{x}'), not comparable across images, so it is not compared"
+        ),
+        _ => format!(
+            "J (total length): the cohorts' units differ or are not named (A {}, B {}), so lengths are not compared; relative values and ratios are unitless",
+            show(a),
+            show(b)
+        ),
+    }
+}
+
+/// The last segment's comparison and the soft-tissue offset that would explain it
+/// (see [`TipBasis`] for which cohort is taken as measured to the skin).
+fn last_segment(
+    f: &FingerComparison,
+    tips_a: &TipCounts,
+    tips_b: &TipCounts,
+    pairs: &[(Block, Block)],
+) -> Option<LastSegment> {
+    let quantity = if f.finger == Finger::Thumb {
+        Quantity::RelJ2
+    } else {
+        Quantity::RelJ3
+    };
+    let c = f.quantity(quantity)?;
+    let (ta, tb) = (tips_a.single(), tips_b.single());
+    let (skin_is_a, basis) = match (ta, tb) {
+        (Some(TipKind::Bone), t) if t != Some(TipKind::Bone) => (false, TipBasis::Recorded),
+        (t, Some(TipKind::Bone)) if t != Some(TipKind::Bone) => (true, TipBasis::Recorded),
+        _ => (c.difference <= 0.0, TipBasis::LongerLastSegment),
+    };
+    // Mean totals of the finger in each cohort (its main block), in their own units.
+    let total = |pick: fn(&(Block, Block)) -> &Block| {
+        let b = pairs
+            .iter()
+            .map(pick)
+            .find(|b| b.finger == f.finger && b.main)?;
+        describe::mean(&b.xrays.iter().map(|x| x.total).collect::<Vec<_>>())
+    };
+    let (total_a, total_b) = (total(|p| &p.0)?, total(|p| &p.1)?);
+    let offset = if skin_is_a {
+        soft_tissue_offset(c.a.mean, c.b.mean, total_a, total_b)?
+    } else {
+        soft_tissue_offset(c.b.mean, c.a.mean, total_b, total_a)?
+    };
+    Some(LastSegment {
+        quantity,
+        difference: c.difference,
+        skin: if skin_is_a { "a" } else { "b" },
+        basis,
+        offset,
+    })
+}

@@ -199,7 +199,7 @@ pub fn of_analysis(a: &super::Analysis, s: &CoverageSettings) -> Vec<QuantityCov
 /// when the method gives no interval. The intervals are those the statistics give
 /// ([`Intervals::of_mean`]). The bootstrap is the exact `enumeration` when given, else
 /// `s.resamples` random resamples from key (`s.seed`, `boot_key`). Shared by the normal
-/// model's simulation and [`super::population`]'s.
+/// model's simulation and [`super::population`]'s ([`samples_cover`] with one column).
 pub(super) fn one_sample(
     xs: &[f64],
     new: f64,
@@ -208,23 +208,43 @@ pub(super) fn one_sample(
     boot_key: u64,
     enumeration: Option<&bootstrap::Enumeration>,
 ) -> [Option<bool>; 4] {
-    let (Some(m), Some(sd)) = (describe::mean(xs), describe::sd(xs)) else {
-        return [None; 4];
-    };
+    samples_cover(&[xs], &[new], &[truth], s, boot_key, enumeration)[0]
+}
+
+/// [`one_sample`] for several quantities measured on the same sampled X-rays: column k of
+/// `xs` is quantity k's sample, `new[k]` its value on the further X-ray, `truth[k]` its
+/// mean. The quantities share one bootstrap (the X-ray is resampled), as in the analysis.
+pub(super) fn samples_cover(
+    xs: &[&[f64]],
+    new: &[f64],
+    truth: &[f64],
+    s: &CoverageSettings,
+    boot_key: u64,
+    enumeration: Option<&bootstrap::Enumeration>,
+) -> Vec<[Option<bool>; 4]> {
     let dist = match enumeration {
-        Some(e) => e.distribution(&[xs]),
-        None => bootstrap::resample_means(&[xs], s.resamples, s.seed, boot_key),
+        Some(e) => e.distribution(xs),
+        None => bootstrap::resample_means(xs, s.resamples, s.seed, boot_key),
     };
-    let sorted = Sorted::new(&dist.means[0], &dist.weights);
-    // The same four intervals the statistics give.
-    let (iv, _) = Intervals::of_mean(xs, m, sd, &sorted, s.confidence);
-    let covers = |i: Option<Interval>, x: f64| i.map(|i| i.contains(x));
-    [
-        covers(iv.ci_t, truth),
-        covers(iv.ci_percentile, truth),
-        covers(iv.ci_bca, truth),
-        covers(iv.pi, new),
-    ]
+    xs.iter()
+        .zip(&dist.means)
+        .zip(new.iter().zip(truth))
+        .map(|((xs, means), (&new, &truth))| {
+            let (Some(m), Some(sd)) = (describe::mean(xs), describe::sd(xs)) else {
+                return [None; 4];
+            };
+            let sorted = Sorted::new(means, &dist.weights);
+            // The same four intervals the statistics give.
+            let (iv, _) = Intervals::of_mean(xs, m, sd, &sorted, s.confidence);
+            let covers = |i: Option<Interval>, x: f64| i.map(|i| i.contains(x));
+            [
+                covers(iv.ci_t, truth),
+                covers(iv.ci_percentile, truth),
+                covers(iv.ci_bca, truth),
+                covers(iv.pi, new),
+            ]
+        })
+        .collect()
 }
 
 #[cfg(test)]

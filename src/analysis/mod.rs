@@ -241,52 +241,26 @@ fn quantities(finger: Finger, xrays: &[XrayValues], pixels: bool) -> Vec<Quantit
 }
 
 /// One bootstrap unit: quantities of a finger over a list of its X-rays.
-struct Block {
-    finger: Finger,
-    quantities: Vec<Quantity>,
-    xrays: Vec<XrayValues>,
+#[derive(Debug, Clone)]
+pub(crate) struct Block {
+    pub(crate) finger: Finger,
+    pub(crate) quantities: Vec<Quantity>,
+    pub(crate) xrays: Vec<XrayValues>,
     /// Whether these are the finger's X-rays (else a subset for the metacarpal).
-    main: bool,
+    pub(crate) main: bool,
 }
 
-impl Block {
-    /// The values of every quantity, one column per quantity.
-    fn columns(&self) -> Vec<Vec<f64>> {
-        self.quantities
-            .iter()
-            .map(|&q| self.xrays.iter().filter_map(|x| x.value(q)).collect())
-            .collect()
-    }
-
-    /// The random key of the block's bootstrap when it leads its group: the finger's
-    /// index for the finger's own X-rays (as before the metacarpal), 8 + the index for
-    /// a metacarpal subset.
-    fn key(&self) -> u64 {
-        self.finger.index() as u64 + if self.main { 0 } else { 8 }
-    }
-}
-
-/// Analyses a dataset. Fingers whose X-rays are the same share every bootstrap
-/// resample (the X-ray is the unit resampled). Cost: O(B n q) for B resamples.
-pub fn analyse(data: &Dataset, settings: &Settings) -> Analysis {
-    analyse_with(data, settings, &bootstrap::NoProgress)
-}
-
-/// [`analyse`] reporting bootstrap progress (in resamples, over all groups) to `progress`.
-pub fn analyse_with(
-    data: &Dataset,
-    settings: &Settings,
-    progress: &dyn bootstrap::Progress,
-) -> Analysis {
-    let unit = data.unit().map(str::to_string);
-    let pixels = unit.as_deref().is_some_and(is_pixel_unit);
-    // X-rays in order of first appearance, so fingers of the same X-rays line up.
+/// The blocks of a dataset, fingers thumb first: each finger's X-rays (in order of first
+/// appearance in the file, so fingers of the same X-rays line up) with the quantities
+/// measured on all of them, then, when only some of them measure the metacarpal, those
+/// with the metacarpal's quantities. O(rows log rows).
+pub(crate) fn blocks(data: &Dataset) -> Vec<Block> {
+    let pixels = data.unit().is_some_and(is_pixel_unit);
     let mut order: HashMap<&str, usize> = HashMap::new();
     for r in &data.rows {
         let next = order.len();
         order.entry(&r.xray).or_insert(next);
     }
-    // One block per finger; a second for the metacarpal when only some X-rays have it.
     let mut blocks: Vec<Block> = Vec::new();
     for f in Finger::ALL {
         let mut rows: Vec<&Row> = data.rows_of(f).collect();
@@ -313,18 +287,59 @@ pub fn analyse_with(
             });
         }
     }
-    // Group blocks by their X-ray sequence; each group shares one bootstrap.
+    blocks
+}
+
+/// Indices of `blocks` grouped by equal X-ray sequences (by `same`), in order of first
+/// appearance: blocks of a group share one bootstrap.
+pub(crate) fn group_by<T>(items: &[T], same: impl Fn(&T, &T) -> bool) -> Vec<Vec<usize>> {
     let mut groups: Vec<Vec<usize>> = Vec::new();
-    for (i, b) in blocks.iter().enumerate() {
-        let same = |g: &Vec<usize>| {
-            let ys = &blocks[g[0]].xrays;
-            ys.len() == b.xrays.len() && ys.iter().zip(&b.xrays).all(|(a, b)| a.xray == b.xray)
-        };
-        match groups.iter_mut().find(|g| same(g)) {
+    for (i, b) in items.iter().enumerate() {
+        match groups.iter_mut().find(|g| same(&items[g[0]], b)) {
             Some(g) => g.push(i),
             None => groups.push(vec![i]),
         }
     }
+    groups
+}
+
+/// True when two lists of X-ray values are of the same X-rays in the same order.
+pub(crate) fn same_xrays(a: &[XrayValues], b: &[XrayValues]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.xray == y.xray)
+}
+
+impl Block {
+    /// The values of every quantity, one column per quantity.
+    pub(crate) fn columns(&self) -> Vec<Vec<f64>> {
+        self.quantities
+            .iter()
+            .map(|&q| self.xrays.iter().filter_map(|x| x.value(q)).collect())
+            .collect()
+    }
+
+    /// The random key of the block's bootstrap when it leads its group: the finger's
+    /// index for the finger's own X-rays (as before the metacarpal), 8 + the index for
+    /// a metacarpal subset.
+    pub(crate) fn key(&self) -> u64 {
+        self.finger.index() as u64 + if self.main { 0 } else { 8 }
+    }
+}
+
+/// Analyses a dataset. Fingers whose X-rays are the same share every bootstrap
+/// resample (the X-ray is the unit resampled). Cost: O(B n q) for B resamples.
+pub fn analyse(data: &Dataset, settings: &Settings) -> Analysis {
+    analyse_with(data, settings, &bootstrap::NoProgress)
+}
+
+/// [`analyse`] reporting bootstrap progress (in resamples, over all groups) to `progress`.
+pub fn analyse_with(
+    data: &Dataset,
+    settings: &Settings,
+    progress: &dyn bootstrap::Progress,
+) -> Analysis {
+    let unit = data.unit().map(str::to_string);
+    let blocks = blocks(data);
+    let groups = group_by(&blocks, |a, b| same_xrays(&a.xrays, &b.xrays));
     let random_groups = groups
         .iter()
         .filter(|g| {

@@ -15,7 +15,9 @@
 //! would make the values of a sample slightly dependent (a finite-population correction
 //! of sqrt(1 - n/N), 0.997 for n = 5 of 910), which none of the intervals assumes.
 
-use super::coverage::{Coverage, CoverageSettings, one_sample, stream_key as key, tally};
+use super::coverage::{Coverage, CoverageSettings, samples_cover, stream_key as key, tally};
+use super::{Quantity, blocks, group_by, same_xrays};
+use crate::dataset::{Dataset, Finger};
 use crate::stats::bootstrap::{Enumeration, Plan};
 use crate::stats::{describe, rng};
 use rayon::prelude::*;
@@ -42,65 +44,271 @@ pub struct PopulationCoverage {
 }
 
 /// Simulates `s.sims` samples of `n` values drawn with replacement from `population`
-/// (see the module documentation). `s.max_n` is not used here.
-///
-/// Simulation `i` draws its n sample indices and then the further value's index from
-/// ChaCha8 stream `i` of key (seed, [`key`](SAMPLE_TAG, n, 0)) with the crate's unbiased
-/// index draw; a random bootstrap (when the exact enumeration of C(2n-1, n) resamples
-/// exceeds `s.resamples`) uses key (seed, key(BOOTSTRAP_TAG, n, i)). The result is the same
-/// on every machine and thread count.
-///
-/// `None` when n < 2 or above [`MAX_N`], `s.sims` is 0 or above 2^32, or the population
-/// has under 2 values, 2^32 or more, a value that is not finite, or no spread.
-/// Cost: O(sims (n + B n)) for B bootstrap points per sample.
+/// (see the module documentation): [`simulate_all`] with one column. `s.max_n` is not
+/// used here.
 pub fn simulate(population: &[f64], n: usize, s: &CoverageSettings) -> Option<PopulationCoverage> {
-    let size = u32::try_from(population.len()).ok()?;
+    simulate_all(&[population], n, s, 0)?.pop()
+}
+
+/// Simulates `s.sims` samples of `n` X-rays drawn with replacement from a population of
+/// X-rays measured on several quantities: column k holds quantity k of every X-ray, all
+/// columns in one X-ray order. Each simulation draws n X-rays and one further X-ray, and
+/// every quantity is scored on them; the quantities share each sample's bootstrap, as the
+/// analysis shares its resamples. `group` separates the streams of populations simulated
+/// under one seed (below 32).
+///
+/// Simulation `i` draws its n sample indices and then the further X-ray's index from
+/// ChaCha8 stream `i` of key (seed, [`key`](SAMPLE_TAG, n, group)) with the crate's
+/// unbiased index draw; a random bootstrap (when the exact enumeration of C(2n-1, n)
+/// resamples exceeds `s.resamples`) uses key (seed, key(BOOTSTRAP_TAG, n, i)) for group 0
+/// and key(0x60 + group, n, i) for the others. The result is the same on every machine
+/// and thread count, and a quantity's coverage does not depend on the other columns.
+///
+/// `None` when n < 2 or above [`MAX_N`], `s.sims` is 0 or above 2^32, `group` is 32 or
+/// more, there are no columns, or a column has under 2 values, 2^32 or more, a length
+/// other than the first's, a value that is not finite, or no spread.
+/// Cost: O(sims (n + B n q)) for B bootstrap points per sample and q columns.
+pub fn simulate_all(
+    columns: &[&[f64]],
+    n: usize,
+    s: &CoverageSettings,
+    group: u64,
+) -> Option<Vec<PopulationCoverage>> {
+    let first = columns.first()?;
+    let size = u32::try_from(first.len()).ok()?;
     if !(2..=MAX_N).contains(&n) || s.sims == 0 || u32::try_from(s.sims).is_err() || size < 2 {
         return None;
     }
-    if population.iter().any(|x| !x.is_finite()) {
+    if group >= 32 || columns.iter().any(|c| c.len() != first.len()) {
         return None;
     }
-    let mean = describe::mean(population)?;
-    let var = population.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / f64::from(size);
-    if var.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-        return None;
+    let mut moments = Vec::with_capacity(columns.len());
+    for c in columns {
+        if c.iter().any(|x| !x.is_finite()) {
+            return None;
+        }
+        let mean = describe::mean(c)?;
+        let var = c.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / f64::from(size);
+        if var.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            return None;
+        }
+        moments.push((mean, var.sqrt()));
     }
+    let truths: Vec<f64> = moments.iter().map(|m| m.0).collect();
     let plan = Plan::choose(n, s.resamples);
     let enumeration = match plan {
         Plan::Exact { distinct } => Some(Enumeration::new(n, distinct)),
         Plan::Random { .. } => None,
     };
-    let outcomes: Vec<[Option<bool>; 4]> = (0..s.sims as u64)
+    let boot_tag = if group == 0 {
+        BOOTSTRAP_TAG
+    } else {
+        0x60 + group
+    };
+    let q = columns.len();
+    let outcomes: Vec<Vec<[Option<bool>; 4]>> = (0..s.sims as u64)
         .into_par_iter()
         .map_init(
-            || vec![0.0f64; n],
-            |xs, sim| {
-                let mut r = rng::stream(s.seed, key(SAMPLE_TAG, n, 0), sim);
-                for x in xs.iter_mut() {
-                    *x = population[rng::index(&mut r, size) as usize];
+            || (vec![vec![0.0f64; n]; q], vec![0.0f64; q]),
+            |(xs, further), sim| {
+                let mut r = rng::stream(s.seed, key(SAMPLE_TAG, n, group), sim);
+                for i in 0..n {
+                    let row = rng::index(&mut r, size) as usize;
+                    for (x, c) in xs.iter_mut().zip(columns) {
+                        x[i] = c[row];
+                    }
                 }
-                let further = population[rng::index(&mut r, size) as usize];
-                let boot_key = key(BOOTSTRAP_TAG, n, sim);
-                one_sample(xs, further, mean, s, boot_key, enumeration.as_ref())
+                let row = rng::index(&mut r, size) as usize;
+                for (f, c) in further.iter_mut().zip(columns) {
+                    *f = c[row];
+                }
+                let cols: Vec<&[f64]> = xs.iter().map(Vec::as_slice).collect();
+                let boot_key = key(boot_tag, n, sim);
+                samples_cover(&cols, further, &truths, s, boot_key, enumeration.as_ref())
             },
         )
         .collect();
-    Some(PopulationCoverage {
-        population: population.len(),
-        mean,
-        sd: var.sqrt(),
-        coverage: Coverage {
-            n,
-            sims: s.sims,
-            bootstrap: plan,
-            methods: tally(
-                &outcomes,
-                ["the population mean", "one further X-ray of the population"],
-                s,
-            ),
-        },
-    })
+    Some(
+        moments
+            .iter()
+            .enumerate()
+            .map(|(k, &(mean, sd))| {
+                let column: Vec<[Option<bool>; 4]> = outcomes.iter().map(|o| o[k]).collect();
+                PopulationCoverage {
+                    population: first.len(),
+                    mean,
+                    sd,
+                    coverage: Coverage {
+                        n,
+                        sims: s.sims,
+                        bootstrap: plan,
+                        methods: tally(
+                            &column,
+                            ["the population mean", "one further X-ray of the population"],
+                            s,
+                        ),
+                    },
+                }
+            })
+            .collect(),
+    )
+}
+
+/// The coverage of one quantity of one finger at each sample size.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct QuantityPopulation {
+    pub finger: Finger,
+    pub quantity: Quantity,
+    /// X-rays in the population.
+    pub population: usize,
+    /// The population mean (the target) and SD (divisor N).
+    pub mean: f64,
+    pub sd: f64,
+    /// One per size of [`PopulationStudy::sizes`] that could be simulated, in order.
+    pub by_n: Vec<Coverage>,
+}
+
+/// Every method's coverage over the quantities at one sample size: the mean, lowest and
+/// highest of the quantities' coverages.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Pooled {
+    pub n: usize,
+    pub method: &'static str,
+    pub mean: f64,
+    pub min: f64,
+    pub max: f64,
+}
+
+/// A dataset taken as the population: every quantity's coverage at each sample size, and
+/// the normal model's beside it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PopulationStudy {
+    pub sizes: Vec<usize>,
+    pub settings: CoverageSettings,
+    pub quantities: Vec<QuantityPopulation>,
+    /// The normal model's coverage at each size ([`super::coverage::simulate`]; it depends
+    /// on n alone).
+    pub normal: Vec<Coverage>,
+    /// What was not simulated and why.
+    pub notes: Vec<String>,
+}
+
+impl PopulationStudy {
+    /// Each method's coverage over the quantities, per size in order, then per method.
+    pub fn pooled(&self) -> Vec<Pooled> {
+        let mut out = Vec::new();
+        for &n in &self.sizes {
+            for method in ["t", "percentile", "bca", "prediction"] {
+                let values: Vec<f64> = self
+                    .quantities
+                    .iter()
+                    .flat_map(|q| q.by_n.iter().filter(|c| c.n == n))
+                    .flat_map(|c| c.methods.iter().filter(|m| m.method == method))
+                    .map(|m| m.coverage)
+                    .collect();
+                if let (Some(mean), Some((min, max))) =
+                    (describe::mean(&values), describe::min_max(&values))
+                {
+                    out.push(Pooled {
+                        n,
+                        method,
+                        mean,
+                        min,
+                        max,
+                    });
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Takes `data` as the population (its X-rays drawn with replacement) and simulates, at
+/// each of `sizes`, the coverage of every quantity `keep` accepts ([`simulate_all`]:
+/// quantities of the same X-rays share samples and bootstraps), with the normal model's
+/// coverage beside it. Quantities without spread, and sizes below 2, are left out with a
+/// note. Cost: O(sizes sims (n + B n q)).
+pub fn of_dataset(
+    data: &Dataset,
+    sizes: &[usize],
+    s: &CoverageSettings,
+    keep: impl Fn(Quantity) -> bool,
+) -> PopulationStudy {
+    let mut notes = Vec::new();
+    let sizes: Vec<usize> = sizes
+        .iter()
+        .copied()
+        .filter(|&n| {
+            let ok = (2..=MAX_N).contains(&n);
+            if !ok {
+                notes.push(format!("n = {n}: samples need 2 to {MAX_N} X-rays"));
+            }
+            ok
+        })
+        .collect();
+    let blocks = blocks(data);
+    let groups = group_by(&blocks, |a, b| same_xrays(&a.xrays, &b.xrays));
+    let mut quantities = Vec::new();
+    for (g, group) in groups.iter().enumerate() {
+        // (finger, quantity, values) of the group's kept quantities with spread.
+        let mut cols: Vec<(Finger, Quantity, Vec<f64>)> = Vec::new();
+        for &i in group {
+            let b = &blocks[i];
+            for (&q, col) in b.quantities.iter().zip(b.columns()) {
+                if !keep(q) {
+                    continue;
+                }
+                match describe::min_max(&col) {
+                    Some((lo, hi)) if col.len() >= 2 && hi > lo => cols.push((b.finger, q, col)),
+                    _ => notes.push(format!(
+                        "{} {}: fewer than 2 X-rays or no spread, not simulated",
+                        b.finger.name(),
+                        q.name()
+                    )),
+                }
+            }
+        }
+        if cols.is_empty() {
+            continue;
+        }
+        let slices: Vec<&[f64]> = cols.iter().map(|c| c.2.as_slice()).collect();
+        let mut by_n: Vec<Vec<Coverage>> = vec![Vec::new(); cols.len()];
+        let mut moments: Vec<(f64, f64)> = vec![(0.0, 0.0); cols.len()];
+        for &n in &sizes {
+            let Some(all) = simulate_all(&slices, n, s, g as u64) else {
+                notes.push(format!("group {g} at n = {n} could not be simulated"));
+                continue;
+            };
+            for (k, p) in all.into_iter().enumerate() {
+                moments[k] = (p.mean, p.sd);
+                by_n[k].push(p.coverage);
+            }
+        }
+        for ((finger, quantity, col), (by_n, (mean, sd))) in
+            cols.into_iter().zip(by_n.into_iter().zip(moments))
+        {
+            quantities.push(QuantityPopulation {
+                finger,
+                quantity,
+                population: col.len(),
+                mean,
+                sd,
+                by_n,
+            });
+        }
+    }
+    quantities.sort_by_key(|q| (q.finger, q.quantity));
+    let normal = sizes
+        .iter()
+        .filter_map(|&n| super::coverage::simulate(n, 0.0, 1.0, s))
+        .collect();
+    PopulationStudy {
+        sizes,
+        settings: *s,
+        quantities,
+        normal,
+        notes,
+    }
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@ pub(crate) mod out;
 pub(crate) mod add;
 pub(crate) mod audit;
 pub(crate) mod check;
+pub(crate) mod compare;
 pub(crate) mod completions;
 pub(crate) mod coverage;
 pub(crate) mod history;

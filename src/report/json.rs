@@ -267,3 +267,49 @@ pub fn audit(
         fix,
     })
 }
+
+/// The document of `phalanx compare --format json`.
+#[derive(Serialize)]
+struct CompareDocument<'a> {
+    schema_version: u32,
+    settings: SettingsView<'static>,
+    /// How the statistics are defined, in words.
+    method: &'static str,
+    a: &'a crate::analysis::compare::CohortInfo,
+    b: &'a crate::analysis::compare::CohortInfo,
+    fingers: Vec<CompareFinger<'a>>,
+    notes: &'a [String],
+}
+
+/// One finger of the comparison document, with its sentence.
+#[derive(Serialize)]
+struct CompareFinger<'a> {
+    #[serde(flatten)]
+    comparison: &'a crate::analysis::compare::FingerComparison,
+    summary: String,
+}
+
+/// What the comparison document's numbers are.
+pub const COMPARE_METHOD: &str = "differences are B - A; Welch t interval of the difference of means (Welch-Satterthwaite df); percentile bootstrap interval with each cohort's X-rays resampled on its own; Hedges' g with the Hedges-Olkin large-sample interval; b_in_a: B's X-rays inside A's prediction interval for one new X-ray, a_in_b the reverse; last_segment: the fingertip offset d that would explain the last segment's difference, share_of_a = d over the length to the skin tip, share_of_bone = d over the length to the bone tip";
+
+/// The document of `phalanx compare --format json`: every statistic of every finger and
+/// quantity, and the sentence of each finger.
+pub fn compare(c: &crate::analysis::compare::Cohorts) -> Result<Vec<u8>, Error> {
+    let names = super::compare::Names::AB;
+    to_bytes(&CompareDocument {
+        schema_version: SCHEMA_VERSION,
+        settings: SettingsView::of(&c.settings),
+        method: COMPARE_METHOD,
+        a: &c.a,
+        b: &c.b,
+        fingers: c
+            .fingers
+            .iter()
+            .map(|f| CompareFinger {
+                comparison: f,
+                summary: super::compare::finger_sentence(f, names, c.settings.confidence),
+            })
+            .collect(),
+        notes: &c.notes,
+    })
+}

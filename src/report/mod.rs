@@ -5,6 +5,7 @@
 //! [`writer::write_all`].
 
 pub mod audit;
+pub mod compare;
 pub mod csv_out;
 pub mod json;
 pub mod plots;

@@ -309,3 +309,103 @@ fn quantities_of_the_same_x_rays_share_the_resamples() {
     };
     assert_eq!(threads(1), threads(3));
 }
+
+#[test]
+fn datasets_compared_finger_by_finger_match_scipy() {
+    // data/atlas/measurements.csv (lengths to 6 decimals) against the paper, through
+    // cohorts(): the same values as section 2 of atlas_reference.py, from raw coordinates.
+    let atlas = match Dataset::load(std::path::Path::new("data/atlas/measurements.csv")) {
+        Ok(d) => d,
+        Err(e) => {
+            println!("skipped: data/atlas/measurements.csv could not be read ({e})");
+            return;
+        }
+    };
+    let paper = Dataset::load(std::path::Path::new("data/measurements.csv")).unwrap();
+    let c = cohorts(&paper, &atlas, &settings(200));
+    assert_eq!((c.a.xrays, c.b.xrays), (5, 910));
+    assert_eq!(c.b.unit.as_deref(), Some("px"));
+    assert_eq!(c.b.tips.single(), Some(TipKind::Bone));
+    assert_eq!(c.fingers.len(), 5);
+    // Not compared: the total (image units against px) and the metacarpal (paper: none).
+    assert!(
+        c.notes.iter().any(|n| n.starts_with("J (total length)")),
+        "{:?}",
+        c.notes
+    );
+    assert!(
+        c.notes.iter().any(|n| n.starts_with("mc/J and J1/mc")),
+        "{:?}",
+        c.notes
+    );
+    for f in &c.fingers {
+        assert_eq!((f.n_a, f.n_b), (5, 910));
+        let rel: Vec<&QuantityComparison> = f
+            .quantities
+            .iter()
+            .filter(|q| q.quantity.is_relative())
+            .collect();
+        assert_eq!(rel.len(), f.finger.segments());
+        assert!(
+            f.quantities
+                .iter()
+                .all(|q| q.quantity != Quantity::Total && !q.quantity.needs_mc())
+        );
+        for q in rel {
+            let head = format!("{} {}:", f.finger.name(), q.quantity.name());
+            let line = PAPER_VS_ATLAS
+                .lines()
+                .find(|l| l.starts_with(&head))
+                .unwrap();
+            let w = after(line, "df");
+            let welch = q.comparison.welch.unwrap();
+            close(welch.interval.low, w[1], 1e-8, &head);
+            close(welch.interval.high, w[2], 1e-8, &head);
+            let share = |key: &str| {
+                let rest = &line[line.find(key).unwrap() + key.len() + 1..];
+                let (i, n) = rest.split(' ').next().unwrap().split_once('/').unwrap();
+                i.parse::<f64>().unwrap() / n.parse::<f64>().unwrap()
+            };
+            close(
+                q.comparison.b_in_a.unwrap().share,
+                share("b_in_a"),
+                1e-12,
+                &head,
+            );
+            close(
+                q.comparison.a_in_b.unwrap().share,
+                share("a_in_b"),
+                1e-12,
+                &head,
+            );
+            assert!(
+                q.comparison.bootstrap.contains(q.comparison.difference),
+                "{head}"
+            );
+        }
+        // The atlas records bone tips and the paper none: the paper is taken as measured
+        // to the skin, and the offset is section 2's.
+        let last = f.last_segment.as_ref().unwrap();
+        assert_eq!((last.skin, last.basis), ("a", TipBasis::Recorded));
+        let line = PAPER_VS_ATLAS
+            .lines()
+            .find(|l| l.starts_with(&format!("{} tip offset:", f.finger.name())))
+            .unwrap();
+        close(
+            last.offset.share_of_a,
+            after(line, "share_of_a")[0],
+            1e-8,
+            "share_of_a",
+        );
+    }
+    // One bootstrap for the five fingers (same X-rays in each cohort): each quantity's
+    // interval is the one it gets alone under the thumb's key.
+    let index = c.fingers[1].quantity(Quantity::RelJ2).unwrap();
+    let col = |d: &Dataset| -> Vec<f64> {
+        d.rows_of(Finger::Index)
+            .map(|r| r.lengths[1] / r.total())
+            .collect()
+    };
+    let alone = bootstrap_difference(&col(&paper), &col(&atlas), 200, 7, 0, 0.95).unwrap();
+    assert_eq!(index.bootstrap, alone);
+}
