@@ -313,3 +313,31 @@ pub fn compare(c: &crate::analysis::compare::Cohorts) -> Result<Vec<u8>, Error> 
         notes: &c.notes,
     })
 }
+
+/// What the population simulation does, for outputs.
+pub const POPULATION_MODEL: &str = "the dataset is the population of hands: samples of n X-rays drawn with replacement, one further X-ray drawn for the prediction interval; quantities of the same X-rays share each sample and its bootstrap; confidence intervals checked against the population mean; the normal model (coverage depends on n alone) beside it";
+
+/// The document of `phalanx coverage --population DATASET --format json`.
+pub fn population(
+    path: &str,
+    study: &crate::analysis::population::PopulationStudy,
+) -> Result<Vec<u8>, Error> {
+    #[derive(Serialize)]
+    struct Doc<'a> {
+        schema_version: u32,
+        population: &'a str,
+        rng: &'a str,
+        model: &'a str,
+        #[serde(flatten)]
+        study: &'a crate::analysis::population::PopulationStudy,
+        pooled: Vec<crate::analysis::population::Pooled>,
+    }
+    to_bytes(&Doc {
+        schema_version: SCHEMA_VERSION,
+        population: path,
+        rng: rng::RNG_NAME,
+        model: POPULATION_MODEL,
+        study,
+        pooled: study.pooled(),
+    })
+}

@@ -341,3 +341,89 @@ pub fn placement(ps: &[crate::analysis::placement::FingerPlacement], confidence:
     }
     out
 }
+
+/// The coverage measured on a population of hands: every method's coverage over the
+/// quantities per sample size beside the normal model's, then each quantity's per size.
+pub fn population(path: &str, study: &crate::analysis::population::PopulationStudy) -> String {
+    let s = &study.settings;
+    let c = level(s.confidence);
+    let xrays = study.quantities.first().map_or(0, |q| q.population);
+    let mut out = String::new();
+    for l in super::compare::wrap(
+        &format!(
+            "Coverage of nominal {c} intervals on real hands: {path} taken as the population ({xrays} X-rays), {sims} samples of each size drawn from its X-rays with replacement. Confidence intervals are scored against the population mean, the prediction interval against one further X-ray. Monte-Carlo SE: about {se} at {c}.",
+            sims = s.sims,
+            se = percent((s.confidence * (1.0 - s.confidence) / s.sims as f64).sqrt()),
+        ),
+        100,
+    ) {
+        out.push_str(&l);
+        out.push('\n');
+    }
+    let mut t = table(
+        &["n", "", "t", "percentile", "BCa", "prediction", "bootstrap"],
+        2,
+    );
+    let pooled = study.pooled();
+    for (k, &n) in study.sizes.iter().enumerate() {
+        let cell = |m: &str| {
+            pooled
+                .iter()
+                .find(|p| p.n == n && p.method == m)
+                .map_or_else(|| "n/a".to_string(), |p| percent(p.mean))
+        };
+        let plan = study
+            .normal
+            .get(k)
+            .map_or(String::new(), |c| plan_short(c.bootstrap));
+        t.add_row(vec![
+            n.to_string(),
+            "real hands (mean)".to_string(),
+            cell("t"),
+            cell("percentile"),
+            cell("bca"),
+            cell("prediction"),
+            plan.clone(),
+        ]);
+        if let Some(normal) = study.normal.iter().find(|c| c.n == n) {
+            let mut row = vec![String::new(), "normal model".to_string()];
+            row.extend(normal.methods.iter().map(|m| percent(m.coverage)));
+            row.push(plan);
+            t.add_row(row);
+        }
+    }
+    if let Some(col) = t.column_mut(1) {
+        col.set_cell_alignment(CellAlignment::Left);
+    }
+    out.push_str(&format!(
+        "\nOver the {} quantities (their mean coverage), and the normal model:\n{t}\n",
+        study.quantities.len()
+    ));
+    for &n in &study.sizes {
+        let mut t = table(
+            &["finger", "quantity", "t", "percentile", "BCa", "prediction"],
+            2,
+        );
+        for q in &study.quantities {
+            let Some(cov) = q.by_n.iter().find(|c| c.n == n) else {
+                continue;
+            };
+            let mut row = vec![q.finger.name().to_string(), q.quantity.name().to_string()];
+            row.extend(cov.methods.iter().map(|m| percent(m.coverage)));
+            t.add_row(row);
+        }
+        out.push_str(&format!("\nn = {n}\n{t}\n"));
+    }
+    for n in &study.notes {
+        out.push_str(&format!("note: {n}\n"));
+    }
+    out
+}
+
+/// "exact (126)", "random (10000)".
+fn plan_short(p: crate::stats::bootstrap::Plan) -> String {
+    match p {
+        crate::stats::bootstrap::Plan::Exact { distinct } => format!("exact ({distinct})"),
+        crate::stats::bootstrap::Plan::Random { resamples } => format!("random ({resamples})"),
+    }
+}

@@ -437,17 +437,23 @@ pub struct Sorted {
 }
 
 impl Sorted {
-    /// Sorts `values` (with `weights`) ascending. O(m log m).
+    /// Sorts `values` (with `weights`) ascending; equal values keep their order, so the
+    /// cumulative weights are summed in one fixed order. O(m log m); the pairs are sorted
+    /// in place (a stable sort of contiguous pairs, not of indices into the values).
     pub fn new(values: &[f64], weights: &[f64]) -> Sorted {
-        let mut order: Vec<usize> = (0..values.len()).collect();
-        order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+        let mut pairs: Vec<(f64, f64)> = values
+            .iter()
+            .copied()
+            .zip(weights.iter().copied())
+            .collect();
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut acc = 0.0;
-        let mut cumulative = Vec::with_capacity(values.len());
-        let mut sorted = Vec::with_capacity(values.len());
-        for i in order {
-            acc += weights[i];
+        let mut cumulative = Vec::with_capacity(pairs.len());
+        let mut sorted = Vec::with_capacity(pairs.len());
+        for (v, w) in pairs {
+            acc += w;
             cumulative.push(acc);
-            sorted.push(values[i]);
+            sorted.push(v);
         }
         Sorted {
             values: sorted,
