@@ -10,14 +10,14 @@ use tempfile::NamedTempFile;
 
 /// The file a path really names: a symbolic link is followed, so replacing
 /// it updates the link's target instead of turning the link into a file.
-pub fn resolve(target: &Path) -> std::path::PathBuf {
+pub(crate) fn resolve(target: &Path) -> std::path::PathBuf {
     std::fs::canonicalize(target).unwrap_or_else(|_| target.to_path_buf())
 }
 
 /// Writes `bytes` to a synced temporary file in the directory of `target`
 /// (created if missing). Rename it into place with [`commit`] (given the same
 /// `target`; links are followed by both).
-pub fn stage(target: &Path, bytes: &[u8]) -> std::io::Result<NamedTempFile> {
+pub(crate) fn stage(target: &Path, bytes: &[u8]) -> std::io::Result<NamedTempFile> {
     let target = &resolve(target);
     let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
@@ -43,7 +43,7 @@ pub fn stage(target: &Path, bytes: &[u8]) -> std::io::Result<NamedTempFile> {
 }
 
 /// Renames a staged file over `target` and syncs the directory so the rename is durable.
-pub fn commit(staged: NamedTempFile, target: &Path) -> std::io::Result<()> {
+pub(crate) fn commit(staged: NamedTempFile, target: &Path) -> std::io::Result<()> {
     let target = &resolve(target);
     staged.persist(target).map_err(|e| e.error)?;
     if let Some(dir) = target.parent().filter(|d| !d.as_os_str().is_empty()) {
@@ -56,7 +56,7 @@ pub fn commit(staged: NamedTempFile, target: &Path) -> std::io::Result<()> {
 }
 
 /// Replaces `target` with `bytes` atomically.
-pub fn replace(target: &Path, bytes: &[u8]) -> std::io::Result<()> {
+pub(crate) fn replace(target: &Path, bytes: &[u8]) -> std::io::Result<()> {
     commit(stage(target, bytes)?, target)
 }
 

@@ -17,7 +17,7 @@ use clap::{CommandFactory, Parser, Subcommand};
     after_help = "Exit status: 0 success, 1 failure (or 'check' found a new mismatch), 2 bad input data or options.\n\n\
                   Examples:\n  phalanx stats\n  phalanx check\n  phalanx report"
 )]
-pub struct Cli {
+pub(crate) struct Cli {
     /// No progress bar on standard error
     #[arg(long, short, global = true)]
     pub quiet: bool,
@@ -27,7 +27,7 @@ pub struct Cli {
 
 // Each command wraps its module's options (and help text).
 #[derive(Subcommand, Debug)]
-pub enum Command {
+pub(crate) enum Command {
     Stats(cmd::stats::Args),
     Check(cmd::check::Args),
     Compare(cmd::compare::Args),
@@ -42,6 +42,9 @@ pub enum Command {
     History(cmd::history::Args),
     Completions(cmd::completions::Args),
     Man(cmd::man::Args),
+    // Writes docs/schema/ (for contributors; hidden from help and completions).
+    #[command(hide = true)]
+    Schema(cmd::schema::Args),
 }
 
 /// Runs phalanx with the process arguments; returns the exit status.
@@ -64,7 +67,7 @@ pub fn main() -> i32 {
 }
 
 /// Runs one parsed command; returns the exit status on success.
-pub fn run(cli: Cli) -> Result<i32, Error> {
+pub(crate) fn run(cli: Cli) -> Result<i32, Error> {
     let quiet = cli.quiet;
     match cli.command {
         Command::Stats(args) => cmd::stats::run(&args, quiet),
@@ -81,5 +84,6 @@ pub fn run(cli: Cli) -> Result<i32, Error> {
         Command::History(args) => cmd::history::run(&args),
         Command::Completions(args) => cmd::completions::run(&args, Cli::command()),
         Command::Man(args) => cmd::man::run(&args, Cli::command()),
+        Command::Schema(args) => cmd::schema::run(&args),
     }
 }

@@ -44,7 +44,7 @@ impl Error {
     }
 
     /// Turns an I/O error on `path` into [`Error::Write`]: `.map_err(Error::write(&path))`.
-    pub fn write(path: &Path) -> impl FnOnce(std::io::Error) -> Error {
+    pub(crate) fn write(path: &Path) -> impl FnOnce(std::io::Error) -> Error {
         move |source| Error::Write {
             path: path.to_path_buf(),
             source,
@@ -52,7 +52,7 @@ impl Error {
     }
 
     /// A rendering error with context.
-    pub fn render(
+    pub(crate) fn render(
         context: impl Into<String>,
         source: impl Into<Box<dyn std::error::Error + Send + Sync>>,
     ) -> Error {

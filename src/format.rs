@@ -9,13 +9,13 @@
 use crate::stats::{Interval, Intervals};
 
 /// Decimals of a relative value or ratio (as the paper prints them).
-pub const UNITLESS_DECIMALS: usize = 4;
+pub(crate) const UNITLESS_DECIMALS: usize = 4;
 /// Decimals of a length in data units (image pixels).
-pub const LENGTH_DECIMALS: usize = 2;
+pub(crate) const LENGTH_DECIMALS: usize = 2;
 
 /// Decimals of a quantity: [`UNITLESS_DECIMALS`] when it has no unit (relative
 /// values, ratios), [`LENGTH_DECIMALS`] for a length.
-pub fn decimals(unitless: bool) -> usize {
+pub(crate) fn decimals(unitless: bool) -> usize {
     if unitless {
         UNITLESS_DECIMALS
     } else {
@@ -26,7 +26,7 @@ pub fn decimals(unitless: bool) -> usize {
 /// Decimals for positions in a model of total length `l` in tables: about
 /// five significant digits, at least one decimal (1000 -> 1, as the paper's
 /// worked example; 7.9 -> 4).
-pub fn length_decimals(l: f64) -> usize {
+pub(crate) fn length_decimals(l: f64) -> usize {
     if !(l.is_finite() && l > 0.0) {
         return 1;
     }
@@ -35,13 +35,13 @@ pub fn length_decimals(l: f64) -> usize {
 
 /// Decimals for positions in a model of total length `l` on a plot's labels,
 /// where room is short: 4 - ceil(log10 l), within 0..=6 (1000 -> 1, 50 -> 2, 1 -> 4).
-pub fn label_decimals(l: f64) -> usize {
+pub(crate) fn label_decimals(l: f64) -> usize {
     (4.0 - l.log10().ceil()).clamp(0.0, 6.0) as usize
 }
 
 /// Decimals for axis ticks `step` apart: enough to tell neighbours apart,
 /// ceil(-log10 step) within 0..=6; 2 for a step that is not a positive number.
-pub fn step_decimals(step: f64) -> usize {
+pub(crate) fn step_decimals(step: f64) -> usize {
     if step.is_finite() && step > 0.0 {
         (-step.log10()).ceil().clamp(0.0, 6.0) as usize
     } else {
@@ -50,7 +50,7 @@ pub fn step_decimals(step: f64) -> usize {
 }
 
 /// `x` with `d` decimals; "n/a" for a non-finite value (never printed as NaN).
-pub fn num(x: f64, d: usize) -> String {
+pub(crate) fn num(x: f64, d: usize) -> String {
     if x.is_finite() {
         // Avoid "-0.0000" for tiny negatives.
         let s = format!("{x:.d$}");
@@ -65,12 +65,12 @@ pub fn num(x: f64, d: usize) -> String {
 }
 
 /// An optional number; "n/a" when absent.
-pub fn opt(x: Option<f64>, d: usize) -> String {
+pub(crate) fn opt(x: Option<f64>, d: usize) -> String {
     x.map_or_else(|| "n/a".to_string(), |x| num(x, d))
 }
 
 /// `x` with at most `d` decimals, trailing zeros removed: 1000.0 -> "1000", 0.7290 -> "0.729".
-pub fn trimmed(x: f64, d: usize) -> String {
+pub(crate) fn trimmed(x: f64, d: usize) -> String {
     let s = num(x, d);
     if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -81,7 +81,7 @@ pub fn trimmed(x: f64, d: usize) -> String {
 
 /// A change with its sign and `d` decimals: "+0.0012", "-0.0300"; a change that
 /// rounds to zero reads "0.0000", without a sign.
-pub fn signed(x: f64, d: usize) -> String {
+pub(crate) fn signed(x: f64, d: usize) -> String {
     if !x.is_finite() {
         return "n/a".to_string();
     }
@@ -95,7 +95,7 @@ pub fn signed(x: f64, d: usize) -> String {
 
 /// `x` exactly as given, as briefly as possible: "1000" for 1000.0, "7.9";
 /// "n/a" when not finite. For values people typed (a model length).
-pub fn exact(x: f64) -> String {
+pub(crate) fn exact(x: f64) -> String {
     if !x.is_finite() {
         "n/a".to_string()
     } else if x == 0.0 {
@@ -107,7 +107,7 @@ pub fn exact(x: f64) -> String {
 }
 
 /// An interval as `[low, high]`; "n/a" when absent.
-pub fn interval(i: Option<Interval>, d: usize) -> String {
+pub(crate) fn interval(i: Option<Interval>, d: usize) -> String {
     match i {
         Some(i) => format!("[{}, {}]", num(i.low, d), num(i.high, d)),
         None => "n/a".to_string(),
@@ -116,13 +116,13 @@ pub fn interval(i: Option<Interval>, d: usize) -> String {
 
 /// The table cells of the four intervals, in table order (t, percentile, BCa,
 /// prediction): each `[low, high]` with `d` decimals, or "n/a".
-pub fn interval_cells(iv: &Intervals, d: usize) -> [String; 4] {
+pub(crate) fn interval_cells(iv: &Intervals, d: usize) -> [String; 4] {
     iv.all().map(|i| interval(i, d))
 }
 
 /// A number at full precision for machine-read outputs (CSV): the shortest text
 /// that reads back as the same `f64`; empty when absent or not finite.
-pub fn full(x: Option<f64>) -> String {
+pub(crate) fn full(x: Option<f64>) -> String {
     x.filter(|v| v.is_finite())
         .map_or_else(String::new, |v| v.to_string())
 }
@@ -150,7 +150,7 @@ pub fn measured(x: f64) -> String {
 
 /// The CSV cells of the four intervals, in table order: low and high of each
 /// at full precision, both empty where the interval is undefined.
-pub fn interval_bounds(iv: &Intervals) -> Vec<String> {
+pub(crate) fn interval_bounds(iv: &Intervals) -> Vec<String> {
     iv.all()
         .iter()
         .flat_map(|i| [full(i.map(|i| i.low)), full(i.map(|i| i.high))])
@@ -158,7 +158,7 @@ pub fn interval_bounds(iv: &Intervals) -> Vec<String> {
 }
 
 /// A proportion as a percentage with one decimal: 0.8312 -> "83.1%" (coverage, CV).
-pub fn percent(p: f64) -> String {
+pub(crate) fn percent(p: f64) -> String {
     format!("{}%", num(100.0 * p, 1))
 }
 
@@ -169,7 +169,7 @@ const LEVEL_DECIMALS: usize = 15;
 /// fewest decimals that give the level exactly (to 1e-9 of a percentage point)
 /// and still lie strictly between 0% and 100%. 0.95 -> "95%", 0.9 -> "90%",
 /// 0.975 -> "97.5%", 0.9999 -> "99.99%" (never "100.0%"), 0.99999 -> "99.999%".
-pub fn level(confidence: f64) -> String {
+pub(crate) fn level(confidence: f64) -> String {
     let p = 100.0 * confidence;
     if !p.is_finite() {
         return "n/a".to_string();

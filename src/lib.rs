@@ -1,24 +1,103 @@
 //! phalanx: statistics of finger-joint positions from hand X-ray measurements.
 //!
 //! Reproduces Chaudhry, You, Jin and Zhang, "Statistical Analysis of Joint
-//! Determination for Skeleton Driven Animation of Human Hands", and goes beyond it.
-//! Modules depend one way: [`dataset`] (ingest, validate) -> [`analysis`]
-//! (statistics, bootstrap, claims, rig audit) -> [`rig`] (glTF rigs in and
-//! out) -> [`report`] (views, plots, writers) -> `cmd` (one module per
-//! command) -> [`cli`] (dispatch). [`track`] holds the file operations of
-//! tracking a dataset (add, snapshot). Two leaves serve them all:
-//! [`stats`], the self-contained statistics core, and [`format`], where every
-//! number shown becomes text.
+//! Determination for Skeleton Driven Animation of Human Hands", and goes beyond
+//! it. The `phalanx` command is a thin layer over this library; everything it
+//! computes is reachable from here.
+//!
+//! # Example
+//!
+//! Load the paper's Table 1, analyse it, read a mean and place the joints of a
+//! model finger:
+//!
+//! ```
+//! use phalanx::analysis::{self, Settings, placement};
+//! use phalanx::dataset::{Dataset, Finger, Quantity};
+//! use std::path::Path;
+//!
+//! let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/measurements.csv");
+//! let data = Dataset::load(&path)?;
+//! let a = analysis::analyse(&data, &Settings::default());
+//!
+//! let index = a.finger(Finger::Index).expect("Table 1 has index fingers");
+//! let j1 = index.quantity(Quantity::RelJ1).expect("every finger has J~1");
+//! let t = j1.intervals.ci_t.expect("5 X-rays give a t interval");
+//! println!("index J~1: mean {:.4}, 95% CI [{:.4}, {:.4}]", j1.mean, t.low, t.high);
+//! // Eq. (6) by hand: (0.4865 + 0.4728 + 0.4862 + 0.5047 + 0.4728) / 5 = 0.4846
+//! // (the paper prints 0.4946, a known erratum; Table 1's 1a gives 0.4867, not 0.4865).
+//! assert!((j1.mean - 0.4846).abs() < 1e-4);
+//!
+//! // The PIP of an index finger 1000 units long sits at J1 = J~1 x 1000 from the MCP.
+//! let placed = placement::place(&a, Finger::Index, 1000.0).expect("index statistics");
+//! assert!((placed.joints[0].position.mean - 1000.0 * j1.mean).abs() < 1e-9);
+//! # Ok::<(), phalanx::dataset::DataError>(())
+//! ```
+//!
+//! # The public API
+//!
+//! - [`dataset`]: read and validate input. [`Dataset`](dataset::Dataset)
+//!   (`load`, `from_bytes`, `from_reader`) holds the measurement rows;
+//!   [`Finger`](dataset::Finger) and [`Quantity`](dataset::Quantity) name what
+//!   is measured; [`claims::Claims`](dataset::claims::Claims) reads the numbers
+//!   a paper states; [`history`](dataset::history) reads `history.jsonl`. Bad
+//!   input is a [`DataError`](dataset::DataError) listing every
+//!   [`Problem`](dataset::Problem) with its line and column.
+//! - [`analysis`]: the statistics. [`analyse`](analysis::analyse) (or
+//!   [`analyse_with`](analysis::analyse_with) and a
+//!   [`Progress`](stats::bootstrap::Progress)) turns a dataset and
+//!   [`Settings`](analysis::Settings) into an [`Analysis`](analysis::Analysis):
+//!   per finger a [`FingerAnalysis`](analysis::FingerAnalysis) with each
+//!   X-ray's values and a [`QuantityStats`](analysis::QuantityStats) per
+//!   quantity (eqs. 1-9 of the paper plus SD, SE, median and four intervals).
+//!   Beside it: [`claims::check`](analysis::claims::check) (the paper's numbers
+//!   recomputed), [`coverage`](analysis::coverage) (how often each interval
+//!   covers), [`groups`](analysis::groups) (statistics per sex, age band or
+//!   side) and [`placement`](analysis::placement) (joint positions for a model
+//!   finger of a given length).
+//! - [`stats`]: the statistics types, [`Interval`](stats::Interval) and
+//!   [`Intervals`](stats::Intervals) (t, percentile and BCa confidence intervals
+//!   of the mean and the prediction interval), and the seeded bootstrap
+//!   ([`bootstrap::resample_means`](stats::bootstrap::resample_means),
+//!   [`bootstrap::Plan`](stats::bootstrap::Plan)).
+//! - [`rig`]: glTF rigs. [`GltfFile`](rig::GltfFile) and [`Rig`](rig::Rig) read
+//!   a file's finger chains (with a [`map::NameMap`](rig::map::NameMap) for
+//!   unknown names); [`AuditedRig::of`](rig::AuditedRig::of) judges them
+//!   ([`judge`](rig::judge)); [`fix::fix`](rig::fix::fix) writes a corrected
+//!   copy; [`session::audit`](rig::session::audit) does all three for a file;
+//!   [`reference`](rig::reference) reads the popular rigs of `data/rigs/`.
+//!   [`deform`](rig::deform) and [`skin`](rig::skin) measure skin deformation
+//!   of a curled hand (library only so far).
+//! - [`report`]: everything shown. [`render`](report::render()) turns
+//!   [`ReportInputs`](report::view::ReportInputs) into the report files
+//!   ([`Formats`](report::Formats), [`Templates`](report::render::Templates)),
+//!   written with [`writer::write_all`](report::writer::write_all);
+//!   [`view`](report::view) is the data the templates see; [`json`](report::json)
+//!   writes the JSON documents (schemas in `docs/schema/`); [`plots`](report::plots)
+//!   draws the SVG plots and [`render3d`](report::render3d) deformation figures.
+//! - [`error`]: [`Error`](error::Error), what stops a command, with its exit
+//!   status ([`EXIT_DATA`](error::EXIT_DATA), [`EXIT_FAILURE`](error::EXIT_FAILURE)).
+//! - [`synth`]: realistic synthetic datasets for benchmarks and tests.
+//! - [`cli::main`]: the `phalanx` command itself.
+//!
+//! # Inside
+//!
+//! Modules depend one way: `dataset` (ingest, validate) -> `analysis`
+//! (statistics) -> `rig` (read, judge, fix rigs) -> `report` (views, plots,
+//! writers) -> `cmd` (one module per command) -> `cli` (dispatch); `track`
+//! holds the file operations of tracking a dataset (add, snapshot). Two leaves
+//! serve them all: `stats`, the self-contained statistics core, and `format`,
+//! where every number shown becomes text. What is not listed above is
+//! `pub(crate)`: free to change without breaking a library user.
 
 pub mod analysis;
-pub mod atomic;
+pub(crate) mod atomic;
 pub mod cli;
 mod cmd;
 pub mod dataset;
 pub mod error;
-pub mod format;
+pub(crate) mod format;
 pub mod report;
 pub mod rig;
 pub mod stats;
 pub mod synth;
-pub mod track;
+pub(crate) mod track;

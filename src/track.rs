@@ -8,7 +8,8 @@
 //! The settings are used as given: build them with
 //! [`Settings::new`](crate::analysis::Settings::new) (the command line does).
 
-use crate::analysis::tracking::{self, Flag};
+use crate::analysis::outliers::{self, Flag};
+use crate::analysis::tracking;
 use crate::analysis::{self, Settings};
 use crate::atomic;
 use crate::dataset::append::{self, DatasetLock};
@@ -18,7 +19,7 @@ use crate::error::Error;
 use std::path::{Path, PathBuf};
 
 /// Where new rows come from.
-pub enum NewRows {
+pub(crate) enum NewRows {
     /// A CSV file in the dataset's format (with its own header).
     File(PathBuf),
     /// One row given as options: (column, value) pairs.
@@ -29,64 +30,76 @@ pub enum NewRows {
 }
 
 /// What `add` is asked to do.
-pub struct AddRequest {
+pub(crate) struct AddRequest {
     pub data: PathBuf,
     pub history: PathBuf,
     pub rows: NewRows,
-    /// Refuse rows whose relative values fall outside the prediction intervals.
+    /// Refuse rows flagged by [`outliers::flag_rows`].
     pub strict: bool,
     pub settings: Settings,
 }
 
 /// What `add` did.
 #[derive(Debug)]
-pub struct AddOutcome {
+pub(crate) struct AddOutcome {
     pub added: usize,
     pub xrays_before: usize,
     pub xrays_after: usize,
-    /// Values outside the current prediction intervals (warnings unless strict).
+    /// Rows that look wrong, one flag per row (warnings unless strict).
     pub flags: Vec<Flag>,
-    pub snapshot: Snapshot,
+    /// Fingers whose new rows could not be checked fully (too few current X-rays).
+    pub notes: Vec<String>,
+    /// Implausible data in the resulting dataset (e.g. swapped columns).
+    pub implausible: Vec<String>,
 }
 
 /// The current UTC time, RFC 3339, for history records.
-pub fn now() -> String {
+pub(crate) fn now() -> String {
     humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
 }
 
 /// Adds new rows to a dataset, then appends a snapshot to its history.
-pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
+pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     let loaded;
-    let new = match &req.rows {
+    let (new, typed) = match &req.rows {
         NewRows::File(p) => {
             loaded = Dataset::load(p)?;
-            &loaded
+            (&loaded, append::Typed::of(&csvinput::read_input(p)?))
         }
         NewRows::Fields(fields) => {
             loaded = append::single_row(fields)?;
-            &loaded
+            (
+                &loaded,
+                append::Typed::of(&append::single_row_bytes(fields)?),
+            )
         }
-        NewRows::Rows(rows) => rows,
+        NewRows::Rows(rows) => (rows, append::Typed::default()),
     };
     csvinput::open_input(&req.data)?; // a missing dataset is reported before any lock file is made
     let _lock = DatasetLock::acquire(&req.data).map_err(Error::write(&req.data))?;
     let current_bytes = csvinput::read_input(&req.data)?;
     let label = req.data.display().to_string();
     let current = Dataset::from_bytes(&label, &current_bytes)?;
+    let n = current.xray_count() + new.xray_count();
+    analysis::budget::check_bootstrap(n, req.settings.resamples).map_err(Error::Usage)?;
     let from_options = !matches!(req.rows, NewRows::File(_));
-    let (bytes, after) =
-        append::appended_bytes(&current_bytes, &current, new).map_err(|mut e| {
+    let (bytes, after) = append::appended_bytes_typed(&current_bytes, &current, new, &typed)
+        .map_err(|mut e| {
             if from_options {
                 e.problems.iter_mut().for_each(|p| p.line = None);
             }
             e
         })?;
     let before = analysis::analyse(&current, &req.settings);
-    let flags: Vec<Flag> = new
-        .rows
-        .iter()
-        .flat_map(|r| tracking::flag_row(&before, r))
-        .collect();
+    let flags = outliers::flag_rows(&before, &new.rows);
+    let mut notes: Vec<String> = Vec::new();
+    for r in &new.rows {
+        if let Some(note) = outliers::limits(&before, r.finger)
+            && !notes.contains(&note)
+        {
+            notes.push(note);
+        }
+    }
     if req.strict && !flags.is_empty() {
         return Err(refusal(new, &flags, from_options).into());
     }
@@ -107,7 +120,8 @@ pub fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         xrays_before: current.xray_count(),
         xrays_after: after.xray_count(),
         flags,
-        snapshot,
+        notes,
+        implausible: analysis::plausible::warnings(&a),
     })
 }
 
@@ -138,10 +152,16 @@ fn refusal(new: &Dataset, flags: &[Flag], from_options: bool) -> DataError {
 
 /// Appends a snapshot of the dataset's current statistics to its history
 /// (for data edited by hand). Holds the dataset's lock while it reads.
-pub fn snapshot(data: &Path, history_path: &Path, settings: &Settings) -> Result<Snapshot, Error> {
+pub(crate) fn snapshot(
+    data: &Path,
+    history_path: &Path,
+    settings: &Settings,
+) -> Result<Snapshot, Error> {
     csvinput::open_input(data)?; // a missing dataset is reported before any lock file is made
     let _lock = DatasetLock::acquire(data).map_err(Error::write(data))?;
     let dataset = Dataset::load(data)?;
+    analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)
+        .map_err(Error::Usage)?;
     let a = analysis::analyse(&dataset, settings);
     let snap = tracking::snapshot(&a, now(), Event::Snapshot);
     history::append(history_path, &snap).map_err(Error::write(history_path))?;

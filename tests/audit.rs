@@ -1,6 +1,6 @@
 //! `phalanx audit`: rigs built by the tests (tests/audit/hand.rs) judged against the paper's data.
 
-mod hand;
+pub(crate) mod hand;
 
 use crate::common;
 

@@ -426,12 +426,17 @@ const REFUSALS: &[Refusal] = &[
             "index",
             "--lengths",
             "350,190,170",
+            "--side",
+            "left",
         ],
         says: &[
             "<command line>: X-ray '1a' already has an index row",
-            "<command line>: side is empty but data/measurements.csv line 2 gives 'right'",
+            "<command line>: side is 'left' but data/measurements.csv line 2 gives 'right'",
+            "omit --side",
+            "edit line 2 of data/measurements.csv",
         ],
-        problems: Some(3),
+        // The unit, left out, is taken from the X-ray's rows.
+        problems: Some(2),
     },
     Refusal {
         what: "strict with a tenfold typo",
@@ -877,10 +882,8 @@ fn a_tenfold_typo_is_flagged_and_refused_only_with_strict() {
             );
         }
         let text = String::from_utf8(wd.read(DATA)).unwrap();
-        let j: Vec<String> = lengths
-            .split(',')
-            .map(|l| format!("{}", l.parse::<f64>().unwrap()))
-            .collect();
+        // Kept as typed.
+        let j: Vec<String> = lengths.split(',').map(str::to_string).collect();
         let j3 = j.get(2).cloned().unwrap_or_default();
         let row = format!("{xray},{finger},{},{},{j3},,,,,\n", j[0], j[1]);
         assert!(text.ends_with(&row), "{row:?} not added:\n{text}");

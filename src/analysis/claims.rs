@@ -12,13 +12,14 @@
 use crate::dataset::claims::{Claim, Claims, Statistic, Subject};
 use crate::dataset::{Dataset, Finger, Row};
 use crate::format::num;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// Decimals the paper rounds relative values to before computing with them.
-pub const PAPER_ROUNDING: i32 = 4;
+pub(crate) const PAPER_ROUNDING: i32 = 4;
 
 /// The outcome of checking one claim.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Verdict {
     /// Within half a unit of the last printed digit.
@@ -49,7 +50,7 @@ impl Verdict {
 }
 
 /// One claim checked against the data.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct ClaimResult {
     pub id: String,
     pub location: String,
@@ -71,7 +72,7 @@ pub struct ClaimResult {
 }
 
 /// Summary counts of a check.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, JsonSchema)]
 pub struct CheckSummary {
     pub claims: usize,
     pub matches: usize,
@@ -100,7 +101,7 @@ impl CheckSummary {
 }
 
 /// True when `computed` rounds to `stated` at `decimals` places (half a unit, plus float slack).
-pub fn agrees(computed: f64, stated: f64, decimals: usize) -> bool {
+pub(crate) fn agrees(computed: f64, stated: f64, decimals: usize) -> bool {
     let half = 0.5 * 10f64.powi(-(decimals as i32));
     (computed - stated).abs() <= half * (1.0 + 1e-9) + 1e-12
 }

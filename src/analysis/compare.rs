@@ -21,6 +21,7 @@ use super::{Block, Interval, Quantity, Settings, blocks, group_by, same_xrays};
 use crate::dataset::{Dataset, Finger, TipCounts, TipKind, is_pixel_unit};
 use crate::stats::bootstrap::{self, Sorted};
 use crate::stats::describe;
+use schemars::JsonSchema;
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
@@ -34,7 +35,7 @@ const COMPARE_B_TAG: u64 = 0x44 << 56;
 const WELCH_STATRS_MAX_DF: f64 = 1_000.0;
 
 /// n, mean and SD of one cohort's values.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct Cohort {
     pub n: usize,
     pub mean: f64,
@@ -57,7 +58,7 @@ impl Cohort {
 }
 
 /// The Welch t interval of a difference of means.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct Welch {
     /// Standard error of the difference: sqrt(s_A^2/n_A + s_B^2/n_B).
     pub se: f64,
@@ -67,7 +68,7 @@ pub struct Welch {
 }
 
 /// Hedges' g, the bias-corrected standardised difference of means, with its interval.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct HedgesG {
     pub g: f64,
     /// Large-sample standard error of g (Hedges and Olkin 1985).
@@ -76,7 +77,7 @@ pub struct HedgesG {
 }
 
 /// How many of one cohort's values fall inside the other's prediction interval.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct ExternalCoverage {
     /// The reference cohort's prediction interval for one new X-ray.
     pub interval: Interval,
@@ -89,7 +90,7 @@ pub struct ExternalCoverage {
 }
 
 /// Everything [`compare`] finds about one quantity.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct Comparison {
     pub a: Cohort,
     pub b: Cohort,
@@ -310,7 +311,7 @@ pub fn bootstrap_differences(
 }
 
 /// The fingertip offset that would explain a difference of the last segment.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct TipOffset {
     /// d / J_A: the offset as a share of A's finger length as measured (tip at the skin).
     pub share_of_a: f64,
@@ -364,7 +365,7 @@ pub fn soft_tissue_offset(
 mod tests;
 
 /// What a comparison says about one of its datasets.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct CohortInfo {
     /// The path as given.
     pub path: String,
@@ -391,7 +392,7 @@ impl CohortInfo {
 }
 
 /// One quantity of one finger compared.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct QuantityComparison {
     pub quantity: Quantity,
     #[serde(flatten)]
@@ -399,7 +400,7 @@ pub struct QuantityComparison {
 }
 
 /// Which cohort's fingertips a [`LastSegment`] offset puts at the skin, and why.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum TipBasis {
     /// The recorded tips: one cohort's at the bone, the other's at the skin or not recorded.
@@ -411,7 +412,7 @@ pub enum TipBasis {
 
 /// The last segment of a finger (J~3, the thumb's J~2) and the soft tissue that would
 /// explain its difference.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct LastSegment {
     pub quantity: Quantity,
     /// mean_B - mean_A of the relative last segment.
@@ -425,7 +426,7 @@ pub struct LastSegment {
 }
 
 /// Both cohorts compared on one finger.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct FingerComparison {
     pub finger: Finger,
     /// X-rays of each cohort with this finger.

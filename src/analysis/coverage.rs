@@ -11,6 +11,7 @@
 use crate::stats::bootstrap::{self, Sorted};
 use crate::stats::{Interval, Intervals, describe, rng};
 use rayon::prelude::*;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// Key of the random streams of the normal model's draws: `COVERAGE_KEY ^ n` for
@@ -28,7 +29,7 @@ pub(super) fn stream_key(tag: u64, n: usize, sim: u64) -> u64 {
 }
 
 /// Settings of a coverage simulation.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct CoverageSettings {
     /// Simulated datasets.
     pub sims: usize,
@@ -46,7 +47,7 @@ pub struct CoverageSettings {
 pub const REPORT_MAX_N: usize = 200;
 
 /// The estimated coverage of one interval method.
-#[derive(Debug, Clone, Serialize, PartialEq)]
+#[derive(Debug, Clone, Serialize, JsonSchema, PartialEq)]
 pub struct MethodCoverage {
     /// `t`, `percentile`, `bca` or `prediction`.
     pub method: &'static str,
@@ -62,7 +63,7 @@ pub struct MethodCoverage {
 }
 
 /// Coverage of every method at one sample size.
-#[derive(Debug, Clone, Serialize, PartialEq)]
+#[derive(Debug, Clone, Serialize, JsonSchema, PartialEq)]
 pub struct Coverage {
     pub n: usize,
     pub sims: usize,
@@ -143,7 +144,7 @@ pub(super) fn tally(
 }
 
 /// The simulated coverage for one quantity of one finger.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct QuantityCoverage {
     pub finger: crate::dataset::Finger,
     pub quantity: super::Quantity,

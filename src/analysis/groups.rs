@@ -2,6 +2,7 @@
 
 use super::{Analysis, Settings, analyse};
 use crate::dataset::Dataset;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// What to group X-rays by.
@@ -61,6 +62,22 @@ pub fn validate_age_bins(edges: &[f64]) -> Result<(), String> {
         ));
     }
     Ok(())
+}
+
+/// Why grouping by `by` would say nothing, if it would: no row has a value in
+/// that column, so every X-ray would fall in one "unknown" group, a copy of the
+/// whole analysis.
+pub(crate) fn nothing_to_group(data: &Dataset, by: &GroupBy) -> Option<String> {
+    data.rows
+        .iter()
+        .all(|r| by.label(&r.meta) == "unknown")
+        .then(|| {
+            format!(
+                "--group-by {0}: no row of {1} has a {0} value, so there is nothing to group by; fill the {0} column to get statistics per group",
+                by.name(),
+                data.path
+            )
+        })
 }
 
 /// The statistics of one group.
@@ -130,8 +147,8 @@ pub fn analyse_groups(data: &Dataset, by: &GroupBy, settings: &Settings) -> Vec<
 }
 
 /// One group as it appears in JSON.
-#[derive(Serialize)]
-pub struct GroupSummary<'a> {
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct GroupSummary<'a> {
     pub group: &'a str,
     pub xrays: usize,
     pub seed: u64,
@@ -141,7 +158,7 @@ pub struct GroupSummary<'a> {
 
 impl Group {
     /// The JSON view of this group.
-    pub fn summary(&self) -> GroupSummary<'_> {
+    pub(crate) fn summary(&self) -> GroupSummary<'_> {
         GroupSummary {
             group: &self.label,
             xrays: self.xrays,
@@ -177,6 +194,22 @@ mod tests {
         assert_eq!(f.finger(crate::dataset::Finger::Index).unwrap().n, 2);
         assert_eq!(f.finger(crate::dataset::Finger::Thumb).unwrap().n, 1);
         assert_ne!(g[0].analysis.settings.seed, g[1].analysis.settings.seed);
+    }
+
+    #[test]
+    fn no_values_no_groups() {
+        let d = Dataset::from_bytes(
+            "n.csv",
+            b"xray,finger,j1,j2,j3,sex
+a,index,4,3,3,
+b,index,5,3,3,
+",
+        )
+        .unwrap();
+        let note = nothing_to_group(&d, &GroupBy::Sex).unwrap();
+        assert!(note.contains("no row of n.csv has a sex value"), "{note}");
+        assert!(nothing_to_group(&data(), &GroupBy::Sex).is_none());
+        assert!(nothing_to_group(&d, &GroupBy::Age(DEFAULT_AGE_BINS.to_vec())).is_some());
     }
 
     #[test]

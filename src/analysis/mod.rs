@@ -10,13 +10,16 @@
 //! that have it. Lengths in per-image pixels ([`is_pixel_unit`]) are not comparable
 //! across X-rays, so their total J is not averaged: such an analysis has no `total`.
 
+pub(crate) mod budget;
 pub mod claims;
 pub mod compare;
 pub mod coverage;
 pub mod groups;
+pub(crate) mod outliers;
 pub mod placement;
+pub(crate) mod plausible;
 pub mod population;
-pub mod tracking;
+pub(crate) mod tracking;
 
 /// The interval type of [`crate::stats`] and the quantities of [`crate::dataset`],
 /// also here for the analysis's callers.
@@ -27,6 +30,7 @@ use crate::dataset::{Dataset, Finger, Row, TipCounts, is_pixel_unit};
 use crate::stats::Intervals;
 use crate::stats::bootstrap::{self, Plan, Sorted};
 use crate::stats::describe;
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -90,7 +94,7 @@ impl Settings {
 }
 
 /// The derived values of one X-ray for one finger (eqs. 1-2).
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct XrayValues {
     pub xray: Arc<str>,
     /// J1, J2[, J3] in data units.
@@ -128,7 +132,7 @@ impl XrayValues {
 }
 
 /// Every statistic of one quantity over the X-rays of a finger.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct QuantityStats {
     pub name: Quantity,
     pub n: usize,
@@ -156,7 +160,7 @@ pub struct QuantityStats {
 }
 
 /// The analysis of one finger.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct FingerAnalysis {
     pub finger: Finger,
     /// Number of X-rays with this finger (the metacarpal's quantities may have fewer:
@@ -176,7 +180,7 @@ impl FingerAnalysis {
 }
 
 /// What an analysis was computed from: enough to cite the dataset, not its rows.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, JsonSchema)]
 pub struct DatasetInfo {
     /// The path as given.
     pub path: String,
@@ -405,7 +409,7 @@ pub fn analyse_with(
 }
 
 /// Eqs. (1)-(2) for one row.
-pub fn xray_values(row: &Row) -> XrayValues {
+pub(crate) fn xray_values(row: &Row) -> XrayValues {
     let lengths = row.segments().to_vec();
     let total = row.total();
     let relative = lengths.iter().map(|l| l / total).collect();
@@ -423,7 +427,7 @@ pub fn xray_values(row: &Row) -> XrayValues {
 /// Degenerate cases: with n = 1 every interval and SD-based statistic is null
 /// (no spread can be estimated); with zero spread every interval collapses to
 /// the common value. Each case leaves a note.
-pub fn quantity_stats(
+pub(crate) fn quantity_stats(
     name: Quantity,
     values: &[f64],
     boot: &[f64],

@@ -12,10 +12,11 @@
 use super::{Analysis, Quantity, QuantityStats};
 use crate::dataset::Finger;
 use crate::stats::Intervals;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// A joint of a finger, from root to tip.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 pub enum Joint {
     /// Metacarpophalangeal: the finger's root, at 0.
     #[serde(rename = "MCP")]
@@ -56,7 +57,7 @@ impl Joint {
 }
 
 /// A statistic carried into model units.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct Placed {
     pub mean: f64,
     pub min: f64,
@@ -71,7 +72,7 @@ pub struct Placed {
 
 impl Placed {
     /// The statistics of `offset + scale * x`, from those of x. O(1).
-    pub fn affine(s: &QuantityStats, offset: f64, scale: f64) -> Placed {
+    pub(crate) fn affine(s: &QuantityStats, offset: f64, scale: f64) -> Placed {
         let map = |x: f64| offset + scale * x;
         let (a, b) = (map(s.min), map(s.max));
         Placed {
@@ -86,14 +87,14 @@ impl Placed {
 }
 
 /// Where one joint lies from the root, in model units.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct JointPosition {
     pub joint: Joint,
     pub position: Placed,
 }
 
 /// One segment's length in model units.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct SegmentLength {
     /// `j1`, `j2` or `j3`.
     pub segment: &'static str,
@@ -101,7 +102,7 @@ pub struct SegmentLength {
 }
 
 /// Joint positions and segment lengths for one model finger.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct FingerPlacement {
     pub finger: Finger,
     /// The model finger's total length L (root joint to tip).
@@ -117,7 +118,7 @@ pub struct FingerPlacement {
 }
 
 /// Where the MCP lies from the CMC, in model units.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct Metacarpal {
     /// X-rays whose metacarpal is measured.
     pub n: usize,

@@ -21,6 +21,7 @@ use crate::dataset::{Dataset, Finger};
 use crate::stats::bootstrap::{Enumeration, Plan};
 use crate::stats::{describe, rng};
 use rayon::prelude::*;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// Tag in the top byte of the random keys of the samples drawn.
@@ -31,7 +32,7 @@ const BOOTSTRAP_TAG: u64 = 0x51;
 pub const MAX_N: usize = (1 << 24) - 1;
 
 /// The coverage of every interval method on samples of one size from a population.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct PopulationCoverage {
     /// Values in the population.
     pub population: usize,
@@ -155,7 +156,7 @@ pub fn simulate_all(
 }
 
 /// The coverage of one quantity of one finger at each sample size.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct QuantityPopulation {
     pub finger: Finger,
     pub quantity: Quantity,
@@ -170,7 +171,7 @@ pub struct QuantityPopulation {
 
 /// Every method's coverage over the quantities at one sample size: the mean, lowest and
 /// highest of the quantities' coverages.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct Pooled {
     pub n: usize,
     pub method: &'static str,
@@ -181,7 +182,7 @@ pub struct Pooled {
 
 /// A dataset taken as the population: every quantity's coverage at each sample size, and
 /// the normal model's beside it.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct PopulationStudy {
     pub sizes: Vec<usize>,
     pub settings: CoverageSettings,

@@ -1,15 +1,14 @@
 //! Tracking a growing dataset: snapshots, changes between them, outlier flags,
 //! and how many X-rays a target precision needs.
 
-use super::{Analysis, Interval, Quantity, xray_values};
+use super::{Analysis, Interval, Quantity};
+use crate::dataset::Finger;
 use crate::dataset::history::{Event, FingerCount, QuantityRecord, Snapshot, SnapshotSettings};
-use crate::dataset::{Finger, Row};
-use crate::format;
 use crate::stats::describe;
 use serde::Serialize;
 
 /// The history record of an analysis.
-pub fn snapshot(a: &Analysis, time: String, event: Event) -> Snapshot {
+pub(crate) fn snapshot(a: &Analysis, time: String, event: Event) -> Snapshot {
     Snapshot {
         time,
         event,
@@ -48,7 +47,7 @@ pub fn snapshot(a: &Analysis, time: String, event: Event) -> Snapshot {
 
 /// How one quantity moved between two snapshots.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Change {
+pub(crate) struct Change {
     pub finger: Finger,
     pub quantity: Quantity,
     pub n_before: usize,
@@ -63,7 +62,7 @@ pub struct Change {
 }
 
 /// Changes of every quantity present in both snapshots, in the order of `after`.
-pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
+pub(crate) fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
     after
         .quantities
         .iter()
@@ -90,14 +89,14 @@ pub fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
 
 /// One quantity's history: (X-rays, mean, t interval) per snapshot, in order.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct QuantityHistory {
+pub(crate) struct QuantityHistory {
     pub finger: Finger,
     pub quantity: Quantity,
     pub points: Vec<(usize, f64, Option<Interval>)>,
 }
 
 /// The history of every quantity present in the snapshots, in first-seen order.
-pub fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
+pub(crate) fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
     let mut out: Vec<QuantityHistory> = Vec::new();
     for s in snaps {
         for q in &s.quantities {
@@ -120,7 +119,7 @@ pub fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
 
 /// The (finger, quantity) pairs present in a history, in first-seen order,
 /// narrowed to one finger and/or quantity.
-pub fn selected(
+pub(crate) fn selected(
     snaps: &[Snapshot],
     finger: Option<Finger>,
     quantity: Option<Quantity>,
@@ -139,30 +138,88 @@ pub fn selected(
     out
 }
 
-/// Largest n [`xrays_needed`] searches.
-pub const MAX_NEEDED: usize = 100_000_000;
+/// Largest n [`xrays_needed`] and [`xrays_needed_assured`] search.
+pub(crate) const MAX_NEEDED: usize = 100_000_000;
+
+/// The assurance the report asks for: the target is met in 80% of studies.
+pub(crate) const ASSURANCE: f64 = 0.8;
 
 /// The smallest number of X-rays n >= 2 whose t interval half-width
-/// t_{(1+c)/2, n-1} * sd / sqrt(n) is at most `target`, taking the SD as known.
+/// t_{(1+c)/2, n-1} * sd / sqrt(n) is at most `target`, taking the SD as known
+/// (the "plug-in" sample size: the SD of the new study will differ, and the
+/// target is met only about half the time; see [`xrays_needed_assured`]).
 /// `None` when more than [`MAX_NEEDED`] would be needed or the input is unusable.
 /// Cost: O(log n) quantile evaluations (bisection on a monotone function).
-pub fn xrays_needed(sd: f64, target: f64, confidence: f64) -> Option<usize> {
+pub(crate) fn xrays_needed(sd: f64, target: f64, confidence: f64) -> Option<usize> {
     if !(sd.is_finite() && target.is_finite() && target > 0.0 && sd >= 0.0) {
         return None;
     }
     let half =
         |n: usize| describe::t_quantile(confidence, n - 1).map(|t| t * sd / (n as f64).sqrt());
-    if half(2)? <= target {
-        return Some(2);
-    }
-    if half(MAX_NEEDED)? > target {
+    first_n(|n| half(n).map(|h| h <= target))
+}
+
+/// The probability that the t interval of n X-rays has half-width at most
+/// `target` when the true SD is `sd` (Kupper and Hafner 1989):
+///
+/// ```text
+/// P(t_{n-1} S / sqrt(n) <= W) = P(chi2_{n-1} <= (n - 1) n W^2 / (t_{n-1}^2 sd^2)),
+/// ```
+///
+/// since (n - 1) S^2 / sd^2 ~ chi2(n - 1) for normal data (t_{n-1} is the
+/// (1+c)/2 quantile). `None` for n < 2 or unusable input.
+pub(crate) fn assurance(n: usize, sd: f64, target: f64, confidence: f64) -> Option<f64> {
+    if n < 2 || !(sd.is_finite() && sd >= 0.0 && target.is_finite() && target > 0.0) {
         return None;
     }
-    // half(n) decreases in n: bisect for the first n with half(n) <= target.
+    if sd == 0.0 {
+        return Some(1.0);
+    }
+    let t = describe::t_quantile(confidence, n - 1)?;
+    let df = (n - 1) as f64;
+    let x = df * n as f64 * (target / (t * sd)).powi(2);
+    chi_squared_cdf(x, df)
+}
+
+/// The smallest number of X-rays n >= 2 whose t interval has half-width at
+/// most `target` with probability at least `level` (e.g. [`ASSURANCE`]), the
+/// SD of the new sample being random (Kupper and Hafner 1989, "How appropriate
+/// are popular sample size formulas?", The American Statistician 43(2):101-105):
+/// the smallest n with
+///
+/// ```text
+/// F_{chi2(n-1)}( (n - 1) n W^2 / (t_{(1+c)/2, n-1}^2 sd^2) ) >= level,
+/// ```
+///
+/// `sd` being the current estimate of the SD. The left side grows with n, so
+/// the search is a bisection. `None` when more than [`MAX_NEEDED`] would be
+/// needed or the input is unusable. Cost: O(log n) quantile and CDF evaluations.
+pub(crate) fn xrays_needed_assured(
+    sd: f64,
+    target: f64,
+    confidence: f64,
+    level: f64,
+) -> Option<usize> {
+    if !(level > 0.0 && level < 1.0) {
+        return None;
+    }
+    assurance(2, sd, target, confidence)?;
+    first_n(|n| assurance(n, sd, target, confidence).map(|p| p >= level))
+}
+
+/// The first n in 2..=[`MAX_NEEDED`] where the monotone predicate `ok` turns
+/// true, by bisection. `None` when it never does or cannot be evaluated.
+fn first_n(ok: impl Fn(usize) -> Option<bool>) -> Option<usize> {
+    if ok(2)? {
+        return Some(2);
+    }
+    if !ok(MAX_NEEDED)? {
+        return None;
+    }
     let (mut lo, mut hi) = (2usize, MAX_NEEDED);
     while hi - lo > 1 {
         let mid = lo + (hi - lo) / 2;
-        if half(mid)? <= target {
+        if ok(mid)? {
             hi = mid;
         } else {
             lo = mid;
@@ -171,123 +228,21 @@ pub fn xrays_needed(sd: f64, target: f64, confidence: f64) -> Option<usize> {
     Some(hi)
 }
 
-/// A new row's value that falls outside what the current data predicts.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Flag {
-    pub xray: String,
-    pub finger: String,
-    pub quantity: String,
-    pub value: f64,
-    /// The current prediction interval (null when n < 2).
-    pub interval: Option<[f64; 2]>,
-    /// Why this is flagged and what may be wrong, in words.
-    pub reason: String,
-}
+/// Degrees of freedom above which [`chi_squared_cdf`] uses Wilson and Hilferty.
+const CHI2_EXACT_DF: f64 = 1_000.0;
 
-/// Robust z-score above which a value is flagged whatever the prediction interval says.
-pub const ROBUST_Z: f64 = 5.0;
-
-/// Why a value is unusual, if it is: outside the prediction interval of the
-/// current data, or more than [`ROBUST_Z`] robust SDs (1.4826 MAD) from the
-/// median. The robust rule still works after an earlier outlier has widened
-/// the prediction interval; it needs at least 5 X-rays.
-fn unusual(v: f64, pi: Option<Interval>, values: &[f64]) -> Option<String> {
-    if let Some(pi) = pi.filter(|pi| !pi.contains(v)) {
-        return Some(format!(
-            "outside the prediction interval {}",
-            format::interval(Some(pi), 4)
-        ));
+/// The chi-squared distribution function with `df` degrees of freedom: from
+/// `statrs` up to 1,000 df; above, by the Wilson-Hilferty approximation
+/// Phi(((x/df)^(1/3) - 1 + 2/(9 df)) / sqrt(2/(9 df))), whose error there is
+/// below 1e-5 (and keeps the cost constant at 10^8 df).
+fn chi_squared_cdf(x: f64, df: f64) -> Option<f64> {
+    use statrs::distribution::{ChiSquared, ContinuousCDF};
+    if df > CHI2_EXACT_DF {
+        let v = 2.0 / (9.0 * df);
+        return Some(describe::normal_cdf(((x / df).cbrt() - 1.0 + v) / v.sqrt()));
     }
-    if values.len() < 5 {
-        return None;
-    }
-    let (m, s) = (describe::median(values)?, describe::mad(values)?);
-    let z = (v - m).abs() / s;
-    (s > 0.0 && z > ROBUST_Z).then(|| {
-        format!(
-            "{} robust SDs from the median {} (more than {})",
-            format::num(z, 1),
-            format::num(m, 4),
-            format::exact(ROBUST_Z)
-        )
-    })
-}
-
-/// Compares a new row's relative values with the current analysis (see
-/// [`unusual`]): an unusual value is flagged as a likely measurement or typing
-/// error, with a hint when one length 10 times too large or too small explains
-/// it (a misplaced decimal point).
-pub fn flag_row(a: &Analysis, row: &Row) -> Vec<Flag> {
-    let Some(fa) = a.finger(row.finger) else {
-        return Vec::new();
-    };
-    let relative: Vec<Quantity> = Quantity::of(row.finger)
-        .iter()
-        .copied()
-        .filter(|q| q.is_relative())
-        .collect();
-    let columns: Vec<Vec<f64>> = (0..relative.len())
-        .map(|k| fa.xrays.iter().map(|x| x.relative[k]).collect())
-        .collect();
-    let check = |r: &Row| -> Vec<(usize, String)> {
-        let x = xray_values(r);
-        relative
-            .iter()
-            .enumerate()
-            .filter_map(|(k, q)| {
-                let pi = fa.quantity(*q).and_then(|s| s.intervals.pi);
-                unusual(x.relative[k], pi, &columns[k]).map(|why| (k, why))
-            })
-            .collect()
-    };
-    let found = check(row);
-    if found.is_empty() {
-        return Vec::new();
-    }
-    // Candidate fixes: one length times 10 or 0.1. For a two-segment thumb,
-    // "j1 too small" and "j2 too large" give the same proportions; the total
-    // length then decides: the fix whose total is nearest the current mean total.
-    let mean_total = fa.quantity(Quantity::Total).map(|t| t.mean);
-    let hint = (0..row.finger.segments())
-        .flat_map(|k| [(k, 10.0), (k, 0.1)])
-        .filter_map(|(k, factor)| {
-            let mut fixed = row.clone();
-            fixed.lengths[k] *= factor;
-            let distance = mean_total.map_or(0.0, |m| (fixed.total() - m).abs());
-            check(&fixed).is_empty().then_some((k, factor, distance))
-        })
-        .min_by(|a, b| a.2.total_cmp(&b.2))
-        .map(|(k, factor, _)| {
-            format!(
-                "; j{} looks 10 times too {} (a misplaced decimal point?)",
-                k + 1,
-                if factor < 1.0 { "large" } else { "small" }
-            )
-        })
-        .unwrap_or_default();
-    let x = xray_values(row);
-    found
-        .into_iter()
-        .map(|(k, why)| {
-            let q = relative[k];
-            let pi = fa.quantity(q).and_then(|s| s.intervals.pi);
-            Flag {
-                xray: row.xray.to_string(),
-                finger: row.finger.name().to_string(),
-                quantity: q.name().to_string(),
-                value: x.relative[k],
-                interval: pi.map(|p| [p.low, p.high]),
-                reason: format!(
-                    "{} {} of X-ray '{}' is {}, {why} of the current {} X-rays: a likely measurement or typing error{hint}",
-                    row.finger,
-                    q.label(),
-                    row.xray,
-                    format::num(x.relative[k], 4),
-                    fa.n
-                ),
-            }
-        })
-        .collect()
+    let p = ChiSquared::new(df).ok()?.cdf(x);
+    p.is_finite().then_some(p)
 }
 
 #[cfg(test)]
@@ -315,72 +270,57 @@ mod tests {
     }
 
     #[test]
-    fn a_tenfold_typo_is_flagged_with_a_hint() {
-        let (_, a) = paper();
-        let text = "xray,finger,j1,j2,j3\nnew,index,3399.6,188.83,169.67\nok,index,340,189,170\n";
-        let d = Dataset::from_bytes("n.csv", text.as_bytes()).unwrap();
-        let flags = flag_row(&a, &d.rows[0]);
-        assert!(!flags.is_empty());
-        assert!(
-            flags[0].reason.contains("j1 looks 10 times too large"),
-            "{}",
-            flags[0].reason
-        );
-        assert!(flag_row(&a, &d.rows[1]).is_empty());
+    fn assurance_by_hand_and_against_scipy() {
+        // scipy: chi2.cdf(28 * 29 * (0.005 / (t.ppf(.975, 28) * 0.0131))**2, 28) = 0.5457:
+        // the plug-in n = 29 meets the target about half the time.
+        let p = assurance(29, 0.0131, 0.005, 0.95).unwrap();
+        assert!((p - 0.545_67).abs() < 1e-4, "{p}");
+        // The smallest n with assurance >= 0.8: scipy gives 0.7974 at n = 34, 0.8364 at n = 35.
+        assert_eq!(xrays_needed_assured(0.0131, 0.005, 0.95, 0.8), Some(35));
+        let p34 = assurance(34, 0.0131, 0.005, 0.95).unwrap();
+        assert!((p34 - 0.797_44).abs() < 1e-4, "{p34}");
+        // Above 1,000 df, Wilson-Hilferty: scipy.stats.chi2.cdf(1042.041, 1001) = 0.821175.
+        let wh = chi_squared_cdf(1041.0 * 1001.0 / 1000.0, 1001.0).unwrap();
+        assert!((wh - 0.821_175).abs() < 5e-5, "{wh}");
+        assert_eq!(xrays_needed_assured(0.0, 0.005, 0.95, 0.8), Some(2));
+        assert_eq!(xrays_needed_assured(1.0, 1e-9, 0.95, 0.8), None);
+        assert_eq!(xrays_needed_assured(f64::NAN, 0.005, 0.95, 0.8), None);
+        assert_eq!(xrays_needed_assured(0.01, 0.005, 0.95, 1.0), None);
+        // Huge n terminates (bisection over 10^8 with constant-cost evaluations).
+        let n = xrays_needed_assured(1.0, 1e-3, 0.95, 0.8).unwrap();
+        let plug = xrays_needed(1.0, 1e-3, 0.95).unwrap();
+        assert!(n > plug && n < plug + plug / 50, "{n} {plug}");
     }
 
+    /// Simulation (seeded): at the assured n the half-width target is met in at
+    /// least 80% of normal samples, at the plug-in n clearly less often.
     #[test]
-    fn a_thumb_typo_is_told_apart_by_the_total_length() {
-        // J2 typed 10x too large: proportions alone would also fit "j1 10x too small",
-        // but that would make the thumb ~5x longer than the others (mean total 520).
-        let (_, a) = paper();
-        let d =
-            Dataset::from_bytes("n.csv", b"xray,finger,j1,j2,j3\nt,thumb,270.5,2310.2,\n").unwrap();
-        let flags = flag_row(&a, &d.rows[0]);
-        assert!(
-            flags[0].reason.contains("j2 looks 10 times too large"),
-            "{}",
-            flags[0].reason
-        );
-    }
-
-    #[test]
-    fn the_robust_rule_catches_a_second_typo_after_a_first() {
-        // After one tenfold typo is added, the prediction interval is wide enough to let
-        // a second one through; the median/MAD rule still flags it.
-        let (d, _) = paper();
-        let mut bad = d.clone();
-        let extra = Dataset::from_bytes(
-            "n.csv",
-            b"xray,finger,j1,j2,j3\nz,ring,3584,226.47,191.09\n",
-        )
-        .unwrap();
-        bad.rows.extend(extra.rows.clone());
-        let a = analyse(&bad, &Settings::default());
-        let second = Dataset::from_bytes(
-            "n.csv",
-            b"xray,finger,j1,j2,j3\ny,ring,3729.8,226.72,212.12\n",
-        )
-        .unwrap();
-        let pi = a
-            .finger(Finger::Ring)
-            .unwrap()
-            .quantity(Quantity::RelJ1)
-            .unwrap()
-            .intervals
-            .pi
-            .unwrap();
-        assert!(
-            pi.contains(second.rows[0].lengths[0] / second.rows[0].total()),
-            "premise: inside the PI"
-        );
-        let flags = flag_row(&a, &second.rows[0]);
-        assert!(!flags.is_empty());
-        assert!(
-            flags[0].reason.contains("robust SDs from the median"),
-            "{}",
-            flags[0].reason
-        );
+    fn the_assured_n_meets_the_target_in_80_percent_of_samples() {
+        use crate::stats::rng;
+        let (sd, target, c) = (0.0131, 0.005, 0.95);
+        let met = |n: usize, sims: u64| -> f64 {
+            let t = describe::t_quantile(c, n - 1).unwrap();
+            let hits = (0..sims)
+                .filter(|&i| {
+                    let mut r = rng::stream(7, 0x000A_5504_A4CE, i);
+                    let xs: Vec<f64> = (0..n)
+                        .map(|_| 0.5 + sd * rng::standard_normal(&mut r))
+                        .collect();
+                    t * describe::sd(&xs).unwrap() / (n as f64).sqrt() <= target
+                })
+                .count();
+            hits as f64 / sims as f64
+        };
+        let sims = 4000;
+        let se = (0.8f64 * 0.2 / sims as f64).sqrt();
+        let assured = xrays_needed_assured(sd, target, c, ASSURANCE).unwrap();
+        let plug_in = xrays_needed(sd, target, c).unwrap();
+        let (pa, pp) = (met(assured, sims), met(plug_in, sims));
+        assert!(pa >= ASSURANCE - 3.0 * se, "assured n = {assured}: {pa}");
+        // Theory: assurance(assured) in [0.8, 0.84); the simulation agrees within 3 SE.
+        let theory = assurance(assured, sd, target, c).unwrap();
+        assert!((pa - theory).abs() < 3.0 * se, "{pa} vs {theory}");
+        assert!(pp < 0.6, "plug-in n = {plug_in}: {pp}");
     }
 
     #[test]

@@ -10,11 +10,13 @@ use std::path::PathBuf;
 #[derive(clap::Args, Debug)]
 #[command(
     after_help = "New rows pass every check of the dataset and may not repeat an (xray, finger) already there; \
-                  on any problem nothing is added. A value outside the current prediction interval is flagged \
-                  as a likely measurement or typing error: a warning, or a refusal with --strict.\n\n\
+                  on any problem nothing is added. A row is flagged as a likely measurement or typing error \
+                  when a relative value J~k lies outside its prediction interval at level 1 - 0.01/k (k segments; a genuine row \
+                  is flagged at most 1% of the time), or a length is over 3.16 (sqrt 10) times or under 1/3.16 times the median \
+                  of that length (a misplaced decimal point): one warning per row, or a refusal with --strict.\n\n\
                   Examples:\n  phalanx add new_xrays.csv\n  phalanx add --xray 2a --finger index --lengths 352.1,201.4,178.0 --sex female --age 34\n  phalanx add --strict --xray 2a --finger thumb --lengths 270.1,233.9"
 )]
-pub struct Args {
+pub(crate) struct Args {
     /// CSV file of new rows, in the dataset's format (with a header)
     #[arg(value_name = "FILE.csv", conflicts_with_all = ["xray", "finger", "lengths"])]
     file: Option<PathBuf>,
@@ -30,8 +32,8 @@ pub struct Args {
     /// Sex of the hand (female, male, ...)
     #[arg(long)]
     sex: Option<String>,
-    /// Age in years
-    #[arg(long)]
+    /// Age in years, from 0 to 150
+    #[arg(long, allow_negative_numbers = true)]
     age: Option<String>,
     /// left or right
     #[arg(long)]
@@ -65,6 +67,12 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
     })?;
     for f in &outcome.flags {
         eprintln!("warning: {}", f.reason);
+    }
+    for w in &outcome.implausible {
+        eprintln!("warning: {w}");
+    }
+    for n in &outcome.notes {
+        eprintln!("note: {n}");
     }
     out::print(
         format!(

@@ -4,7 +4,7 @@
 //! library is valid.
 
 use crate::analysis::groups::{self, GroupBy};
-use crate::analysis::{self, Settings};
+use crate::analysis::{self, Settings, budget};
 use crate::dataset::Finger;
 use crate::error::Error;
 use clap::{Args, ValueEnum};
@@ -26,13 +26,13 @@ pub(crate) struct DataArgs {
 /// Bootstrap and interval settings.
 #[derive(Args, Debug, Clone, Copy)]
 pub(crate) struct BootArgs {
-    /// Bootstrap resamples (exact enumeration is used when it needs fewer)
-    #[arg(long, value_name = "B", default_value_t = analysis::DEFAULT_RESAMPLES, value_parser = parse_resamples)]
+    /// Bootstrap resamples, 1 to 1000000 (exact enumeration is used when it needs fewer; at most 10^10 resample-X-ray pairs)
+    #[arg(long, value_name = "B", default_value_t = analysis::DEFAULT_RESAMPLES, value_parser = parse_resamples, allow_negative_numbers = true)]
     pub(crate) resamples: usize,
-    /// Seed of the random streams (ChaCha8)
-    #[arg(long, value_name = "S", default_value_t = analysis::DEFAULT_SEED)]
+    /// Seed of the random streams (ChaCha8), a whole number from 0 to 18446744073709551615
+    #[arg(long, value_name = "S", default_value_t = analysis::DEFAULT_SEED, value_parser = parse_seed, allow_negative_numbers = true)]
     pub(crate) seed: u64,
-    /// Confidence level of every interval, strictly between 0 and 1
+    /// Confidence level of every interval, from 0.0001 to 0.9999
     #[arg(long, value_name = "C", default_value_t = analysis::DEFAULT_CONFIDENCE, value_parser = parse_confidence, allow_negative_numbers = true)]
     pub(crate) confidence: f64,
 }
@@ -50,9 +50,31 @@ pub(crate) struct GroupArgs {
     /// Also compute every statistic per group of X-rays
     #[arg(long, value_enum, value_name = "COLUMN")]
     pub(crate) group_by: Option<GroupColumn>,
-    /// Age band edges for --group-by age, ascending
-    #[arg(long, value_name = "EDGES", value_delimiter = ',', default_values_t = groups::DEFAULT_AGE_BINS, allow_negative_numbers = true)]
-    pub(crate) age_bins: Vec<f64>,
+    /// Age band edges in years for --group-by age: comma-separated, strictly ascending, each from 0 to 150
+    #[arg(long, value_name = "EDGES", default_value = "0,18,40,65", value_parser = parse_age_bins, allow_negative_numbers = true)]
+    pub(crate) age_bins: AgeBins,
+}
+
+/// Age band edges, as given with `--age-bins`.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct AgeBins(pub(crate) Vec<f64>);
+
+/// Comma-separated age band edges: each a number of years from 0 to 150, strictly ascending.
+pub(crate) fn parse_age_bins(text: &str) -> Result<AgeBins, String> {
+    let usage =
+        "give comma-separated ages in years from 0 to 150, strictly ascending, e.g. 0,18,40,65";
+    let mut edges = Vec::new();
+    for part in text.split(',').map(str::trim) {
+        match part.parse::<f64>() {
+            Ok(e) if e.is_finite() && (0.0..=150.0).contains(&e) => edges.push(e),
+            _ if part.is_empty() => return Err(format!("'{text}' has an empty edge; {usage}")),
+            _ => return Err(format!("'{part}' is not an age from 0 to 150; {usage}")),
+        }
+    }
+    if edges.windows(2).any(|w| w[0] >= w[1]) {
+        return Err(format!("'{text}' is not strictly ascending; {usage}"));
+    }
+    Ok(AgeBins(edges))
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,8 +92,8 @@ impl GroupArgs {
             Some(GroupColumn::Sex) => Some(GroupBy::Sex),
             Some(GroupColumn::Side) => Some(GroupBy::Side),
             Some(GroupColumn::Age) => {
-                groups::validate_age_bins(&self.age_bins).map_err(Error::Usage)?;
-                Some(GroupBy::Age(self.age_bins.clone()))
+                groups::validate_age_bins(&self.age_bins.0).map_err(Error::Usage)?;
+                Some(GroupBy::Age(self.age_bins.0.clone()))
             }
         })
     }
@@ -106,32 +128,83 @@ pub(crate) fn parse_finger(text: &str) -> Result<Finger, String> {
     Finger::parse(text).ok_or_else(|| format!("unknown finger '{text}'; use {}", Finger::ACCEPTED))
 }
 
-/// A finite positive length.
+/// Largest length accepted for a model finger (`--length`, `--hand`, `--model-length`).
+pub(crate) const MAX_LENGTH: f64 = 1e9;
+
+/// A model length: greater than 0 and at most 1e9.
 pub(crate) fn parse_length(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(l) if l.is_finite() && l > 0.0 => Ok(l),
-        _ => Err(format!("'{text}' is not a positive length; give e.g. 1000")),
+    match text.trim().parse::<f64>() {
+        Ok(l) if l.is_finite() && l > 0.0 && l <= MAX_LENGTH => Ok(l),
+        _ => Err(format!(
+            "'{text}' is not a length greater than 0 and at most 1e9 (in your model's units); give e.g. 1000"
+        )),
     }
 }
 
+/// A whole number from `lo` to `hi`; the error states the range and `hint`.
+pub(crate) fn parse_whole(text: &str, lo: u64, hi: u64, hint: &str) -> Result<u64, String> {
+    match text.trim().parse::<u64>() {
+        Ok(v) if (lo..=hi).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "'{text}' is not a whole number from {lo} to {hi}{hint}"
+        )),
+    }
+}
+
+/// Smallest and largest confidence level accepted.
+pub(crate) const CONFIDENCE_RANGE: (f64, f64) = (0.0001, 0.9999);
+
 fn parse_confidence(text: &str) -> Result<f64, String> {
-    let c: f64 = text
-        .parse()
-        .map_err(|_| format!("'{text}' is not a number; give e.g. 0.95"))?;
-    if c > 0.0 && c < 1.0 {
-        Ok(c)
-    } else {
-        Err(format!(
-            "{c} is not strictly between 0 and 1; give e.g. 0.95"
-        ))
+    let (lo, hi) = CONFIDENCE_RANGE;
+    match text.trim().parse::<f64>() {
+        Ok(c) if (lo..=hi).contains(&c) => Ok(c),
+        _ => Err(format!(
+            "'{text}' is not a confidence level from {lo} to {hi} (strictly between 0 and 1); give e.g. 0.95"
+        )),
     }
 }
 
 fn parse_resamples(text: &str) -> Result<usize, String> {
-    match text.parse::<usize>() {
-        Ok(b) if (1..=100_000_000).contains(&b) => Ok(b),
-        _ => Err(format!(
-            "'{text}' is not a whole number from 1 to 100000000; the default is 10000"
-        )),
+    parse_whole(
+        text,
+        1,
+        budget::MAX_RESAMPLES as u64,
+        "; the default is 10000",
+    )
+    .map(|b| b as usize)
+}
+
+/// A seed: any 64-bit unsigned whole number.
+pub(crate) fn parse_seed(text: &str) -> Result<u64, String> {
+    parse_whole(text, 0, u64::MAX, "; e.g. 20130101")
+}
+
+/// Simulated datasets: 1 to [`budget::MAX_SIMS`].
+pub(crate) fn parse_sims(text: &str) -> Result<u64, String> {
+    parse_whole(text, 1, budget::MAX_SIMS as u64, "; the default is 4000")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_age_bins_parse_to_the_library_default() {
+        assert_eq!(
+            parse_age_bins("0,18,40,65").unwrap().0,
+            groups::DEFAULT_AGE_BINS.to_vec()
+        );
+        assert!(
+            parse_age_bins("0;18")
+                .unwrap_err()
+                .contains("comma-separated")
+        );
+        assert!(
+            parse_age_bins("18,0")
+                .unwrap_err()
+                .contains("strictly ascending")
+        );
+        assert!(parse_age_bins("0,,18").unwrap_err().contains("empty edge"));
+        assert!(parse_age_bins("151").unwrap_err().contains("from 0 to 150"));
     }
 }

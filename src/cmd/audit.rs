@@ -22,7 +22,7 @@ use std::path::PathBuf;
                   --map FILE: CSV with the header node,side,finger,joint (joint MCP, PIP, DIP, IP or tip).\n\n\
                   Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv"
 )]
-pub struct Args {
+pub(crate) struct Args {
     /// The rig: a .glb, .gltf or .vrm (glTF 2.0) file
     #[arg(value_name = "RIG")]
     rig: PathBuf,

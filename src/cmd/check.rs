@@ -16,7 +16,7 @@ use std::path::PathBuf;
     after_help = "Exits 0 when every claim matches or is a recorded erratum, 1 when a new mismatch appears.\n\n\
                   Examples:\n  phalanx check\n  phalanx check --claims my_claims.csv --format json"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     /// The claims file (one row per number the paper states)

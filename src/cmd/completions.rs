@@ -9,7 +9,7 @@ use clap_complete::Shell;
 #[command(
     after_help = "Examples:\n  phalanx completions bash > ~/.local/share/bash-completion/completions/phalanx\n  phalanx completions zsh > ~/.zfunc/_phalanx\n  phalanx completions fish > ~/.config/fish/completions/phalanx.fish\n  phalanx completions powershell >> $PROFILE"
 )]
-pub struct Args {
+pub(crate) struct Args {
     /// The shell
     #[arg(value_enum)]
     shell: Shell,

@@ -1,6 +1,6 @@
 //! `phalanx coverage`: how often each interval method really covers.
 
-use super::args::{BootArgs, DataArgs, TextFormat};
+use super::args::{BootArgs, DataArgs, TextFormat, parse_sims};
 use super::out;
 use crate::analysis::Quantity;
 use crate::analysis::coverage::{self, CoverageSettings};
@@ -22,13 +22,13 @@ use std::path::PathBuf;
                   Examples:\n  phalanx coverage\n  phalanx coverage --sims 20000 --format json\n  \
                   phalanx coverage --population data/atlas/measurements.csv --n 3,5,10,20,50"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]
     boot: BootArgs,
-    /// Simulated datasets per sample size
-    #[arg(long, default_value_t = 4000, value_parser = clap::value_parser!(u64).range(1..=4_000_000_000))]
+    /// Simulated datasets per sample size, 1 to 100000 (at most 10^10 resample-X-ray pairs in all)
+    #[arg(long, default_value_t = 4000, value_parser = parse_sims, allow_negative_numbers = true)]
     sims: u64,
     /// Take this dataset as the population of hands and draw samples from its X-rays
     #[arg(long, value_name = "DATASET")]
@@ -65,6 +65,8 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
         let mut sizes = args.sizes.clone();
         sizes.sort_unstable();
         sizes.dedup();
+        crate::analysis::budget::check_coverage(&sizes, s.sims, s.resamples)
+            .map_err(Error::Usage)?;
         let study = population::of_dataset(&data, &sizes, &s, Quantity::is_relative);
         if study.quantities.is_empty() {
             return Err(Error::Usage(format!(
@@ -79,7 +81,11 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
         out::print(&bytes)?;
         return Ok(0);
     }
-    let a = super::load_and_analyse(&args.data.data, &settings)?;
+    let data = crate::dataset::Dataset::load(&args.data.data)?;
+    super::report::check_coverage_budget(&data, &s)?;
+    super::within_budget(&data, &settings)?;
+    let a = crate::analysis::analyse(&data, &settings);
+    drop(data);
     let rows = coverage::of_analysis(&a, &s);
     let bytes = match args.format {
         TextFormat::Table => report::text::coverage(&rows, &s).into_bytes(),

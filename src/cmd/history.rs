@@ -4,6 +4,7 @@ use super::args::{DataArgs, HistoryArgs, TextFormat, parse_finger};
 use super::out;
 use crate::analysis::Quantity;
 use crate::dataset::Finger;
+use crate::dataset::history::Snapshot;
 use crate::error::Error;
 use crate::report;
 
@@ -12,7 +13,7 @@ use crate::report;
 #[command(
     after_help = "Examples:\n  phalanx history\n  phalanx history --finger index --quantity rel_j1\n  phalanx history --format json"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]
@@ -20,7 +21,7 @@ pub struct Args {
     /// Only this finger (thumb, index, middle, ring, little, or an alias)
     #[arg(long, value_parser = parse_finger)]
     finger: Option<Finger>,
-    /// Only this quantity (rel_j1, rel_j2, rel_j3, total)
+    /// Only this quantity: rel_j1, rel_j2, rel_j3 (not the thumb), ratio_j2_j1, ratio_j3_j2 (not the thumb) or total
     #[arg(long, value_parser = parse_quantity)]
     quantity: Option<Quantity>,
     /// Output format
@@ -29,13 +30,65 @@ pub struct Args {
 }
 
 fn parse_quantity(text: &str) -> Result<Quantity, String> {
-    Quantity::parse(text)
-        .ok_or_else(|| format!("unknown quantity '{text}'; use rel_j1, rel_j2, rel_j3 or total"))
+    Quantity::parse(text).ok_or_else(|| {
+        let names: Vec<&str> = Quantity::ALL.iter().map(|q| q.name()).collect();
+        format!("unknown quantity '{text}'; use one of {}", names.join(", "))
+    })
+}
+
+/// Why `--finger`/`--quantity` select nothing from non-empty snapshots.
+fn why_empty(
+    path: &std::path::Path,
+    snaps: &[Snapshot],
+    finger: Option<Finger>,
+    quantity: Option<Quantity>,
+) -> String {
+    let names = |qs: &[Quantity]| qs.iter().map(|q| q.name()).collect::<Vec<_>>().join(", ");
+    if let (Some(f), Some(q)) = (finger, quantity)
+        && !Quantity::of(f).contains(&q)
+    {
+        return format!(
+            "the {f} has no {} ({} segments); its quantities are {}",
+            q.name(),
+            f.segments(),
+            names(Quantity::of(f))
+        );
+    }
+    let mut fingers: Vec<&str> = Vec::new();
+    for r in snaps.iter().flat_map(|s| &s.quantities) {
+        if !fingers.contains(&r.finger.name()) {
+            fingers.push(r.finger.name());
+        }
+    }
+    let what = match (finger, quantity) {
+        (Some(f), Some(q)) => format!("{f} {}", q.name()),
+        (Some(f), None) => format!("{f} rows"),
+        (None, Some(q)) => q.name().to_string(),
+        (None, None) => "quantities".to_string(),
+    };
+    format!(
+        "none of the {} snapshots in {} has {what} (fingers recorded: {})",
+        snaps.len(),
+        path.display(),
+        if fingers.is_empty() {
+            "none".to_string()
+        } else {
+            fingers.join(", ")
+        }
+    )
 }
 
 pub(crate) fn run(args: &Args) -> Result<i32, Error> {
     let path = args.history.resolve(&args.data.data);
     let snaps = crate::dataset::history::read(&path)?;
+    if !snaps.is_empty()
+        && crate::analysis::tracking::selected(&snaps, args.finger, args.quantity).is_empty()
+    {
+        return Err(Error::Usage(format!(
+            "nothing to show: {}",
+            why_empty(&path, &snaps, args.finger, args.quantity)
+        )));
+    }
     let bytes = match args.format {
         TextFormat::Table => {
             report::text::history(&path, &snaps, args.finger, args.quantity).into_bytes()

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 #[command(
     after_help = "Examples:\n  phalanx man | man -l -\n  phalanx man --out /usr/local/share/man/man1"
 )]
-pub struct Args {
+pub(crate) struct Args {
     /// Write phalanx.1 and a phalanx-COMMAND.1 for each command into this directory
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,

@@ -17,6 +17,7 @@ pub(crate) mod import;
 pub(crate) mod man;
 pub(crate) mod place;
 pub(crate) mod report;
+pub(crate) mod schema;
 pub(crate) mod snapshot;
 pub(crate) mod stats;
 pub(crate) mod synth;
@@ -31,7 +32,8 @@ pub(crate) fn analyse_showing_progress(
     dataset: &Dataset,
     settings: &Settings,
     quiet: bool,
-) -> Analysis {
+) -> Result<Analysis, Error> {
+    within_budget(dataset, settings)?;
     let bar = crate::report::progress::TerminalProgress::new(
         quiet,
         settings.resamples,
@@ -39,11 +41,42 @@ pub(crate) fn analyse_showing_progress(
     );
     let a = analysis::analyse_with(dataset, settings, &bar);
     bar.finish();
-    a
+    Ok(a)
+}
+
+/// The groups of `by` (none when not grouping), with a note on standard error
+/// instead of one "unknown" group when the column has no value at all.
+pub(crate) fn groups_of(
+    dataset: &Dataset,
+    by: Option<&analysis::groups::GroupBy>,
+    settings: &Settings,
+) -> Vec<analysis::groups::Group> {
+    let Some(by) = by else {
+        return Vec::new();
+    };
+    if let Some(note) = analysis::groups::nothing_to_group(dataset, by) {
+        eprintln!("note: {note}");
+        return Vec::new();
+    }
+    analysis::groups::analyse_groups(dataset, by, settings)
+}
+
+/// Prints the warnings about implausible data (e.g. swapped columns) on standard error.
+pub(crate) fn warn_implausible(a: &Analysis) {
+    for w in analysis::plausible::warnings(a) {
+        eprintln!("warning: {w}");
+    }
+}
+
+/// Refuses a bootstrap too large to serve (see [`analysis::budget`]).
+pub(crate) fn within_budget(dataset: &Dataset, settings: &Settings) -> Result<(), Error> {
+    analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)
+        .map_err(Error::Usage)
 }
 
 /// Loads a dataset and analyses it.
 pub(crate) fn load_and_analyse(path: &Path, settings: &Settings) -> Result<Analysis, Error> {
     let data = Dataset::load(path)?;
+    within_budget(&data, settings)?;
     Ok(analysis::analyse(&data, settings))
 }

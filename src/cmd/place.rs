@@ -14,7 +14,7 @@ use crate::report;
                   the tip at L; the thumb's IP joint at J~1 x L. Lengths are in your model's units.\n\n\
                   Examples:\n  phalanx place --finger index --length 1000\n  phalanx place --hand thumb=5.1,index=7.9,middle=8.6,ring=8.1,little=6.4\n  phalanx place --finger ring --length 81.5 --format json"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]
@@ -22,10 +22,10 @@ pub struct Args {
     /// The finger (with --length)
     #[arg(long, value_parser = parse_finger, requires = "length", conflicts_with = "hand")]
     finger: Option<Finger>,
-    /// The model finger's total length, root joint to tip (with --finger)
+    /// The model finger's total length, root joint to tip (with --finger): greater than 0, at most 1e9
     #[arg(long, value_parser = parse_length, requires = "finger", allow_negative_numbers = true)]
     length: Option<f64>,
-    /// Several fingers at once: FINGER=LENGTH,... (e.g. thumb=5.1,index=7.9)
+    /// Several fingers at once: FINGER=LENGTH,... (e.g. thumb=5.1,index=7.9), each length greater than 0, at most 1e9
     #[arg(long, value_name = "FINGER=L,...", value_parser = parse_hand)]
     hand: Option<Hand>,
     /// Output format

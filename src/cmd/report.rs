@@ -1,9 +1,10 @@
 //! `phalanx report`: analyse, check, simulate, render everything in memory, then write.
 
-use super::args::{BootArgs, DEFAULT_CLAIMS, DataArgs, GroupArgs, HistoryArgs, parse_length};
+use super::args::{
+    BootArgs, DEFAULT_CLAIMS, DataArgs, GroupArgs, HistoryArgs, parse_length, parse_sims,
+};
 use crate::analysis::claims::{self, ClaimResult};
 use crate::analysis::coverage::{self, CoverageSettings};
-use crate::analysis::groups::analyse_groups;
 use crate::analysis::{Analysis, placement};
 use crate::dataset::Dataset;
 use crate::dataset::claims::Claims;
@@ -27,7 +28,7 @@ const DEFAULT_RIGS: &str = "data/rigs";
                   Files are replaced atomically; a failed run leaves the previous report as it was.\n\n\
                   Examples:\n  phalanx report\n  phalanx report --out /tmp/site --model-length 87.5 --format html\n  phalanx report --templates my_templates/"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     /// The claims file checked in the "Reproducing the paper" section
@@ -38,7 +39,7 @@ pub struct Args {
     out: PathBuf,
     #[command(flatten)]
     boot: BootArgs,
-    /// Total length of the model finger for the joint-placement section, in model units
+    /// Total length of the model finger for the joint-placement section, in model units (greater than 0, at most 1e9)
     #[arg(long, value_name = "L", default_value_t = 1000.0, value_parser = parse_length, allow_negative_numbers = true)]
     model_length: f64,
     /// Formats to write, comma-separated
@@ -50,8 +51,8 @@ pub struct Args {
     /// Add the generation time (UTC) to the provenance; the report is then no longer reproducible byte for byte
     #[arg(long)]
     timestamp: bool,
-    /// Simulated datasets for the coverage section
-    #[arg(long, default_value_t = 4000, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Simulated datasets for the coverage section, 1 to 100000 (at most 10^10 resample-X-ray pairs in all)
+    #[arg(long, default_value_t = 4000, value_parser = parse_sims, allow_negative_numbers = true)]
     sims: u64,
     #[command(flatten)]
     history: HistoryArgs,
@@ -60,8 +61,8 @@ pub struct Args {
     /// Directory of reference rigs (*.json) for "Popular rigs against the X-rays"; absent = no section
     #[arg(long, value_name = "DIR", default_value = DEFAULT_RIGS)]
     rigs: PathBuf,
-    /// Target half-width of the confidence interval of a relative mean, for "X-rays needed"
-    #[arg(long, value_name = "W", default_value_t = 0.005, value_parser = parse_target)]
+    /// Target half-width of the confidence interval of a relative mean, for "X-rays needed": greater than 0, at most 1
+    #[arg(long, value_name = "W", default_value_t = 0.005, value_parser = parse_target, allow_negative_numbers = true)]
     target: f64,
 }
 
@@ -74,30 +75,28 @@ enum Format {
 
 fn parse_target(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
-        Ok(t) if t.is_finite() && t > 0.0 => Ok(t),
+        Ok(t) if t > 0.0 && t <= 1.0 => Ok(t),
         _ => Err(format!(
-            "'{text}' is not a positive half-width; give e.g. 0.005"
+            "'{text}' is not a half-width greater than 0 and at most 1 (relative values lie between 0 and 1); give e.g. 0.005"
         )),
     }
 }
 
 pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let settings = args.boot.settings()?;
+    check_out_dir(&args.out)?;
     let templates = match &args.templates {
         Some(dir) => Templates::from_dir(dir)?,
         None => Templates::builtin()?,
     };
     let by = args.groups.group_by()?;
     let dataset = Dataset::load(&args.data.data)?;
-    let groups = by.map_or_else(Vec::new, |by| analyse_groups(&dataset, &by, &settings));
+    let groups = super::groups_of(&dataset, by.as_ref(), &settings);
     let history_path = args.history.resolve(&args.data.data);
     let history = crate::dataset::history::read(&history_path)?;
     let claims = Claims::load(&args.claims)?;
     let (results, claims_note) = check_claims(&claims, &dataset);
     let references = reference::load_dir(&args.rigs)?;
-    let a = super::analyse_showing_progress(&dataset, &settings, quiet);
-    drop(dataset);
-    let rigs = audit_references(references, &a);
     let cov_settings = CoverageSettings {
         sims: args.sims as usize,
         resamples: settings.resamples,
@@ -105,6 +104,11 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         confidence: settings.confidence,
         max_n: Some(coverage::REPORT_MAX_N),
     };
+    check_coverage_budget(&dataset, &cov_settings)?;
+    let a = super::analyse_showing_progress(&dataset, &settings, quiet)?;
+    super::warn_implausible(&a);
+    drop(dataset);
+    let rigs = audit_references(references, &a);
     let cov = coverage::of_analysis(&a, &cov_settings);
     let placements = placement::place_all(&a, args.model_length);
     let timestamp = args
@@ -129,6 +133,42 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let files = report::render(&inputs, formats(&args.format), &templates)?;
     write(&args.out, &files)?;
     Ok(0)
+}
+
+/// Refuses a coverage simulation too large to serve (see [`crate::analysis::budget`]),
+/// before any work.
+pub(crate) fn check_coverage_budget(data: &Dataset, s: &CoverageSettings) -> Result<(), Error> {
+    let mut sizes: Vec<usize> = crate::dataset::Finger::ALL
+        .into_iter()
+        .map(|f| data.rows_of(f).count())
+        .filter(|&n| n >= 2 && s.max_n.is_none_or(|m| n <= m))
+        .collect();
+    sizes.sort_unstable();
+    sizes.dedup();
+    crate::analysis::budget::check_coverage(&sizes, s.sims, s.resamples).map_err(Error::Usage)
+}
+
+/// Refuses an output directory that is a file (or lies under one) before any work.
+fn check_out_dir(out: &Path) -> Result<(), Error> {
+    let existing = out
+        .ancestors()
+        .filter(|p| !p.as_os_str().is_empty())
+        .find(|p| p.exists());
+    match existing {
+        Some(p) if !p.is_dir() => Err(Error::Usage(if p == out {
+            format!(
+                "--out {}: this is a file, not a directory; give a directory for the report (it is created when missing)",
+                out.display()
+            )
+        } else {
+            format!(
+                "--out {}: {} is a file, not a directory; give a directory for the report (it is created when missing)",
+                out.display(),
+                p.display()
+            )
+        })),
+        _ => Ok(()),
+    }
 }
 
 /// Checks the claims. Claims about rows this dataset lacks (another lab's data,

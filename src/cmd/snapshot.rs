@@ -8,7 +8,7 @@ use crate::track;
 /// Record a snapshot of the current statistics in the history (after editing the data by hand)
 #[derive(clap::Args, Debug)]
 #[command(after_help = "Examples:\n  phalanx snapshot\n  phalanx snapshot --data lab/hands.csv")]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]

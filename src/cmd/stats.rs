@@ -2,7 +2,6 @@
 
 use super::args::{BootArgs, DataArgs, GroupArgs};
 use super::out;
-use crate::analysis::groups::analyse_groups;
 use crate::dataset::Dataset;
 use crate::error::Error;
 use crate::report;
@@ -13,7 +12,7 @@ use clap::ValueEnum;
 #[command(
     after_help = "Examples:\n  phalanx stats\n  phalanx stats --format json > stats.json\n  phalanx stats --format csv --resamples 20000 --seed 7 --confidence 0.9"
 )]
-pub struct Args {
+pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]
@@ -36,8 +35,9 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let settings = args.boot.settings()?;
     let by = args.groups.group_by()?;
     let dataset = Dataset::load(&args.data.data)?;
-    let a = super::analyse_showing_progress(&dataset, &settings, quiet);
-    let groups = by.map_or_else(Vec::new, |by| analyse_groups(&dataset, &by, &settings));
+    let a = super::analyse_showing_progress(&dataset, &settings, quiet)?;
+    super::warn_implausible(&a);
+    let groups = super::groups_of(&dataset, by.as_ref(), &settings);
     drop(dataset);
     match args.format {
         Format::Table => out::print(report::text::stats_with_groups(&a, &groups).as_bytes())?,

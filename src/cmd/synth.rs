@@ -1,5 +1,6 @@
 //! `phalanx synth`: a synthetic dataset.
 
+use super::args::{parse_seed, parse_whole};
 use super::out;
 use crate::analysis;
 use crate::error::Error;
@@ -13,12 +14,12 @@ use std::path::PathBuf;
                   correlated segments) is documented in src/synth.rs and the README.\n\n\
                   Examples:\n  phalanx synth --xrays 10000 --seed 1 --out /tmp/hands.csv\n  phalanx synth --xrays 20 --no-metadata"
 )]
-pub struct Args {
-    /// Number of X-rays (hands); each has the five fingers
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
+pub(crate) struct Args {
+    /// Number of X-rays (hands), 1 to 1000000; each has the five fingers
+    #[arg(long, value_name = "N", value_parser = parse_xrays, allow_negative_numbers = true)]
     xrays: u64,
-    /// Seed of the generator
-    #[arg(long, value_name = "S", default_value_t = analysis::DEFAULT_SEED)]
+    /// Seed of the generator, a whole number from 0 to 18446744073709551615
+    #[arg(long, value_name = "S", default_value_t = analysis::DEFAULT_SEED, value_parser = parse_seed, allow_negative_numbers = true)]
     seed: u64,
     /// Output file (written atomically); standard output when absent
     #[arg(long, value_name = "FILE")]
@@ -26,6 +27,14 @@ pub struct Args {
     /// Leave sex, age and side empty
     #[arg(long)]
     no_metadata: bool,
+}
+
+/// Most X-rays generated: 5 rows each, about 300 MB of CSV built in memory,
+/// and the most that `stats` serves at its default 10,000 resamples.
+const MAX_XRAYS: u64 = 1_000_000;
+
+fn parse_xrays(text: &str) -> Result<u64, String> {
+    parse_whole(text, 1, MAX_XRAYS, "; e.g. 1000")
 }
 
 pub(crate) fn run(args: &Args) -> Result<i32, Error> {

@@ -13,15 +13,14 @@ use std::path::{Path, PathBuf};
 
 /// An exclusive advisory lock on a dataset (on `<dataset>.lock` beside it,
 /// since the dataset itself is replaced by rename). Released when dropped.
-pub struct DatasetLock {
+pub(crate) struct DatasetLock {
     _file: File,
-    pub path: PathBuf,
 }
 
 impl DatasetLock {
     /// Blocks until the lock on `data` is ours. A link is followed, so every
     /// path to the same file shares one lock.
-    pub fn acquire(data: &Path) -> std::io::Result<DatasetLock> {
+    pub(crate) fn acquire(data: &Path) -> std::io::Result<DatasetLock> {
         let data = crate::atomic::resolve(data);
         let mut name = data.as_os_str().to_owned();
         name.push(".lock");
@@ -32,22 +31,26 @@ impl DatasetLock {
             .write(true)
             .open(&path)?;
         file.lock()?;
-        Ok(DatasetLock { _file: file, path })
+        Ok(DatasetLock { _file: file })
     }
+}
+
+/// The CSV (header and one row) of a row given on the command line.
+pub(crate) fn single_row_bytes(fields: &[(&str, String)]) -> Result<Vec<u8>, DataError> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let header: Vec<&str> = fields.iter().map(|(k, _)| *k).collect();
+    let values: Vec<&str> = fields.iter().map(|(_, v)| v.as_str()).collect();
+    w.write_record(&header)
+        .and_then(|_| w.write_record(&values))
+        .map_err(|e| e.to_string())
+        .and_then(|_| w.into_inner().map_err(|e| e.to_string()))
+        .map_err(|e| DataError::whole_file("<command line>", e))
 }
 
 /// Parses new rows given on the command line as one CSV row; problems name the
 /// option they came from instead of a line.
-pub fn single_row(fields: &[(&str, String)]) -> Result<Dataset, DataError> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let header: Vec<&str> = fields.iter().map(|(k, _)| *k).collect();
-    let values: Vec<&str> = fields.iter().map(|(_, v)| v.as_str()).collect();
-    let bytes = w
-        .write_record(&header)
-        .and_then(|_| w.write_record(&values))
-        .map_err(|e| e.to_string())
-        .and_then(|_| w.into_inner().map_err(|e| e.to_string()))
-        .map_err(|e| DataError::whole_file("<command line>", e))?;
+pub(crate) fn single_row(fields: &[(&str, String)]) -> Result<Dataset, DataError> {
+    let bytes = single_row_bytes(fields)?;
     Dataset::from_bytes("<command line>", &bytes).map_err(|mut e| {
         for p in &mut e.problems {
             p.line = None;
@@ -71,6 +74,49 @@ fn option_of(column: &str) -> &str {
 /// Formats a length so that it parses back to the same `f64`.
 fn length_text(x: f64) -> String {
     crate::format::full(Some(x))
+}
+
+/// The fields of new rows as the user typed them: line -> column -> trimmed
+/// text, read with the loader's own table reader (so the lines are the rows' lines).
+#[derive(Debug, Default)]
+pub(crate) struct Typed(HashMap<u64, HashMap<&'static str, String>>);
+
+impl Typed {
+    /// Reads the typed fields of a measurement CSV; unreadable input gives none
+    /// (the loader reports it).
+    pub(crate) fn of(bytes: &[u8]) -> Typed {
+        let mut out = HashMap::new();
+        let _ = super::csvinput::read_table::<Column>("", bytes, |cells| {
+            let fields = Column::ALL
+                .iter()
+                .filter_map(|&c| Some((c.name(), cells.text(c)?.to_string())))
+                .filter(|(_, text)| !text.is_empty())
+                .collect();
+            out.insert(cells.line(), fields);
+        });
+        Typed(out)
+    }
+
+    /// The text typed for a number, when it reads as exactly `value` (so
+    /// `275.00` stays `275.00`); `None` otherwise.
+    fn number(&self, line: u64, column: &str, value: f64) -> Option<String> {
+        let text = self.0.get(&line)?.get(column)?;
+        (text.parse::<f64>().ok()? == value).then(|| text.clone())
+    }
+}
+
+/// One field of a row, by column name, numbers as typed where known.
+fn typed_field_of(row: &Row, column: &str, typed: &Typed) -> String {
+    let number = match column {
+        "j1" => Some(row.lengths[0]),
+        "j2" => Some(row.lengths[1]),
+        "j3" if row.finger.segments() == 3 => Some(row.lengths[2]),
+        "age" => row.meta.age,
+        _ => None,
+    };
+    number
+        .and_then(|v| typed.number(row.line, column, v))
+        .unwrap_or_else(|| field_of(row, column))
 }
 
 /// One field of a row, by column name.
@@ -98,11 +144,15 @@ fn field_of(row: &Row, column: &str) -> String {
 /// existing rows of the same X-ray, the dataset's unit (when both name one), and no
 /// metadata (or metacarpal) for a column the file lacks.
 /// Problems name the new rows' lines in `new.path`. Returns the new bytes and
-/// the dataset they hold (validated once).
-pub fn appended_bytes(
+/// the dataset they hold (validated once). Numbers are written as `typed` holds
+/// them (see [`Typed`]; with `Typed::default()`, in their shortest exact form).
+/// A new row that leaves sex, age, side or unit empty takes the value of the
+/// X-ray's existing rows (one hand has one value).
+pub(crate) fn appended_bytes_typed(
     current_bytes: &[u8],
     current: &Dataset,
     new: &Dataset,
+    typed: &Typed,
 ) -> Result<(Vec<u8>, Dataset), DataError> {
     let problems = check_new_rows(current, new);
     if !problems.is_empty() {
@@ -111,13 +161,13 @@ pub fn appended_bytes(
             problems,
         });
     }
-    let out = append_rows(current_bytes, current, new)?;
+    let out = append_rows(current_bytes, current, new, typed)?;
     // The result must load as a valid dataset; that dataset is returned with it.
     let appended = Dataset::from_bytes(&current.path, &out)?;
     Ok((out, appended))
 }
 
-/// The problems of new rows against the current dataset (see [`appended_bytes`]).
+/// The problems of new rows against the current dataset (see [`appended_bytes_typed`]).
 fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
     let mut problems = Vec::new();
     let existing: HashMap<(&str, super::Finger), &Row> = current
@@ -168,16 +218,25 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
                 ("unit", field_of(r, "unit"), field_of(old, "unit")),
                 ("tip", field_of(r, "tip"), field_of(old, "tip")),
             ] {
-                if ours != theirs {
+                // An empty field takes the X-ray's value (see append_rows).
+                if !ours.is_empty() && ours != theirs {
+                    let theirs = if theirs.is_empty() {
+                        "empty".into()
+                    } else {
+                        quote(&theirs)
+                    };
                     problems.push(Problem::line(
                         r.line,
                         format!(
-                            "{name} is {} but {} line {} gives {} for the same X-ray {}; one hand has one value",
-                            if ours.is_empty() { "empty".into() } else { quote(&ours) },
+                            "{name} is {} but {} line {} gives {theirs} for the same X-ray {}; one hand has one value. \
+                             Leave {name} out (omit --{name}, or leave the field empty) and the row takes {theirs}, \
+                             or, if {theirs} is wrong, edit line {} of {} first",
+                            quote(&ours),
                             current.path,
                             old.line,
-                            if theirs.is_empty() { "empty".into() } else { quote(&theirs) },
-                            quote(&r.xray)
+                            quote(&r.xray),
+                            old.line,
+                            current.path,
                         ),
                     ));
                 }
@@ -208,7 +267,12 @@ fn append_rows(
     current_bytes: &[u8],
     current: &Dataset,
     new: &Dataset,
+    typed: &Typed,
 ) -> Result<Vec<u8>, DataError> {
+    let mut by_xray: HashMap<&str, &Row> = HashMap::new();
+    for r in &current.rows {
+        by_xray.entry(&r.xray).or_insert(r);
+    }
     let mut out = current_bytes.to_vec();
     if !out.is_empty() && !out.ends_with(b"\n") {
         out.extend_from_slice(if current_bytes.contains(&b'\r') {
@@ -225,7 +289,22 @@ fn append_rows(
         })
         .from_writer(Vec::new());
     for r in &new.rows {
-        let rec: Vec<String> = current.columns.iter().map(|c| field_of(r, c)).collect();
+        let rec: Vec<String> = current
+            .columns
+            .iter()
+            .map(|c| {
+                let ours = typed_field_of(r, c, typed);
+                match by_xray.get(&*r.xray) {
+                    Some(old)
+                        if ours.is_empty()
+                            && ["sex", "age", "side", "unit"].contains(&c.as_str()) =>
+                    {
+                        field_of(old, c)
+                    }
+                    _ => ours,
+                }
+            })
+            .collect();
         w.write_record(&rec)
             .map_err(|e| DataError::whole_file(&new.path, e.to_string()))?;
     }
@@ -250,7 +329,8 @@ mod tests {
     fn appends_in_the_file_column_order_keeping_old_bytes() {
         let cur = ds("d.csv", OLD);
         let new = ds("n.csv", "finger,xray,j2,j1,j3,sex\nring,b,2.5,5.25,2,m\n");
-        let (out, appended) = appended_bytes(OLD.as_bytes(), &cur, &new).unwrap();
+        let (out, appended) =
+            appended_bytes_typed(OLD.as_bytes(), &cur, &new, &Typed::default()).unwrap();
         assert_eq!(appended.rows.len(), 3);
         let text = String::from_utf8(out).unwrap();
         assert!(text.starts_with(OLD));
@@ -262,7 +342,12 @@ mod tests {
         let old = "xray,finger,j1,j2,j3\r\na,index,4,3,3";
         let cur = ds("d.csv", old);
         let new = ds("n.csv", "xray,finger,j1,j2,j3\nb,index,1,2,3\n");
-        let out = String::from_utf8(appended_bytes(old.as_bytes(), &cur, &new).unwrap().0).unwrap();
+        let out = String::from_utf8(
+            appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default())
+                .unwrap()
+                .0,
+        )
+        .unwrap();
         assert_eq!(out, format!("{old}\r\nb,index,1,2,3\r\n"));
     }
 
@@ -273,7 +358,7 @@ mod tests {
             "n.csv",
             "xray,finger,j1,j2,j3,sex,age\na,index,1,2,3,f,\nc,ring,1,2,3,,40\n",
         );
-        let e = appended_bytes(OLD.as_bytes(), &cur, &new).unwrap_err();
+        let e = appended_bytes_typed(OLD.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
         assert_eq!(e.file, "n.csv");
         let lines: Vec<u64> = e.problems.iter().filter_map(|p| p.line).collect();
         assert_eq!(lines, vec![2, 3], "{e}");
@@ -287,7 +372,7 @@ mod tests {
             "n.csv",
             "xray,finger,j1,j2,j3,sex\nb,ring,1,2,3,f\na,ring,1,2,3,m\n",
         );
-        let e = appended_bytes(OLD.as_bytes(), &cur, &new).unwrap_err();
+        let e = appended_bytes_typed(OLD.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
         assert_eq!(e.problems.len(), 1, "{e}");
         assert_eq!(e.problems[0].line, Some(3));
         assert!(
@@ -305,7 +390,7 @@ mod tests {
             "n.csv",
             "xray,finger,j1,j2,j3,unit\nb,index,4,3,3,mm\nc,index,4,3,3,\n",
         );
-        let e = appended_bytes(old.as_bytes(), &cur, &new).unwrap_err();
+        let e = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
         assert_eq!(e.problems.len(), 1, "{e}");
         assert_eq!(e.problems[0].line, Some(2));
         assert!(
@@ -321,13 +406,14 @@ mod tests {
             "n.csv",
             "xray,finger,j1,j2,j3,mc,unit,tip\nb,index,4,3,3,8.5,px,bone\n",
         );
-        let (out, _) = appended_bytes(old.as_bytes(), &cur, &new).unwrap();
+        let (out, _) = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap();
         assert!(
             String::from_utf8(out)
                 .unwrap()
                 .ends_with("b,index,4,3,3,8.5,px,bone\n")
         );
-        let e = appended_bytes(OLD.as_bytes(), &ds("d.csv", OLD), &new).unwrap_err();
+        let e = appended_bytes_typed(OLD.as_bytes(), &ds("d.csv", OLD), &new, &Typed::default())
+            .unwrap_err();
         assert!(
             e.to_string()
                 .contains("gives a mc, but d.csv has no 'mc' column"),
@@ -369,7 +455,9 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let data = dir.path().join("d.csv");
         let held = DatasetLock::acquire(&data).unwrap();
-        let f = OpenOptions::new().write(true).open(&held.path).unwrap();
+        // The lock file sits beside the dataset.
+        let lock_file = dir.path().join("d.csv.lock");
+        let f = OpenOptions::new().write(true).open(&lock_file).unwrap();
         assert!(f.try_lock().is_err(), "a second lock was granted");
         drop(held);
         assert!(f.try_lock().is_ok());

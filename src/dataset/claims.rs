@@ -12,7 +12,7 @@ use std::path::Path;
 /// The columns of a claims file; all are required, `xray`, `model_length`,
 /// `erratum` and `note` may be empty.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Column {
+pub(crate) enum Column {
     Id,
     Location,
     RefersTo,
@@ -191,7 +191,7 @@ pub struct Claims {
 
 /// Decimal places a number is printed to: `0.0319` -> 4, `31.9` -> 1,
 /// `4.846e-1` -> 4 (mantissa decimals minus the exponent), never below 0.
-pub fn printed_decimals(text: &str) -> usize {
+pub(crate) fn printed_decimals(text: &str) -> usize {
     let (mantissa, exponent) = match text.find(['e', 'E']) {
         Some(i) => (&text[..i], text[i + 1..].parse::<i64>().unwrap_or(0)),
         None => (text, 0),
@@ -224,7 +224,7 @@ impl Claims {
     }
 
     /// The 1-based column of `c` in the file.
-    pub fn column(&self, c: Column) -> usize {
+    pub(crate) fn column(&self, c: Column) -> usize {
         self.columns.get(c.index()).copied().unwrap_or(0)
     }
 

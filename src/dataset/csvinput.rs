@@ -19,7 +19,7 @@ const QUOTE_MAX: usize = 40;
 
 /// Reads a whole input file, turning I/O failures (missing file, a directory,
 /// no permission) into a [`DataError`] that names the file.
-pub fn read_input(path: &Path) -> Result<Vec<u8>, DataError> {
+pub(crate) fn read_input(path: &Path) -> Result<Vec<u8>, DataError> {
     let label = path.display().to_string();
     if path.is_dir() {
         return Err(DataError::whole_file(
@@ -32,7 +32,7 @@ pub fn read_input(path: &Path) -> Result<Vec<u8>, DataError> {
 
 /// Opens an input file for streaming, turning failures (missing file, a
 /// directory, no permission) into a [`DataError`] that names the file.
-pub fn open_input(path: &Path) -> Result<std::fs::File, DataError> {
+pub(crate) fn open_input(path: &Path) -> Result<std::fs::File, DataError> {
     let label = path.display().to_string();
     if path.is_dir() {
         return Err(DataError::whole_file(
@@ -74,7 +74,7 @@ fn field_count_problem(rec: &Record<'_>, width: usize) -> Problem {
 }
 
 /// Quotes a value for an error message, shortened when long.
-pub fn quote(value: &str) -> String {
+pub(crate) fn quote(value: &str) -> String {
     if value.chars().count() <= QUOTE_MAX {
         format!("'{value}'")
     } else {
@@ -92,12 +92,12 @@ struct Record<'s> {
 
 impl<'s> Record<'s> {
     /// Number of fields on the line.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.fields.len()
     }
 
     /// Field `i` trimmed, `Some("")` when absent or empty, `None` when not valid text.
-    pub fn get(&self, i: usize) -> Option<&'s str> {
+    pub(crate) fn get(&self, i: usize) -> Option<&'s str> {
         match self.fields.get(i) {
             Some(f) => f.map(str::trim),
             None => Some(""),
@@ -148,7 +148,7 @@ struct CsvScan<R: std::io::Read> {
 impl<R: std::io::Read> CsvScan<R> {
     /// Prepares `input` for reading; a UTF-16 file is an error here. Memory: the
     /// reader's buffers and the line ends read ahead, not the file.
-    pub fn new(label: &str, input: R) -> Result<Self, DataError> {
+    pub(crate) fn new(label: &str, input: R) -> Result<Self, DataError> {
         let mut inner = std::io::BufReader::with_capacity(64 * 1024, input);
         let mut hasher = <sha2::Sha256 as sha2::Digest>::new();
         let head = std::io::BufRead::fill_buf(&mut inner)
@@ -183,7 +183,7 @@ impl<R: std::io::Read> CsvScan<R> {
 
     /// Reads what is left and returns the file's SHA-256 (lower-case hex), and
     /// whether it held anything but white space.
-    pub fn finish(self) -> std::io::Result<(String, bool)> {
+    pub(crate) fn finish(self) -> std::io::Result<(String, bool)> {
         let mut source = self.reader.into_inner();
         std::io::copy(&mut source, &mut std::io::sink())?;
         let digest = sha2::Digest::finalize(source.hasher);
@@ -230,7 +230,7 @@ impl<R: std::io::Read> CsvScan<R> {
 
     /// The next non-blank record, or `None` at the end. Problems with the
     /// record's bytes are pushed to `problems`.
-    pub fn next_record(&mut self, problems: &mut Vec<Problem>) -> Option<Record<'_>> {
+    pub(crate) fn next_record(&mut self, problems: &mut Vec<Problem>) -> Option<Record<'_>> {
         loop {
             match self.reader.read_byte_record(&mut self.record) {
                 Ok(false) => return None,
@@ -288,7 +288,7 @@ impl<R: std::io::Read> CsvScan<R> {
 
 /// The columns of one kind of table: a fieldless enum, one variant per column,
 /// which the table's code reads cells by.
-pub trait Columns: Copy + 'static {
+pub(crate) trait Columns: Copy + 'static {
     /// Every column in the canonical order (required ones first); `ALL[c.index()] == c`.
     const ALL: &'static [Self];
     /// What is said about a file with nothing but white space in it.
@@ -308,7 +308,7 @@ pub trait Columns: Copy + 'static {
 }
 
 /// A header line read against a table's columns.
-pub struct Header<C> {
+pub(crate) struct Header<C> {
     /// Line of the header in the file.
     pub line: u64,
     /// Names as written in the header (lower-cased, trimmed), in file order.
@@ -386,7 +386,7 @@ impl<C: Columns> Header<C> {
     }
 
     /// The 1-based column of `c` in the file, 0 when the file lacks it.
-    pub fn column(&self, c: C) -> usize {
+    pub(crate) fn column(&self, c: C) -> usize {
         self.positions[c.index()].map_or(0, |p| p + 1)
     }
 }
@@ -402,7 +402,7 @@ fn required_names<C: Columns>() -> String {
 }
 
 /// The cells of one data record, read by column, with the file's problem list.
-pub struct Cells<'a, 's, C> {
+pub(crate) struct Cells<'a, 's, C> {
     record: &'a Record<'s>,
     header: &'a Header<C>,
     problems: &'a mut Vec<Problem>,
@@ -412,7 +412,7 @@ pub struct Cells<'a, 's, C> {
 
 impl<'s, C: Columns> Cells<'_, 's, C> {
     /// The record's line.
-    pub fn line(&self) -> u64 {
+    pub(crate) fn line(&self) -> u64 {
         self.record.line
     }
 
@@ -423,7 +423,7 @@ impl<'s, C: Columns> Cells<'_, 's, C> {
 
     /// The cell of column `c`, trimmed: `Some("")` when empty or when the file
     /// lacks the column, `None` when not valid text (already reported).
-    pub fn text(&self, c: C) -> Option<&'s str> {
+    pub(crate) fn text(&self, c: C) -> Option<&'s str> {
         match self.header.positions[c.index()] {
             Some(p) => self.record.get(p),
             None => Some(""),
@@ -432,7 +432,7 @@ impl<'s, C: Columns> Cells<'_, 's, C> {
 
     /// The cell of column `c` read by `parse`; its error is reported at the cell.
     /// `None` when the cell is not valid text or `parse` refuses it.
-    pub fn parse<T>(
+    pub(crate) fn parse<T>(
         &mut self,
         c: C,
         parse: impl FnOnce(&'s str) -> Result<T, String>,
@@ -447,19 +447,19 @@ impl<'s, C: Columns> Cells<'_, 's, C> {
     }
 
     /// Reports a problem with the cell of column `c`.
-    pub fn bad(&mut self, c: C, message: impl Into<String>) {
+    pub(crate) fn bad(&mut self, c: C, message: impl Into<String>) {
         let column = self.header.column(c);
         self.problems
             .push(Problem::field(self.record.line, column, c.name(), message));
     }
 
     /// Reports a problem with the record as a whole.
-    pub fn bad_line(&mut self, message: impl Into<String>) {
+    pub(crate) fn bad_line(&mut self, message: impl Into<String>) {
         self.problems.push(Problem::line(self.record.line, message));
     }
 
     /// True when a problem was reported through these cells.
-    pub fn has_problems(&self) -> bool {
+    pub(crate) fn has_problems(&self) -> bool {
         self.problems.len() > self.before
     }
 }
@@ -478,11 +478,6 @@ impl<'s> Fields<'_, 's> {
     /// Number of fields on the line.
     pub fn len(&self) -> usize {
         self.record.len()
-    }
-
-    /// True for a record without fields (never handed on: blank records are skipped).
-    pub fn is_empty(&self) -> bool {
-        self.record.len() == 0
     }
 
     /// Field `i` (0-based) trimmed: `Some("")` when absent or empty, `None` when not
@@ -530,7 +525,7 @@ pub fn read_headerless(
 /// unknown) or when their field count differs from the header's; they are
 /// still read, so byte-level problems of the whole file are reported. Memory:
 /// one record at a time. Cost: O(bytes).
-pub fn read_table<C: Columns>(
+pub(crate) fn read_table<C: Columns>(
     label: &str,
     input: impl std::io::Read,
     mut row: impl FnMut(&mut Cells<'_, '_, C>),

@@ -17,7 +17,7 @@ pub struct Problem {
 
 impl Problem {
     /// A problem of the whole file (no line).
-    pub fn file(message: impl Into<String>) -> Self {
+    pub(crate) fn file(message: impl Into<String>) -> Self {
         Problem {
             line: None,
             column: None,
@@ -27,7 +27,7 @@ impl Problem {
     }
 
     /// A problem of one line, not tied to a field.
-    pub fn line(line: u64, message: impl Into<String>) -> Self {
+    pub(crate) fn line(line: u64, message: impl Into<String>) -> Self {
         Problem {
             line: Some(line),
             column: None,
@@ -37,7 +37,7 @@ impl Problem {
     }
 
     /// A problem of one field.
-    pub fn field(line: u64, column: usize, field: &str, message: impl Into<String>) -> Self {
+    pub(crate) fn field(line: u64, column: usize, field: &str, message: impl Into<String>) -> Self {
         Problem {
             line: Some(line),
             column: Some(column),
@@ -59,7 +59,7 @@ pub struct DataError {
 
 impl DataError {
     /// A single whole-file problem.
-    pub fn whole_file(file: &str, message: impl Into<String>) -> Self {
+    pub(crate) fn whole_file(file: &str, message: impl Into<String>) -> Self {
         DataError {
             file: file.to_string(),
             problems: vec![Problem::file(message)],

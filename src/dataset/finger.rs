@@ -1,7 +1,9 @@
 //! The five fingers and the names they go by.
 
+use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use std::borrow::Cow;
 use std::fmt;
 
 /// One finger of a hand, in the order the report lists them.
@@ -44,7 +46,7 @@ impl Finger {
     }
 
     /// The name with its indefinite article: "an index", "a ring".
-    pub fn with_article(self) -> String {
+    pub(crate) fn with_article(self) -> String {
         match self {
             Finger::Index => "an index".to_string(),
             other => format!("a {}", other.name()),
@@ -92,6 +94,21 @@ impl fmt::Display for Finger {
 impl Serialize for Finger {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.serialize_str(self.name())
+    }
+}
+
+impl JsonSchema for Finger {
+    fn schema_name() -> Cow<'static, str> {
+        "Finger".into()
+    }
+
+    /// The names [`Finger::serialize`] writes: [`Finger::name`] of each finger.
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        json_schema!({
+            "description": "A finger, by its canonical name.",
+            "type": "string",
+            "enum": Finger::ALL.map(Finger::name),
+        })
     }
 }
 

@@ -6,12 +6,13 @@
 use super::csvinput::read_input;
 use super::{DataError, Finger, Problem, Quantity};
 use crate::stats::Intervals;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// Statistics of one quantity at one snapshot.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema, Deserialize)]
 pub struct QuantityRecord {
     pub finger: Finger,
     pub quantity: Quantity,
@@ -24,14 +25,14 @@ pub struct QuantityRecord {
 }
 
 /// X-rays per finger at one snapshot.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, JsonSchema, Deserialize)]
 pub struct FingerCount {
     pub finger: Finger,
     pub n: usize,
 }
 
 /// Settings the snapshot's statistics were computed with.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema, Deserialize)]
 pub struct SnapshotSettings {
     pub resamples: usize,
     pub seed: u64,
@@ -39,7 +40,7 @@ pub struct SnapshotSettings {
 }
 
 /// What made a snapshot.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Event {
     /// `phalanx add`: rows were added to the dataset.
@@ -65,7 +66,7 @@ impl fmt::Display for Event {
 }
 
 /// One line of the history file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema, Deserialize)]
 pub struct Snapshot {
     /// UTC time, RFC 3339.
     pub time: String,
@@ -130,7 +131,7 @@ pub fn read(path: &Path) -> Result<Vec<Snapshot>, DataError> {
 
 /// The history file's bytes with one snapshot appended as a JSON line (a
 /// missing file is empty; a last line without its line end is completed).
-pub fn appended_bytes(path: &Path, snapshot: &Snapshot) -> std::io::Result<Vec<u8>> {
+pub(crate) fn appended_bytes(path: &Path, snapshot: &Snapshot) -> std::io::Result<Vec<u8>> {
     let mut bytes = match std::fs::read(path) {
         Ok(b) => b,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Vec::new(),
@@ -147,7 +148,7 @@ pub fn appended_bytes(path: &Path, snapshot: &Snapshot) -> std::io::Result<Vec<u
 /// Appends one snapshot as a JSON line. The file is replaced atomically (old
 /// lines, then the new one), so an interrupted append leaves the old history,
 /// never a torn line. Cost: O(size of the history).
-pub fn append(path: &Path, snapshot: &Snapshot) -> std::io::Result<()> {
+pub(crate) fn append(path: &Path, snapshot: &Snapshot) -> std::io::Result<()> {
     crate::atomic::replace(path, &appended_bytes(path, snapshot)?)
 }
 

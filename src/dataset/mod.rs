@@ -10,14 +10,14 @@
 //! that names a unit names the same one: lengths in different units are refused, not
 //! averaged.
 
-pub mod append;
+pub(crate) mod append;
 pub mod claims;
-pub mod csvinput;
-pub mod error;
-pub mod finger;
+pub(crate) mod csvinput;
+pub(crate) mod error;
+pub(crate) mod finger;
 pub mod history;
-pub mod landmarks;
-pub mod quantity;
+pub(crate) mod landmarks;
+pub(crate) mod quantity;
 pub mod tip;
 
 pub use error::{DataError, Problem};
@@ -32,15 +32,15 @@ use std::path::Path;
 use std::sync::Arc;
 
 /// Largest accepted segment length (any unit): beyond it squares of sums could overflow.
-pub const MAX_LENGTH: f64 = 1e100;
+pub(crate) const MAX_LENGTH: f64 = 1e100;
 /// Largest accepted ratio between the longest and the shortest segment of a finger.
-pub const MAX_SPREAD: f64 = 1e6;
+pub(crate) const MAX_SPREAD: f64 = 1e6;
 
 /// The columns of a measurement file: `xray`, `finger`, `j1`, `j2` and `j3` are
 /// required; the metacarpal `mc` and the metadata `sex`, `age`, `side`, `source`,
 /// `unit` and `tip` optional (and may be empty).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Column {
+pub(crate) enum Column {
     Xray,
     Finger,
     J1,
@@ -226,7 +226,7 @@ pub fn is_pixel_unit(unit: &str) -> bool {
 
 /// Parses one segment length, explaining what to fix when it is not a
 /// positive finite number.
-pub fn parse_length(text: &str) -> Result<f64, String> {
+pub(crate) fn parse_length(text: &str) -> Result<f64, String> {
     if text.is_empty() {
         return Err("is empty; enter the measured length (a positive number)".into());
     }
@@ -620,7 +620,7 @@ fn check_bounds(row: &Row) -> Result<(), String> {
 
 /// True for text a spreadsheet would evaluate: starting with `=`, `+` or `@`
 /// (a leading `-` is allowed: ids such as "-1" are plausible).
-pub fn looks_like_formula(text: &str) -> bool {
+pub(crate) fn looks_like_formula(text: &str) -> bool {
     text.starts_with(['=', '+', '@'])
 }
 

@@ -3,8 +3,10 @@
 //! and, where the metacarpal is measured, its ratios to the finger.
 
 use super::Finger;
+use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use std::borrow::Cow;
 
 /// A quantity measured once per X-ray of a finger.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -117,6 +119,21 @@ impl Quantity {
 impl Serialize for Quantity {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.serialize_str(self.name())
+    }
+}
+
+impl JsonSchema for Quantity {
+    fn schema_name() -> Cow<'static, str> {
+        "Quantity".into()
+    }
+
+    /// The names [`Quantity::serialize`] writes: [`Quantity::name`] of each quantity.
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        json_schema!({
+            "description": "A quantity, by its machine name: rel_j1..rel_j3 = J~k (eq. 2), ratio_j2_j1, ratio_j3_j2, total = J (eq. 1).",
+            "type": "string",
+            "enum": Quantity::ALL.map(Quantity::name),
+        })
     }
 }
 

@@ -7,7 +7,9 @@ use serde::Serialize;
 /// Written in the measurement file's `tip` column as `bone` or `skin`, or left empty when
 /// unknown. A tip at the skin includes the soft tissue beyond the distal phalanx and makes
 /// the last segment longer than a tip at the bone.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum TipKind {
     /// At the end of the distal phalanx (landmarks on the bone).
@@ -44,7 +46,7 @@ impl TipKind {
 }
 
 /// How many rows of a dataset put their fingertips where.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, schemars::JsonSchema)]
 pub struct TipCounts {
     pub bone: usize,
     pub skin: usize,

@@ -8,10 +8,10 @@ use crate::rig::judge::{Basis, FingerAudit, Standing};
 use crate::rig::{AuditedFinger, AuditedRig};
 
 /// Millimetres per rig unit (glTF units are metres).
-pub const MM: f64 = 1000.0;
+pub(crate) const MM: f64 = 1000.0;
 
 /// The caveats every audit carries.
-pub const CAVEATS: [&str; 3] = [
+pub(crate) const CAVEATS: [&str; 3] = [
     "The statistics come from X-rays of right hands; a left hand is judged as their mirror image.",
     "A rig's joints are rotation centres, while the X-ray lengths run between bone ends; the two differ by a few per cent, so read the prediction interval as a guide, not a verdict.",
     "A rig's tip usually sits at the skin and so includes the fingertip's soft tissue, which the distal phalanx on an X-ray does not; this lengthens a rig's last segment.",
@@ -19,7 +19,7 @@ pub const CAVEATS: [&str; 3] = [
 
 /// "inside the X-ray range", "OUTSIDE: too far towards the tip, 2.10 mm beyond the
 /// prediction interval", ...: how a joint stands.
-pub fn joint_standing(s: Standing, scale: f64) -> String {
+pub(crate) fn joint_standing(s: Standing, scale: f64) -> String {
     match s {
         Standing::InRange => "inside the X-ray range".into(),
         Standing::InPrediction => "inside the prediction interval".into(),
@@ -39,7 +39,7 @@ pub fn joint_standing(s: Standing, scale: f64) -> String {
 }
 
 /// How a unitless value stands.
-pub fn value_standing(s: Standing) -> String {
+pub(crate) fn value_standing(s: Standing) -> String {
     match s {
         Standing::InRange => "inside the X-ray range".into(),
         Standing::InPrediction => "inside the prediction interval".into(),
@@ -49,7 +49,7 @@ pub fn value_standing(s: Standing) -> String {
 }
 
 /// What a finger was judged on, in words.
-pub fn basis_words(a: &FingerAudit) -> String {
+pub(crate) fn basis_words(a: &FingerAudit) -> String {
     match a.basis {
         Basis::Relative => "judged on relative values (the rig has a tip)".into(),
         Basis::Ratio => "judged on J2/J1 only: the rig has no tip, so the finger's length, its DIP and J3 cannot be judged".into(),
@@ -58,7 +58,7 @@ pub fn basis_words(a: &FingerAudit) -> String {
 }
 
 /// A finger's heading: label, node names, segment lengths and length.
-pub fn heading(f: &AuditedFinger) -> String {
+pub(crate) fn heading(f: &AuditedFinger) -> String {
     let names: Vec<&str> = f.chain.joints.iter().map(|j| j.name.as_str()).collect();
     let segments: Vec<String> = f
         .audit
@@ -81,7 +81,7 @@ pub fn heading(f: &AuditedFinger) -> String {
 }
 
 /// The suggestion for one joint, in words.
-pub fn suggestion(j: &crate::rig::judge::JointCheck) -> String {
+pub(crate) fn suggestion(j: &crate::rig::judge::JointCheck) -> String {
     let towards = if j.shift_along >= 0.0 {
         "towards the tip"
     } else {
@@ -101,7 +101,7 @@ pub fn suggestion(j: &crate::rig::judge::JointCheck) -> String {
 }
 
 /// The terminal report of `phalanx audit`.
-pub fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> String {
+pub(crate) fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> String {
     let c = level(confidence);
     let mut out = format!(
         "Rig audit of {} against {data} ({n_note}); lengths in mm (glTF units are metres), {c} prediction intervals\n",
@@ -181,7 +181,7 @@ pub fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> Stri
 }
 
 /// The standing of a whole finger in one phrase, naming whatever lies outside.
-pub fn finger_summary(a: &FingerAudit) -> String {
+pub(crate) fn finger_summary(a: &FingerAudit) -> String {
     if a.basis == Basis::None {
         return "not judged (no tip)".into();
     }
@@ -228,7 +228,7 @@ pub fn finger_summary(a: &FingerAudit) -> String {
 }
 
 /// The measured value of `q` for a finger, when judged.
-pub fn value_of(a: &FingerAudit, q: Quantity) -> Option<f64> {
+pub(crate) fn value_of(a: &FingerAudit, q: Quantity) -> Option<f64> {
     a.values
         .iter()
         .find(|v| v.quantity == q)

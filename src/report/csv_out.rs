@@ -6,7 +6,7 @@ use crate::error::Error;
 use crate::format::{full, interval_bounds};
 
 /// Header of the statistics CSV.
-pub const STATS_COLUMNS: [&str; 22] = [
+pub(crate) const STATS_COLUMNS: [&str; 22] = [
     "finger",
     "quantity",
     "n",
@@ -33,7 +33,7 @@ pub const STATS_COLUMNS: [&str; 22] = [
 
 /// Neutralises a text cell against spreadsheet formula injection: a cell that
 /// starts with `=`, `+`, `-`, `@`, tab or carriage return gets a leading `'`.
-pub fn safe_cell(text: &str) -> String {
+pub(crate) fn safe_cell(text: &str) -> String {
     if text.starts_with(['=', '+', '-', '@', '\t', '\r']) {
         format!("'{text}")
     } else {
@@ -44,7 +44,7 @@ pub fn safe_cell(text: &str) -> String {
 /// The statistics as CSV bytes; empty cells where a value is null. With groups
 /// (`--group-by`), two leading columns `group_by` and `group` name each row's
 /// group (`all` for the whole dataset).
-pub fn stats(a: &Analysis, groups: &[Group]) -> Result<Vec<u8>, Error> {
+pub(crate) fn stats(a: &Analysis, groups: &[Group]) -> Result<Vec<u8>, Error> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let err = |e| Error::render("cannot write CSV", e);
     let by = groups.first().map(|g| g.by);

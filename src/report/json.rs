@@ -8,14 +8,15 @@ use crate::dataset::Finger;
 use crate::dataset::history::{Event, QuantityRecord, Snapshot};
 use crate::error::Error;
 use crate::stats::rng;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// Version of every JSON document phalanx writes; bumped on any incompatible change.
 pub const SCHEMA_VERSION: u32 = 1;
 
 /// The settings block of every JSON document.
-#[derive(Serialize)]
-pub struct SettingsView<'a> {
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct SettingsView<'a> {
     pub resamples: usize,
     pub seed: u64,
     pub confidence: f64,
@@ -25,7 +26,7 @@ pub struct SettingsView<'a> {
 
 impl SettingsView<'static> {
     /// The settings block for analysis settings.
-    pub fn of(s: &Settings) -> Self {
+    pub(crate) fn of(s: &Settings) -> Self {
         SettingsView {
             resamples: s.resamples,
             seed: s.seed,
@@ -36,8 +37,10 @@ impl SettingsView<'static> {
     }
 }
 
-#[derive(Serialize)]
-struct StatsDocument<'a> {
+/// The statistics document: `phalanx stats --format json` and `reports/stats.json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct StatsDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
     schema_version: u32,
     dataset: &'a DatasetInfo,
     settings: SettingsView<'static>,
@@ -47,7 +50,7 @@ struct StatsDocument<'a> {
 }
 
 /// Statistics per group (`--group-by`).
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 struct GroupsDocument<'a> {
     by: &'a str,
     groups: Vec<GroupSummary<'a>>,
@@ -89,8 +92,10 @@ pub fn write_stats(w: impl std::io::Write, a: &Analysis, groups: &[Group]) -> Re
         .map_err(|e| Error::render("cannot write the JSON statistics", e))
 }
 
-#[derive(Serialize)]
-struct CheckDocument<'a> {
+/// The claims check: `phalanx check --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct CheckDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
     schema_version: u32,
     dataset: &'a DatasetInfo,
     claims_file: &'a str,
@@ -113,8 +118,10 @@ pub fn check(
     })
 }
 
-#[derive(Serialize)]
-struct CoverageDocument<'a> {
+/// The simulated coverage of the intervals: `phalanx coverage --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct CoverageDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
     schema_version: u32,
     dataset: &'a DatasetInfo,
     settings: &'a CoverageSettings,
@@ -124,7 +131,7 @@ struct CoverageDocument<'a> {
 }
 
 /// What the coverage simulation assumes, for outputs.
-pub const COVERAGE_MODEL: &str = "normal model N(mean, sd^2) fitted to each quantity; n values drawn per simulated dataset; confidence intervals checked against the model mean, the prediction interval against one further draw";
+pub(crate) const COVERAGE_MODEL: &str = "normal model N(mean, sd^2) fitted to each quantity; n values drawn per simulated dataset; confidence intervals checked against the model mean, the prediction interval against one further draw";
 
 /// The document of `phalanx coverage --format json`.
 pub fn coverage(
@@ -142,20 +149,33 @@ pub fn coverage(
     })
 }
 
-#[derive(Serialize)]
+/// The values of one finger's quantity over the snapshots.
+#[derive(Serialize, JsonSchema)]
 struct HistorySeries<'a> {
     finger: Finger,
     quantity: Quantity,
     points: Vec<HistoryPoint<'a>>,
 }
 
-#[derive(Serialize)]
+/// One snapshot's statistics of a quantity.
+#[derive(Serialize, JsonSchema)]
 struct HistoryPoint<'a> {
     snapshot: usize,
     time: &'a str,
     event: Event,
     sha256: &'a str,
     record: &'a QuantityRecord,
+}
+
+/// The statistics over time: `phalanx history --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct HistoryDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
+    schema_version: u32,
+    /// Snapshots in the history file.
+    snapshots: usize,
+    /// One series per finger and quantity.
+    series: Vec<HistorySeries<'a>>,
 }
 
 /// The document of `phalanx history --format json`: one series per finger and quantity.
@@ -189,17 +209,21 @@ pub fn history(
                 .collect(),
         })
         .collect();
-    #[derive(Serialize)]
-    struct Doc<'a> {
-        schema_version: u32,
-        snapshots: usize,
-        series: Vec<HistorySeries<'a>>,
-    }
-    to_bytes(&Doc {
+    to_bytes(&HistoryDocument {
         schema_version: SCHEMA_VERSION,
         snapshots: snaps.len(),
         series,
     })
+}
+
+/// Joint positions for model fingers: `phalanx place --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct PlacementDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
+    schema_version: u32,
+    dataset: &'a DatasetInfo,
+    settings: SettingsView<'static>,
+    placements: &'a [crate::analysis::placement::FingerPlacement],
 }
 
 /// The document of `phalanx place --format json`.
@@ -207,14 +231,7 @@ pub fn placement(
     a: &Analysis,
     ps: &[crate::analysis::placement::FingerPlacement],
 ) -> Result<Vec<u8>, Error> {
-    #[derive(Serialize)]
-    struct Doc<'a> {
-        schema_version: u32,
-        dataset: &'a DatasetInfo,
-        settings: SettingsView<'static>,
-        placements: &'a [crate::analysis::placement::FingerPlacement],
-    }
-    to_bytes(&Doc {
+    to_bytes(&PlacementDocument {
         schema_version: SCHEMA_VERSION,
         dataset: &a.dataset,
         settings: SettingsView::of(&a.settings),
@@ -223,7 +240,7 @@ pub fn placement(
 }
 
 /// What `audit --fix` did, for the audit document.
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 pub struct FixView<'a> {
     pub output: &'a str,
     /// Moved joints: node name and distance moved, in rig units.
@@ -232,10 +249,28 @@ pub struct FixView<'a> {
 }
 
 /// One moved joint.
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 pub struct MovedView<'a> {
     pub node: &'a str,
     pub shift: f64,
+}
+
+/// A rig's finger joints judged against the X-rays: `phalanx audit --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct AuditDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
+    schema_version: u32,
+    dataset: &'a DatasetInfo,
+    settings: SettingsView<'static>,
+    /// Units of every length and position: "m".
+    units: &'static str,
+    rig: &'a crate::rig::AuditedRig,
+    /// Fingers with a joint or value outside the prediction interval.
+    fingers_outside: usize,
+    caveats: &'static [&'static str],
+    /// What `--fix` did (only with `--fix`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fix: Option<FixView<'a>>,
 }
 
 /// The document of `phalanx audit --format json`.
@@ -244,19 +279,7 @@ pub fn audit(
     rig: &crate::rig::AuditedRig,
     fix: Option<FixView<'_>>,
 ) -> Result<Vec<u8>, Error> {
-    #[derive(Serialize)]
-    struct Doc<'a> {
-        schema_version: u32,
-        dataset: &'a DatasetInfo,
-        settings: SettingsView<'static>,
-        units: &'static str,
-        rig: &'a crate::rig::AuditedRig,
-        fingers_outside: usize,
-        caveats: &'static [&'static str],
-        #[serde(skip_serializing_if = "Option::is_none")]
-        fix: Option<FixView<'a>>,
-    }
-    to_bytes(&Doc {
+    to_bytes(&AuditDocument {
         schema_version: SCHEMA_VERSION,
         dataset: &a.dataset,
         settings: SettingsView::of(&a.settings),
@@ -268,9 +291,10 @@ pub fn audit(
     })
 }
 
-/// The document of `phalanx compare --format json`.
-#[derive(Serialize)]
-struct CompareDocument<'a> {
+/// Two cohorts compared: `phalanx compare A B --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct CompareDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
     schema_version: u32,
     settings: SettingsView<'static>,
     /// How the statistics are defined, in words.
@@ -282,7 +306,7 @@ struct CompareDocument<'a> {
 }
 
 /// One finger of the comparison document, with its sentence.
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 struct CompareFinger<'a> {
     #[serde(flatten)]
     comparison: &'a crate::analysis::compare::FingerComparison,
@@ -317,22 +341,29 @@ pub fn compare(c: &crate::analysis::compare::Cohorts) -> Result<Vec<u8>, Error> 
 /// What the population simulation does, for outputs.
 pub const POPULATION_MODEL: &str = "the dataset is the population of hands: samples of n X-rays drawn with replacement, one further X-ray drawn for the prediction interval; quantities of the same X-rays share each sample and its bootstrap; confidence intervals checked against the population mean; the normal model (coverage depends on n alone) beside it";
 
+/// Coverage measured on a real population of hands:
+/// `phalanx coverage --population DATASET --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct PopulationDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
+    schema_version: u32,
+    /// The dataset taken as the population.
+    population: &'a str,
+    rng: &'a str,
+    /// What the simulation does, in words.
+    model: &'a str,
+    #[serde(flatten)]
+    study: &'a crate::analysis::population::PopulationStudy,
+    /// Each method's coverage per sample size over the quantities (mean, min, max).
+    pooled: Vec<crate::analysis::population::Pooled>,
+}
+
 /// The document of `phalanx coverage --population DATASET --format json`.
 pub fn population(
     path: &str,
     study: &crate::analysis::population::PopulationStudy,
 ) -> Result<Vec<u8>, Error> {
-    #[derive(Serialize)]
-    struct Doc<'a> {
-        schema_version: u32,
-        population: &'a str,
-        rng: &'a str,
-        model: &'a str,
-        #[serde(flatten)]
-        study: &'a crate::analysis::population::PopulationStudy,
-        pooled: Vec<crate::analysis::population::Pooled>,
-    }
-    to_bytes(&Doc {
+    to_bytes(&PopulationDocument {
         schema_version: SCHEMA_VERSION,
         population: path,
         rng: rng::RNG_NAME,

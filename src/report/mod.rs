@@ -4,15 +4,16 @@
 //! renderer is pure (returns bytes or text); files are written in one place,
 //! [`writer::write_all`].
 
-pub mod audit;
-pub mod compare;
-pub mod csv_out;
+pub(crate) mod audit;
+pub(crate) mod compare;
+pub(crate) mod csv_out;
 pub mod json;
 pub mod plots;
-pub mod progress;
+pub(crate) mod progress;
 pub mod render;
 pub mod render3d;
-pub mod text;
+pub(crate) mod schema;
+pub(crate) mod text;
 pub mod view;
 pub mod writer;
 

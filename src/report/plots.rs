@@ -87,7 +87,7 @@ pub fn forest_plot(a: &Analysis) -> Result<Plot, Error> {
 
 /// One snapshot of one quantity: the number of X-rays, the mean, its t interval.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TrackPoint {
+pub(crate) struct TrackPoint {
     pub xrays: usize,
     pub mean: f64,
     pub ci: Option<(f64, f64)>,
@@ -95,7 +95,7 @@ pub struct TrackPoint {
 
 /// The history of one relative quantity of a finger, in snapshot order.
 #[derive(Debug, Clone, PartialEq)]
-pub struct TrackSeries {
+pub(crate) struct TrackSeries {
     /// Display label, e.g. "J~1 = J1/J".
     pub label: String,
     pub points: Vec<TrackPoint>,
@@ -103,7 +103,7 @@ pub struct TrackSeries {
 
 /// Tracking plot of one finger (id `tracking-<finger>`): for each relative quantity,
 /// the mean against the number of X-rays with its t confidence band.
-pub fn tracking_plot(
+pub(crate) fn tracking_plot(
     finger: crate::dataset::Finger,
     series: &[TrackSeries],
     confidence: f64,
@@ -111,11 +111,11 @@ pub fn tracking_plot(
     tracking::plot(finger, series, confidence)
 }
 
-pub use rigs::RigRatios;
+pub(crate) use rigs::RigRatios;
 
 /// Rig plot (id `rigs`): each rig's J2/J1 and J3/J2 per finger against the
 /// X-rays' mean, observed range and prediction interval.
-pub fn rigs_plot(a: &Analysis, rigs: &[RigRatios]) -> Result<Plot, Error> {
+pub(crate) fn rigs_plot(a: &Analysis, rigs: &[RigRatios]) -> Result<Plot, Error> {
     rigs::plot(a, rigs)
 }
 

@@ -6,17 +6,17 @@ use std::io::IsTerminal;
 
 /// Work (resamples x measurement rows) above which a bar is worth showing:
 /// about a second on a current machine.
-pub const SHOW_ABOVE: u64 = 200_000_000;
+pub(crate) const SHOW_ABOVE: u64 = 200_000_000;
 
 /// A bar of resamples done, drawn only when standard error is a terminal.
-pub struct TerminalProgress {
+pub(crate) struct TerminalProgress {
     bar: ProgressBar,
 }
 
 impl TerminalProgress {
     /// A bar that shows when `quiet` is off, standard error is a terminal and
     /// the expected work (`resamples * rows`) exceeds [`SHOW_ABOVE`].
-    pub fn new(quiet: bool, resamples: usize, rows: usize) -> TerminalProgress {
+    pub(crate) fn new(quiet: bool, resamples: usize, rows: usize) -> TerminalProgress {
         let work = (resamples as u64).saturating_mul(rows as u64);
         let visible = !quiet && std::io::stderr().is_terminal() && work > SHOW_ABOVE;
         let target = if visible {
@@ -34,7 +34,7 @@ impl TerminalProgress {
     }
 
     /// Removes the bar from the terminal.
-    pub fn finish(&self) {
+    pub(crate) fn finish(&self) {
         self.bar.finish_and_clear();
     }
 }

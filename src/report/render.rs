@@ -87,7 +87,7 @@ impl Templates {
 /// Escapes text for GitHub-flavoured Markdown, inside or outside a table:
 /// HTML is shown as text, `|` cannot end a cell, line breaks cannot end a row,
 /// and emphasis, code, link and heading syntax is neutralised.
-pub fn escape_markdown(text: &str) -> String {
+pub(crate) fn escape_markdown(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for ch in text.chars() {
         match ch {
@@ -107,7 +107,7 @@ pub fn escape_markdown(text: &str) -> String {
 }
 
 /// Escapes text for a Markdown code span inside a table cell.
-pub fn escape_markdown_code(text: &str) -> String {
+pub(crate) fn escape_markdown_code(text: &str) -> String {
     text.replace(['`', '\r', '\n'], " ").replace('|', "\\|")
 }
 

@@ -25,7 +25,7 @@ pub(super) fn table(header: &[&str], right_from: usize) -> Table {
 }
 
 /// The statistics of every finger, 4 decimals for relative values as in the paper.
-pub fn stats(a: &Analysis) -> String {
+pub(crate) fn stats(a: &Analysis) -> String {
     let c = level(a.settings.confidence);
     let mut out = format!(
         "phalanx statistics of {} ({} X-rays, {} rows); confidence {c}, seed {}\n",
@@ -99,7 +99,7 @@ pub fn dataset_notes(a: &Analysis) -> Vec<String> {
 pub const PIXEL_NOTE: &str = "lengths are in pixels (px) of images whose scale differs, so the total length J and the metacarpal are not comparable across X-rays and are not averaged; the relative values and ratios are. Import with --pixel-spacing MM for lengths in millimetres";
 
 /// The statistics of the whole dataset, then of each group (`--group-by`).
-pub fn stats_with_groups(a: &Analysis, groups: &[crate::analysis::groups::Group]) -> String {
+pub(crate) fn stats_with_groups(a: &Analysis, groups: &[crate::analysis::groups::Group]) -> String {
     let mut out = stats(a);
     for g in groups {
         out.push_str(&format!(
@@ -123,7 +123,7 @@ pub fn stats_with_groups(a: &Analysis, groups: &[crate::analysis::groups::Group]
 }
 
 /// The claim-by-claim check, then a summary line.
-pub fn check(results: &[ClaimResult]) -> String {
+pub(crate) fn check(results: &[ClaimResult]) -> String {
     let mut t = table(&["claim", "where", "stated", "computed", "verdict"], 2);
     for r in results {
         let computed = match r.computed_rounded {
@@ -174,7 +174,7 @@ pub fn check(results: &[ClaimResult]) -> String {
 }
 
 /// The simulated coverage of each interval method, per finger and quantity.
-pub fn coverage(rows: &[QuantityCoverage], settings: &CoverageSettings) -> String {
+pub(crate) fn coverage(rows: &[QuantityCoverage], settings: &CoverageSettings) -> String {
     let mut t = table(
         &[
             "finger",
@@ -208,7 +208,7 @@ pub fn coverage(rows: &[QuantityCoverage], settings: &CoverageSettings) -> Strin
 }
 
 /// The history of each selected quantity, snapshot by snapshot.
-pub fn history(
+pub(crate) fn history(
     path: &std::path::Path,
     snaps: &[Snapshot],
     finger: Option<Finger>,
@@ -274,7 +274,10 @@ pub fn history(
 }
 
 /// Joint positions and segment lengths of model fingers, one table each.
-pub fn placement(ps: &[crate::analysis::placement::FingerPlacement], confidence: f64) -> String {
+pub(crate) fn placement(
+    ps: &[crate::analysis::placement::FingerPlacement],
+    confidence: f64,
+) -> String {
     let c = level(confidence);
     let mut out = String::new();
     for p in ps {

@@ -92,7 +92,11 @@ pub struct NeededRow {
     pub n: String,
     pub sd: String,
     pub half_width: String,
+    /// Plug-in: the current SD taken as the truth.
     pub needed: String,
+    /// With 80% assurance (Kupper and Hafner 1989).
+    pub assured: String,
+    /// X-rays still to measure for the assured n.
     pub more: String,
 }
 
@@ -205,7 +209,7 @@ pub struct IntervalCells {
 }
 
 impl IntervalCells {
-    /// The cells of `iv` with `d` decimals (from [`interval_cells`]).
+    /// The cells of `iv` with `d` decimals (from `format::interval_cells`).
     pub fn new(iv: &Intervals, d: usize) -> IntervalCells {
         let [ci_t, ci_percentile, ci_bca, pi] = interval_cells(iv, d);
         IntervalCells {
@@ -544,14 +548,13 @@ fn stats(f: &crate::analysis::FingerAnalysis) -> StatsFinger {
             }
         })
         .collect();
-    let notes = f
-        .quantities
-        .iter()
-        .flat_map(|q| {
+    let notes = crate::analysis::plausible::swapped_segments(f)
+        .into_iter()
+        .chain(f.quantities.iter().flat_map(|q| {
             q.notes
                 .iter()
                 .map(move |n| format!("{}: {n}", q.name.label()))
-        })
+        }))
         .collect();
     StatsFinger {
         finger: f.finger.display_name().to_string(),
@@ -781,9 +784,12 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
                 .iter()
                 .filter(|q| q.name.is_relative())
                 .map(move |q| {
-                    let need = q.sd.and_then(|sd| {
-                        crate::analysis::tracking::xrays_needed(sd, inputs.target, c)
-                    });
+                    use crate::analysis::tracking::{
+                        ASSURANCE, xrays_needed, xrays_needed_assured,
+                    };
+                    let need = q.sd.and_then(|sd| xrays_needed(sd, inputs.target, c));
+                    let assured =
+                        q.sd.and_then(|sd| xrays_needed_assured(sd, inputs.target, c, ASSURANCE));
                     NeededRow {
                         finger: f.finger.display_name().to_string(),
                         quantity: q.name.label().to_string(),
@@ -791,7 +797,8 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
                         sd: opt(q.sd, 4),
                         half_width: opt(q.intervals.ci_t.map(|i| i.width() / 2.0), 4),
                         needed: need.map_or_else(|| "n/a".to_string(), |n| n.to_string()),
-                        more: match need {
+                        assured: assured.map_or_else(|| "n/a".to_string(), |n| n.to_string()),
+                        more: match assured {
                             Some(n) if n <= q.n => "reached".to_string(),
                             Some(n) => format!("{} more", n - q.n),
                             None => "n/a".to_string(),

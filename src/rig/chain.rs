@@ -9,7 +9,7 @@
 use glam::DVec3;
 
 /// The point at arc length `u` along the polyline `points` (clamped to its ends). O(m).
-pub fn point_at(points: &[DVec3], u: f64) -> DVec3 {
+pub(crate) fn point_at(points: &[DVec3], u: f64) -> DVec3 {
     let mut left = u.max(0.0);
     for w in points.windows(2) {
         let c = w[0].distance(w[1]);
@@ -26,7 +26,7 @@ pub fn point_at(points: &[DVec3], u: f64) -> DVec3 {
 }
 
 /// Arc positions of the vertices of a polyline: 0, c_1, c_1 + c_2, ... O(m).
-pub fn arc_positions(points: &[DVec3]) -> Vec<f64> {
+pub(crate) fn arc_positions(points: &[DVec3]) -> Vec<f64> {
     let mut out = Vec::with_capacity(points.len());
     let mut acc = 0.0;
     out.push(0.0);
@@ -80,7 +80,7 @@ fn forward_at(points: &[DVec3], arcs: &[f64], u0: f64, q: DVec3, d: f64) -> Opti
 /// before, and C is bisected until the last chord is share_m x C; so the points
 /// keep their order on the chain. 200 bisection steps, O(m) each. `None` when
 /// the chain is degenerate (non-finite, zero length) or no such C exists.
-pub fn on_chain(points: &[DVec3], shares: &[f64]) -> Option<(Vec<DVec3>, Vec<f64>)> {
+pub(crate) fn on_chain(points: &[DVec3], shares: &[f64]) -> Option<(Vec<DVec3>, Vec<f64>)> {
     let m = points.len().checked_sub(1)?;
     if m < 2 || shares.len() != m || shares.iter().any(|s| !(s.is_finite() && *s > 0.0)) {
         return None;

@@ -15,13 +15,14 @@
 //!
 //! Suggested positions stay on the rig's own chain (the polyline through its
 //! joints), with root and tip (or DIP) fixed, and are solved so the new chords
-//! have exactly the mean proportions (see [`super::chain`]). No files, no glTF.
+//! have exactly the mean proportions (see `rig::chain`). No files, no glTF.
 
 use super::chain::{arc_positions, on_chain};
 use crate::analysis::placement::{Joint, Placed};
 use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
 use crate::dataset::Finger;
 use glam::DVec3;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// One finger of a rig, as joint centres from the root.
@@ -41,7 +42,7 @@ impl ChainInput {
 }
 
 /// What a finger was judged on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Basis {
     /// Relative values J~k: the rig has a tip.
@@ -53,7 +54,7 @@ pub enum Basis {
 }
 
 /// Where a measured value stands against the statistics.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 #[serde(tag = "standing", rename_all = "snake_case")]
 pub enum Standing {
     /// Inside the observed range [min, max] of the X-rays.
@@ -103,7 +104,7 @@ impl Standing {
 }
 
 /// One quantity of a rig finger against the X-rays.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct ValueCheck {
     pub quantity: Quantity,
     pub measured: f64,
@@ -115,7 +116,7 @@ pub struct ValueCheck {
 }
 
 /// One inner joint of a rig finger against the X-rays, in the rig's units.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct JointCheck {
     pub joint: Joint,
     /// Distance from the root along the chain, as the rig has it.
@@ -128,6 +129,7 @@ pub struct JointCheck {
     #[serde(flatten)]
     pub standing: Standing,
     /// The joint at the mean, on the rig's chain.
+    #[schemars(with = "[f64; 3]")]
     pub suggested: DVec3,
     /// Distance from the rig's joint to the suggested one.
     pub shift: f64,
@@ -137,7 +139,7 @@ pub struct JointCheck {
 }
 
 /// A rig finger judged against the X-ray statistics.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct FingerAudit {
     pub finger: Finger,
     pub has_tip: bool,

@@ -54,7 +54,7 @@ pub struct NameMap {
     /// The map file as named by the user.
     pub file: String,
     /// Node name -> (side, finger, slot, line).
-    pub entries: HashMap<String, (Option<Side>, Finger, Slot, u64)>,
+    pub(crate) entries: HashMap<String, (Option<Side>, Finger, Slot, u64)>,
 }
 
 impl NameMap {

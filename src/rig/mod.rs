@@ -1,6 +1,6 @@
 //! Rigged hands: reading their finger chains from a glTF 2.0 file, judging
 //! them against the X-ray statistics ([`judge`], on the chain geometry of
-//! [`chain`]) and writing a fixed copy ([`fix`]).
+//! `chain`) and writing a fixed copy ([`fix`]).
 //!
 //! Joint positions are the world translations of the joint nodes in the
 //! file's node pose (the bind pose of an exported rig), in the file's units
@@ -10,7 +10,7 @@
 //! read by [`naming`], VRM's humanoid bone tables when present, and a
 //! `--map` file ([`map`]) first of all.
 
-pub mod chain;
+pub(crate) mod chain;
 pub mod deform;
 pub mod fix;
 pub mod judge;
@@ -26,12 +26,13 @@ use glam::{DMat4, DQuat, DVec3};
 use judge::ChainInput;
 use map::NameMap;
 use naming::{Part, Side, Slot};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 /// One joint of a rig finger.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct RigJoint {
     pub joint: Joint,
     /// Index of the node in the glTF file (`None` for reference rigs).
@@ -39,11 +40,12 @@ pub struct RigJoint {
     /// The node's name.
     pub name: String,
     /// World position in the node pose.
+    #[schemars(with = "[f64; 3]")]
     pub position: DVec3,
 }
 
 /// One finger chain found in a rig: root (MCP), inner joints, and the tip when present.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct FingerChain {
     /// `None` when the names do not say (a one-hand file such as WebXR's).
     pub side: Option<Side>,
@@ -87,7 +89,7 @@ pub struct GltfFile {
 }
 
 /// The local matrix of a node, in f64.
-pub fn local_matrix(node: &gltf::Node<'_>) -> DMat4 {
+pub(crate) fn local_matrix(node: &gltf::Node<'_>) -> DMat4 {
     match node.transform() {
         gltf::scene::Transform::Matrix { matrix } => {
             DMat4::from_cols_array_2d(&matrix.map(|c| c.map(f64::from)))
@@ -286,7 +288,7 @@ fn below(parent: &[Option<usize>], node: usize, ancestor: usize) -> bool {
 
 /// A node name fit for a message or a terminal: quoted, control characters
 /// replaced, at most 80 characters.
-pub fn shown(name: &str) -> String {
+pub(crate) fn shown(name: &str) -> String {
     let clean: String = name
         .chars()
         .map(|c| if c.is_control() { '\u{FFFD}' } else { c })
@@ -319,7 +321,7 @@ fn quietly<T>(f: impl FnOnce() -> T) -> Option<T> {
 }
 
 /// World matrices from parents and local matrices; `None` on a cycle. O(n depth).
-pub fn world_matrices(parent: &[Option<usize>], locals: &[DMat4]) -> Option<Vec<DMat4>> {
+pub(crate) fn world_matrices(parent: &[Option<usize>], locals: &[DMat4]) -> Option<Vec<DMat4>> {
     let n = locals.len();
     let mut world: Vec<Option<DMat4>> = vec![None; n];
     for start in 0..n {
@@ -697,7 +699,7 @@ fn no_hand(label: &str, names: &[String], notes: Vec<String>) -> DataError {
 }
 
 /// A rig finger with its judgement.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct AuditedFinger {
     #[serde(flatten)]
     pub chain: FingerChain,
@@ -705,7 +707,7 @@ pub struct AuditedFinger {
 }
 
 /// Every finger of a rig judged against the statistics.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct AuditedRig {
     /// The file (or reference rig) the chains come from.
     pub label: String,

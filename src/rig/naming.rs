@@ -19,11 +19,12 @@
 
 use crate::dataset::Finger;
 use regex::Regex;
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::sync::LazyLock;
 
 /// Which hand.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Side {
     Left,
@@ -50,7 +51,7 @@ impl Side {
 
 /// A joint position along a finger, including the thumb's CMC that is not used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Slot {
+pub(crate) enum Slot {
     /// Carpometacarpal (or a finger's metacarpal bone): before the root, unused.
     Carpal,
     Mcp,
@@ -63,7 +64,7 @@ pub enum Slot {
 
 /// A part as the name spells it, before the finger decides its meaning.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Part {
+pub(crate) enum Part {
     /// Numbered 1..=5 (a suffix like `_end` already added one).
     Number(u8),
     Metacarpal,
@@ -75,7 +76,7 @@ pub enum Part {
 
 /// What a name says.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Parsed {
+pub(crate) struct Parsed {
     pub side: Option<Side>,
     pub finger: Finger,
     pub part: Part,
@@ -106,13 +107,9 @@ fn pattern(sides: &str) -> Regex {
 static PATTERN: LazyLock<Regex> = LazyLock::new(|| pattern("right|left|r|l"));
 static PATTERN_WORDS: LazyLock<Regex> = LazyLock::new(|| pattern("right|left"));
 
-/// The name compared: namespace dropped, lower case, letters and digits only.
-pub fn compact(name: &str) -> String {
-    compact_with_origin(name).0
-}
-
-/// The compact name and, for each of its characters, the one before it in the
-/// name without the namespace (`None` at the start).
+/// The name compared (namespace dropped, lower case, letters and digits only)
+/// and, for each of its characters, the one before it in the name without the
+/// namespace (`None` at the start).
 fn compact_with_origin(name: &str) -> (String, Vec<Option<char>>) {
     let base = name.rsplit([':', '|']).next().unwrap_or(name);
     let mut out = String::new();
@@ -153,7 +150,7 @@ const NOT_JOINTS: [&str; 12] = [
 const MAX_NAME: usize = 256;
 
 /// Reads a node name; `None` when it names no finger joint.
-pub fn parse(name: &str) -> Option<Parsed> {
+pub(crate) fn parse(name: &str) -> Option<Parsed> {
     if name.len() > MAX_NAME {
         return None;
     }
@@ -208,7 +205,7 @@ pub fn parse(name: &str) -> Option<Parsed> {
 
 /// The slot of a part on `finger`; `vrm0_thumb` when the thumb's names follow
 /// VRM 0.x (it has an `intermediate`). `None` past the tip.
-pub fn slot(finger: Finger, part: Part, vrm0_thumb: bool) -> Option<Slot> {
+pub(crate) fn slot(finger: Finger, part: Part, vrm0_thumb: bool) -> Option<Slot> {
     let thumb = finger == Finger::Thumb;
     Some(match part {
         Part::Number(1) if thumb => Slot::Carpal,

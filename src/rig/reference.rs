@@ -40,7 +40,7 @@ pub struct ReferenceRig {
 }
 
 /// Parses one reference rig; `label` names it in errors. Every problem is reported.
-pub fn parse(label: &str, id: &str, bytes: &[u8]) -> Result<ReferenceRig, DataError> {
+pub(crate) fn parse(label: &str, id: &str, bytes: &[u8]) -> Result<ReferenceRig, DataError> {
     let doc: RigJson = serde_json::from_slice(bytes).map_err(|e| DataError {
         file: label.to_string(),
         problems: vec![Problem {

@@ -57,6 +57,8 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     let fix_glb = req.fix.map(|out| fix_container(req.rig, out)).transpose()?;
     let rig = Rig::load(req.rig, map.as_ref())?;
     let dataset = Dataset::load(req.data)?;
+    analysis::budget::check_bootstrap(dataset.xray_count(), req.settings.resamples)
+        .map_err(Error::Usage)?;
     let analysis = analysis::analyse(&dataset, &req.settings);
     let audited = AuditedRig::of(&rig.file.label, &rig.chains, &rig.notes, &analysis);
     let fix = match (req.fix, fix_glb) {

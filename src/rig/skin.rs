@@ -68,7 +68,7 @@ impl SkinnedMesh {
         self.influences_of(v).first().map(|&(j, _)| j)
     }
 
-    /// Skin matrices S_j = world[node_j] B_j for given world matrices of all
+    /// Skin matrices `S_j = world[node_j] B_j` for given world matrices of all
     /// nodes (the bind pose M_j with the file's node pose). A joint whose node
     /// is past the end of `world` gets the identity.
     pub fn skin_matrices(&self, world: &[DMat4]) -> Vec<DMat4> {

@@ -5,6 +5,7 @@
 use super::Interval;
 use super::bootstrap::{self, Sorted};
 use super::describe;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// The four intervals around a mean; each is `None` where it is undefined.
@@ -12,7 +13,7 @@ use serde::{Deserialize, Serialize};
 /// Serialised as the four keys `ci_t`, `ci_percentile`, `ci_bca` and `pi`, each
 /// `[low, high]` or null; a struct that holds it with `#[serde(flatten)]` keeps
 /// those keys at its own level. A missing key reads as null.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, JsonSchema, Deserialize)]
 pub struct Intervals {
     /// Student-t confidence interval of the mean: mean +/- t sd / sqrt(n).
     pub ci_t: Option<Interval>,
@@ -48,7 +49,7 @@ impl Intervals {
     /// level `confidence`, given its mean, its SD and the sorted bootstrap
     /// distribution of its mean. BCa may be undefined; the reason comes back
     /// with it. Cost: O(n) plus O(log m) per bootstrap quantile.
-    pub fn of_mean(
+    pub(crate) fn of_mean(
         sample: &[f64],
         mean: f64,
         sd: f64,

@@ -1,6 +1,8 @@
 //! A closed interval of real numbers.
 
+use schemars::{JsonSchema, Schema, SchemaGenerator};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use std::borrow::Cow;
 
 /// A closed interval `[low, high]`; serialised as a two-element array.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,6 +40,22 @@ impl Interval {
 impl Serialize for Interval {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         [self.low, self.high].serialize(s)
+    }
+}
+
+impl JsonSchema for Interval {
+    fn schema_name() -> Cow<'static, str> {
+        "Interval".into()
+    }
+
+    /// The schema of what [`Interval::serialize`] writes: `[low, high]`.
+    fn json_schema(generator: &mut SchemaGenerator) -> Schema {
+        let mut schema = <[f64; 2]>::json_schema(generator);
+        schema.insert(
+            "description".into(),
+            "A closed interval [low, high].".into(),
+        );
+        schema
     }
 }
 

@@ -8,10 +8,10 @@
 //! its few messages call the unit resampled an X-ray, as phalanx's users do.
 
 pub mod bootstrap;
-pub mod describe;
-pub mod estimate;
-pub mod interval;
-pub mod rng;
+pub(crate) mod describe;
+pub(crate) mod estimate;
+pub(crate) mod interval;
+pub(crate) mod rng;
 
 pub use estimate::Intervals;
 pub use interval::Interval;

@@ -27,8 +27,8 @@ mod long;
 pub mod names;
 mod output;
 
-pub use names::{Joint, Landmark};
-pub use output::{OUTPUT_COLUMNS, write_csv};
+pub use names::Landmark;
+pub use output::write_csv;
 
 pub use super::TipKind;
 use super::csvinput::{self, quote};
@@ -58,24 +58,17 @@ pub enum Layout {
 
 impl Layout {
     /// Every layout.
+    #[cfg(test)]
     pub const ALL: [Layout; 3] = [Layout::Atlas37, Layout::Coco, Layout::Long];
 
-    /// The accepted names, for error messages and `--help`.
-    pub const ACCEPTED: &'static str = "atlas37, coco, long";
-
     /// The layout's name: `atlas37`, `coco`, `long`.
+    #[cfg(test)]
     pub fn name(self) -> &'static str {
         match self {
             Layout::Atlas37 => "atlas37",
             Layout::Coco => "coco",
             Layout::Long => "long",
         }
-    }
-
-    /// Parses a layout name, case-insensitively.
-    pub fn parse(text: &str) -> Option<Layout> {
-        let t = text.trim().to_ascii_lowercase();
-        Layout::ALL.into_iter().find(|l| l.name() == t)
     }
 
     /// Where the layout's fingertips are unless the options say: `bone` for the atlas
@@ -111,15 +104,6 @@ impl Side {
         match self {
             Side::Left => "left",
             Side::Right => "right",
-        }
-    }
-
-    /// Parses `left`/`l` or `right`/`r`, case-insensitively.
-    pub fn parse(text: &str) -> Option<Side> {
-        match text.trim().to_ascii_lowercase().as_str() {
-            "left" | "l" => Some(Side::Left),
-            "right" | "r" => Some(Side::Right),
-            _ => None,
         }
     }
 }
@@ -203,6 +187,7 @@ pub struct LandmarkRow {
     pub tip: Option<TipKind>,
 }
 
+#[cfg(test)]
 impl LandmarkRow {
     /// `[J1, J2]` for the thumb, `[J1, J2, J3]` otherwise.
     pub fn segments(&self) -> &[f64] {

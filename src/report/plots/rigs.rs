@@ -22,7 +22,7 @@ const TOP_PX: u32 = 10;
 
 /// One rig's ratios: (finger, quantity, value).
 #[derive(Debug, Clone, PartialEq)]
-pub struct RigRatios {
+pub(crate) struct RigRatios {
     pub name: String,
     pub values: Vec<(Finger, Quantity, f64)>,
 }

@@ -47,7 +47,7 @@
 //! offset does).
 //!
 //! **Self-intersection**: pairs of the finger's triangles that cross in the
-//! pose and did not at rest ([`super::intersect`]); each pair is counted in
+//! pose and did not at rest (`intersect`); each pair is counted in
 //! the zone of the mean of its two rest centroids.
 //!
 //! **Edge strain**: for each edge of the finger's triangles, |ln(L_pose /

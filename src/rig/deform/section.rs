@@ -23,7 +23,7 @@ pub(crate) struct Cut {
 
 impl Cut {
     /// The same surface point on the mesh at other `positions` (same vertex order).
-    pub fn carried(&self, positions: &[DVec3]) -> DVec3 {
+    pub(super) fn carried(&self, positions: &[DVec3]) -> DVec3 {
         let (a, b) = (positions[self.a as usize], positions[self.b as usize]);
         a + (b - a) * self.t
     }
@@ -41,7 +41,7 @@ pub(crate) struct Plane {
 impl Plane {
     /// The plane through `origin` with unit `normal`, `e1` along `across` with
     /// its normal part removed; `None` when `across` is along the normal.
-    pub fn new(origin: DVec3, normal: DVec3, across: DVec3) -> Option<Plane> {
+    pub(super) fn new(origin: DVec3, normal: DVec3, across: DVec3) -> Option<Plane> {
         let e1 = (across - normal * across.dot(normal)).try_normalize()?;
         Some(Plane {
             origin,
@@ -52,7 +52,7 @@ impl Plane {
     }
 
     /// `p` in the plane's frame (its part along the normal dropped).
-    pub fn to_2d(self, p: DVec3) -> DVec2 {
+    pub(super) fn to_2d(self, p: DVec3) -> DVec2 {
         let d = p - self.origin;
         DVec2::new(d.dot(self.e1), d.dot(self.e2))
     }
