@@ -60,6 +60,7 @@ fn render_with(
         target: 0.005,
         groups: &[],
         rigs: &rigs,
+        paper_xrays: claims.named_in(dataset),
     };
     let files = report::render(&inputs, Formats::ALL, &Templates::builtin().unwrap()).unwrap();
     let plots = plots::all(&a, &places).unwrap();

@@ -96,6 +96,7 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let history = crate::dataset::history::read(&history_path)?;
     let claims = Claims::load(&args.claims)?;
     let (results, claims_note) = check_claims(&claims, &dataset);
+    let paper_xrays = claims.named_in(&dataset);
     let references = reference::load_dir(&args.rigs)?;
     let cov_settings = CoverageSettings {
         sims: args.sims as usize,
@@ -129,6 +130,7 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         target: args.target,
         groups: &groups,
         rigs: &rigs,
+        paper_xrays,
     };
     let files = report::render(&inputs, formats(&args.format), &templates)?;
     write(&args.out, &files)?;

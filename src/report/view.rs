@@ -140,6 +140,12 @@ pub struct Table1View {
     /// Set when only the first [`MAX_LISTED_XRAYS`] X-rays are listed.
     pub truncated: Option<String>,
     pub unit: String,
+    /// "Table 1: the measurements" over the paper's X-rays, "The measurements" otherwise.
+    pub heading: String,
+    /// Where the lengths come from, ending the section's first sentence.
+    pub source: String,
+    /// The Markdown anchor of the heading.
+    pub anchor: String,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -251,6 +257,8 @@ pub struct ClaimRow {
 #[derive(Debug, Clone, Serialize)]
 pub struct PlacementView {
     pub length: String,
+    /// Whose example this is: the paper's over its X-rays, this dataset's otherwise.
+    pub origin: String,
     pub joints: Vec<PlacementRow>,
     pub segments: Vec<PlacementRow>,
 }
@@ -322,6 +330,10 @@ pub struct ReportInputs<'a> {
     pub groups: &'a [Group],
     /// Popular rigs judged against the statistics (`data/rigs`).
     pub rigs: &'a [ReferenceAudit],
+    /// How many of the dataset's X-rays the claims name (the paper's), and how many it
+    /// has: the titles say "Table 1" and "the paper's worked example" only when they
+    /// are the same X-rays.
+    pub paper_xrays: (usize, usize),
 }
 
 /// A reference rig with its judgement.
@@ -387,11 +399,11 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         title: "phalanx: finger joint statistics from hand X-rays".into(),
         provenance,
         settings,
-        table1: table1(a),
+        table1: table1(a, inputs.paper_xrays),
         derived: a.fingers.iter().map(derived).collect(),
         stats: a.fingers.iter().map(stats).collect(),
         claims: claims(inputs.claims_file, inputs.claims, inputs.claims_note),
-        placement: placement(inputs.placements, inputs.model_length),
+        placement: placement(inputs.placements, inputs.model_length, inputs.paper_xrays),
         coverage: coverage(inputs.coverage_settings, inputs.coverage),
         tracking: tracking(inputs),
         groups: groups_view(inputs.groups),
@@ -452,7 +464,32 @@ fn truncation(total: usize) -> Option<String> {
     })
 }
 
-fn table1(a: &Analysis) -> Table1View {
+/// True when the dataset holds exactly the X-rays the paper's claims name.
+fn is_paper((named, xrays): (usize, usize)) -> bool {
+    named > 0 && named == xrays
+}
+
+fn table1(a: &Analysis, paper_xrays: (usize, usize)) -> Table1View {
+    let (named, xrays) = paper_xrays;
+    let (heading, source) = if is_paper(paper_xrays) {
+        (
+            "Table 1: the measurements".to_string(),
+            "as printed in the paper's Table 1".to_string(),
+        )
+    } else if named == 0 {
+        (
+            "The measurements".to_string(),
+            format!("as in the dataset ({xrays} X-rays, none of them the paper's)"),
+        )
+    } else {
+        (
+            "The measurements".to_string(),
+            format!(
+                "as in the dataset: the {named} X-rays of the paper's Table 1 and {} added since",
+                xrays - named
+            ),
+        )
+    };
     let fingers: Vec<_> = TABLE1_ORDER.iter().filter_map(|&f| a.finger(f)).collect();
     let groups = fingers
         .iter()
@@ -500,6 +537,15 @@ fn table1(a: &Analysis) -> Table1View {
         rows,
         truncated: truncation(ids.len()),
         unit: "image units (pixels of the X-ray images, not millimetres)".into(),
+        anchor: format!(
+            "2-{}",
+            heading
+                .to_ascii_lowercase()
+                .replace(':', "")
+                .replace(' ', "-")
+        ),
+        heading,
+        source,
     }
 }
 
@@ -616,8 +662,16 @@ fn claims(file: &str, results: &[ClaimResult], note: Option<&str>) -> ClaimsView
     }
 }
 
-fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
+fn placement(ps: &[FingerPlacement], length: f64, paper_xrays: (usize, usize)) -> PlacementView {
     let d = length_decimals(length);
+    let origin = if is_paper(paper_xrays) {
+        "This is the paper's worked example, with the corrected mean.".to_string()
+    } else {
+        format!(
+            "The paper works this example with its own X-rays; here the means are over the dataset's {} X-rays.",
+            paper_xrays.1
+        )
+    };
     let row = |finger: Finger, what: &str, p: &crate::analysis::placement::Placed| PlacementRow {
         finger: finger.display_name().to_string(),
         what: what.to_string(),
@@ -629,6 +683,7 @@ fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
     };
     PlacementView {
         length: exact(length),
+        origin,
         joints: ps
             .iter()
             .flat_map(|p| {
