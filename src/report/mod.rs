@@ -55,6 +55,18 @@ pub fn render(
         if !inputs.rigs.is_empty() {
             plots.push(plots::rigs_plot(inputs.analysis, &rig_ratios(inputs.rigs))?);
         }
+        if let Some(atlas) = inputs.atlas {
+            for f in &inputs.analysis.fingers {
+                if let Some(g) = atlas.analysis.finger(f.finger) {
+                    plots.push(plots::atlas_plot(
+                        f,
+                        g,
+                        "atlas",
+                        inputs.analysis.settings.confidence,
+                    )?);
+                }
+            }
+        }
         let view = view::build(inputs, &plots);
         if formats.html {
             files.push(OutputFile::new("index.html", templates.html(&view)?));

@@ -15,6 +15,7 @@
 //! is handed to it unescaped; the `<title>` and `<desc>`, written by this
 //! module, are escaped by it (see `draw::escape`).
 
+mod atlas;
 mod draw;
 mod finger;
 mod forest;
@@ -44,6 +45,8 @@ pub enum PlotKind {
     Tracking,
     /// Popular rigs' segment ratios against the X-rays.
     Rigs,
+    /// One finger's relative values in an atlas, binned, with the paper's X-rays over them.
+    Atlas,
 }
 
 /// One rendered plot.
@@ -117,6 +120,17 @@ pub(crate) use rigs::RigRatios;
 /// X-rays' mean, observed range and prediction interval.
 pub(crate) fn rigs_plot(a: &Analysis, rigs: &[RigRatios]) -> Result<Plot, Error> {
     rigs::plot(a, rigs)
+}
+
+/// Atlas plot of one finger (id `atlas-<finger>`): the atlas's distribution of each
+/// relative value as a binned strip, the paper's X-rays and prediction interval over it.
+pub(crate) fn atlas_plot(
+    paper: &FingerAnalysis,
+    atlas: &FingerAnalysis,
+    atlas_name: &str,
+    confidence: f64,
+) -> Result<Plot, Error> {
+    atlas::plot(paper, atlas, atlas_name, confidence)
 }
 
 /// Every plot of a report, in display order: one per finger, the hand diagram, the forest plot.

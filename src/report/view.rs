@@ -38,6 +38,8 @@ pub struct ReportView {
     pub groups: Option<GroupsView>,
     /// Set when reference rigs were given.
     pub rigs: Option<RigsView>,
+    /// Set when an atlas was given: "The paper against N atlas radiographs".
+    pub atlas: Option<AtlasView>,
     pub plots: Vec<PlotView>,
 }
 
@@ -334,6 +336,8 @@ pub struct ReportInputs<'a> {
     /// has: the titles say "Table 1" and "the paper's worked example" only when they
     /// are the same X-rays.
     pub paper_xrays: (usize, usize),
+    /// The atlas compared with the data (`data/atlas`); `None`: no atlas section.
+    pub atlas: Option<&'a AtlasInputs>,
 }
 
 /// A reference rig with its judgement.
@@ -408,6 +412,7 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         tracking: tracking(inputs),
         groups: groups_view(inputs.groups),
         rigs: rigs_view(inputs.rigs),
+        atlas: inputs.atlas.map(|x| atlas_view(a, x)),
         plots: plots.iter().map(plot).collect(),
     }
 }
@@ -964,4 +969,244 @@ fn rigs_view(rigs: &[ReferenceAudit]) -> Option<RigsView> {
             .map(|c| c.to_string())
             .collect(),
     })
+}
+
+/// What the section "The paper against N atlas radiographs" reads: the atlas analysed,
+/// the paper (A) compared with it (B), and the coverage measured on its hands.
+#[derive(Debug, Clone)]
+pub struct AtlasInputs {
+    pub analysis: Analysis,
+    pub cohorts: crate::analysis::compare::Cohorts,
+    pub population: crate::analysis::population::PopulationStudy,
+}
+
+/// The section "The paper against N atlas radiographs".
+#[derive(Debug, Clone, Serialize)]
+pub struct AtlasView {
+    pub title: String,
+    /// The Markdown anchor of the section's heading.
+    pub anchor: String,
+    /// The two cohorts, one line each.
+    pub cohorts: Vec<String>,
+    /// What differs between the cohorts, in plain words.
+    pub differs: String,
+    pub comparison: Vec<AtlasCompareRow>,
+    /// One sentence per finger, then the fingertip sentences.
+    pub sentences: Vec<String>,
+    pub external: Vec<AtlasExternalRow>,
+    pub external_summary: String,
+    pub population_intro: String,
+    pub population: Vec<AtlasPopulationRow>,
+    pub proportions_intro: String,
+    pub proportions: Vec<AtlasProportionRow>,
+    pub notes: Vec<String>,
+}
+
+/// One finger and quantity of the comparison table.
+#[derive(Debug, Clone, Serialize)]
+pub struct AtlasCompareRow {
+    pub finger: String,
+    pub quantity: String,
+    pub paper: String,
+    pub atlas: String,
+    pub difference: String,
+    pub welch: String,
+    pub bootstrap: String,
+    pub hedges: String,
+}
+
+/// One finger and quantity of the external coverage.
+#[derive(Debug, Clone, Serialize)]
+pub struct AtlasExternalRow {
+    pub finger: String,
+    pub quantity: String,
+    pub paper_pi: String,
+    pub atlas_in_paper: String,
+    pub atlas_pi: String,
+    pub paper_in_atlas: String,
+}
+
+/// One sample size and model of the coverage on real hands.
+#[derive(Debug, Clone, Serialize)]
+pub struct AtlasPopulationRow {
+    pub n: String,
+    pub model: String,
+    pub t: String,
+    pub percentile: String,
+    pub bca: String,
+    pub prediction: String,
+    pub bootstrap: String,
+}
+
+/// One finger's whole-hand proportions from its metacarpal.
+#[derive(Debug, Clone, Serialize)]
+pub struct AtlasProportionRow {
+    pub finger: String,
+    pub n: String,
+    pub mc_j: String,
+    pub mc_j_pi: String,
+    pub j1_mc: String,
+    pub j1_mc_pi: String,
+}
+
+fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
+    use super::compare::{
+        Names, bootstrap_cell, cohort_line, coverage_cell, difference_cell, finger_sentence,
+        hedges_cell, mean_sd, short, tip_sentence, welch_cell,
+    };
+    let c = &atlas.cohorts;
+    let confidence = paper.settings.confidence;
+    let names = Names {
+        a: "the paper",
+        b: "the atlas",
+    };
+    let d = |q: Quantity| decimals(q.is_unitless());
+    let mut comparison = Vec::new();
+    let mut external = Vec::new();
+    let mut sentences = Vec::new();
+    let (mut inside, mut tested) = (0usize, 0usize);
+    for f in &c.fingers {
+        for qc in &f.quantities {
+            let (q, cmp) = (qc.quantity, &qc.comparison);
+            comparison.push(AtlasCompareRow {
+                finger: f.finger.name().to_string(),
+                quantity: short(q).to_string(),
+                paper: mean_sd(cmp.a.mean, cmp.a.sd, q),
+                atlas: mean_sd(cmp.b.mean, cmp.b.sd, q),
+                difference: difference_cell(cmp, q),
+                welch: welch_cell(cmp, q),
+                bootstrap: bootstrap_cell(cmp, q),
+                hedges: hedges_cell(cmp),
+            });
+            if q.is_relative() {
+                if let Some(e) = &cmp.b_in_a {
+                    inside += e.inside;
+                    tested += e.of;
+                }
+                external.push(AtlasExternalRow {
+                    finger: f.finger.name().to_string(),
+                    quantity: short(q).to_string(),
+                    paper_pi: crate::format::interval(cmp.b_in_a.map(|e| e.interval), d(q)),
+                    atlas_in_paper: coverage_cell(cmp.b_in_a.as_ref()),
+                    atlas_pi: crate::format::interval(cmp.a_in_b.map(|e| e.interval), d(q)),
+                    paper_in_atlas: coverage_cell(cmp.a_in_b.as_ref()),
+                });
+            }
+        }
+        sentences.push(finger_sentence(f, names, confidence));
+    }
+    for f in &c.fingers {
+        if let Some(last) = &f.last_segment {
+            sentences.push(format!(
+                "{}: {}",
+                f.finger.name(),
+                tip_sentence(last, c, names)
+            ));
+        }
+    }
+    let external_summary = format!(
+        "Over every finger and relative value, {} of the atlas's values ({inside} of {tested}) lie inside the paper's {} prediction interval for one new hand, which promises {}.",
+        percent(inside as f64 / tested.max(1) as f64),
+        level(confidence),
+        level(confidence),
+    );
+    let p = &atlas.population;
+    let pooled = p.pooled();
+    let mut population = Vec::new();
+    for (k, &n) in p.sizes.iter().enumerate() {
+        let cell = |m: &str| {
+            pooled
+                .iter()
+                .find(|x| x.n == n && x.method == m)
+                .map_or_else(|| "n/a".to_string(), |x| percent(x.mean))
+        };
+        let plan = p
+            .normal
+            .get(k)
+            .map_or_else(String::new, |c| plan_short(c.bootstrap));
+        population.push(AtlasPopulationRow {
+            n: n.to_string(),
+            model: "atlas hands".to_string(),
+            t: cell("t"),
+            percentile: cell("percentile"),
+            bca: cell("bca"),
+            prediction: cell("prediction"),
+            bootstrap: plan.clone(),
+        });
+        if let Some(normal) = p.normal.iter().find(|c| c.n == n) {
+            let m = |name: &str| {
+                normal
+                    .methods
+                    .iter()
+                    .find(|x| x.method == name)
+                    .map_or_else(|| "n/a".to_string(), |x| percent(x.coverage))
+            };
+            population.push(AtlasPopulationRow {
+                n: String::new(),
+                model: "normal model".to_string(),
+                t: m("t"),
+                percentile: m("percentile"),
+                bca: m("bca"),
+                prediction: m("prediction"),
+                bootstrap: plan,
+            });
+        }
+    }
+    let xrays = p.quantities.first().map_or(0, |q| q.population);
+    let population_intro = format!(
+        "The atlas taken as the population of hands ({xrays} X-rays): {} samples of each size n drawn from its X-rays with replacement, every interval built as the statistics build it, and counted when it holds the atlas's mean (the prediction interval: one further atlas X-ray). Each figure is the mean over the {} relative values; beside it, the normal model's figure. Monte-Carlo SE about {} per value at {}.",
+        p.settings.sims,
+        p.quantities.len(),
+        percent((confidence * (1.0 - confidence) / p.settings.sims.max(1) as f64).sqrt()),
+        level(confidence),
+    );
+    let mut proportions = Vec::new();
+    for f in &atlas.analysis.fingers {
+        let get = |q: Quantity| f.quantities.iter().find(|s| s.name == q);
+        let (Some(mc_j), Some(j1_mc)) = (get(Quantity::RatioMcJ), get(Quantity::RatioJ1Mc)) else {
+            continue;
+        };
+        proportions.push(AtlasProportionRow {
+            finger: f.finger.name().to_string(),
+            n: mc_j.n.to_string(),
+            mc_j: mean_sd(mc_j.mean, mc_j.sd, Quantity::RatioMcJ),
+            mc_j_pi: crate::format::interval(mc_j.intervals.pi, 4),
+            j1_mc: mean_sd(j1_mc.mean, j1_mc.sd, Quantity::RatioJ1Mc),
+            j1_mc_pi: crate::format::interval(j1_mc.intervals.pi, 4),
+        });
+    }
+    let proportions_intro = format!(
+        "Where the MCP sits: the paper measures the fingers only, the atlas also the metacarpal (CMC to MCP). mc/J is the metacarpal's length over the finger's (J1 + J2 + J3), J1/mc the first phalanx over the metacarpal: for a rig, the MCP lies (mc/J) L from the CMC for a finger of length L. Mean (SD) and the {} prediction interval for one new hand, over the atlas's X-rays.",
+        level(confidence)
+    );
+    let title = format!("The paper against {} atlas radiographs", c.b.xrays);
+    AtlasView {
+        anchor: format!("12-{}", title.to_ascii_lowercase().replace(' ', "-")),
+        title,
+        cohorts: vec![
+            format!("The paper: {}", cohort_line(&c.a)),
+            format!("The atlas: {}", cohort_line(&c.b)),
+        ],
+        differs: format!(
+            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with landmarks at the joint centres and at the tips of the bones; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin. A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
+            c.b.xrays, c.a.xrays
+        ),
+        comparison,
+        sentences,
+        external,
+        external_summary,
+        population_intro,
+        population,
+        proportions_intro,
+        proportions,
+        notes: c.notes.iter().chain(&p.notes).cloned().collect(),
+    }
+}
+
+/// "exact (126 resamples)", "random (200 resamples)".
+fn plan_short(p: Plan) -> String {
+    match p {
+        Plan::Exact { distinct } => format!("exact ({distinct})"),
+        Plan::Random { resamples } => format!("random ({resamples})"),
+    }
 }
