@@ -61,16 +61,6 @@ impl Layout {
     #[cfg(test)]
     pub const ALL: [Layout; 3] = [Layout::Atlas37, Layout::Coco, Layout::Long];
 
-    /// The layout's name: `atlas37`, `coco`, `long`.
-    #[cfg(test)]
-    pub fn name(self) -> &'static str {
-        match self {
-            Layout::Atlas37 => "atlas37",
-            Layout::Coco => "coco",
-            Layout::Long => "long",
-        }
-    }
-
     /// Where the layout's fingertips are unless the options say: `bone` for the atlas
     /// (landmarks at the tips of the distal phalanges), unknown otherwise.
     pub fn default_tip(self) -> Option<TipKind> {
