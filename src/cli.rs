@@ -33,9 +33,11 @@ pub(crate) struct Cli {
 pub(crate) enum Command {
     Stats(cmd::stats::Args),
     Check(cmd::check::Args),
+    Compare(cmd::compare::Args),
     Coverage(cmd::coverage::Args),
     Report(cmd::report::Args),
     Add(cmd::add::Args),
+    Import(cmd::import::Args),
     Place(cmd::place::Args),
     Audit(cmd::audit::Args),
     Synth(cmd::synth::Args),
@@ -74,9 +76,11 @@ pub(crate) fn run(cli: Cli) -> Result<i32, Error> {
     let result = match cli.command {
         Command::Stats(args) => cmd::stats::run(&args, quiet, width),
         Command::Check(args) => cmd::check::run(&args, width),
+        Command::Compare(args) => cmd::compare::run(&args, width),
         Command::Coverage(args) => cmd::coverage::run(&args, width),
         Command::Report(args) => cmd::report::run(&args, quiet),
         Command::Add(args) => cmd::add::run(&args),
+        Command::Import(args) => cmd::import::run(&args),
         Command::Place(args) => cmd::place::run(&args, width),
         Command::Audit(args) => cmd::audit::run(&args, quiet, width),
         Command::Synth(args) => cmd::synth::run(&args),

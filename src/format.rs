@@ -155,6 +155,27 @@ pub(crate) fn readable(x: Option<f64>) -> String {
         .to_string()
 }
 
+/// A length measured from landmarks, as a data file records it: at least 6 decimals
+/// and 7 significant digits, trailing zeros dropped (339.96000412 -> "339.960004",
+/// 12.0 -> "12"). The written value is within 5e-7 of the unit (a millionth of a pixel)
+/// for lengths of 1 and over, and within a relative 5e-7 below, far finer than any
+/// landmark is clicked; shorter than [`full`]'s 17 digits, so an imported file stays
+/// readable and diffable.
+pub fn measured(x: f64) -> String {
+    let decimals = if x.abs() >= 1.0 || x == 0.0 || !x.is_finite() {
+        6
+    } else {
+        // 7 significant digits: one more decimal per factor of 10 below 1, at most 20.
+        (6.0 - x.abs().log10().floor()).clamp(6.0, 20.0) as usize
+    };
+    let s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
 /// The CSV cells of the four intervals, in table order: low and high of each
 /// as [`readable`] numbers, both empty where the interval is undefined.
 pub(crate) fn interval_bounds(iv: &Intervals) -> Vec<String> {

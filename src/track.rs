@@ -24,6 +24,9 @@ pub(crate) enum NewRows {
     File(PathBuf),
     /// One row given as options: (column, value) pairs.
     Fields(Vec<(&'static str, String)>),
+    /// Rows made by the program (e.g. imported from landmarks), already validated as
+    /// a dataset; problems name their X-ray, not a line of a file nobody wrote.
+    Rows(Dataset),
 }
 
 /// What `add` is asked to do.
@@ -57,15 +60,20 @@ pub(crate) fn now() -> String {
 
 /// Adds new rows to a dataset, then appends a snapshot to its history.
 pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
+    let loaded;
     let (new, typed) = match &req.rows {
         NewRows::File(p) => {
-            let new = Dataset::load(p)?;
-            (new, append::Typed::of(&csvinput::read_input(p)?))
+            loaded = Dataset::load(p)?;
+            (&loaded, append::Typed::of(&csvinput::read_input(p)?))
         }
-        NewRows::Fields(fields) => (
-            append::single_row(fields)?,
-            append::Typed::of(&append::single_row_bytes(fields)?),
-        ),
+        NewRows::Fields(fields) => {
+            loaded = append::single_row(fields)?;
+            (
+                &loaded,
+                append::Typed::of(&append::single_row_bytes(fields)?),
+            )
+        }
+        NewRows::Rows(rows) => (rows, append::Typed::default()),
     };
     csvinput::open_input(&req.data)?; // a missing dataset is reported before any lock file is made
     let _lock = DatasetLock::acquire(&req.data).map_err(Error::write(&req.data))?;
@@ -74,8 +82,8 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     let current = Dataset::from_bytes(&label, &current_bytes)?;
     let n = current.xray_count() + new.xray_count();
     analysis::budget::check_bootstrap(n, req.settings.resamples).map_err(Error::Usage)?;
-    let from_options = matches!(req.rows, NewRows::Fields(_));
-    let (bytes, after) = append::appended_bytes_typed(&current_bytes, &current, &new, &typed)
+    let from_options = !matches!(req.rows, NewRows::File(_));
+    let (bytes, after) = append::appended_bytes_typed(&current_bytes, &current, new, &typed)
         .map_err(|mut e| {
             if from_options {
                 e.problems.iter_mut().for_each(|p| p.line = None);
@@ -93,7 +101,7 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         }
     }
     if req.strict && !flags.is_empty() {
-        return Err(refusal(&new, &flags, from_options).into());
+        return Err(refusal(new, &flags, from_options).into());
     }
     let a = analysis::analyse(&after, &req.settings);
     let snapshot = tracking::snapshot(&a, now(), Event::Add);

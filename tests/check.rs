@@ -427,3 +427,58 @@ fn missing_or_directory_claims_file_is_a_data_error() {
     wd.write("bin.csv", b"\x00\x01\x02\xFF\xFE");
     wd.run(&["check", "--claims", "bin.csv"]).data_error();
 }
+
+/// The paper's X-rays plus 20 lab X-rays (each paper X-ray's lengths scaled and bent
+/// a little, under new ids): the claims are about 1a-1e, so `check` still finds every
+/// number the paper states where it found it (exit 0, the same summary), and the report
+/// no longer calls the data "Table 1" or the placement "the paper's worked example".
+#[test]
+fn check_on_the_paper_plus_added_xrays_exits_0_and_titles_follow_the_data() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let paper = paper_rows();
+    let mut rows = paper.clone();
+    for k in 0..20 {
+        let scale = 0.8 + 0.02 * k as f64;
+        for r in paper
+            .iter()
+            .filter(|r| r.xray == ["1a", "1b", "1c", "1d", "1e"][k % 5])
+        {
+            let lengths = r
+                .lengths
+                .iter()
+                .enumerate()
+                .map(|(i, x)| {
+                    (x * scale * (1.0 + 0.01 * ((k + i) % 3) as f64) * 100.0).round() / 100.0
+                })
+                .collect();
+            rows.push(PaperRow {
+                xray: format!("lab{k:02}"),
+                finger: r.finger.clone(),
+                lengths,
+            });
+        }
+    }
+    assert_eq!(rows.len(), paper.len() * 5);
+    wd.write("data/measurements.csv", measurement_csv(&rows));
+    let run = wd.run(&["check"]);
+    run.ok().stdout_has(SUMMARY);
+
+    // The same claims against the paper alone give the same summary.
+    let wd2 = Workdir::new();
+    wd2.copy_paper_data();
+    wd2.run(&["check"]).ok().stdout_has(SUMMARY);
+
+    wd.run(&["report", "--format", "md", "--sims", "50", "--out", "out"])
+        .ok();
+    let md = String::from_utf8(wd.read("out/report.md")).unwrap();
+    assert!(!md.contains("## 2. Table 1"), "{}", &md[..2000]);
+    assert!(md.contains("## 2. The measurements"));
+    assert!(md.contains("the 5 X-rays of the paper's Table 1 and 20 added since"));
+    assert!(!md.contains("the paper's worked example"));
+    wd2.run(&["report", "--format", "md", "--sims", "50", "--out", "out"])
+        .ok();
+    let md = String::from_utf8(wd2.read("out/report.md")).unwrap();
+    assert!(md.contains("## 2. Table 1: the measurements"));
+    assert!(md.contains("This is the paper's worked example"));
+}

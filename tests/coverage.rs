@@ -121,3 +121,78 @@ fn coverage_table_has_a_row_per_sample_size() {
     let marked = run.stdout.lines().filter(|l| l.ends_with("| this data |"));
     assert_eq!(marked.count(), 1, "{}", run.stdout);
 }
+
+/// The atlas taken as the population: at n = 5 the t and prediction intervals keep their
+/// 95% on real hands and the percentile interval falls to about 83%, as the issue's
+/// NumPy simulation (tests/independent/atlas_reference.py) found; beside them stands the
+/// normal model's figure.
+#[test]
+fn population_coverage_on_the_atlas_at_n_5() {
+    let wd = Workdir::new();
+    let atlas = manifest_dir().join("data/atlas/measurements.csv");
+    let atlas = atlas.to_str().unwrap();
+    let doc = wd
+        .run(&[
+            "coverage",
+            "--population",
+            atlas,
+            "--n",
+            "5",
+            "--sims",
+            "2000",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    assert_eq!(doc["sizes"], serde_json::json!([5]));
+    assert_eq!(doc["quantities"].as_array().unwrap().len(), 14);
+    let pooled = doc["pooled"].as_array().unwrap();
+    let get = |m: &str| {
+        num(&pooled
+            .iter()
+            .find(|p| p["method"] == m && p["n"] == 5)
+            .unwrap_or_else(|| panic!("no pooled {m}"))["mean"])
+    };
+    // 14 quantities x 2000 samples: the pooled Monte-Carlo SE is under 0.2%.
+    assert!((0.94..=0.96).contains(&get("t")), "t {}", get("t"));
+    assert!(
+        (0.80..=0.87).contains(&get("percentile")),
+        "percentile {}",
+        get("percentile")
+    );
+    assert!(
+        (0.94..=0.96).contains(&get("prediction")),
+        "prediction {}",
+        get("prediction")
+    );
+    let normal = doc["normal"].as_array().unwrap();
+    assert_eq!(normal.len(), 1);
+    assert_eq!(normal[0]["n"], 5);
+
+    let table = wd.run(&[
+        "coverage",
+        "--population",
+        atlas,
+        "--n",
+        "5",
+        "--sims",
+        "500",
+    ]);
+    table
+        .ok()
+        .stdout_has("real hands (mean)")
+        .stdout_has("normal model")
+        .stdout_has("(910 X-rays)");
+}
+
+#[test]
+fn population_sample_sizes_are_checked() {
+    let wd = Workdir::new();
+    let atlas = manifest_dir().join("data/atlas/measurements.csv");
+    let atlas = atlas.to_str().unwrap();
+    wd.run(&["coverage", "--population", atlas, "--n", "1"])
+        .expect_code(2)
+        .stderr_has("sample size from 2");
+    wd.run(&["coverage", "--n", "5"]).expect_code(2);
+}

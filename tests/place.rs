@@ -113,3 +113,49 @@ fn bad_place_requests_exit_2() {
     .expect_code(2)
     .stderr_has("no ring rows");
 }
+
+/// The committed atlas works with --data like any dataset, and where the metacarpal is
+/// measured `place` gives the MCP's distance from the CMC: (mc/J) L, whose mean is the
+/// mean over the rows of mc / (J1 + J2 + J3), computed here from the CSV itself.
+#[test]
+fn place_on_the_atlas_reports_the_mcp_from_the_cmc() {
+    let wd = Workdir::new();
+    let atlas = manifest_dir().join("data/atlas/measurements.csv");
+    let text = std::fs::read_to_string(&atlas).unwrap();
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let ratios: Vec<f64> = r
+        .records()
+        .map(|rec| rec.unwrap())
+        .filter(|rec| &rec[1] == "index")
+        .map(|rec| {
+            let f = |i: usize| rec[i].parse::<f64>().unwrap();
+            f(5) / (f(2) + f(3) + f(4))
+        })
+        .collect();
+    assert_eq!(ratios.len(), 910);
+    let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
+    let run = wd.run(&[
+        "place",
+        "--data",
+        atlas.to_str().unwrap(),
+        "--finger",
+        "index",
+        "--length",
+        "100",
+    ]);
+    run.ok()
+        .stdout_has("from 910 X-rays")
+        .stdout_has("MCP from the CMC");
+    let line = run
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("| MCP from the CMC"))
+        .unwrap();
+    let shown: f64 = line.split('|').nth(2).unwrap().trim().parse().unwrap();
+    assert_close(
+        shown,
+        mean * 100.0,
+        0.005,
+        "MCP from the CMC, index, L = 100",
+    );
+}

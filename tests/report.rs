@@ -60,6 +60,8 @@ fn render_with(
         target: 0.005,
         groups: &[],
         rigs: &rigs,
+        paper_xrays: claims.named_in(dataset),
+        atlas: None,
     };
     let files = report::render(&inputs, Formats::ALL, &Templates::builtin().unwrap()).unwrap();
     let plots = plots::all(&a, &places).unwrap();
@@ -430,4 +432,57 @@ fn claim_texts_with_markup_stay_text_in_every_format() {
     assert_eq!(unescaped, 7, "{line}");
     assert!(line.contains("\\*\\*b\\*\\* \\[l\\](u)"), "{line}");
     assert!(md.contains("**evil**"), "listed among the misprints");
+}
+
+/// With the atlas beside the paper's data, the report gains "The paper against 910 atlas
+/// radiographs": the comparison, external coverage equal to a count made here from the
+/// CSVs, one atlas plot per finger, the coverage on real hands and the metacarpals.
+#[test]
+#[ignore = "slow: analyses and simulates 910 X-rays in a debug build (run by .ci/run)"]
+fn the_report_compares_the_paper_with_the_atlas() {
+    let wd = crate::common::Workdir::new();
+    wd.copy_paper_data();
+    let atlas =
+        std::fs::read(crate::common::manifest_dir().join("data/atlas/measurements.csv")).unwrap();
+    wd.write("data/atlas/measurements.csv", &atlas);
+    wd.run(&["report", "--format", "md", "--sims", "50", "--out", "out"])
+        .ok();
+    let md = String::from_utf8(wd.read("out/report.md")).unwrap();
+    assert!(md.contains("## 12. The paper against 910 atlas radiographs"));
+    for f in ["thumb", "index", "middle", "ring", "little"] {
+        assert!(md.contains(&format!("(plots/atlas-{f}.svg)")), "{f}");
+        assert!(wd.path().join(format!("out/plots/atlas-{f}.svg")).exists());
+    }
+    // Index J~2: the atlas rows inside the paper's prediction interval, counted here from
+    // the interval the report prints (the compare tests check the interval itself).
+    let line = md
+        .lines()
+        .find(|l| l.starts_with("| index | J\\~2 | ["))
+        .expect("index J~2 external coverage row");
+    let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+    let bounds: Vec<f64> = cells[3]
+        .trim_matches(|c| c == '[' || c == ']')
+        .split(", ")
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let text = String::from_utf8(atlas).unwrap();
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let (mut inside, mut of) = (0, 0);
+    for rec in r.records().map(|r| r.unwrap()).filter(|r| &r[1] == "index") {
+        let j: Vec<f64> = (2..5).map(|i| rec[i].parse().unwrap()).collect();
+        let rel = j[1] / (j[0] + j[1] + j[2]);
+        of += 1;
+        // The printed bounds are rounded to 4 places: no atlas value lies that close.
+        if rel >= bounds[0] && rel <= bounds[1] {
+            inside += 1;
+        }
+    }
+    assert_eq!(of, 910);
+    assert!(
+        cells[4].ends_with(&format!("({inside}/910)")),
+        "{line}: counted {inside}"
+    );
+    assert!(md.contains("### Coverage measured on real hands"));
+    assert!(md.contains("| 5 | atlas hands |"));
+    assert!(md.contains("### Whole-hand proportions from the metacarpals"));
 }

@@ -418,3 +418,59 @@ fn history_documents_and_records_satisfy_their_schemas() {
             .remove("record");
     });
 }
+
+#[test]
+fn compare_and_population_documents_satisfy_their_schemas() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let atlas = manifest_dir().join("data/atlas/measurements.csv");
+    let atlas = atlas.to_str().unwrap();
+
+    let v = validator("compare");
+    let doc = wd
+        .run(&[
+            "compare",
+            "data/measurements.csv",
+            atlas,
+            "--resamples",
+            "200",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    assert!(!doc["fingers"].as_array().unwrap().is_empty());
+    assert_valid(&v, "compare", &doc);
+    assert_version_pinned(&v, "compare", &doc);
+    assert_refused(&v, "compare", &doc, "a finger without its sentence", |d| {
+        let f = d.pointer_mut("/fingers/0").unwrap();
+        f.as_object_mut().unwrap().remove("summary");
+    });
+
+    let v = validator("coverage-population");
+    let doc = wd
+        .run(&[
+            "coverage",
+            "--population",
+            atlas,
+            "--n",
+            "3,5",
+            "--sims",
+            "50",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    assert_valid(&v, "coverage-population", &doc);
+    assert_version_pinned(&v, "coverage-population", &doc);
+    assert_refused(
+        &v,
+        "coverage-population",
+        &doc,
+        "a sample size that is text",
+        |d| {
+            d["sizes"][0] = json!("five");
+        },
+    );
+}

@@ -12,6 +12,7 @@ mod coverage;
 mod crash_report;
 mod data;
 mod everyday;
+mod import;
 mod option_ranges;
 mod options;
 mod place;

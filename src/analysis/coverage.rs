@@ -14,8 +14,19 @@ use rayon::prelude::*;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-/// Key of the random streams used by the simulation (separate from the bootstrap's).
+/// Key of the random streams of the normal model's draws: `COVERAGE_KEY ^ n` for
+/// samples of size n (its top byte is 0, apart from every tagged key below).
 const COVERAGE_KEY: u64 = 0xC0_7E_4A_6E;
+/// Tag of the random bootstrap of each simulated sample ([`stream_key`]). It was
+/// `COVERAGE_KEY + 1 + sim`, which met `COVERAGE_KEY ^ n` (sim 15 and n = 16).
+const BOOTSTRAP_TAG: u64 = 0x52;
+
+/// The random key of stream family `tag` for sample size `n` and simulation `sim`:
+/// tag in bits 56-63, n in bits 32-55, sim in bits 0-31, so no two families, sizes or
+/// simulations share a stream (n and sim are below 2^24 and 2^32 where used).
+pub(super) fn stream_key(tag: u64, n: usize, sim: u64) -> u64 {
+    (tag << 56) | ((n as u64 & 0xFF_FFFF) << 32) | (sim & 0xFFFF_FFFF)
+}
 
 /// Settings of a coverage simulation.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
@@ -83,39 +94,53 @@ pub fn simulate(n: usize, mean: f64, sd: f64, s: &CoverageSettings) -> Option<Co
                 xs.iter_mut()
                     .for_each(|x| *x = mean + sd * rng::standard_normal(&mut r));
                 let new = mean + sd * rng::standard_normal(&mut r);
-                one_simulation(xs, new, mean, s, sim as u64, enumeration.as_ref())
+                let boot_key = stream_key(BOOTSTRAP_TAG, n, sim as u64);
+                one_sample(xs, new, mean, s, boot_key, enumeration.as_ref())
             },
         )
-        .collect();
-    let names = [
-        ("t", "mean"),
-        ("percentile", "mean"),
-        ("bca", "mean"),
-        ("prediction", "one new X-ray"),
-    ];
-    let methods = names
-        .iter()
-        .enumerate()
-        .map(|(m, &(method, target))| {
-            let hits = outcomes.iter().filter(|o| o[m] == Some(true)).count();
-            let undefined = outcomes.iter().filter(|o| o[m].is_none()).count();
-            let p = hits as f64 / s.sims as f64;
-            MethodCoverage {
-                method,
-                target,
-                nominal: s.confidence,
-                coverage: p,
-                mc_se: (p * (1.0 - p) / s.sims as f64).sqrt(),
-                undefined,
-            }
-        })
         .collect();
     Some(Coverage {
         n,
         sims: s.sims,
         bootstrap: plan,
-        methods,
+        methods: tally(&outcomes, ["mean", "one new X-ray"], s),
     })
+}
+
+/// The coverage of each method from the outcomes of every simulation (t, percentile,
+/// BCa, prediction; `None` = no interval, counted as a miss): the share of hits and its
+/// Monte-Carlo standard error sqrt(p (1 - p) / sims). `targets` names what the
+/// confidence intervals and the prediction interval aim at.
+pub(super) fn tally(
+    outcomes: &[[Option<bool>; 4]],
+    targets: [&'static str; 2],
+    s: &CoverageSettings,
+) -> Vec<MethodCoverage> {
+    let [mean, further] = targets;
+    let names = [
+        ("t", mean),
+        ("percentile", mean),
+        ("bca", mean),
+        ("prediction", further),
+    ];
+    let sims = outcomes.len();
+    names
+        .iter()
+        .enumerate()
+        .map(|(m, &(method, target))| {
+            let hits = outcomes.iter().filter(|o| o[m] == Some(true)).count();
+            let undefined = outcomes.iter().filter(|o| o[m].is_none()).count();
+            let p = hits as f64 / sims as f64;
+            MethodCoverage {
+                method,
+                target,
+                nominal: s.confidence,
+                coverage: p,
+                mc_se: (p * (1.0 - p) / sims as f64).sqrt(),
+                undefined,
+            }
+        })
+        .collect()
 }
 
 /// The simulated coverage for one quantity of one finger.
@@ -295,31 +320,57 @@ pub fn holds(m: &MethodCoverage) -> bool {
     m.coverage >= m.nominal - (0.01f64).max(3.0 * m.mc_se)
 }
 
-fn one_simulation(
+/// Whether each interval of one sample `xs` holds its target: the t, percentile and BCa
+/// intervals the mean `truth`, the prediction interval the further value `new`; `None`
+/// when the method gives no interval. The intervals are those the statistics give
+/// ([`Intervals::of_mean`]). The bootstrap is the exact `enumeration` when given, else
+/// `s.resamples` random resamples from key (`s.seed`, `boot_key`). Shared by the normal
+/// model's simulation and [`super::population`]'s ([`samples_cover`] with one column).
+pub(super) fn one_sample(
     xs: &[f64],
     new: f64,
     truth: f64,
     s: &CoverageSettings,
-    sim: u64,
+    boot_key: u64,
     enumeration: Option<&bootstrap::Enumeration>,
 ) -> [Option<bool>; 4] {
-    let (Some(m), Some(sd)) = (describe::mean(xs), describe::sd(xs)) else {
-        return [None; 4];
-    };
+    samples_cover(&[xs], &[new], &[truth], s, boot_key, enumeration)[0]
+}
+
+/// [`one_sample`] for several quantities measured on the same sampled X-rays: column k of
+/// `xs` is quantity k's sample, `new[k]` its value on the further X-ray, `truth[k]` its
+/// mean. The quantities share one bootstrap (the X-ray is resampled), as in the analysis.
+pub(super) fn samples_cover(
+    xs: &[&[f64]],
+    new: &[f64],
+    truth: &[f64],
+    s: &CoverageSettings,
+    boot_key: u64,
+    enumeration: Option<&bootstrap::Enumeration>,
+) -> Vec<[Option<bool>; 4]> {
     let dist = match enumeration {
-        Some(e) => e.distribution(&[xs]),
-        None => bootstrap::resample_means(&[xs], s.resamples, s.seed, COVERAGE_KEY + 1 + sim),
+        Some(e) => e.distribution(xs),
+        None => bootstrap::resample_means(xs, s.resamples, s.seed, boot_key),
     };
-    let sorted = Sorted::new(&dist.means[0], &dist.weights);
-    // The same four intervals the statistics give.
-    let (iv, _) = Intervals::of_mean(xs, m, sd, &sorted, s.confidence);
-    let covers = |i: Option<Interval>, x: f64| i.map(|i| i.contains(x));
-    [
-        covers(iv.ci_t, truth),
-        covers(iv.ci_percentile, truth),
-        covers(iv.ci_bca, truth),
-        covers(iv.pi, new),
-    ]
+    xs.iter()
+        .zip(&dist.means)
+        .zip(new.iter().zip(truth))
+        .map(|((xs, means), (&new, &truth))| {
+            let (Some(m), Some(sd)) = (describe::mean(xs), describe::sd(xs)) else {
+                return [None; 4];
+            };
+            let sorted = Sorted::new(means, &dist.weights);
+            // The same four intervals the statistics give.
+            let (iv, _) = Intervals::of_mean(xs, m, sd, &sorted, s.confidence);
+            let covers = |i: Option<Interval>, x: f64| i.map(|i| i.contains(x));
+            [
+                covers(iv.ci_t, truth),
+                covers(iv.ci_percentile, truth),
+                covers(iv.ci_bca, truth),
+                covers(iv.pi, new),
+            ]
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -5,14 +5,20 @@
 //! mean (eq. 5), min and max (eq. 7) and range (eq. 9), then SD, SE, median, CV,
 //! Student-t, bootstrap percentile and BCa intervals of the mean, and a
 //! prediction interval for one new X-ray. Knows nothing of files or rendering.
+//!
+//! Where the metacarpal is measured, mc/J and J1/mc join the quantities of the X-rays
+//! that have it. Lengths in per-image pixels ([`is_pixel_unit`]) are not comparable
+//! across X-rays, so their total J is not averaged: such an analysis has no `total`.
 
 pub(crate) mod budget;
 pub mod claims;
+pub mod compare;
 pub mod coverage;
 pub mod groups;
 pub(crate) mod outliers;
 pub mod placement;
 pub(crate) mod plausible;
+pub mod population;
 pub(crate) mod tracking;
 
 /// The interval type of [`crate::stats`] and the quantities of [`crate::dataset`],
@@ -20,7 +26,7 @@ pub(crate) mod tracking;
 pub use crate::dataset::Quantity;
 pub use crate::stats::Interval;
 
-use crate::dataset::{Dataset, Finger, Row};
+use crate::dataset::{Dataset, Finger, Row, TipCounts, is_pixel_unit};
 use crate::stats::Intervals;
 use crate::stats::bootstrap::{self, Plan, Sorted};
 use crate::stats::describe;
@@ -97,19 +103,31 @@ pub struct XrayValues {
     pub total: f64,
     /// J~k = J_k / J for every segment (eq. 2).
     pub relative: Vec<f64>,
+    /// The metacarpal (CMC to MCP) in data units, when measured.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mc: Option<f64>,
 }
 
 impl XrayValues {
-    /// The value of quantity `q` on this X-ray.
-    pub fn value(&self, q: Quantity) -> f64 {
-        match q {
-            Quantity::RelJ1 => self.relative[0],
-            Quantity::RelJ2 => self.relative[1],
-            Quantity::RelJ3 => self.relative[2],
-            Quantity::RatioJ2J1 => self.lengths[1] / self.lengths[0],
-            Quantity::RatioJ3J2 => self.lengths[2] / self.lengths[1],
+    /// The value of quantity `q` on this X-ray; `None` when the X-ray lacks what `q`
+    /// needs (J3 of a thumb, the metacarpal where it is not measured).
+    pub fn value(&self, q: Quantity) -> Option<f64> {
+        let l = |k: usize| self.lengths.get(k).copied();
+        Some(match q {
+            Quantity::RelJ1 | Quantity::RelJ2 | Quantity::RelJ3 => {
+                let k = match q {
+                    Quantity::RelJ1 => 0,
+                    Quantity::RelJ2 => 1,
+                    _ => 2,
+                };
+                *self.relative.get(k)?
+            }
+            Quantity::RatioJ2J1 => l(1)? / l(0)?,
+            Quantity::RatioJ3J2 => l(2)? / l(1)?,
             Quantity::Total => self.total,
-        }
+            Quantity::RatioMcJ => self.mc? / self.total,
+            Quantity::RatioJ1Mc => l(0)? / self.mc?,
+        })
     }
 }
 
@@ -145,7 +163,8 @@ pub struct QuantityStats {
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct FingerAnalysis {
     pub finger: Finger,
-    /// Number of X-rays with this finger.
+    /// Number of X-rays with this finger (the metacarpal's quantities may have fewer:
+    /// their own `n`).
     pub n: usize,
     pub xrays: Vec<XrayValues>,
     pub quantities: Vec<QuantityStats>,
@@ -192,6 +211,10 @@ pub struct Analysis {
     pub settings: Settings,
     /// Fingers present in the data, thumb first.
     pub fingers: Vec<FingerAnalysis>,
+    /// The unit the rows name, if any.
+    pub unit: Option<String>,
+    /// Where the rows put their fingertips.
+    pub tips: TipCounts,
 }
 
 impl Analysis {
@@ -199,14 +222,111 @@ impl Analysis {
     pub fn finger(&self, f: Finger) -> Option<&FingerAnalysis> {
         self.fingers.iter().find(|a| a.finger == f)
     }
+
+    /// True when the lengths are per-image pixels ([`is_pixel_unit`]): the total J and
+    /// the metacarpal are then not comparable across X-rays and J is not averaged.
+    pub fn pixel_lengths(&self) -> bool {
+        self.unit.as_deref().is_some_and(is_pixel_unit)
+    }
 }
 
-/// The values of every quantity of a finger, one column per quantity.
-fn columns(finger: Finger, xrays: &[XrayValues]) -> Vec<Vec<f64>> {
-    Quantity::of(finger)
+/// The quantities of a finger measured on all its X-rays: [`Quantity::of`], without
+/// the total for pixel lengths, and with the metacarpal's when every X-ray has it.
+fn quantities(finger: Finger, xrays: &[XrayValues], pixels: bool) -> Vec<Quantity> {
+    let mut qs: Vec<Quantity> = Quantity::of(finger)
         .iter()
-        .map(|&q| xrays.iter().map(|x| x.value(q)).collect())
-        .collect()
+        .copied()
+        .filter(|&q| !(pixels && q == Quantity::Total))
+        .collect();
+    if xrays.iter().all(|x| x.mc.is_some()) {
+        qs.extend(Quantity::METACARPAL);
+    }
+    qs
+}
+
+/// One bootstrap unit: quantities of a finger over a list of its X-rays.
+#[derive(Debug, Clone)]
+pub(crate) struct Block {
+    pub(crate) finger: Finger,
+    pub(crate) quantities: Vec<Quantity>,
+    pub(crate) xrays: Vec<XrayValues>,
+    /// Whether these are the finger's X-rays (else a subset for the metacarpal).
+    pub(crate) main: bool,
+}
+
+/// The blocks of a dataset, fingers thumb first: each finger's X-rays (in order of first
+/// appearance in the file, so fingers of the same X-rays line up) with the quantities
+/// measured on all of them, then, when only some of them measure the metacarpal, those
+/// with the metacarpal's quantities. O(rows log rows).
+pub(crate) fn blocks(data: &Dataset) -> Vec<Block> {
+    let pixels = data.unit().is_some_and(is_pixel_unit);
+    let mut order: HashMap<&str, usize> = HashMap::new();
+    for r in &data.rows {
+        let next = order.len();
+        order.entry(&r.xray).or_insert(next);
+    }
+    let mut blocks: Vec<Block> = Vec::new();
+    for f in Finger::ALL {
+        let mut rows: Vec<&Row> = data.rows_of(f).collect();
+        if rows.is_empty() {
+            continue;
+        }
+        rows.sort_by_key(|r| order[&*r.xray]);
+        let xrays: Vec<XrayValues> = rows.iter().map(|r| xray_values(r)).collect();
+        let quantities = quantities(f, &xrays, pixels);
+        let partial: Vec<XrayValues> = xrays.iter().filter(|x| x.mc.is_some()).cloned().collect();
+        let subset = !partial.is_empty() && partial.len() < xrays.len();
+        blocks.push(Block {
+            finger: f,
+            quantities,
+            xrays,
+            main: true,
+        });
+        if subset {
+            blocks.push(Block {
+                finger: f,
+                quantities: Quantity::METACARPAL.to_vec(),
+                xrays: partial,
+                main: false,
+            });
+        }
+    }
+    blocks
+}
+
+/// Indices of `blocks` grouped by equal X-ray sequences (by `same`), in order of first
+/// appearance: blocks of a group share one bootstrap.
+pub(crate) fn group_by<T>(items: &[T], same: impl Fn(&T, &T) -> bool) -> Vec<Vec<usize>> {
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for (i, b) in items.iter().enumerate() {
+        match groups.iter_mut().find(|g| same(&items[g[0]], b)) {
+            Some(g) => g.push(i),
+            None => groups.push(vec![i]),
+        }
+    }
+    groups
+}
+
+/// True when two lists of X-ray values are of the same X-rays in the same order.
+pub(crate) fn same_xrays(a: &[XrayValues], b: &[XrayValues]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.xray == y.xray)
+}
+
+impl Block {
+    /// The values of every quantity, one column per quantity.
+    pub(crate) fn columns(&self) -> Vec<Vec<f64>> {
+        self.quantities
+            .iter()
+            .map(|&q| self.xrays.iter().filter_map(|x| x.value(q)).collect())
+            .collect()
+    }
+
+    /// The random key of the block's bootstrap when it leads its group: the finger's
+    /// index for the finger's own X-rays (as before the metacarpal), 8 + the index for
+    /// a metacarpal subset.
+    pub(crate) fn key(&self) -> u64 {
+        self.finger.index() as u64 + if self.main { 0 } else { 8 }
+    }
 }
 
 /// Analyses a dataset. Fingers whose X-rays are the same share every bootstrap
@@ -221,80 +341,70 @@ pub fn analyse_with(
     settings: &Settings,
     progress: &dyn bootstrap::Progress,
 ) -> Analysis {
-    // X-rays in order of first appearance, so fingers of the same X-rays line up.
-    let mut order: HashMap<&str, usize> = HashMap::new();
-    for r in &data.rows {
-        let next = order.len();
-        order.entry(&r.xray).or_insert(next);
-    }
-    let mut per_finger: Vec<(Finger, Vec<XrayValues>)> = Vec::new();
-    for f in Finger::ALL {
-        let mut rows: Vec<&Row> = data.rows_of(f).collect();
-        if rows.is_empty() {
-            continue;
-        }
-        rows.sort_by_key(|r| order[&*r.xray]);
-        let xrays = rows.iter().map(|r| xray_values(r)).collect();
-        per_finger.push((f, xrays));
-    }
-    // Group fingers by their X-ray sequence; each group shares one bootstrap.
-    let mut groups: Vec<Vec<usize>> = Vec::new();
-    for (i, (_, xs)) in per_finger.iter().enumerate() {
-        let same = |g: &Vec<usize>| {
-            let ys = &per_finger[g[0]].1;
-            ys.len() == xs.len() && ys.iter().zip(xs).all(|(a, b)| a.xray == b.xray)
-        };
-        match groups.iter_mut().find(|g| same(g)) {
-            Some(g) => g.push(i),
-            None => groups.push(vec![i]),
-        }
-    }
+    let unit = data.unit().map(str::to_string);
+    let blocks = blocks(data);
+    let groups = group_by(&blocks, |a, b| same_xrays(&a.xrays, &b.xrays));
     let random_groups = groups
         .iter()
         .filter(|g| {
-            let n = per_finger[g[0]].1.len();
+            let n = blocks[g[0]].xrays.len();
             matches!(Plan::choose(n, settings.resamples), Plan::Random { .. })
         })
         .count();
     progress.start((random_groups * settings.resamples) as u64);
-    let mut results: Vec<Option<FingerAnalysis>> = vec![None; per_finger.len()];
-    let mut per_finger: Vec<(Finger, Option<Vec<XrayValues>>)> =
-        per_finger.into_iter().map(|(f, x)| (f, Some(x))).collect();
+    let mut stats: Vec<Vec<QuantityStats>> = vec![Vec::new(); blocks.len()];
+    let mut plans: Vec<Option<Plan>> = vec![None; blocks.len()];
     for group in &groups {
-        let cols: Vec<Vec<Vec<f64>>> = group
-            .iter()
-            .map(|&i| columns(per_finger[i].0, per_finger[i].1.as_deref().unwrap_or(&[])))
-            .collect();
+        let cols: Vec<Vec<Vec<f64>>> = group.iter().map(|&i| blocks[i].columns()).collect();
         let flat: Vec<&[f64]> = cols.iter().flatten().map(Vec::as_slice).collect();
-        let key = per_finger[group[0]].0.index() as u64;
+        let key = blocks[group[0]].key();
         let dist =
             bootstrap::resample_means_with(&flat, settings.resamples, settings.seed, key, progress);
         let mut offset = 0;
-        for (&i, fcols) in group.iter().zip(&cols) {
-            let finger = per_finger[i].0;
-            let xrays = per_finger[i].1.take().unwrap_or_default();
-            let quantities = Quantity::of(finger)
+        for (&i, bcols) in group.iter().zip(&cols) {
+            let b = &blocks[i];
+            stats[i] = b
+                .quantities
                 .iter()
-                .zip(fcols)
+                .zip(bcols)
                 .enumerate()
                 .map(|(k, (&q, col))| {
-                    quantity_stats(q, col, &dist.means[offset + k], &dist.weights, settings)
+                    let mut s =
+                        quantity_stats(q, col, &dist.means[offset + k], &dist.weights, settings);
+                    if !b.main {
+                        s.notes.push(format!(
+                            "from the {} of {} X-rays whose metacarpal is measured",
+                            b.xrays.len(),
+                            data.rows_of(b.finger).count()
+                        ));
+                    }
+                    s
                 })
                 .collect();
-            offset += fcols.len();
-            results[i] = Some(FingerAnalysis {
-                finger,
-                n: xrays.len(),
-                xrays,
-                quantities,
-                bootstrap: dist.plan,
+            plans[i] = Some(dist.plan);
+            offset += bcols.len();
+        }
+    }
+    let mut fingers: Vec<FingerAnalysis> = Vec::new();
+    for ((b, s), plan) in blocks.into_iter().zip(stats).zip(plans) {
+        if b.main {
+            fingers.push(FingerAnalysis {
+                finger: b.finger,
+                n: b.xrays.len(),
+                xrays: b.xrays,
+                quantities: s,
+                bootstrap: plan.unwrap_or(Plan::Exact { distinct: 0 }),
             });
+        } else if let Some(f) = fingers.last_mut() {
+            f.quantities.extend(s);
         }
     }
     Analysis {
         dataset: DatasetInfo::of(data),
         settings: *settings,
-        fingers: results.into_iter().flatten().collect(),
+        fingers,
+        unit,
+        tips: data.tips(),
     }
 }
 
@@ -308,6 +418,7 @@ pub(crate) fn xray_values(row: &Row) -> XrayValues {
         lengths,
         total,
         relative,
+        mc: row.mc,
     }
 }
 

@@ -3,7 +3,8 @@
 //! Measured from the finger's root joint (MCP), for a model finger of total
 //! length L: the second joint (PIP) lies at J~1 L, the third (DIP) at
 //! (J~1 + J~2) L = (1 - J~3) L, and the tip at L; for the thumb the IP joint lies
-//! at J~1 L. Every statistic of a position is the corresponding statistic of a
+//! at J~1 L. Where the data measure the metacarpal, the MCP lies (mc/J) L from the
+//! CMC, the base of the metacarpal: the part of the hand the paper leaves open. Every statistic of a position is the corresponding statistic of a
 //! relative value under the affine map x -> a + b x (b = +L or -L). The mean and
 //! all four intervals are equivariant under such maps (for b < 0 the ends swap),
 //! so no new resampling is needed.
@@ -111,6 +112,17 @@ pub struct FingerPlacement {
     /// The inner joints, root to tip (PIP, DIP; or IP for the thumb).
     pub joints: Vec<JointPosition>,
     pub segments: Vec<SegmentLength>,
+    /// The MCP's distance from the CMC, (mc/J) L, where the data measure the metacarpal.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub metacarpal: Option<Metacarpal>,
+}
+
+/// Where the MCP lies from the CMC, in model units.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct Metacarpal {
+    /// X-rays whose metacarpal is measured.
+    pub n: usize,
+    pub position: Placed,
 }
 
 /// Places the joints of `finger` for a model finger of total length `length`.
@@ -138,12 +150,17 @@ pub fn place(a: &Analysis, finger: Finger, length: f64) -> Option<FingerPlacemen
             })
         })
         .collect();
+    let metacarpal = rel(Quantity::RatioMcJ).map(|s| Metacarpal {
+        n: s.n,
+        position: Placed::affine(s, 0.0, length),
+    });
     Some(FingerPlacement {
         finger,
         length,
         n: fa.n,
         joints,
         segments,
+        metacarpal,
     })
 }
 
@@ -179,6 +196,21 @@ mod tests {
         assert_eq!(format!("{:.1}", pip.position.min), "472.8");
         assert_eq!(format!("{:.1}", pip.position.range), "32.0");
         assert_eq!(p.segments.len(), 3);
+        assert!(p.metacarpal.is_none(), "the paper measures no metacarpal");
+    }
+
+    #[test]
+    fn the_mcp_from_the_cmc_where_the_metacarpal_is_measured() {
+        // mc/J by hand: 60/85, 66/90, 58/80; at L = 10 the MCP lies 10 mc/J from the CMC.
+        let text = "xray,finger,j1,j2,j3,mc\na,index,40,25,20,60\nb,index,45,25,20,66\nc,index,40,22,18,58\n";
+        let d = Dataset::from_bytes("t.csv", text.as_bytes()).unwrap();
+        let p = place(&analyse(&d, &Settings::default()), Finger::Index, 10.0).unwrap();
+        let m = p.metacarpal.unwrap();
+        let want = [60.0 / 85.0, 66.0 / 90.0, 58.0 / 80.0].map(|r| 10.0 * r);
+        assert_eq!(m.n, 3);
+        assert!((m.position.mean - want.iter().sum::<f64>() / 3.0).abs() < 1e-12);
+        assert!((m.position.min - want[0]).abs() < 1e-12);
+        assert!((m.position.max - want[1]).abs() < 1e-12);
     }
 
     #[test]

@@ -324,3 +324,81 @@ fn settings_are_validated() {
         .is_err()
     );
 }
+
+#[test]
+fn metacarpal_quantities_where_the_metacarpal_is_measured() {
+    // By hand: index a: mc/J = 60 / (40 + 25 + 20) = 0.705882..., J1/mc = 40/60;
+    // b: 66 / 90 and 45 / 66; c has no mc. The thumb rows all have mc.
+    let text = "xray,finger,j1,j2,j3,mc,unit\n\
+                a,index,40,25,20,60,mm\n\
+                b,index,45,25,20,66,mm\n\
+                c,index,42,24,19,,mm\n\
+                a,thumb,30,25,,40,mm\n\
+                b,thumb,31,24,,42,mm\n\
+                c,thumb,29,26,,41,mm\n";
+    let d = Dataset::from_bytes("t.csv", text.as_bytes()).unwrap();
+    let a = analyse(&d, &Settings::default());
+    let index = a.finger(Finger::Index).unwrap();
+    assert_eq!(index.n, 3);
+    let mc_j = stats(&a, Finger::Index, Quantity::RatioMcJ);
+    assert_eq!(mc_j.n, 2);
+    assert!(close(mc_j.mean, (60.0 / 85.0 + 66.0 / 90.0) / 2.0, 1e-12));
+    let j1_mc = stats(&a, Finger::Index, Quantity::RatioJ1Mc);
+    assert!(close(j1_mc.mean, (40.0 / 60.0 + 45.0 / 66.0) / 2.0, 1e-12));
+    assert!(
+        mc_j.notes
+            .iter()
+            .any(|n| n == "from the 2 of 3 X-rays whose metacarpal is measured"),
+        "{:?}",
+        mc_j.notes
+    );
+    // The other quantities use all three X-rays, as without the metacarpal.
+    assert_eq!(stats(&a, Finger::Index, Quantity::RelJ1).n, 3);
+    assert!(stats(&a, Finger::Index, Quantity::Total).n == 3);
+    // Every thumb has its metacarpal: same X-rays, one bootstrap, no note.
+    let t = stats(&a, Finger::Thumb, Quantity::RatioMcJ);
+    assert_eq!(t.n, 3);
+    assert!(close(
+        t.mean,
+        (40.0 / 55.0 + 42.0 / 55.0 + 41.0 / 55.0) / 3.0,
+        1e-12
+    ));
+    assert!(t.notes.is_empty(), "{:?}", t.notes);
+    // Without the column, no metacarpal quantity (the paper's data).
+    let p = analyse(&paper(), &Settings::default());
+    assert!(
+        p.fingers
+            .iter()
+            .all(|f| f.quantities.iter().all(|q| !q.name.needs_mc()))
+    );
+}
+
+#[test]
+fn pixel_lengths_are_not_averaged() {
+    let text = "xray,finger,j1,j2,j3,unit\na,index,40,25,20,px\nb,index,45,25,20,px\n";
+    let d = Dataset::from_bytes("t.csv", text.as_bytes()).unwrap();
+    let a = analyse(&d, &Settings::default());
+    assert!(a.pixel_lengths());
+    assert!(
+        a.finger(Finger::Index)
+            .unwrap()
+            .quantity(Quantity::Total)
+            .is_none()
+    );
+    assert!(
+        a.finger(Finger::Index)
+            .unwrap()
+            .quantity(Quantity::RelJ1)
+            .is_some()
+    );
+    // The paper's "image units" are its own unit: its totals are claims to check.
+    let p = analyse(&paper(), &Settings::default());
+    assert!(!p.pixel_lengths());
+    assert_eq!(p.unit.as_deref(), Some("image units"));
+    assert!(
+        p.finger(Finger::Index)
+            .unwrap()
+            .quantity(Quantity::Total)
+            .is_some()
+    );
+}

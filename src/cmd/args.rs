@@ -53,7 +53,7 @@ pub(crate) fn outside_checkout(e: Error) -> Error {
 /// The dataset to read.
 #[derive(Args, Debug, Clone)]
 pub(crate) struct DataArgs {
-    /// Measurement CSV (columns xray,finger,j1,j2,j3[,sex,age,side,source,unit])
+    /// Measurement CSV (columns xray,finger,j1,j2,j3[,mc,sex,age,side,source,unit,tip])
     #[arg(long, value_name = "PATH", default_value = DEFAULT_DATA)]
     pub(crate) data: PathBuf,
 }

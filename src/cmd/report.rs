@@ -10,7 +10,7 @@ use crate::dataset::Dataset;
 use crate::dataset::claims::Claims;
 use crate::error::Error;
 use crate::report::render::Templates;
-use crate::report::view::{ReferenceAudit, ReportInputs};
+use crate::report::view::{AtlasInputs, ReferenceAudit, ReportInputs};
 use crate::report::writer::OutputFile;
 use crate::report::{self, Formats};
 use crate::rig::AuditedRig;
@@ -20,6 +20,15 @@ use std::path::{Path, PathBuf};
 
 /// Default directory of reference rigs for the report.
 const DEFAULT_RIGS: &str = "data/rigs";
+/// The atlas of the section "The paper against N atlas radiographs".
+const DEFAULT_ATLAS: &str = "data/atlas/measurements.csv";
+/// Sample sizes of the coverage measured on the atlas's hands.
+const ATLAS_SIZES: [usize; 5] = [3, 5, 10, 20, 50];
+/// Samples per size of that coverage, and the resamples of its random bootstraps (n of 8
+/// and over): enough for a Monte-Carlo SE near 1% per value, cheap enough for a report.
+/// `phalanx coverage --population` measures it with more.
+const ATLAS_SIMS: usize = 500;
+const ATLAS_RESAMPLES: usize = 200;
 
 /// Render the HTML and Markdown report with SVG plots, and stats.json
 #[derive(clap::Args, Debug)]
@@ -61,6 +70,9 @@ pub(crate) struct Args {
     /// Directory of reference rigs (*.json) for "Popular rigs against the X-rays"; absent = no section
     #[arg(long, value_name = "DIR", default_value = DEFAULT_RIGS)]
     rigs: PathBuf,
+    /// Measurements of an atlas for "The paper against N atlas radiographs"; absent = no section
+    #[arg(long, value_name = "PATH", default_value = DEFAULT_ATLAS)]
+    atlas: PathBuf,
     /// Target half-width of the confidence interval of a relative mean, for "X-rays needed": greater than 0, at most 1
     #[arg(long, value_name = "W", default_value_t = 0.005, value_parser = parse_target, allow_negative_numbers = true)]
     target: f64,
@@ -96,7 +108,15 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let history = crate::dataset::history::read(&history_path)?;
     let claims = Claims::load(&args.claims)?;
     let (results, claims_note) = check_claims(&claims, &dataset);
+    let paper_xrays = claims.named_in(&dataset);
     let references = reference::load_dir(&args.rigs)?;
+    // The section compares the paper's X-rays with the atlas: over other data it is left out.
+    let is_paper = paper_xrays.0 > 0 && paper_xrays.0 == paper_xrays.1;
+    let atlas_data = if is_paper && args.atlas.exists() {
+        Some(Dataset::load(&args.atlas)?)
+    } else {
+        None
+    };
     let cov_settings = CoverageSettings {
         sims: args.sims as usize,
         resamples: settings.resamples,
@@ -110,7 +130,7 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     check_coverage_budget(&dataset, &cov_settings, show_coverage)?;
     let a = super::analyse_showing_progress(&dataset, &settings, quiet)?;
     super::warn_implausible(&a);
-    drop(dataset);
+    let paper_data = dataset;
     let rigs = audit_references(references, &a);
     let cov = if show_coverage {
         coverage::curve(&coverage::data_sizes(&a, &cov_settings), &cov_settings)
@@ -118,6 +138,24 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         Vec::new()
     };
     let placements = placement::place_all(&a, args.model_length);
+    let atlas = atlas_data.map(|atlas| {
+        let pop = CoverageSettings {
+            sims: ATLAS_SIMS,
+            resamples: ATLAS_RESAMPLES,
+            ..cov_settings
+        };
+        AtlasInputs {
+            analysis: crate::analysis::analyse(&atlas, &settings),
+            cohorts: crate::analysis::compare::cohorts(&paper_data, &atlas, &settings),
+            population: crate::analysis::population::of_dataset(
+                &atlas,
+                &ATLAS_SIZES,
+                &CoverageSettings { max_n: None, ..pop },
+                crate::analysis::Quantity::is_relative,
+            ),
+        }
+    });
+    drop(paper_data);
     let timestamp = args
         .timestamp
         .then(|| humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string());
@@ -136,6 +174,8 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         target: args.target,
         groups: &groups,
         rigs: &rigs,
+        paper_xrays,
+        atlas: atlas.as_ref(),
     };
     let files = report::render(&inputs, formats, &templates)?;
     write(&args.out, &files)?;

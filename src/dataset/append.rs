@@ -128,18 +128,21 @@ fn field_of(row: &Row, column: &str) -> String {
         "j1" => length_text(row.lengths[0]),
         "j2" => length_text(row.lengths[1]),
         "j3" if row.finger.segments() == 3 => length_text(row.lengths[2]),
+        "mc" => crate::format::full(row.mc),
         "sex" => s(&row.meta.sex),
         "age" => crate::format::full(row.meta.age),
         "side" => s(&row.meta.side),
         "source" => s(&row.meta.source),
         "unit" => s(&row.meta.unit),
+        "tip" => row.meta.tip.map_or(String::new(), |t| t.name().to_string()),
         _ => String::new(),
     }
 }
 
 /// The bytes of the dataset with `new` appended, after checking that the new rows
-/// fit it: no (X-ray, finger) already present, the same sex/age/side/unit as
-/// existing rows of the same X-ray, and no metadata for a column the file lacks.
+/// fit it: no (X-ray, finger) already present, the same sex/age/side/unit/tip as
+/// existing rows of the same X-ray, the dataset's unit (when both name one), and no
+/// metadata (or metacarpal) for a column the file lacks.
 /// Problems name the new rows' lines in `new.path`. Returns the new bytes and
 /// the dataset they hold (validated once). Numbers are written as `typed` holds
 /// them (see [`Typed`]; with `Typed::default()`, in their shortest exact form).
@@ -176,7 +179,25 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
     for r in &current.rows {
         by_xray.entry(&r.xray).or_insert(r);
     }
+    let unit = current
+        .rows
+        .iter()
+        .find_map(|r| r.meta.unit.as_deref().map(|u| (u, r.line)));
     for r in &new.rows {
+        if let (Some((unit, line)), Some(ours)) = (unit, r.meta.unit.as_deref())
+            && ours != unit
+        {
+            problems.push(Problem::line(
+                r.line,
+                format!(
+                    "unit is {} but the rows of {} are in {} (line {line}); lengths in different units cannot be averaged: convert the new lengths to {}, or give them the dataset's unit",
+                    quote(ours),
+                    current.path,
+                    quote(unit),
+                    quote(unit)
+                ),
+            ));
+        }
         if let Some(old) = existing.get(&(&*r.xray, r.finger)) {
             problems.push(Problem::line(
                 r.line,
@@ -195,6 +216,7 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
                 ("age", field_of(r, "age"), field_of(old, "age")),
                 ("side", field_of(r, "side"), field_of(old, "side")),
                 ("unit", field_of(r, "unit"), field_of(old, "unit")),
+                ("tip", field_of(r, "tip"), field_of(old, "tip")),
             ] {
                 // An empty field takes the X-ray's value (see append_rows).
                 if !ours.is_empty() && ours != theirs {
@@ -357,6 +379,45 @@ mod tests {
             e.problems[0]
                 .message
                 .contains("sex is 'male' but d.csv line 2 gives 'female'")
+        );
+    }
+
+    #[test]
+    fn a_unit_other_than_the_datasets_is_refused() {
+        let old = "xray,finger,j1,j2,j3,unit\na,index,4,3,3,image units\n";
+        let cur = ds("d.csv", old);
+        let new = ds(
+            "n.csv",
+            "xray,finger,j1,j2,j3,unit\nb,index,4,3,3,mm\nc,index,4,3,3,\n",
+        );
+        let e = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
+        assert_eq!(e.problems.len(), 1, "{e}");
+        assert_eq!(e.problems[0].line, Some(2));
+        assert!(
+            e.problems[0]
+                .message
+                .contains("unit is 'mm' but the rows of d.csv are in 'image units' (line 2)"),
+            "{e}"
+        );
+        // The metacarpal and the tip are appended where the file has their columns.
+        let old = "xray,finger,j1,j2,j3,mc,unit,tip\na,index,4,3,3,9,px,bone\n";
+        let cur = ds("d.csv", old);
+        let new = ds(
+            "n.csv",
+            "xray,finger,j1,j2,j3,mc,unit,tip\nb,index,4,3,3,8.5,px,bone\n",
+        );
+        let (out, _) = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap();
+        assert!(
+            String::from_utf8(out)
+                .unwrap()
+                .ends_with("b,index,4,3,3,8.5,px,bone\n")
+        );
+        let e = appended_bytes_typed(OLD.as_bytes(), &ds("d.csv", OLD), &new, &Typed::default())
+            .unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("gives a mc, but d.csv has no 'mc' column"),
+            "{e}"
         );
     }
 

@@ -228,6 +228,23 @@ impl Claims {
         self.columns.get(c.index()).copied().unwrap_or(0)
     }
 
+    /// The X-rays the claims name (e.g. the paper's 1a-1e).
+    pub fn xrays(&self) -> HashSet<&str> {
+        self.claims
+            .iter()
+            .filter_map(|c| c.xray.as_deref())
+            .collect()
+    }
+
+    /// How many of the dataset's X-rays the claims name, and how many X-rays it has:
+    /// `(k, n)`, with k == n > 0 when the dataset holds exactly the claims' X-rays.
+    pub fn named_in(&self, data: &Dataset) -> (usize, usize) {
+        let named = self.xrays();
+        let xrays: HashSet<&str> = data.rows.iter().map(|r| &*r.xray).collect();
+        let k = xrays.iter().filter(|x| named.contains(*x)).count();
+        (k, xrays.len())
+    }
+
     /// Checks that every claim points at a finger and X-ray the dataset has.
     pub fn check_against(&self, data: &Dataset) -> Result<(), DataError> {
         let fingers: HashSet<Finger> = data.rows.iter().map(|r| r.finger).collect();

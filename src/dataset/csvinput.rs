@@ -416,6 +416,11 @@ impl<'s, C: Columns> Cells<'_, 's, C> {
         self.record.line
     }
 
+    /// The 1-based column of `c` in the file, 0 when the file lacks it.
+    pub fn column(&self, c: C) -> usize {
+        self.header.column(c)
+    }
+
     /// The cell of column `c`, trimmed: `Some("")` when empty or when the file
     /// lacks the column, `None` when not valid text (already reported).
     pub(crate) fn text(&self, c: C) -> Option<&'s str> {
@@ -523,6 +528,58 @@ fn sniff<C: Columns>(record: &Record<'_>) -> Option<Problem> {
             required_names::<C>()
         ),
     ))
+}
+
+/// One record of a headerless table ([`read_headerless`]): its line and its fields.
+pub struct Fields<'a, 's> {
+    record: &'a Record<'s>,
+}
+
+impl<'s> Fields<'_, 's> {
+    /// The record's line (1-based; blank lines and line ends inside quotes counted).
+    pub fn line(&self) -> u64 {
+        self.record.line
+    }
+
+    /// Number of fields on the line.
+    pub fn len(&self) -> usize {
+        self.record.len()
+    }
+
+    /// Field `i` (0-based) trimmed: `Some("")` when absent or empty, `None` when not
+    /// valid text (that problem is already reported, with its line and column).
+    pub fn get(&self, i: usize) -> Option<&'s str> {
+        self.record.get(i)
+    }
+}
+
+/// Reads a CSV table without a header line (e.g. the Digital Hand Atlas's landmarks),
+/// handing each non-blank record to `row` with the file's problem list. The byte-level
+/// checks are those of [`read_table`]: a UTF-8 byte-order mark is dropped, a UTF-16 file is
+/// refused up front (the error), and each field that is not UTF-8 or holds a NUL byte is
+/// reported at its line and column (and handed on as `None`). The caller checks field
+/// counts and values. Returns the file's SHA-256 (lower-case hex) and the number of
+/// records read. Memory: one record at a time. Cost: O(bytes).
+pub fn read_headerless(
+    label: &str,
+    input: impl std::io::Read,
+    problems: &mut Vec<Problem>,
+    mut row: impl FnMut(&Fields<'_, '_>, &mut Vec<Problem>),
+) -> Result<(String, usize), DataError> {
+    let mut scan = CsvScan::new(label, input)?;
+    let mut records = 0usize;
+    while let Some(record) = scan.next_record(problems) {
+        records += 1;
+        row(&Fields { record: &record }, problems);
+    }
+    let sha256 = match scan.finish() {
+        Ok((sha, _)) => sha,
+        Err(e) => {
+            problems.push(Problem::file(format!("could not be read to the end ({e})")));
+            String::new()
+        }
+    };
+    Ok((sha256, records))
 }
 
 /// Reads a table of columns `C` from `input` (`label` names it in errors),

@@ -1,9 +1,14 @@
 //! Ingest and validate measurement tables (Table 1 of the paper and its successors).
 //!
 //! A measurement file has one row per X-ray and finger:
-//! `xray,finger,j1,j2,j3[,sex,age,side,source,unit]`, with `j3` empty for the
-//! thumb. [`Dataset::load`] reads a whole file and either returns every row or
+//! `xray,finger,j1,j2,j3[,mc,sex,age,side,source,unit,tip]`, with `j3` empty for
+//! the thumb. [`Dataset::load`] reads a whole file and either returns every row or
 //! a [`DataError`] listing every problem in the file with its line and column.
+//!
+//! The optional `mc` is the metacarpal's length (CMC to MCP) in the row's unit, and
+//! `tip` says where the fingertips are (`bone`, `skin`, or empty: unknown). Every row
+//! that names a unit names the same one: lengths in different units are refused, not
+//! averaged.
 
 pub(crate) mod append;
 pub mod claims;
@@ -11,11 +16,14 @@ pub(crate) mod csvinput;
 pub(crate) mod error;
 pub(crate) mod finger;
 pub mod history;
+pub(crate) mod landmarks;
 pub(crate) mod quantity;
+pub mod tip;
 
 pub use error::{DataError, Problem};
 pub use finger::Finger;
 pub use quantity::Quantity;
+pub use tip::{TipCounts, TipKind};
 
 use csvinput::{Cells, Columns, quote};
 use std::collections::HashMap;
@@ -29,8 +37,8 @@ pub(crate) const MAX_LENGTH: f64 = 1e100;
 pub(crate) const MAX_SPREAD: f64 = 1e6;
 
 /// The columns of a measurement file: `xray`, `finger`, `j1`, `j2` and `j3` are
-/// required, the metadata `sex`, `age`, `side`, `source` and `unit` optional (and
-/// may be empty).
+/// required; the metacarpal `mc` and the metadata `sex`, `age`, `side`, `source`,
+/// `unit` and `tip` optional (and may be empty).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Column {
     Xray,
@@ -38,11 +46,13 @@ pub(crate) enum Column {
     J1,
     J2,
     J3,
+    Mc,
     Sex,
     Age,
     Side,
     Source,
     Unit,
+    Tip,
 }
 
 impl Column {
@@ -57,11 +67,13 @@ impl Columns for Column {
         Column::J1,
         Column::J2,
         Column::J3,
+        Column::Mc,
         Column::Sex,
         Column::Age,
         Column::Side,
         Column::Source,
         Column::Unit,
+        Column::Tip,
     ];
     const EMPTY: &'static str = "is empty; it needs a header line and at least one data row";
     const NO_ROWS: Option<&'static str> =
@@ -74,11 +86,13 @@ impl Columns for Column {
             Column::J1 => "j1",
             Column::J2 => "j2",
             Column::J3 => "j3",
+            Column::Mc => "mc",
             Column::Sex => "sex",
             Column::Age => "age",
             Column::Side => "side",
             Column::Source => "source",
             Column::Unit => "unit",
+            Column::Tip => "tip",
         }
     }
 
@@ -107,6 +121,8 @@ pub struct Meta {
     pub source: Option<Arc<str>>,
     /// Unit of the lengths (e.g. "image units").
     pub unit: Option<Arc<str>>,
+    /// Where the fingertips are; `None` when unknown.
+    pub tip: Option<TipKind>,
 }
 
 /// One validated measurement row.
@@ -119,6 +135,8 @@ pub struct Row {
     pub finger: Finger,
     /// J1, J2, J3 (J3 is 0 for the thumb; use [`Row::segments`]).
     pub lengths: [f64; 3],
+    /// The metacarpal, CMC to MCP, in the row's unit, when measured.
+    pub mc: Option<f64>,
     pub meta: Meta,
 }
 
@@ -183,6 +201,27 @@ impl Dataset {
     pub fn rows_of(&self, finger: Finger) -> impl Iterator<Item = &Row> {
         self.rows.iter().filter(move |r| r.finger == finger)
     }
+
+    /// The unit the rows name (every row that names one names this one, [`Dataset::load`]
+    /// checks), or `None` when no row names a unit.
+    pub fn unit(&self) -> Option<&str> {
+        self.rows.iter().find_map(|r| r.meta.unit.as_deref())
+    }
+
+    /// Where the rows put their fingertips.
+    pub fn tips(&self) -> TipCounts {
+        TipCounts::of(self.rows.iter().map(|r| r.meta.tip))
+    }
+}
+
+/// True for a unit of per-image pixels (`px`, `pixel`, `pixels`, any case), the unit
+/// `phalanx import` writes without a pixel spacing. Such lengths (the total J, the
+/// metacarpal) are not comparable across images of different scale; only ratios are.
+pub fn is_pixel_unit(unit: &str) -> bool {
+    matches!(
+        unit.trim().to_ascii_lowercase().as_str(),
+        "px" | "pixel" | "pixels"
+    )
 }
 
 /// Parses one segment length, explaining what to fix when it is not a
@@ -264,6 +303,7 @@ struct XrayMeta {
     age: Option<f64>,
     side: Option<Arc<str>>,
     unit: Option<Arc<str>>,
+    tip: Option<TipKind>,
 }
 
 /// Parses and validates rows; returns the header's columns, the rows and the
@@ -276,7 +316,8 @@ fn parse_rows(
     let mut seen: HashMap<(Arc<str>, Finger), u64> = HashMap::new();
     let mut xray_meta: HashMap<Arc<str>, XrayMeta> = HashMap::new();
     let mut rows = Vec::new();
-    let (header, sha256) = csvinput::read_table(label, input, |cells| {
+    let mut units = UnitCheck::default();
+    let read = csvinput::read_table(label, input, |cells| {
         let Some(row) = parse_row(cells, &mut interner) else {
             return;
         };
@@ -298,9 +339,72 @@ fn parse_rows(
             }
         }
         check_xray_meta(&row, cells, &mut xray_meta);
+        if !cells.has_problems() {
+            units.see(&row, cells.column(Column::Unit));
+        }
         rows.push(row);
-    })?;
-    Ok((header.names, rows, sha256))
+    });
+    // The file's other problems and its mixed units are reported together.
+    let mixed = units.problems();
+    match read {
+        Ok((header, sha256)) if mixed.is_empty() => Ok((header.names, rows, sha256)),
+        Ok(_) => Err(DataError {
+            file: label.to_string(),
+            problems: mixed,
+        }),
+        Err(mut e) => {
+            e.problems.extend(mixed);
+            e.problems
+                .sort_by_key(|p| (p.line.unwrap_or(0), p.column.unwrap_or(0)));
+            Err(e)
+        }
+    }
+}
+
+/// The units the rows of a file name, to refuse a file that mixes them.
+#[derive(Default)]
+struct UnitCheck {
+    /// Each distinct unit named: its first line, the column, and how many rows name it.
+    seen: Vec<(Arc<str>, u64, usize, usize)>,
+}
+
+impl UnitCheck {
+    fn see(&mut self, row: &Row, column: usize) {
+        let Some(unit) = &row.meta.unit else { return };
+        match self.seen.iter_mut().find(|(u, ..)| u == unit) {
+            Some((_, _, _, count)) => *count += 1,
+            None => self.seen.push((unit.clone(), row.line, column, 1)),
+        }
+    }
+
+    /// One problem per unit other than the first named, at its first line: averaging
+    /// lengths in different units means nothing (the paper's image units and
+    /// millimetres would give a thumb interval of [-214, 1065]).
+    fn problems(self) -> Vec<Problem> {
+        let Some(((first, first_line, ..), others)) = self.seen.split_first() else {
+            return Vec::new();
+        };
+        others
+            .iter()
+            .map(|(unit, line, column, count)| {
+                let more = match count - 1 {
+                    0 => String::new(),
+                    1 => " (and on 1 more row)".to_string(),
+                    k => format!(" (and on {k} more rows)"),
+                };
+                Problem::field(
+                    *line,
+                    *column,
+                    Column::Unit.name(),
+                    format!(
+                        "is {}{more}, but line {first_line} gives {}: the rows of one dataset have one unit, and lengths in different units cannot be averaged; convert them to one unit or keep them in separate files (compare them with 'phalanx compare')",
+                        quote(unit),
+                        quote(first)
+                    ),
+                )
+            })
+            .collect()
+    }
 }
 
 /// Validates one record; reports its problems and returns the row when it has none.
@@ -315,6 +419,15 @@ fn parse_row(cells: &mut Cells<'_, '_, Column>, interner: &mut Interner) -> Opti
     check_formulas(cells);
     let finger = cells.parse(Column::Finger, parse_finger);
     let lengths = read_lengths(cells, finger);
+    let mc = cells
+        .parse(Column::Mc, |t| {
+            if t.is_empty() {
+                Ok(None)
+            } else {
+                parse_length(t).map(Some)
+            }
+        })
+        .flatten();
     let meta = read_meta(cells, interner);
     if cells.has_problems() {
         return None;
@@ -324,6 +437,7 @@ fn parse_row(cells: &mut Cells<'_, '_, Column>, interner: &mut Interner) -> Opti
         xray: interner.get(xray?),
         finger: finger?,
         lengths,
+        mc,
         meta,
     };
     match check_bounds(&row) {
@@ -433,7 +547,21 @@ fn read_meta(cells: &mut Cells<'_, '_, Column>, interner: &mut Interner) -> Meta
     if let Some(t) = cells.text(Column::Unit) {
         meta.unit = interner.opt(t);
     }
+    meta.tip = cells.parse(Column::Tip, parse_tip).flatten();
     meta
+}
+
+/// `bone` or `skin` (any case); `None` when empty.
+fn parse_tip(text: &str) -> Result<Option<TipKind>, String> {
+    if text.is_empty() {
+        return Ok(None);
+    }
+    TipKind::parse(text).map(Some).ok_or_else(|| {
+        format!(
+            "{} is not a fingertip kind; use bone (landmark at the end of the distal phalanx) or skin (at the skin's outline), or leave it empty",
+            quote(text)
+        )
+    })
 }
 
 /// An age in years from 0 to 150; `None` when empty.
@@ -476,6 +604,7 @@ fn check_bounds(row: &Row) -> Result<(), String> {
     let (lo, hi) = segs.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &l| {
         (lo.min(l), hi.max(l))
     });
+    let hi = hi.max(row.mc.unwrap_or(0.0));
     if hi > MAX_LENGTH {
         return Err(format!(
             "a length of {hi:e} is implausibly large (over {MAX_LENGTH:e}); check the value and its unit"
@@ -516,6 +645,7 @@ fn check_xray_meta(
         age: row.meta.age,
         side: row.meta.side.clone(),
         unit: row.meta.unit.clone(),
+        tip: row.meta.tip,
     });
     let mut conflict = |c: Column, ours: String, theirs: String| {
         cells.bad(
@@ -540,6 +670,10 @@ fn check_xray_meta(
     }
     if row.meta.unit != entry.unit {
         conflict(Column::Unit, show(&row.meta.unit), show(&entry.unit));
+    }
+    if row.meta.tip != entry.tip {
+        let t = |t: Option<TipKind>| t.map_or("empty".to_string(), |t| quote(t.name()));
+        conflict(Column::Tip, t(row.meta.tip), t(entry.tip));
     }
 }
 

@@ -1,5 +1,6 @@
 //! The quantities measured once per X-ray of a finger: the relative segment
-//! lengths (eq. 2), the ratios of adjacent segments and the total length (eq. 1).
+//! lengths (eq. 2), the ratios of adjacent segments and the total length (eq. 1),
+//! and, where the metacarpal is measured, its ratios to the finger.
 
 use super::Finger;
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
@@ -22,20 +23,31 @@ pub enum Quantity {
     RatioJ3J2,
     /// J, the total length in data units.
     Total,
+    /// mc / J: the metacarpal (CMC to MCP) over the finger's total length. Places the
+    /// MCP from the CMC, the part of the hand the paper leaves open.
+    RatioMcJ,
+    /// J1 / mc: the first phalanx over the metacarpal.
+    RatioJ1Mc,
 }
 
 impl Quantity {
     /// Every quantity, in output order.
-    pub const ALL: [Quantity; 6] = [
+    pub const ALL: [Quantity; 8] = [
         Quantity::RelJ1,
         Quantity::RelJ2,
         Quantity::RelJ3,
         Quantity::RatioJ2J1,
         Quantity::RatioJ3J2,
         Quantity::Total,
+        Quantity::RatioMcJ,
+        Quantity::RatioJ1Mc,
     ];
 
-    /// The quantities of a finger.
+    /// The quantities of the metacarpal, for X-rays whose metacarpal is measured.
+    pub const METACARPAL: [Quantity; 2] = [Quantity::RatioMcJ, Quantity::RatioJ1Mc];
+
+    /// The quantities of a finger measured on every X-ray (the metacarpal's are
+    /// [`Quantity::METACARPAL`], where it is measured).
     pub fn of(finger: Finger) -> &'static [Quantity] {
         match finger {
             Finger::Thumb => &[
@@ -44,8 +56,13 @@ impl Quantity {
                 Quantity::RatioJ2J1,
                 Quantity::Total,
             ],
-            _ => &Quantity::ALL,
+            _ => &Quantity::ALL[..6],
         }
+    }
+
+    /// True for the quantities that need the metacarpal.
+    pub fn needs_mc(self) -> bool {
+        matches!(self, Quantity::RatioMcJ | Quantity::RatioJ1Mc)
     }
 
     /// Machine name (`rel_j1`, ..., `total`).
@@ -57,6 +74,8 @@ impl Quantity {
             Quantity::RatioJ2J1 => "ratio_j2_j1",
             Quantity::RatioJ3J2 => "ratio_j3_j2",
             Quantity::Total => "total",
+            Quantity::RatioMcJ => "ratio_mc_j",
+            Quantity::RatioJ1Mc => "ratio_j1_mc",
         }
     }
 
@@ -76,6 +95,8 @@ impl Quantity {
             Quantity::RatioJ2J1 => "J2/J1",
             Quantity::RatioJ3J2 => "J3/J2",
             Quantity::Total => "J (total length)",
+            Quantity::RatioMcJ => "mc/J",
+            Quantity::RatioJ1Mc => "J1/mc",
         }
     }
 
@@ -148,6 +169,14 @@ mod tests {
             "{e}"
         );
         assert_eq!(Quantity::of(Finger::Thumb).len(), 4);
+        assert_eq!(Quantity::of(Finger::Index).len(), 6);
+        assert!(!Quantity::of(Finger::Index).iter().any(|q| q.needs_mc()));
+        assert!(
+            Quantity::METACARPAL
+                .iter()
+                .all(|q| q.needs_mc() && q.is_unitless())
+        );
+        assert_eq!(Quantity::RatioMcJ.symbol(), "mc/J");
         assert_eq!(Quantity::RelJ1.symbol(), "J~1");
         assert_eq!(Quantity::Total.symbol(), "J (total length)");
     }

@@ -283,3 +283,84 @@ fn spreadsheet_formulas_are_refused_in_text_fields() {
     // A leading minus is an ordinary id.
     assert!(load(&format!("{h}-1,index,1,2,3,\n")).is_ok());
 }
+
+#[test]
+fn metacarpal_and_tip_columns() {
+    let h = "xray,finger,j1,j2,j3,mc,unit,tip\n";
+    let d = load(&format!(
+        "{h}a,index,40,25,20,64.5,px,bone\na,thumb,30,25,,41,px,BONE\nb,ring,40,25,20,,px,skin\n"
+    ))
+    .unwrap();
+    assert_eq!(d.rows[0].mc, Some(64.5));
+    assert_eq!(d.rows[1].mc, Some(41.0));
+    assert_eq!(d.rows[2].mc, None);
+    assert_eq!(d.rows[0].meta.tip, Some(TipKind::Bone));
+    assert_eq!(d.rows[1].meta.tip, Some(TipKind::Bone));
+    let tips = d.tips();
+    assert_eq!((tips.bone, tips.skin, tips.unknown), (2, 1, 0));
+    assert_eq!(tips.single(), None);
+    assert_eq!(
+        tips.describe(),
+        "mixed: 2 rows at the bone, 1 row at the skin"
+    );
+    assert_eq!(d.unit(), Some("px"));
+    // The metacarpal is a length like the others; the tip is bone or skin.
+    one(
+        &format!("{h}a,index,1,2,3,-4,px,\n"),
+        2,
+        Some(6),
+        "is negative",
+    );
+    one(
+        &format!("{h}a,index,1,2,3,abc,px,\n"),
+        2,
+        Some(6),
+        "is not a number",
+    );
+    one(
+        &format!("{h}a,index,1,2,3,4,px,nail\n"),
+        2,
+        Some(8),
+        "'nail' is not a fingertip kind; use bone",
+    );
+    // One hand has one kind of tip.
+    one(
+        &format!("{h}a,index,1,2,3,,px,bone\na,ring,1,2,3,,px,skin\n"),
+        3,
+        Some(8),
+        "is 'skin', but line 2 gives 'bone' for the same X-ray 'a'",
+    );
+    // A file without the columns has neither.
+    let d = load(&format!("{HEADER}a,index,1,2,3\n")).unwrap();
+    assert_eq!((d.rows[0].mc, d.rows[0].meta.tip), (None, None));
+    assert_eq!(d.tips().describe(), "not recorded");
+    assert_eq!(d.unit(), None);
+}
+
+#[test]
+fn mixed_units_are_refused_with_their_lines() {
+    let h = "xray,finger,j1,j2,j3,unit\n";
+    // Rows of different X-rays in different units: not averaged.
+    let p = problems(&format!(
+        "{h}a,index,1,2,3,image units\nb,index,1,2,3,mm\nc,index,1,2,3,mm\nd,index,1,2,3,\n"
+    ));
+    assert_eq!(p.len(), 1, "{p:#?}");
+    assert_eq!((p[0].line, p[0].column), (Some(3), Some(6)));
+    assert!(
+        p[0].message.contains(
+            "is 'mm' (and on 1 more row), but line 2 gives 'image units': the rows of one dataset have one unit"
+        ),
+        "{}",
+        p[0].message
+    );
+    // Reported with the file's other problems.
+    let p = problems(&format!(
+        "{h}a,index,1,2,3,mm\nb,toe,1,2,3,mm\nc,index,1,2,3,px\n"
+    ));
+    assert_eq!(p.len(), 2, "{p:#?}");
+    assert_eq!(p[0].line, Some(3));
+    assert_eq!(p[1].line, Some(4));
+    // An empty unit is not stated: it goes with the named one.
+    assert!(load(&format!("{h}a,index,1,2,3,mm\nb,index,1,2,3,\n")).is_ok());
+    assert!(is_pixel_unit("px") && is_pixel_unit(" Pixels ") && !is_pixel_unit("image units"));
+}

@@ -290,3 +290,85 @@ pub fn audit(
         fix,
     })
 }
+
+/// Two cohorts compared: `phalanx compare A B --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct CompareDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
+    schema_version: u32,
+    settings: SettingsView<'static>,
+    /// How the statistics are defined, in words.
+    method: &'static str,
+    a: &'a crate::analysis::compare::CohortInfo,
+    b: &'a crate::analysis::compare::CohortInfo,
+    fingers: Vec<CompareFinger<'a>>,
+    notes: &'a [String],
+}
+
+/// One finger of the comparison document, with its sentence.
+#[derive(Serialize, JsonSchema)]
+struct CompareFinger<'a> {
+    #[serde(flatten)]
+    comparison: &'a crate::analysis::compare::FingerComparison,
+    summary: String,
+}
+
+/// What the comparison document's numbers are.
+pub const COMPARE_METHOD: &str = "differences are B - A; Welch t interval of the difference of means (Welch-Satterthwaite df); percentile bootstrap interval with each cohort's X-rays resampled on its own; Hedges' g with the Hedges-Olkin large-sample interval; b_in_a: B's X-rays inside A's prediction interval for one new X-ray, a_in_b the reverse; last_segment: the fingertip offset d that would explain the last segment's difference, share_of_a = d over the length to the skin tip, share_of_bone = d over the length to the bone tip";
+
+/// The document of `phalanx compare --format json`: every statistic of every finger and
+/// quantity, and the sentence of each finger.
+pub fn compare(c: &crate::analysis::compare::Cohorts) -> Result<Vec<u8>, Error> {
+    let names = super::compare::Names::AB;
+    to_bytes(&CompareDocument {
+        schema_version: SCHEMA_VERSION,
+        settings: SettingsView::of(&c.settings),
+        method: COMPARE_METHOD,
+        a: &c.a,
+        b: &c.b,
+        fingers: c
+            .fingers
+            .iter()
+            .map(|f| CompareFinger {
+                comparison: f,
+                summary: super::compare::finger_sentence(f, names, c.settings.confidence),
+            })
+            .collect(),
+        notes: &c.notes,
+    })
+}
+
+/// What the population simulation does, for outputs.
+pub const POPULATION_MODEL: &str = "the dataset is the population of hands: samples of n X-rays drawn with replacement, one further X-ray drawn for the prediction interval; quantities of the same X-rays share each sample and its bootstrap; confidence intervals checked against the population mean; the normal model (coverage depends on n alone) beside it";
+
+/// Coverage measured on a real population of hands:
+/// `phalanx coverage --population DATASET --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct PopulationDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
+    schema_version: u32,
+    /// The dataset taken as the population.
+    population: &'a str,
+    rng: &'a str,
+    /// What the simulation does, in words.
+    model: &'a str,
+    #[serde(flatten)]
+    study: &'a crate::analysis::population::PopulationStudy,
+    /// Each method's coverage per sample size over the quantities (mean, min, max).
+    pooled: Vec<crate::analysis::population::Pooled>,
+}
+
+/// The document of `phalanx coverage --population DATASET --format json`.
+pub fn population(
+    path: &str,
+    study: &crate::analysis::population::PopulationStudy,
+) -> Result<Vec<u8>, Error> {
+    to_bytes(&PopulationDocument {
+        schema_version: SCHEMA_VERSION,
+        population: path,
+        rng: rng::RNG_NAME,
+        model: POPULATION_MODEL,
+        study,
+        pooled: study.pooled(),
+    })
+}

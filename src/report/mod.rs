@@ -5,6 +5,7 @@
 //! [`writer::write_all`].
 
 pub(crate) mod audit;
+pub(crate) mod compare;
 pub(crate) mod csv_out;
 pub mod json;
 pub mod layout;
@@ -60,6 +61,18 @@ pub fn render(
                 inputs.coverage,
                 inputs.coverage_settings.confidence,
             )?);
+        }
+        if let Some(atlas) = inputs.atlas {
+            for f in &inputs.analysis.fingers {
+                if let Some(g) = atlas.analysis.finger(f.finger) {
+                    plots.push(plots::atlas_plot(
+                        f,
+                        g,
+                        "atlas",
+                        inputs.analysis.settings.confidence,
+                    )?);
+                }
+            }
         }
         let view = view::build(inputs, &plots);
         if formats.html {

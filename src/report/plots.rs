@@ -15,6 +15,7 @@
 //! is handed to it unescaped; the `<title>` and `<desc>`, written by this
 //! module, are escaped by it (see `draw::escape`).
 
+mod atlas;
 mod coverage;
 mod draw;
 mod finger;
@@ -47,6 +48,8 @@ pub enum PlotKind {
     Rigs,
     /// Each interval method's simulated coverage against the number of X-rays.
     Coverage,
+    /// One finger's relative values in an atlas, binned, with the paper's X-rays over them.
+    Atlas,
 }
 
 /// One rendered plot.
@@ -129,6 +132,17 @@ pub fn coverage_plot(
     confidence: f64,
 ) -> Result<Plot, Error> {
     coverage::plot(points, confidence)
+}
+
+/// Atlas plot of one finger (id `atlas-<finger>`): the atlas's distribution of each
+/// relative value as a binned strip, the paper's X-rays and prediction interval over it.
+pub(crate) fn atlas_plot(
+    paper: &FingerAnalysis,
+    atlas: &FingerAnalysis,
+    atlas_name: &str,
+    confidence: f64,
+) -> Result<Plot, Error> {
+    atlas::plot(paper, atlas, atlas_name, confidence)
 }
 
 /// Every plot of a report, in display order: one per finger, the hand diagram, the forest plot.

@@ -23,6 +23,11 @@ pub(crate) const DOCUMENTS: &[(&str, Generator)] = &[
     ("stats", of::<json::StatsDocument<'static>>),
     ("check", of::<json::CheckDocument<'static>>),
     ("coverage", of::<json::CoverageDocument<'static>>),
+    (
+        "coverage-population",
+        of::<json::PopulationDocument<'static>>,
+    ),
+    ("compare", of::<json::CompareDocument<'static>>),
     ("place", of::<json::PlacementDocument<'static>>),
     ("audit", of::<json::AuditDocument<'static>>),
     ("history", of::<json::HistoryDocument<'static>>),

@@ -26,6 +26,9 @@ fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden) -> String {
         a.dataset.rows,
         a.settings.seed
     );
+    for line in dataset_notes(a) {
+        out.push_str(&format!("note: {line}\n"));
+    }
     for f in &a.fingers {
         out.push_str(&format!(
             "\n{} - n = {}; bootstrap {}\n",
@@ -68,6 +71,22 @@ fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden) -> String {
     }
     out
 }
+
+/// What a reader must know about a dataset's lengths before reading its statistics:
+/// that pixel lengths are not averaged, and where the fingertips are when recorded.
+pub fn dataset_notes(a: &Analysis) -> Vec<String> {
+    let mut notes = Vec::new();
+    if a.pixel_lengths() {
+        notes.push(PIXEL_NOTE.to_string());
+    }
+    if a.tips.bone + a.tips.skin > 0 {
+        notes.push(format!("fingertips: {}", a.tips.describe()));
+    }
+    notes
+}
+
+/// Why a dataset in pixels has no total length J.
+pub const PIXEL_NOTE: &str = "lengths are in pixels (px) of images whose scale differs, so the total length J and the metacarpal are not comparable across X-rays and are not averaged; the relative values and ratios are. Import with --pixel-spacing MM for lengths in millimetres";
 
 /// The statistics of the whole dataset, then of each group (`--group-by`).
 pub(crate) fn stats_with_groups(
@@ -308,6 +327,11 @@ pub(crate) fn placement(
                 p.segments
                     .iter()
                     .map(|s| (format!("segment {}", s.segment.to_uppercase()), &s.length)),
+            )
+            .chain(
+                p.metacarpal
+                    .iter()
+                    .map(|m| ("MCP from the CMC".to_string(), &m.position)),
             );
         let d = length_decimals(p.length);
         for (what, v) in rows {
@@ -322,8 +346,106 @@ pub(crate) fn placement(
             t.row(row);
         }
         out.push_str(&t.render(width, 0, &mut hidden));
+        if let Some(m) = &p.metacarpal {
+            out.push_str(&format!(
+                "MCP from the CMC: the metacarpal, (mc/J) x {}, from the {} X-rays that measure it; the CMC is the metacarpal's base at the wrist\n",
+                exact(p.length),
+                m.n
+            ));
+        }
         out.push('\n');
     }
     hidden.append_to(&mut out, width);
     fit_text(&out, width)
+}
+
+/// The coverage measured on a population of hands: every method's coverage over the
+/// quantities per sample size beside the normal model's, then each quantity's per size.
+pub fn population(
+    path: &str,
+    study: &crate::analysis::population::PopulationStudy,
+    width: Width,
+) -> String {
+    let s = &study.settings;
+    let c = level(s.confidence);
+    let xrays = study.quantities.first().map_or(0, |q| q.population);
+    let mut hidden = Hidden::new();
+    let mut out = format!(
+        "Coverage of nominal {c} intervals on real hands: {path} taken as the population ({xrays} X-rays), {sims} samples of each size drawn from its X-rays with replacement. Confidence intervals are scored against the population mean, the prediction interval against one further X-ray. Monte-Carlo SE: about {se} at {c}.\n",
+        sims = s.sims,
+        se = percent((s.confidence * (1.0 - s.confidence) / s.sims as f64).sqrt()),
+    );
+    let mut t = Grid::new()
+        .col("n", Align::Left, Give::Keep)
+        .col("", Align::Left, Give::Keep)
+        .col("t", Align::Right, Give::Keep)
+        .col("percentile", Align::Right, Give::Keep)
+        .col("BCa", Align::Right, Give::Keep)
+        .col("prediction", Align::Right, Give::Keep)
+        .col("bootstrap", Align::Right, Give::Drop(1));
+    let pooled = study.pooled();
+    for (k, &n) in study.sizes.iter().enumerate() {
+        let cell = |m: &str| {
+            pooled
+                .iter()
+                .find(|p| p.n == n && p.method == m)
+                .map_or_else(|| "n/a".to_string(), |p| percent(p.mean))
+        };
+        let plan = study
+            .normal
+            .get(k)
+            .map_or(String::new(), |c| plan_short(c.bootstrap));
+        t.row(vec![
+            n.to_string(),
+            "real hands (mean)".to_string(),
+            cell("t"),
+            cell("percentile"),
+            cell("bca"),
+            cell("prediction"),
+            plan.clone(),
+        ]);
+        if let Some(normal) = study.normal.iter().find(|c| c.n == n) {
+            let mut row = vec![String::new(), "normal model".to_string()];
+            row.extend(normal.methods.iter().map(|m| percent(m.coverage)));
+            row.push(plan);
+            t.row(row);
+        }
+    }
+    out.push_str(&format!(
+        "\nOver the {} quantities (their mean coverage), and the normal model:\n",
+        study.quantities.len()
+    ));
+    out.push_str(&t.render(width, 0, &mut hidden));
+    for &n in &study.sizes {
+        let mut t = Grid::new()
+            .col("finger", Align::Left, Give::Keep)
+            .col("quantity", Align::Left, Give::Keep)
+            .col("t", Align::Right, Give::Keep)
+            .col("percentile", Align::Right, Give::Keep)
+            .col("BCa", Align::Right, Give::Keep)
+            .col("prediction", Align::Right, Give::Keep);
+        for q in &study.quantities {
+            let Some(cov) = q.by_n.iter().find(|c| c.n == n) else {
+                continue;
+            };
+            let mut row = vec![q.finger.name().to_string(), q.quantity.name().to_string()];
+            row.extend(cov.methods.iter().map(|m| percent(m.coverage)));
+            t.row(row);
+        }
+        out.push_str(&format!("\nn = {n}\n"));
+        out.push_str(&t.render(width, 0, &mut hidden));
+    }
+    for n in &study.notes {
+        out.push_str(&format!("note: {n}\n"));
+    }
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
+}
+
+/// "exact (126)", "random (10000)".
+fn plan_short(p: crate::stats::bootstrap::Plan) -> String {
+    match p {
+        crate::stats::bootstrap::Plan::Exact { distinct } => format!("exact ({distinct})"),
+        crate::stats::bootstrap::Plan::Random { resamples } => format!("random ({resamples})"),
+    }
 }

@@ -42,6 +42,8 @@ pub struct ReportView {
     pub groups: Option<GroupsView>,
     /// Set when reference rigs were given.
     pub rigs: Option<RigsView>,
+    /// Set when an atlas was given: "The paper against N atlas radiographs".
+    pub atlas: Option<AtlasView>,
     pub plots: Vec<PlotView>,
 }
 
@@ -144,6 +146,12 @@ pub struct Table1View {
     /// Set when only the first [`MAX_LISTED_XRAYS`] X-rays are listed.
     pub truncated: Option<String>,
     pub unit: String,
+    /// "Table 1: the measurements" over the paper's X-rays, "The measurements" otherwise.
+    pub heading: String,
+    /// Where the lengths come from, ending the section's first sentence.
+    pub source: String,
+    /// The Markdown anchor of the heading.
+    pub anchor: String,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -257,6 +265,8 @@ pub struct ClaimRow {
 #[derive(Debug, Clone, Serialize)]
 pub struct PlacementView {
     pub length: String,
+    /// Whose example this is: the paper's over its X-rays, this dataset's otherwise.
+    pub origin: String,
     pub joints: Vec<PlacementRow>,
     pub segments: Vec<PlacementRow>,
 }
@@ -409,6 +419,12 @@ pub struct ReportInputs<'a> {
     pub groups: &'a [Group],
     /// Popular rigs judged against the statistics (`data/rigs`).
     pub rigs: &'a [ReferenceAudit],
+    /// How many of the dataset's X-rays the claims name (the paper's), and how many it
+    /// has: the titles say "Table 1" and "the paper's worked example" only when they
+    /// are the same X-rays.
+    pub paper_xrays: (usize, usize),
+    /// The atlas compared with the data (`data/atlas`); `None`: no atlas section.
+    pub atlas: Option<&'a AtlasInputs>,
 }
 
 /// A reference rig with its judgement.
@@ -477,15 +493,16 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         citation: citation(),
         provenance,
         settings,
-        table1: table1(a),
+        table1: table1(a, inputs.paper_xrays),
         derived: a.fingers.iter().map(derived).collect(),
         stats: a.fingers.iter().map(stats).collect(),
         claims,
-        placement: placement(inputs.placements, inputs.model_length),
+        placement: placement(inputs.placements, inputs.model_length, inputs.paper_xrays),
         coverage: coverage(inputs),
         tracking: tracking(inputs),
         groups: groups_view(inputs.groups),
         rigs: rigs_view(inputs.rigs),
+        atlas: inputs.atlas.map(|x| atlas_view(a, x)),
         plots: plots.iter().map(plot).collect(),
     }
 }
@@ -545,7 +562,32 @@ fn truncation(total: usize) -> Option<String> {
     })
 }
 
-fn table1(a: &Analysis) -> Table1View {
+/// True when the dataset holds exactly the X-rays the paper's claims name.
+fn is_paper((named, xrays): (usize, usize)) -> bool {
+    named > 0 && named == xrays
+}
+
+fn table1(a: &Analysis, paper_xrays: (usize, usize)) -> Table1View {
+    let (named, xrays) = paper_xrays;
+    let (heading, source) = if is_paper(paper_xrays) {
+        (
+            "Table 1: the measurements".to_string(),
+            "as printed in the paper's Table 1".to_string(),
+        )
+    } else if named == 0 {
+        (
+            "The measurements".to_string(),
+            format!("as in the dataset ({xrays} X-rays, none of them the paper's)"),
+        )
+    } else {
+        (
+            "The measurements".to_string(),
+            format!(
+                "as in the dataset: the {named} X-rays of the paper's Table 1 and {} added since",
+                xrays - named
+            ),
+        )
+    };
     let fingers: Vec<_> = TABLE1_ORDER.iter().filter_map(|&f| a.finger(f)).collect();
     let groups = fingers
         .iter()
@@ -593,6 +635,15 @@ fn table1(a: &Analysis) -> Table1View {
         rows,
         truncated: truncation(ids.len()),
         unit: "image units (pixels of the X-ray images, not millimetres)".into(),
+        anchor: format!(
+            "2-{}",
+            heading
+                .to_ascii_lowercase()
+                .replace(':', "")
+                .replace(' ', "-")
+        ),
+        heading,
+        source,
     }
 }
 
@@ -710,8 +761,16 @@ fn claims(file: &str, results: &[ClaimResult], note: Option<&str>) -> ClaimsView
     }
 }
 
-fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
+fn placement(ps: &[FingerPlacement], length: f64, paper_xrays: (usize, usize)) -> PlacementView {
     let d = length_decimals(length);
+    let origin = if is_paper(paper_xrays) {
+        "This is the paper's worked example, with the corrected mean.".to_string()
+    } else {
+        format!(
+            "The paper works this example with its own X-rays; here the means are over the dataset's {} X-rays.",
+            paper_xrays.1
+        )
+    };
     let row = |finger: Finger, what: &str, p: &crate::analysis::placement::Placed| PlacementRow {
         finger: finger.display_name().to_string(),
         what: what.to_string(),
@@ -723,6 +782,7 @@ fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
     };
     PlacementView {
         length: exact(length),
+        origin,
         joints: ps
             .iter()
             .flat_map(|p| {
@@ -843,7 +903,44 @@ fn coverage(inputs: &ReportInputs<'_>) -> CoverageView {
                 this_data: p.in_data,
             })
             .collect(),
-        real: None,
+        real: inputs.atlas.map(real_coverage),
+    }
+}
+
+/// The coverage of each method measured on the atlas's hands (the mean over its
+/// relative values per sample size), for the coverage section, beside the simulation.
+fn real_coverage(atlas: &AtlasInputs) -> RealCoverageView {
+    let p = &atlas.population;
+    let pooled = p.pooled();
+    let rows = p
+        .sizes
+        .iter()
+        .map(|&n| {
+            let cell = |m: &str| {
+                pooled
+                    .iter()
+                    .find(|x| x.n == n && x.method == m)
+                    .map_or_else(|| "n/a".to_string(), |x| percent(x.mean))
+            };
+            CoverageRow {
+                n: xrays(n),
+                t: cell("t"),
+                percentile: cell("percentile"),
+                bca: cell("bca"),
+                prediction: cell("prediction"),
+                this_data: false,
+            }
+        })
+        .collect();
+    let population = p.quantities.first().map_or(0, |q| q.population);
+    RealCoverageView {
+        source: format!("samples drawn from the {population} X-rays of the atlas"),
+        note: format!(
+            "Each figure is the mean over the atlas's {} relative values of how often the interval held the atlas's mean (the prediction interval: one further atlas X-ray), from {} samples per size; the atlas section below has the details.",
+            p.quantities.len(),
+            p.settings.sims
+        ),
+        rows,
     }
 }
 
@@ -1151,4 +1248,244 @@ fn rigs_view(rigs: &[ReferenceAudit]) -> Option<RigsView> {
             .map(|c| c.to_string())
             .collect(),
     })
+}
+
+/// What the section "The paper against N atlas radiographs" reads: the atlas analysed,
+/// the paper (A) compared with it (B), and the coverage measured on its hands.
+#[derive(Debug, Clone)]
+pub struct AtlasInputs {
+    pub analysis: Analysis,
+    pub cohorts: crate::analysis::compare::Cohorts,
+    pub population: crate::analysis::population::PopulationStudy,
+}
+
+/// The section "The paper against N atlas radiographs".
+#[derive(Debug, Clone, Serialize)]
+pub struct AtlasView {
+    pub title: String,
+    /// The Markdown anchor of the section's heading.
+    pub anchor: String,
+    /// The two cohorts, one line each.
+    pub cohorts: Vec<String>,
+    /// What differs between the cohorts, in plain words.
+    pub differs: String,
+    pub comparison: Vec<AtlasCompareRow>,
+    /// One sentence per finger, then the fingertip sentences.
+    pub sentences: Vec<String>,
+    pub external: Vec<AtlasExternalRow>,
+    pub external_summary: String,
+    pub population_intro: String,
+    pub population: Vec<AtlasPopulationRow>,
+    pub proportions_intro: String,
+    pub proportions: Vec<AtlasProportionRow>,
+    pub notes: Vec<String>,
+}
+
+/// One finger and quantity of the comparison table.
+#[derive(Debug, Clone, Serialize)]
+pub struct AtlasCompareRow {
+    pub finger: String,
+    pub quantity: String,
+    pub paper: String,
+    pub atlas: String,
+    pub difference: String,
+    pub welch: String,
+    pub bootstrap: String,
+    pub hedges: String,
+}
+
+/// One finger and quantity of the external coverage.
+#[derive(Debug, Clone, Serialize)]
+pub struct AtlasExternalRow {
+    pub finger: String,
+    pub quantity: String,
+    pub paper_pi: String,
+    pub atlas_in_paper: String,
+    pub atlas_pi: String,
+    pub paper_in_atlas: String,
+}
+
+/// One sample size and model of the coverage on real hands.
+#[derive(Debug, Clone, Serialize)]
+pub struct AtlasPopulationRow {
+    pub n: String,
+    pub model: String,
+    pub t: String,
+    pub percentile: String,
+    pub bca: String,
+    pub prediction: String,
+    pub bootstrap: String,
+}
+
+/// One finger's whole-hand proportions from its metacarpal.
+#[derive(Debug, Clone, Serialize)]
+pub struct AtlasProportionRow {
+    pub finger: String,
+    pub n: String,
+    pub mc_j: String,
+    pub mc_j_pi: String,
+    pub j1_mc: String,
+    pub j1_mc_pi: String,
+}
+
+fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
+    use super::compare::{
+        Names, bootstrap_cell, cohort_line, coverage_cell, difference_cell, finger_sentence,
+        hedges_cell, mean_sd, short, tip_sentence, welch_cell,
+    };
+    let c = &atlas.cohorts;
+    let confidence = paper.settings.confidence;
+    let names = Names {
+        a: "the paper",
+        b: "the atlas",
+    };
+    let d = |q: Quantity| decimals(q.is_unitless());
+    let mut comparison = Vec::new();
+    let mut external = Vec::new();
+    let mut sentences = Vec::new();
+    let (mut inside, mut tested) = (0usize, 0usize);
+    for f in &c.fingers {
+        for qc in &f.quantities {
+            let (q, cmp) = (qc.quantity, &qc.comparison);
+            comparison.push(AtlasCompareRow {
+                finger: f.finger.name().to_string(),
+                quantity: short(q).to_string(),
+                paper: mean_sd(cmp.a.mean, cmp.a.sd, q),
+                atlas: mean_sd(cmp.b.mean, cmp.b.sd, q),
+                difference: difference_cell(cmp, q),
+                welch: welch_cell(cmp, q),
+                bootstrap: bootstrap_cell(cmp, q),
+                hedges: hedges_cell(cmp),
+            });
+            if q.is_relative() {
+                if let Some(e) = &cmp.b_in_a {
+                    inside += e.inside;
+                    tested += e.of;
+                }
+                external.push(AtlasExternalRow {
+                    finger: f.finger.name().to_string(),
+                    quantity: short(q).to_string(),
+                    paper_pi: crate::format::interval(cmp.b_in_a.map(|e| e.interval), d(q)),
+                    atlas_in_paper: coverage_cell(cmp.b_in_a.as_ref()),
+                    atlas_pi: crate::format::interval(cmp.a_in_b.map(|e| e.interval), d(q)),
+                    paper_in_atlas: coverage_cell(cmp.a_in_b.as_ref()),
+                });
+            }
+        }
+        sentences.push(finger_sentence(f, names, confidence));
+    }
+    for f in &c.fingers {
+        if let Some(last) = &f.last_segment {
+            sentences.push(format!(
+                "{}: {}",
+                f.finger.name(),
+                tip_sentence(last, c, names)
+            ));
+        }
+    }
+    let external_summary = format!(
+        "Over every finger and relative value, {} of the atlas's values ({inside} of {tested}) lie inside the paper's {} prediction interval for one new hand, which promises {}.",
+        percent(inside as f64 / tested.max(1) as f64),
+        level(confidence),
+        level(confidence),
+    );
+    let p = &atlas.population;
+    let pooled = p.pooled();
+    let mut population = Vec::new();
+    for (k, &n) in p.sizes.iter().enumerate() {
+        let cell = |m: &str| {
+            pooled
+                .iter()
+                .find(|x| x.n == n && x.method == m)
+                .map_or_else(|| "n/a".to_string(), |x| percent(x.mean))
+        };
+        let plan = p
+            .normal
+            .get(k)
+            .map_or_else(String::new, |c| plan_short(c.bootstrap));
+        population.push(AtlasPopulationRow {
+            n: n.to_string(),
+            model: "atlas hands".to_string(),
+            t: cell("t"),
+            percentile: cell("percentile"),
+            bca: cell("bca"),
+            prediction: cell("prediction"),
+            bootstrap: plan.clone(),
+        });
+        if let Some(normal) = p.normal.iter().find(|c| c.n == n) {
+            let m = |name: &str| {
+                normal
+                    .methods
+                    .iter()
+                    .find(|x| x.method == name)
+                    .map_or_else(|| "n/a".to_string(), |x| percent(x.coverage))
+            };
+            population.push(AtlasPopulationRow {
+                n: String::new(),
+                model: "normal model".to_string(),
+                t: m("t"),
+                percentile: m("percentile"),
+                bca: m("bca"),
+                prediction: m("prediction"),
+                bootstrap: plan,
+            });
+        }
+    }
+    let xrays = p.quantities.first().map_or(0, |q| q.population);
+    let population_intro = format!(
+        "The atlas taken as the population of hands ({xrays} X-rays): {} samples of each size n drawn from its X-rays with replacement, every interval built as the statistics build it, and counted when it holds the atlas's mean (the prediction interval: one further atlas X-ray). Each figure is the mean over the {} relative values; beside it, the normal model's figure. Monte-Carlo SE about {} per value at {}.",
+        p.settings.sims,
+        p.quantities.len(),
+        percent((confidence * (1.0 - confidence) / p.settings.sims.max(1) as f64).sqrt()),
+        level(confidence),
+    );
+    let mut proportions = Vec::new();
+    for f in &atlas.analysis.fingers {
+        let get = |q: Quantity| f.quantities.iter().find(|s| s.name == q);
+        let (Some(mc_j), Some(j1_mc)) = (get(Quantity::RatioMcJ), get(Quantity::RatioJ1Mc)) else {
+            continue;
+        };
+        proportions.push(AtlasProportionRow {
+            finger: f.finger.name().to_string(),
+            n: mc_j.n.to_string(),
+            mc_j: mean_sd(mc_j.mean, mc_j.sd, Quantity::RatioMcJ),
+            mc_j_pi: crate::format::interval(mc_j.intervals.pi, 4),
+            j1_mc: mean_sd(j1_mc.mean, j1_mc.sd, Quantity::RatioJ1Mc),
+            j1_mc_pi: crate::format::interval(j1_mc.intervals.pi, 4),
+        });
+    }
+    let proportions_intro = format!(
+        "Where the MCP sits: the paper measures the fingers only, the atlas also the metacarpal (CMC to MCP). mc/J is the metacarpal's length over the finger's (J1 + J2 + J3), J1/mc the first phalanx over the metacarpal: for a rig, the MCP lies (mc/J) L from the CMC for a finger of length L. Mean (SD) and the {} prediction interval for one new hand, over the atlas's X-rays.",
+        level(confidence)
+    );
+    let title = format!("The paper against {} atlas radiographs", c.b.xrays);
+    AtlasView {
+        anchor: format!("12-{}", title.to_ascii_lowercase().replace(' ', "-")),
+        title,
+        cohorts: vec![
+            format!("The paper: {}", cohort_line(&c.a)),
+            format!("The atlas: {}", cohort_line(&c.b)),
+        ],
+        differs: format!(
+            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with landmarks at the joint centres and at the tips of the bones; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin. A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
+            c.b.xrays, c.a.xrays
+        ),
+        comparison,
+        sentences,
+        external,
+        external_summary,
+        population_intro,
+        population,
+        proportions_intro,
+        proportions,
+        notes: c.notes.iter().chain(&p.notes).cloned().collect(),
+    }
+}
+
+/// "exact (126 resamples)", "random (200 resamples)".
+fn plan_short(p: Plan) -> String {
+    match p {
+        Plan::Exact { distinct } => format!("exact ({distinct})"),
+        Plan::Random { resamples } => format!("random ({resamples})"),
+    }
 }

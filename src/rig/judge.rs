@@ -330,6 +330,8 @@ fn value_of(q: Quantity, s: &[f64]) -> f64 {
         Quantity::RatioJ2J1 => s[1] / s[0],
         Quantity::RatioJ3J2 => s[2] / s[1],
         Quantity::Total => total,
+        // The metacarpal is not part of the chain: never among the judged quantities.
+        Quantity::RatioMcJ | Quantity::RatioJ1Mc => f64::NAN,
     }
 }
 

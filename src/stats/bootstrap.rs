@@ -98,6 +98,21 @@ pub fn resample_means(columns: &[&[f64]], requested: usize, seed: u64, key: u64)
     resample_means_with(columns, requested, seed, key, &NoProgress)
 }
 
+/// The means of `columns` (each of the same length n >= 1) over `resamples` random
+/// resamples, even where [`resample_means`] would enumerate them exactly: for a
+/// statistic that combines independent resamples of several samples (e.g. a difference of
+/// two cohorts' means), which an exact enumeration of each would not pair. The draws
+/// depend on (n, `seed`, `key`) only, not on the columns. Cost: O(resamples n q).
+pub fn resample_means_random(
+    columns: &[&[f64]],
+    resamples: usize,
+    seed: u64,
+    key: u64,
+) -> Distribution {
+    let n = columns.first().map_or(0, |c| c.len());
+    random(columns, n, resamples.max(1), seed, key, &NoProgress)
+}
+
 /// Receives progress of long computations: `advance(k)` after k more units of
 /// work (resamples), from any thread. Keeps the statistics free of any display code.
 pub trait Progress: Sync {
@@ -372,11 +387,15 @@ fn random(
 ) -> Distribution {
     let q = columns.len();
     let chunks = resamples.div_ceil(CHUNK);
-    // Row-major copy: one X-ray's quantities side by side.
-    let mut rows = vec![0.0f64; n * q];
+    // Row-major copy: one X-ray's quantities side by side. Past 4 quantities the rows are
+    // padded with zero columns to a multiple of 4, so the kernel sums in tiles of 8 and 4
+    // only (a lone column costs a tile's pass of its own); the padding's sums are dropped,
+    // and every real column's sum is the same, bit for bit, as without it.
+    let width = if q > 4 { q.next_multiple_of(4) } else { q };
+    let mut rows = vec![0.0f64; n * width];
     for (k, col) in columns.iter().enumerate() {
         for (i, &x) in col.iter().enumerate() {
-            rows[i * q + k] = x;
+            rows[i * width + k] = x;
         }
     }
     let per_chunk: Vec<Vec<f64>> = (0..chunks)
@@ -385,13 +404,13 @@ fn random(
             || ChunkWork {
                 counts: vec![0u8; BLOCK * n],
                 overflow: vec![Vec::new(); BLOCK],
-                sums: vec![0.0; BLOCK * q],
+                sums: vec![0.0; BLOCK * width],
             },
             |work, k| {
                 let mut rng = rng::stream(seed, key, k as u64);
                 let len = CHUNK.min(resamples - k * CHUNK);
-                let mut out = Vec::with_capacity(len * q);
-                random_chunk(&rows, q, n, len, &mut rng, work, &mut out);
+                let mut out = Vec::with_capacity(len * width);
+                random_chunk(&rows, width, n, len, &mut rng, work, &mut out);
                 progress.advance(len as u64);
                 out
             },
@@ -399,7 +418,7 @@ fn random(
         .collect();
     let mut means = vec![Vec::with_capacity(resamples); q];
     for chunk in &per_chunk {
-        for row in chunk.chunks_exact(q) {
+        for row in chunk.chunks_exact(width) {
             for (m, v) in means.iter_mut().zip(row) {
                 m.push(*v);
             }
@@ -419,17 +438,23 @@ pub(crate) struct Sorted {
 }
 
 impl Sorted {
-    /// Sorts `values` (with `weights`) ascending. O(m log m).
+    /// Sorts `values` (with `weights`) ascending; equal values keep their order, so the
+    /// cumulative weights are summed in one fixed order. O(m log m); the pairs are sorted
+    /// in place (a stable sort of contiguous pairs, not of indices into the values).
     pub(crate) fn new(values: &[f64], weights: &[f64]) -> Sorted {
-        let mut order: Vec<usize> = (0..values.len()).collect();
-        order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+        let mut pairs: Vec<(f64, f64)> = values
+            .iter()
+            .copied()
+            .zip(weights.iter().copied())
+            .collect();
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut acc = 0.0;
-        let mut cumulative = Vec::with_capacity(values.len());
-        let mut sorted = Vec::with_capacity(values.len());
-        for i in order {
-            acc += weights[i];
+        let mut cumulative = Vec::with_capacity(pairs.len());
+        let mut sorted = Vec::with_capacity(pairs.len());
+        for (v, w) in pairs {
+            acc += w;
             cumulative.push(acc);
-            sorted.push(values[i]);
+            sorted.push(v);
         }
         Sorted {
             values: sorted,

@@ -167,7 +167,11 @@ fn segment_index(q: Quantity) -> Option<usize> {
         Quantity::RelJ1 => Some(0),
         Quantity::RelJ2 => Some(1),
         Quantity::RelJ3 => Some(2),
-        Quantity::RatioJ2J1 | Quantity::RatioJ3J2 | Quantity::Total => None,
+        Quantity::RatioJ2J1
+        | Quantity::RatioJ3J2
+        | Quantity::Total
+        | Quantity::RatioMcJ
+        | Quantity::RatioJ1Mc => None,
     }
 }
 

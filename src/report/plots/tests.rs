@@ -333,6 +333,7 @@ fn synthetic(n: usize) -> FingerAnalysis {
                 relative: lengths.iter().map(|l| l / total).collect(),
                 lengths,
                 total,
+                mc: None,
             }
         })
         .collect();
@@ -340,7 +341,7 @@ fn synthetic(n: usize) -> FingerAnalysis {
     let quantities = Quantity::of(Finger::Middle)
         .iter()
         .map(|&q| {
-            let values: Vec<f64> = xrays.iter().map(|x| x.value(q)).collect();
+            let values: Vec<f64> = xrays.iter().filter_map(|x| x.value(q)).collect();
             // A stand-in bootstrap distribution: means of 64 interleaved subsamples.
             let boot: Vec<f64> = (0..64)
                 .map(|k| {

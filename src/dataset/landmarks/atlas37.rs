@@ -1,0 +1,149 @@
+//! The Digital Hand Atlas's 37-landmark layout: `image_id, x0, y0, ..., x36, y36`, no header.
+//!
+//! Landmarks 13-17 are the CMC joints of the little, ring, middle, index finger and thumb;
+//! 18-20 the thumb's MCP, IP and tip; 21-24, 25-28, 29-32, 33-36 the MCP, PIP, DIP and tip
+//! of the index, middle, ring and little finger (`data/atlas/README.md`). Landmarks 0-12
+//! (radius, ulna, carpals) are checked as coordinates but measure nothing.
+
+use super::{Hand, Mark, Place, Slot, parse_coordinate, quote};
+use crate::dataset::csvinput::{self, Fields};
+use crate::dataset::{DataError, Finger, Problem, looks_like_formula};
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// Landmarks per image.
+pub const LANDMARKS: usize = 37;
+/// Fields per line: the image id, then x and y of each landmark.
+pub const FIELDS: usize = 1 + 2 * LANDMARKS;
+
+/// The atlas's landmark numbers of each finger's chain (CMC, MCP, PIP, DIP, tip; thumb:
+/// CMC, MCP, IP, tip).
+pub const CHAINS: [(Finger, &[usize]); 5] = [
+    (Finger::Thumb, &[17, 18, 19, 20]),
+    (Finger::Index, &[16, 21, 22, 23, 24]),
+    (Finger::Middle, &[15, 25, 26, 27, 28]),
+    (Finger::Ring, &[14, 29, 30, 31, 32]),
+    (Finger::Little, &[13, 33, 34, 35, 36]),
+];
+
+/// The 1-based column of landmark `k`'s x (its y is the next column).
+fn x_column(k: usize) -> usize {
+    2 + 2 * k
+}
+
+/// Reads every line into a hand; pushes the problems of each line.
+pub(super) fn read(
+    label: &str,
+    input: &[u8],
+    problems: &mut Vec<Problem>,
+) -> Result<Vec<Hand>, DataError> {
+    let mut hands = Vec::new();
+    let mut first_line: HashMap<Arc<str>, u64> = HashMap::new();
+    // Which chain slot each landmark fills, if any.
+    let mut slot_of: [Option<(Finger, usize)>; LANDMARKS] = [None; LANDMARKS];
+    for (finger, marks) in CHAINS {
+        for (k, &m) in marks.iter().enumerate() {
+            slot_of[m] = Some((finger, k));
+        }
+    }
+    csvinput::read_headerless(label, input, problems, |rec: &Fields<'_, '_>, problems| {
+        let line = rec.line();
+        if rec.len() != FIELDS {
+            problems.push(Problem::line(
+                line,
+                format!(
+                    "has {} fields; the atlas37 layout has {FIELDS} on every line: an image id, then x and y of each of the {LANDMARKS} landmarks",
+                    rec.len()
+                ),
+            ));
+            return;
+        }
+        let Some(id) = rec.get(0) else { return };
+        if id.is_empty() {
+            problems.push(Problem::field(
+                line,
+                1,
+                "image_id",
+                "is empty; give every line the id of its image",
+            ));
+            return;
+        }
+        if looks_like_formula(id) {
+            problems.push(Problem::field(
+                line,
+                1,
+                "image_id",
+                format!(
+                    "{} starts like a spreadsheet formula; remove the leading '{}'",
+                    quote(id),
+                    id.chars().next().unwrap_or('=')
+                ),
+            ));
+            return;
+        }
+        let image: Arc<str> = Arc::from(id);
+        if let Some(first) = first_line.get(&image) {
+            problems.push(Problem::field(
+                line,
+                1,
+                "image_id",
+                format!(
+                    "image {} is repeated: line {first} has it already; give each image one line, or correct the id",
+                    quote(id)
+                ),
+            ));
+            return;
+        }
+        first_line.insert(image.clone(), line);
+        let mut hand = Hand::new(image, None, Place::csv(line, 1, "image_id"));
+        for (k, slot) in slot_of.iter().enumerate() {
+            let mut xy = [0.0; 2];
+            let mut ok = true;
+            for (axis, v) in xy.iter_mut().enumerate() {
+                let column = x_column(k) + axis;
+                let Some(text) = rec.get(column - 1) else {
+                    ok = false; // not UTF-8: reported by the scanner
+                    continue;
+                };
+                match parse_coordinate(text) {
+                    Ok(c) => *v = c,
+                    Err(why) => {
+                        ok = false;
+                        let axis_name = if axis == 0 { "x" } else { "y" };
+                        let what = slot.map_or(String::new(), |(f, s)| {
+                            format!(" ({} {})", f.name(), super::names::chain(f)[s].name())
+                        });
+                        problems.push(Problem::field(
+                            line,
+                            column,
+                            &format!("{axis_name}{k}"),
+                            format!(
+                                "image {}, landmark {k}{what}: {axis_name} {why}",
+                                quote(&hand.image)
+                            ),
+                        ));
+                    }
+                }
+            }
+            if let Some((finger, s)) = *slot {
+                *hand.slot_mut(finger, s) = if ok {
+                    Slot::Marked(Mark {
+                        x: xy[0],
+                        y: xy[1],
+                        place: Place::csv(line, x_column(k), format!("landmark {k}")),
+                        label: format!("landmark {k}"),
+                    })
+                } else {
+                    Slot::Invalid
+                };
+            }
+        }
+        hands.push(hand);
+    })?;
+    if hands.is_empty() && problems.is_empty() {
+        problems.push(Problem::file(
+            "is empty; the atlas37 layout has one line per image: an image id, then x and y of 37 landmarks",
+        ));
+    }
+    Ok(hands)
+}

@@ -1,0 +1,389 @@
+//! Landmark annotations in, measurement rows out.
+//!
+//! Labs and atlases hold landmarks, the pixel position of each joint clicked on a radiograph,
+//! not segment lengths. [`import`] reads them in one of three [`Layout`]s and turns every
+//! image's hand into measurement rows, one per finger ([`LandmarkRow`]):
+//!
+//! - J1, J2, J3 (J1, J2 for the thumb): Euclidean distances between consecutive joints,
+//!   MCP -> PIP -> DIP -> tip (thumb: MCP -> IP -> tip), the segments of the paper's eq. (1);
+//! - `mc`: the metacarpal, CMC -> MCP, where the file marks the CMC (the atlas: every finger;
+//!   the 21-point hand: the thumb only).
+//!
+//! Lengths are in pixels (unit [`PIXEL_UNIT`], or the unit named by the options) unless a
+//! pixel spacing is given, which scales them to millimetres ([`MM_UNIT`]).
+//!
+//! Every problem of a file is reported together in one [`DataError`], each naming the image,
+//! the landmark and its place (line and column of a CSV; JSON path such as
+//! `annotations[3].keypoints[18]` in a COCO file) and what to fix: missing or duplicated
+//! landmarks, coordinates that are not finite non-negative numbers, repeated image ids,
+//! unknown keypoint names, annotations that point at no image, and hands whose geometry
+//! cannot be a finger ([`checks`]). A finger the file does not annotate at all (or marks as
+//! not labelled) is left out with a note; the notes are returned, not printed.
+
+mod atlas37;
+mod checks;
+mod coco;
+mod long;
+pub mod names;
+mod output;
+
+pub use names::Landmark;
+pub use output::write_csv;
+
+pub use super::TipKind;
+use super::csvinput::{self, quote};
+use super::{DataError, Finger, Problem};
+use serde::Serialize;
+use std::path::Path;
+use std::sync::Arc;
+
+/// The unit of lengths measured in pixels.
+pub const PIXEL_UNIT: &str = "px";
+/// The unit of lengths scaled by a pixel spacing (millimetres per pixel).
+pub const MM_UNIT: &str = "mm";
+
+/// How landmarks are laid out in a file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Layout {
+    /// The Digital Hand Atlas's headerless CSV: `image_id, x0, y0, ..., x36, y36`
+    /// (75 fields; landmarks as in `data/atlas/README.md`).
+    Atlas37,
+    /// COCO keypoints JSON (`images`, `annotations`, `categories`), as CVAT, Label Studio
+    /// and COCO-WholeBody export it.
+    Coco,
+    /// CSV `image,landmark,x,y` with a header, one landmark per line.
+    Long,
+}
+
+impl Layout {
+    /// Every layout.
+    #[cfg(test)]
+    pub const ALL: [Layout; 3] = [Layout::Atlas37, Layout::Coco, Layout::Long];
+
+    /// Where the layout's fingertips are unless the options say: `bone` for the atlas
+    /// (landmarks at the tips of the distal phalanges), unknown otherwise.
+    pub fn default_tip(self) -> Option<TipKind> {
+        match self {
+            Layout::Atlas37 => Some(TipKind::Bone),
+            Layout::Coco | Layout::Long => None,
+        }
+    }
+
+    /// The side of the layout's hands unless the options say: `left` for the atlas (every
+    /// hand of the Digital Hand Atlas is a left hand), unknown otherwise.
+    pub fn default_side(self) -> Option<Side> {
+        match self {
+            Layout::Atlas37 => Some(Side::Left),
+            Layout::Coco | Layout::Long => None,
+        }
+    }
+}
+
+/// Which hand.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Side {
+    Left,
+    Right,
+}
+
+impl Side {
+    /// `left` or `right`, as the measurement format writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Left => "left",
+            Side::Right => "right",
+        }
+    }
+}
+
+/// Options of an import; every one may be left unset.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ImportOptions {
+    /// The side of every hand. COCO-WholeBody's `lefthand_kpts`/`righthand_kpts` carry
+    /// their own side; with this set, only hands of this side are read from them.
+    /// Default: [`Layout::default_side`].
+    pub side: Option<Side>,
+    /// Millimetres per pixel: lengths are multiplied by it and their unit is [`MM_UNIT`].
+    pub pixel_spacing: Option<f64>,
+    /// The unit of unscaled lengths (default [`PIXEL_UNIT`]); not with `pixel_spacing`.
+    pub unit: Option<String>,
+    /// Text for every row's `source` column.
+    pub source: Option<String>,
+    /// Where the fingertips are. Default: [`Layout::default_tip`].
+    pub tip: Option<TipKind>,
+}
+
+impl ImportOptions {
+    /// Checks the options, explaining what is wrong.
+    pub fn validate(&self) -> Result<(), String> {
+        if let Some(s) = self.pixel_spacing {
+            if !(s.is_finite() && s > 0.0) {
+                return Err(format!(
+                    "the pixel spacing must be a positive number of millimetres per pixel (e.g. 0.108), got {s}"
+                ));
+            }
+            if self.unit.is_some() {
+                return Err(
+                    "give either a pixel spacing (lengths in mm) or a unit name (lengths in pixels), not both"
+                        .into(),
+                );
+            }
+        }
+        for (what, text) in [("unit", &self.unit), ("source", &self.source)] {
+            if let Some(t) = text {
+                if t.trim().is_empty() {
+                    return Err(format!(
+                        "the {what} is empty; give some text or leave it out"
+                    ));
+                }
+                if super::looks_like_formula(t) {
+                    return Err(format!(
+                        "the {what} {} starts like a spreadsheet formula; remove the leading '{}'",
+                        quote(t),
+                        t.chars().next().unwrap_or('=')
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The unit every row gets: "mm" with a pixel spacing, else the unit given, else "px".
+    pub fn unit(&self) -> &str {
+        match (&self.pixel_spacing, &self.unit) {
+            (Some(_), _) => MM_UNIT,
+            (None, Some(u)) => u.trim(),
+            (None, None) => PIXEL_UNIT,
+        }
+    }
+}
+
+/// One measurement row made from landmarks: one finger of one image.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LandmarkRow {
+    /// The image's id (the measurement format's `xray`).
+    pub image: Arc<str>,
+    pub finger: Finger,
+    /// J1, J2, J3 in `unit` (J3 is 0 for the thumb; use [`LandmarkRow::segments`]).
+    pub lengths: [f64; 3],
+    /// The metacarpal, CMC to MCP, when the CMC is marked.
+    pub mc: Option<f64>,
+    pub side: Option<Side>,
+    pub unit: Arc<str>,
+    pub source: Option<Arc<str>>,
+    /// Where the fingertips are; `None` when unknown.
+    pub tip: Option<TipKind>,
+}
+
+#[cfg(test)]
+impl LandmarkRow {
+    /// `[J1, J2]` for the thumb, `[J1, J2, J3]` otherwise.
+    pub fn segments(&self) -> &[f64] {
+        &self.lengths[..self.finger.segments()]
+    }
+
+    /// Total length J = sum of the segments (eq. 1).
+    pub fn total(&self) -> f64 {
+        self.segments().iter().sum()
+    }
+}
+
+/// The outcome of an import.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Import {
+    pub layout: Layout,
+    /// Hands read (images, or image sides for COCO-WholeBody).
+    pub hands: usize,
+    /// One row per hand and finger measured: hands in file order, fingers thumb first.
+    pub rows: Vec<LandmarkRow>,
+    /// What was left out and why (fingers not annotated or not labelled).
+    pub notes: Vec<String>,
+}
+
+/// Reads and measures a landmark file; `label` names it in errors. Cost: O(bytes).
+///
+/// Errors with every problem of the file when any landmark is bad, and when the file holds
+/// no hand with a complete finger. Invalid `options` are reported as a problem of the file.
+pub fn import(
+    layout: Layout,
+    label: &str,
+    input: &[u8],
+    options: &ImportOptions,
+) -> Result<Import, DataError> {
+    if let Err(message) = options.validate() {
+        return Err(DataError::whole_file(label, message));
+    }
+    let mut problems = Vec::new();
+    let mut notes = checks::Notes::default();
+    let hands = match layout {
+        Layout::Atlas37 => atlas37::read(label, input, &mut problems)?,
+        Layout::Long => long::read(label, input, &mut problems)?,
+        Layout::Coco => coco::read(label, input, options.side, &mut problems, &mut notes)?,
+    };
+    let meta = checks::RowMeta {
+        scale: options.pixel_spacing.unwrap_or(1.0),
+        unit: Arc::from(options.unit()),
+        source: options.source.as_deref().map(|s| Arc::from(s.trim())),
+        tip: options.tip.or(layout.default_tip()),
+        side: options.side.or(layout.default_side()),
+    };
+    let mut rows = Vec::new();
+    for hand in &hands {
+        checks::measure(hand, &meta, &mut rows, &mut problems, &mut notes);
+    }
+    if problems.is_empty() && rows.is_empty() {
+        problems.push(Problem::file(format!(
+            "has no hand with a complete finger ({} hand{} read); every finger needs its MCP, PIP (thumb: IP), DIP and tip",
+            hands.len(),
+            if hands.len() == 1 { "" } else { "s" }
+        )));
+    }
+    if !problems.is_empty() {
+        // CSV problems in line order; JSON problems (no line) keep the order found.
+        problems.sort_by_key(|p| (p.line.unwrap_or(0), p.column.unwrap_or(0)));
+        return Err(DataError {
+            file: label.to_string(),
+            problems,
+        });
+    }
+    Ok(Import {
+        layout,
+        hands: hands.len(),
+        rows,
+        notes: notes.finish(),
+    })
+}
+
+/// [`import`] of a file on disk, naming it as given.
+pub fn import_file(
+    layout: Layout,
+    path: &Path,
+    options: &ImportOptions,
+) -> Result<Import, DataError> {
+    let bytes = csvinput::read_input(path)?;
+    import(layout, &path.display().to_string(), &bytes, options)
+}
+
+/// Where something sits in the input file: a CSV line and column with the column's name,
+/// or a JSON path (in `field`, with no line).
+#[derive(Debug, Clone, PartialEq)]
+struct Place {
+    line: Option<u64>,
+    column: Option<usize>,
+    field: Option<String>,
+}
+
+impl Place {
+    fn csv(line: u64, column: usize, field: impl Into<String>) -> Place {
+        Place {
+            line: Some(line),
+            column: Some(column),
+            field: Some(field.into()),
+        }
+    }
+
+    fn json(path: impl Into<String>) -> Place {
+        Place {
+            line: None,
+            column: None,
+            field: Some(path.into()),
+        }
+    }
+
+    fn problem(&self, message: impl Into<String>) -> Problem {
+        Problem {
+            line: self.line,
+            column: self.column,
+            field: self.field.clone(),
+            message: message.into(),
+        }
+    }
+}
+
+/// One marked joint, with where the file marks it and how the file names it.
+#[derive(Debug, Clone, PartialEq)]
+struct Mark {
+    x: f64,
+    y: f64,
+    place: Place,
+    /// "landmark 22", "keypoint 6 'INDEX_FINGER_PIP'", "'index_pip'".
+    label: String,
+}
+
+/// What a file says about one joint of a hand.
+#[derive(Debug, Clone, PartialEq)]
+enum Slot {
+    /// Nothing.
+    Empty,
+    /// A position.
+    Marked(Mark),
+    /// Explicitly not labelled (COCO visibility 0; empty x and y in the long layout).
+    Unlabelled(Place),
+    /// Present but unusable; its problem is already reported.
+    Invalid,
+}
+
+/// The landmarks of one hand as read from a file.
+#[derive(Debug, Clone)]
+struct Hand {
+    /// The id its rows get.
+    image: Arc<str>,
+    /// The side the file gives (COCO-WholeBody), before the options' default.
+    side: Option<Side>,
+    /// Where the file names the image (for problems of landmarks it lacks).
+    place: Place,
+    /// `slots[finger.index()][k]`: joint k of [`names::chain`]`(finger)`.
+    slots: [[Slot; 5]; 5],
+}
+
+impl Hand {
+    fn new(image: Arc<str>, side: Option<Side>, place: Place) -> Hand {
+        Hand {
+            image,
+            side,
+            place,
+            slots: std::array::from_fn(|_| std::array::from_fn(|_| Slot::Empty)),
+        }
+    }
+
+    /// The slot of a finger joint.
+    fn slot_mut(&mut self, finger: Finger, k: usize) -> &mut Slot {
+        &mut self.slots[finger.index()][k]
+    }
+}
+
+/// Parses one pixel coordinate, explaining what to fix when it is not a finite,
+/// non-negative number no larger than [`super::MAX_LENGTH`].
+fn parse_coordinate(text: &str) -> Result<f64, String> {
+    let text = text.trim();
+    if text.is_empty() {
+        return Err("is empty: the landmark is missing; give its pixel coordinate".into());
+    }
+    match text.parse::<f64>() {
+        Ok(v) => coordinate(v).map_err(|why| format!("{} {why}", quote(text))),
+        Err(_) => Err(format!(
+            "{} is not a number; give the pixel coordinate as a decimal number",
+            quote(text)
+        )),
+    }
+}
+
+/// Checks a coordinate's value (see [`parse_coordinate`]); the error completes "VALUE ...".
+fn coordinate(v: f64) -> Result<f64, &'static str> {
+    if !v.is_finite() {
+        Err("is not a finite number; give the pixel coordinate")
+    } else if v < 0.0 {
+        Err(
+            "is negative; pixel coordinates count from 0 at the image's top-left corner: check the landmark",
+        )
+    } else if v > super::MAX_LENGTH {
+        Err("is implausibly large for a pixel coordinate; check the value")
+    } else {
+        Ok(v)
+    }
+}
+
+#[cfg(test)]
+mod tests;
