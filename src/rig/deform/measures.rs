@@ -70,11 +70,12 @@ use crate::analysis::placement::Joint;
 use crate::dataset::Finger;
 use crate::rig::skin::SkinnedMesh;
 use glam::{DVec2, DVec3};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet, HashSet};
 
 /// The measures of one joint of a finger.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct JointMeasures {
     pub joint: Joint,
     /// Flexion in the pose, degrees.
@@ -97,7 +98,7 @@ pub struct JointMeasures {
 }
 
 /// The measures of one finger.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct FingerMeasures {
     pub finger: Finger,
     pub vertices: usize,
@@ -113,7 +114,7 @@ pub struct FingerMeasures {
 }
 
 /// Every finger of a hand, measured.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct HandMeasures {
     pub fingers: Vec<FingerMeasures>,
 }

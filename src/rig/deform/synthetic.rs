@@ -90,6 +90,18 @@ fn layout(finger: Finger) -> ([f64; 3], [f64; 3], &'static [f64]) {
     }
 }
 
+/// The WebXR name of a finger (`index-finger`, `pinky-finger`, `thumb`): the
+/// nodes are named as WebXR names its joints, so `naming` recognises them.
+fn webxr_prefix(finger: Finger) -> &'static str {
+    match finger {
+        Finger::Thumb => "thumb",
+        Finger::Index => "index-finger",
+        Finger::Middle => "middle-finger",
+        Finger::Ring => "ring-finger",
+        Finger::Little => "pinky-finger",
+    }
+}
+
 fn smoothstep(x: f64) -> f64 {
     let x = x.clamp(0.0, 1.0);
     x * x * (3.0 - 2.0 * x)
@@ -133,7 +145,7 @@ pub fn tube_hand(spec: &HandSpec) -> SyntheticRig {
             p
         };
         for (k, part) in parts.iter().enumerate() {
-            names.push(format!("{finger}-{part}"));
+            names.push(format!("{}-{part}", webxr_prefix(finger)));
             let up = if spec.siblings || k == 0 {
                 0
             } else {
@@ -238,5 +250,194 @@ pub fn tube_hand(spec: &HandSpec) -> SyntheticRig {
             fingers: chains,
         },
         names,
+    }
+}
+
+impl SyntheticRig {
+    /// The rig as a binary glTF (.glb): its nodes (local translation and
+    /// rotation from the world matrices), one skin over every node but the
+    /// `Armature`, and one skinned mesh with `JOINTS_n`/`WEIGHTS_n` sets of
+    /// four influences (as many sets as the most influenced vertex needs).
+    /// Positions, weights and matrices are stored as f32, as glTF stores them.
+    pub fn to_glb(&self) -> Result<Vec<u8>, String> {
+        let mut bin = Vec::new();
+        let mut views = Vec::new();
+        let mut accessors = Vec::new();
+        let mesh = &self.mesh;
+        let positions: Vec<[f32; 3]> = mesh
+            .positions
+            .iter()
+            .map(|p| p.as_vec3().to_array())
+            .collect();
+        let (lo, hi) = positions.iter().fold(
+            ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]),
+            |(lo, hi), p| {
+                (
+                    std::array::from_fn(|k| lo[k].min(p[k])),
+                    std::array::from_fn(|k| hi[k].max(p[k])),
+                )
+            },
+        );
+        let pos = glb_accessor(
+            &mut bin,
+            &mut views,
+            &mut accessors,
+            &positions.concat(),
+            5126,
+            "VEC3",
+            Some((lo.to_vec(), hi.to_vec())),
+        );
+        let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+        let idx = glb_accessor(
+            &mut bin,
+            &mut views,
+            &mut accessors,
+            &indices,
+            5125,
+            "SCALAR",
+            None,
+        );
+        let n = mesh.positions.len();
+        let most = (0..n)
+            .map(|v| mesh.influences_of(v).len())
+            .max()
+            .unwrap_or(0);
+        let mut attributes = serde_json::Map::new();
+        attributes.insert("POSITION".into(), pos.into());
+        for set in 0..most.div_ceil(4).max(1) {
+            let mut joints = vec![0u16; 4 * n];
+            let mut weights = vec![0f32; 4 * n];
+            for v in 0..n {
+                for (k, &(j, w)) in mesh.influences_of(v).iter().skip(4 * set).take(4).enumerate() {
+                    joints[4 * v + k] = j;
+                    weights[4 * v + k] = w as f32;
+                }
+            }
+            let j = glb_accessor(&mut bin, &mut views, &mut accessors, &joints, 5123, "VEC4", None);
+            let w = glb_accessor(&mut bin, &mut views, &mut accessors, &weights, 5126, "VEC4", None);
+            attributes.insert(format!("JOINTS_{set}"), j.into());
+            attributes.insert(format!("WEIGHTS_{set}"), w.into());
+        }
+        let ibm: Vec<f32> = mesh
+            .inverse_bind
+            .iter()
+            .flat_map(|m| m.as_mat4().to_cols_array())
+            .collect();
+        let ibm = glb_accessor(&mut bin, &mut views, &mut accessors, &ibm, 5126, "MAT4", None);
+        let sk = &self.skeleton;
+        let mut nodes: Vec<serde_json::Value> = (0..sk.world.len())
+            .map(|i| {
+                let up = sk.parent[i].map_or(DMat4::IDENTITY, |p| sk.world[p]);
+                let (_, r, t) = (up.inverse() * sk.world[i]).to_scale_rotation_translation();
+                let children: Vec<usize> = (0..sk.parent.len())
+                    .filter(|&c| sk.parent[c] == Some(i))
+                    .collect();
+                let mut node = serde_json::json!({
+                    "name": self.names.get(i).cloned().unwrap_or_default(),
+                    "translation": t.as_vec3().to_array(),
+                    "rotation": r.normalize().as_quat().to_array(),
+                });
+                if !children.is_empty() {
+                    node["children"] = children.into();
+                }
+                node
+            })
+            .collect();
+        let mesh_node = nodes.len();
+        nodes.push(serde_json::json!({"name": "hand-mesh", "mesh": 0, "skin": 0}));
+        let roots: Vec<usize> = (0..sk.parent.len())
+            .filter(|&i| sk.parent[i].is_none())
+            .chain([mesh_node])
+            .collect();
+        let json = serde_json::json!({
+            "asset": {"version": "2.0", "generator": "phalanx synthetic tube hand"},
+            "scene": 0,
+            "scenes": [{"nodes": roots}],
+            "nodes": nodes,
+            "skins": [{"joints": mesh.joints, "inverseBindMatrices": ibm}],
+            "meshes": [{"primitives": [{"attributes": attributes, "indices": idx, "mode": 4}]}],
+            "accessors": accessors,
+            "bufferViews": views,
+            "buffers": [{"byteLength": bin.len()}],
+        });
+        let text = serde_json::to_vec(&json).map_err(|e| e.to_string())?;
+        gltf::binary::Glb {
+            header: gltf::binary::Header {
+                magic: *b"glTF",
+                version: 2,
+                length: 0,
+            },
+            json: text.into(),
+            bin: Some(bin.into()),
+        }
+        .to_vec()
+        .map_err(|e| format!("cannot be written as GLB ({e})"))
+    }
+}
+
+/// Appends `data` (little-endian, 4-byte aligned) to `bin` as a buffer view and
+/// an accessor of `component` type and `shape`; returns the accessor's index.
+fn glb_accessor<T: LeBytes>(
+    bin: &mut Vec<u8>,
+    views: &mut Vec<serde_json::Value>,
+    accessors: &mut Vec<serde_json::Value>,
+    data: &[T],
+    component: u32,
+    shape: &str,
+    bounds: Option<(Vec<f32>, Vec<f32>)>,
+) -> usize {
+    let per = match shape {
+        "SCALAR" => 1,
+        "VEC3" => 3,
+        "VEC4" => 4,
+        _ => 16,
+    };
+    let offset = bin.len();
+    for x in data {
+        x.put(bin);
+    }
+    let length = bin.len() - offset;
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    views.push(serde_json::json!({
+        "buffer": 0,
+        "byteOffset": offset,
+        "byteLength": length,
+    }));
+    let mut acc = serde_json::json!({
+        "bufferView": views.len() - 1,
+        "componentType": component,
+        "count": data.len() / per,
+        "type": shape,
+    });
+    if let Some((lo, hi)) = bounds {
+        acc["min"] = lo.into();
+        acc["max"] = hi.into();
+    }
+    accessors.push(acc);
+    accessors.len() - 1
+}
+
+/// A number glTF stores little-endian.
+trait LeBytes: Copy {
+    fn put(self, out: &mut Vec<u8>);
+}
+
+impl LeBytes for f32 {
+    fn put(self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&self.to_le_bytes());
+    }
+}
+
+impl LeBytes for u32 {
+    fn put(self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&self.to_le_bytes());
+    }
+}
+
+impl LeBytes for u16 {
+    fn put(self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&self.to_le_bytes());
     }
 }
