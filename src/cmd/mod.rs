@@ -11,6 +11,7 @@ pub(crate) mod audit;
 pub(crate) mod check;
 pub(crate) mod completions;
 pub(crate) mod coverage;
+pub(crate) mod deform;
 pub(crate) mod history;
 pub(crate) mod man;
 pub(crate) mod place;

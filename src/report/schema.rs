@@ -25,6 +25,7 @@ pub(crate) const DOCUMENTS: &[(&str, Generator)] = &[
     ("coverage", of::<json::CoverageDocument<'static>>),
     ("place", of::<json::PlacementDocument<'static>>),
     ("audit", of::<json::AuditDocument<'static>>),
+    ("deform", of::<super::deform::DeformDocument<'static>>),
     ("history", of::<json::HistoryDocument<'static>>),
     ("history-record", of::<Snapshot>),
 ];
