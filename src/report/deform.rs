@@ -233,8 +233,8 @@ fn better(b: Better) -> &'static str {
 fn heading(pose: &Pose, method: Skinning) -> String {
     let f = &pose.fingers[1];
     let t = &pose.fingers[0];
-    format!(
-        "Pose {}: fingers MCP {}, PIP {}, DIP {} degrees; thumb MCP {}, IP {}. Skinning: {}.\n",
+    wrap(&format!(
+        "Pose {}: fingers MCP {}, PIP {}, DIP {} degrees; thumb MCP {}, IP {}. Skinning: {}.",
         pose.name,
         trimmed(f.mcp, 1),
         trimmed(f.pip, 1),
@@ -245,7 +245,7 @@ fn heading(pose: &Pose, method: Skinning) -> String {
             Skinning::Lbs => "linear blend (LBS)",
             Skinning::Dqs => "dual quaternion (DQS)",
         }
-    )
+    ))
 }
 
 const LEGEND_ONE: &str = "loss: cross-section area lost across the joint (worst section, `at` mm from the joint, + distal); \
