@@ -61,9 +61,19 @@ fn the_table_fits_and_the_closed_forms_hold_for_lbs_and_dqs() {
     // The fist bends every PIP 90 degrees. A tube's ring weighted 1/2 to each
     // bone keeps cos(theta/2) of its area under LBS (by hand: 1 - cos 45 deg =
     // 0.2929 lost) and all of it under DQS, which turns each ring rigidly.
-    let lbs = wd.run(&["deform", "right.glb", "--format", "json"]).ok().json();
+    let lbs = wd
+        .run(&["deform", "right.glb", "--format", "json"])
+        .ok()
+        .json();
     let dqs = wd
-        .run(&["deform", "right.glb", "--skinning", "dqs", "--format", "json"])
+        .run(&[
+            "deform",
+            "right.glb",
+            "--skinning",
+            "dqs",
+            "--format",
+            "json",
+        ])
         .ok()
         .json();
     assert_eq!(lbs["schema_version"], 1);
@@ -82,7 +92,16 @@ fn dqs_loses_less_volume_than_lbs_at_90_degrees() {
     write_hand(&wd, "right.glb", &HandSpec::default());
     let at = |method: &str| {
         let doc = wd
-            .run(&["deform", "right.glb", "--angles", "0,90,0", "--skinning", method, "--format", "json"])
+            .run(&[
+                "deform",
+                "right.glb",
+                "--angles",
+                "0,90,0",
+                "--skinning",
+                method,
+                "--format",
+                "json",
+            ])
             .ok()
             .json();
         num(&joint(&doc, "rig", "middle", "PIP")["volume_loss"])
@@ -105,7 +124,16 @@ fn weights_centred_on_the_joint_beat_weights_5mm_off() {
     );
     write_hand(&wd, "centred-right.glb", &HandSpec::default());
     let doc = wd
-        .run(&["deform", "off-right.glb", "--against", "centred-right.glb", "--angles", "0,90,0", "--format", "json"])
+        .run(&[
+            "deform",
+            "off-right.glb",
+            "--against",
+            "centred-right.glb",
+            "--angles",
+            "0,90,0",
+            "--format",
+            "json",
+        ])
         .ok()
         .json();
     let v = verdict(&doc, "index", "PIP");
@@ -131,7 +159,14 @@ fn weights_centred_on_the_joint_beat_weights_5mm_off() {
         "{d}"
     );
     // The table says so too.
-    let table = wd.run(&["deform", "off-right.glb", "--against", "centred-right.glb", "--angles", "0,90,0"]);
+    let table = wd.run(&[
+        "deform",
+        "off-right.glb",
+        "--against",
+        "centred-right.glb",
+        "--angles",
+        "0,90,0",
+    ]);
     table
         .ok()
         .stdout_has("index PIP: mixed; A better by self-intersections")
@@ -143,19 +178,39 @@ fn a_fold_onto_itself_crosses_the_skin() {
     let wd = Workdir::new();
     write_hand(&wd, "right.glb", &HandSpec::default());
     let folded = wd
-        .run(&["deform", "right.glb", "--angles", "0,170,0", "--format", "json"])
+        .run(&[
+            "deform",
+            "right.glb",
+            "--angles",
+            "0,170,0",
+            "--format",
+            "json",
+        ])
         .ok()
         .json();
     let straight = wd
-        .run(&["deform", "right.glb", "--angles", "0,0,0", "--format", "json"])
+        .run(&[
+            "deform",
+            "right.glb",
+            "--angles",
+            "0,0,0",
+            "--format",
+            "json",
+        ])
         .ok()
         .json();
     for finger in ["index", "middle", "ring", "little"] {
         assert!(
-            joint(&folded, "rig", finger, "PIP")["self_intersections"].as_u64().unwrap() > 0,
+            joint(&folded, "rig", finger, "PIP")["self_intersections"]
+                .as_u64()
+                .unwrap()
+                > 0,
             "{finger}"
         );
-        assert_eq!(joint(&straight, "rig", finger, "PIP")["self_intersections"], 0);
+        assert_eq!(
+            joint(&straight, "rig", finger, "PIP")["self_intersections"],
+            0
+        );
     }
 }
 
@@ -226,7 +281,16 @@ fn the_figure_draws_the_mesh_where_it_projects() {
     let wd = Workdir::new();
     write_hand(&wd, "right.glb", &HandSpec::default());
     let doc = wd
-        .run(&["deform", "right.glb", "--pose", "point", "--out", "renders", "--format", "json"])
+        .run(&[
+            "deform",
+            "right.glb",
+            "--pose",
+            "point",
+            "--out",
+            "renders",
+            "--format",
+            "json",
+        ])
         .ok()
         .json();
     let render = &doc["renders"][0];
@@ -264,15 +328,25 @@ fn the_figure_draws_the_mesh_where_it_projects() {
         .find(|t| t["finger"] == "index")
         .unwrap();
     let (x, y) = (num(&tip["x"]), num(&tip["y"]));
-    assert_ne!(pixel(&img, x, y + 2.0), [255, 255, 255], "no mesh at the index tip ({x}, {y})");
+    assert_ne!(
+        pixel(&img, x, y + 2.0),
+        [255, 255, 255],
+        "no mesh at the index tip ({x}, {y})"
+    );
     let mut top = y + 2.0;
     while top > 0.0 && pixel(&img, x, top - 1.0) != [255, 255, 255] {
         top -= 1.0;
     }
-    assert!((top - y).abs() <= 2.0, "the mesh ends at y = {top}, the tip projects to {y}");
+    assert!(
+        (top - y).abs() <= 2.0,
+        "the mesh ends at y = {top}, the tip projects to {y}"
+    );
     // An unbent finger does not strain: its tip is drawn in the ramp's grey (shaded).
     let [r, g, b] = pixel(&img, x, y + 3.0);
-    assert!(b >= r && b >= g, "the straight tip is not grey-blue: {r} {g} {b}");
+    assert!(
+        b >= r && b >= g,
+        "the straight tip is not grey-blue: {r} {g} {b}"
+    );
 }
 
 #[test]
@@ -280,21 +354,53 @@ fn fix_compares_with_what_audit_fix_writes_without_writing_it() {
     let wd = Workdir::new();
     wd.copy_paper_data();
     write_hand(&wd, "right.glb", &HandSpec::default());
-    let before: Vec<_> = std::fs::read_dir(wd.path()).unwrap().flatten().map(|e| e.file_name()).collect();
-    let fix = wd.run(&["deform", "right.glb", "--fix", "--format", "json"]).ok().json();
-    let after: Vec<_> = std::fs::read_dir(wd.path()).unwrap().flatten().map(|e| e.file_name()).collect();
+    let before: Vec<_> = std::fs::read_dir(wd.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    let fix = wd
+        .run(&["deform", "right.glb", "--fix", "--format", "json"])
+        .ok()
+        .json();
+    let after: Vec<_> = std::fs::read_dir(wd.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
     assert_eq!(before, after, "--fix wrote a file");
-    assert!(fix["against"]["label"].as_str().unwrap().contains("audit --fix"));
-    assert!(fix["moved"].as_array().unwrap().iter().any(|m| num(&m["shift"]) > 0.0));
+    assert!(
+        fix["against"]["label"]
+            .as_str()
+            .unwrap()
+            .contains("audit --fix")
+    );
+    assert!(
+        fix["moved"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|m| num(&m["shift"]) > 0.0)
+    );
     // The same as deforming the file audit --fix writes.
-    wd.run(&["audit", "right.glb", "--fix", "fixed-right.glb"]).ok();
+    wd.run(&["audit", "right.glb", "--fix", "fixed-right.glb"])
+        .ok();
     let against = wd
-        .run(&["deform", "right.glb", "--against", "fixed-right.glb", "--format", "json"])
+        .run(&[
+            "deform",
+            "right.glb",
+            "--against",
+            "fixed-right.glb",
+            "--format",
+            "json",
+        ])
         .ok()
         .json();
     assert_eq!(fix["against"]["hands"], against["against"]["hands"]);
     assert_eq!(fix["verdicts"], against["verdicts"]);
-    wd.run(&["deform", "right.glb", "--fix"]).ok().stdout_has("B: right.glb (as audit --fix would write it)");
+    wd.run(&["deform", "right.glb", "--fix"])
+        .ok()
+        .stdout_has("B: right.glb (as audit --fix would write it)");
 }
 
 #[test]
@@ -315,23 +421,64 @@ fn bad_input_is_refused_naming_the_file_and_nothing_is_written() {
         ],"scenes":[{"nodes":[0]}],"scene":0}"#,
     );
     for (args, words) in [
-        (&["deform", "missing.glb", "--out", "out"][..], "missing.glb"),
+        (
+            &["deform", "missing.glb", "--out", "out"][..],
+            "missing.glb",
+        ),
         (&["deform", "junk.glb", "--out", "out"], "junk.glb"),
         (&["deform", "bare-right.gltf", "--out", "out"], "no skin"),
-        (&["deform", "right.glb", "--against", "junk.glb", "--out", "out"], "junk.glb"),
-        (&["deform", "right.glb", "--angles", "0,200,0", "--out", "out"], "from -30 to 180"),
-        (&["deform", "right.glb", "--angles", "NaN,0,0", "--out", "out"], "from -30 to 180"),
-        (&["deform", "right.glb", "--angles", "1,2", "--out", "out"], "from -30 to 180"),
-        (&["deform", "right.glb", "--pose", "wave", "--out", "out"], "wave"),
-        (&["deform", "right.glb", "--fix", "--against", "right.glb"], "cannot be used with"),
-        (&["deform", "right.glb", "--fix", "--data", "none.csv", "--out", "out"], "none.csv"),
+        (
+            &[
+                "deform",
+                "right.glb",
+                "--against",
+                "junk.glb",
+                "--out",
+                "out",
+            ],
+            "junk.glb",
+        ),
+        (
+            &["deform", "right.glb", "--angles", "0,200,0", "--out", "out"],
+            "from -30 to 180",
+        ),
+        (
+            &["deform", "right.glb", "--angles", "NaN,0,0", "--out", "out"],
+            "from -30 to 180",
+        ),
+        (
+            &["deform", "right.glb", "--angles", "1,2", "--out", "out"],
+            "from -30 to 180",
+        ),
+        (
+            &["deform", "right.glb", "--pose", "wave", "--out", "out"],
+            "wave",
+        ),
+        (
+            &["deform", "right.glb", "--fix", "--against", "right.glb"],
+            "cannot be used with",
+        ),
+        (
+            &[
+                "deform",
+                "right.glb",
+                "--fix",
+                "--data",
+                "none.csv",
+                "--out",
+                "out",
+            ],
+            "none.csv",
+        ),
     ] {
         wd.run(args).data_error().stderr_has(words);
         assert!(!wd.path().join("out").exists(), "{args:?} wrote its output");
     }
     // A hand whose names carry no side, in a file whose name does not say either.
     std::fs::copy(wd.path().join("right.glb"), wd.path().join("hand.glb")).unwrap();
-    wd.run(&["deform", "hand.glb"]).data_error().stderr_has("--side");
+    wd.run(&["deform", "hand.glb"])
+        .data_error()
+        .stderr_has("--side");
     wd.run(&["deform", "hand.glb", "--side", "right"]).ok();
 }
 

@@ -392,9 +392,11 @@ fn deform_angles() {
         .to_glb()
         .unwrap(),
     );
-    for v in ["0", "1", "180", "180.0001", "-30", "-30.0001", U64_MAX, "-1", "inf", "NaN"] {
+    for v in [
+        "0", "1", "180", "180.0001", "-30", "-30.0001", U64_MAX, "-1", "inf", "NaN",
+    ] {
         for k in 0..3 {
-            let mut angles = vec!["0"; 3];
+            let mut angles = ["0"; 3];
             angles[k] = v;
             let angles = angles.join(",");
             let run = wd.run(&["deform", "right.glb", "--angles", &angles]);

@@ -398,9 +398,20 @@ fn deform_documents_satisfy_the_deform_schema() {
         tube_hand(&HandSpec::default()).to_glb().unwrap(),
     );
     // One rig, and with --fix and figures.
-    let one = wd.run(&["deform", "right.glb", "--format", "json"]).ok().json();
+    let one = wd
+        .run(&["deform", "right.glb", "--format", "json"])
+        .ok()
+        .json();
     let two = wd
-        .run(&["deform", "right.glb", "--fix", "--out", "r", "--format", "json"])
+        .run(&[
+            "deform",
+            "right.glb",
+            "--fix",
+            "--out",
+            "r",
+            "--format",
+            "json",
+        ])
         .ok()
         .json();
     assert!(two["verdicts"][0]["joints"].is_array() && two["renders"][0]["panels"].is_array());

@@ -110,7 +110,12 @@ fn parse_angles(text: &str) -> Result<[f64; 3], String> {
         .collect::<Result<_, _>>()
         .map_err(|_| bad())?;
     match v[..] {
-        [a, b, c] if v.iter().all(|x| x.is_finite() && (-30.0..=180.0).contains(x)) => Ok([a, b, c]),
+        [a, b, c]
+            if v.iter()
+                .all(|x| x.is_finite() && (-30.0..=180.0).contains(x)) =>
+        {
+            Ok([a, b, c])
+        }
         _ => Err(bad()),
     }
 }
@@ -253,7 +258,16 @@ mod tests {
     fn angles_are_three_finite_degrees_in_range() {
         assert_eq!(parse_angles("60,90,60"), Ok([60.0, 90.0, 60.0]));
         assert_eq!(parse_angles(" -30, 0,180"), Ok([-30.0, 0.0, 180.0]));
-        for bad in ["", "60,90", "60,90,60,1", "NaN,0,0", "inf,0,0", "0,181,0", "-31,0,0", "a,b,c"] {
+        for bad in [
+            "",
+            "60,90",
+            "60,90,60,1",
+            "NaN,0,0",
+            "inf,0,0",
+            "0,181,0",
+            "-31,0,0",
+            "a,b,c",
+        ] {
             let e = parse_angles(bad).unwrap_err();
             assert!(e.contains("from -30 to 180"), "{bad}: {e}");
         }

@@ -100,7 +100,11 @@ pub(crate) fn side_from_label(label: &str) -> Option<Side> {
 }
 
 /// A finger's nodes from its recognised slots; `None` without the MCP or an inner joint.
-fn finger_nodes(file: &GltfFile, finger: Finger, slots: &HashMap<Slot, usize>) -> Option<FingerNodes> {
+fn finger_nodes(
+    file: &GltfFile,
+    finger: Finger,
+    slots: &HashMap<Slot, usize>,
+) -> Option<FingerNodes> {
     let mcp = *slots.get(&Slot::Mcp)?;
     let mut joints = vec![mcp, *slots.get(&Slot::First)?];
     if finger != Finger::Thumb {
@@ -108,7 +112,8 @@ fn finger_nodes(file: &GltfFile, finger: Finger, slots: &HashMap<Slot, usize>) -
     }
     let metacarpal = slots.get(&Slot::Carpal).copied().or_else(|| {
         // The MCP's parent, unless it is the hand itself (a name like `hand`/`wrist`).
-        file.parent[mcp].filter(|&p| file.parent[p].is_some() && !is_wrist_name(&file.node_names()[p]))
+        file.parent[mcp]
+            .filter(|&p| file.parent[p].is_some() && !is_wrist_name(&file.node_names()[p]))
     });
     Some(FingerNodes {
         finger,
@@ -143,7 +148,12 @@ fn is_wrist_name(name: &str) -> bool {
 }
 
 /// The wrist node of a hand (see the module doc), if one is found.
-fn wrist_of(file: &GltfFile, names: &[String], side: Side, fingers: &[FingerNodes]) -> Option<usize> {
+fn wrist_of(
+    file: &GltfFile,
+    names: &[String],
+    side: Side,
+    fingers: &[FingerNodes],
+) -> Option<usize> {
     let named: Vec<usize> = (0..names.len())
         .filter(|&i| is_wrist_name(&names[i]))
         .collect();
@@ -187,7 +197,15 @@ mod tests {
 
     #[test]
     fn wrist_names() {
-        for yes in ["wrist", "hand", "RightHand", "mixamorig:LeftHand", "hand.R", "DEF-hand.L", "hand_l"] {
+        for yes in [
+            "wrist",
+            "hand",
+            "RightHand",
+            "mixamorig:LeftHand",
+            "hand.R",
+            "DEF-hand.L",
+            "hand_l",
+        ] {
             assert!(is_wrist_name(yes), "{yes}");
         }
         for no in ["handle", "RightHandIndex1", "forearm", "palm.01.R"] {

@@ -299,7 +299,17 @@ fn measure_finger(
         .map(|k| {
             let zone_strains = by_zone.get_mut(&k).map(std::mem::take).unwrap_or_default();
             let zone_crossings = crossings_by_zone.get(&k).copied().unwrap_or(0);
-            joint_measures(&m, f, k, &joint_s, half, &vertex_s, zone_strains, zone_crossings, &mut notes)
+            joint_measures(
+                &m,
+                f,
+                k,
+                &joint_s,
+                half,
+                &vertex_s,
+                zone_strains,
+                zone_crossings,
+                &mut notes,
+            )
         })
         .collect();
     FingerMeasures {
@@ -338,6 +348,9 @@ fn finger_axis(f: &PosedFinger) -> Axis {
     Axis::new(axis_points)
 }
 
+/// Edge strains per joint zone.
+type ZoneStrains = BTreeMap<usize, Vec<f64>>;
+
 /// Edge strains by joint zone (an edge by its rest midpoint), and each
 /// vertex's (arc length, mean strain of its edges), for the creases.
 fn strain_along(
@@ -345,7 +358,7 @@ fn strain_along(
     strains: &[((u32, u32), f64)],
     axis: &Axis,
     joint_s: &[f64],
-) -> (BTreeMap<usize, Vec<f64>>, Vec<(f64, f64)>) {
+) -> (ZoneStrains, Vec<(f64, f64)>) {
     let mut by_zone: BTreeMap<usize, Vec<f64>> = BTreeMap::new();
     let mut vsum: BTreeMap<u32, (f64, u32)> = BTreeMap::new();
     for &((a, b), r) in strains {

@@ -308,13 +308,35 @@ impl SyntheticRig {
             let mut joints = vec![0u16; 4 * n];
             let mut weights = vec![0f32; 4 * n];
             for v in 0..n {
-                for (k, &(j, w)) in mesh.influences_of(v).iter().skip(4 * set).take(4).enumerate() {
+                for (k, &(j, w)) in mesh
+                    .influences_of(v)
+                    .iter()
+                    .skip(4 * set)
+                    .take(4)
+                    .enumerate()
+                {
                     joints[4 * v + k] = j;
                     weights[4 * v + k] = w as f32;
                 }
             }
-            let j = glb_accessor(&mut bin, &mut views, &mut accessors, &joints, 5123, "VEC4", None);
-            let w = glb_accessor(&mut bin, &mut views, &mut accessors, &weights, 5126, "VEC4", None);
+            let j = glb_accessor(
+                &mut bin,
+                &mut views,
+                &mut accessors,
+                &joints,
+                5123,
+                "VEC4",
+                None,
+            );
+            let w = glb_accessor(
+                &mut bin,
+                &mut views,
+                &mut accessors,
+                &weights,
+                5126,
+                "VEC4",
+                None,
+            );
             attributes.insert(format!("JOINTS_{set}"), j.into());
             attributes.insert(format!("WEIGHTS_{set}"), w.into());
         }
@@ -323,7 +345,15 @@ impl SyntheticRig {
             .iter()
             .flat_map(|m| m.as_mat4().to_cols_array())
             .collect();
-        let ibm = glb_accessor(&mut bin, &mut views, &mut accessors, &ibm, 5126, "MAT4", None);
+        let ibm = glb_accessor(
+            &mut bin,
+            &mut views,
+            &mut accessors,
+            &ibm,
+            5126,
+            "MAT4",
+            None,
+        );
         let sk = &self.skeleton;
         let mut nodes: Vec<serde_json::Value> = (0..sk.world.len())
             .map(|i| {
