@@ -9,8 +9,12 @@ for f in ../tests/fixtures/bad/*.csv ../tests/fixtures/fuzz/*; do
     [ -e "$f" ] || continue
     case "$(basename "$f")" in
         claims_*) cp "$f" corpus/claims/ ;;
+        rig_*) cp "$f" corpus/rig/ ;;
         *) cp "$f" corpus/measurements/ ;;
     esac
 done
 cp ../docs/examples/*.glb ../docs/examples/*.vrm corpus/rig/
+# The real rigs: the WebXR generic hands (siblings, skin weights).
+cp ../data/rigs/webxr-generic-hand/left.glb corpus/rig/webxr-left.glb
+cp ../data/rigs/webxr-generic-hand/right.glb corpus/rig/webxr-right.glb
 echo "seeded: $(ls corpus/measurements | wc -l) measurement inputs, $(ls corpus/claims | wc -l) claims inputs, $(ls corpus/rig | wc -l) rigs"

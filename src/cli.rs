@@ -21,6 +21,9 @@ pub(crate) struct Cli {
     /// No progress bar on standard error
     #[arg(long, short, global = true)]
     pub quiet: bool,
+    /// Show every table column, however wide (otherwise tables fit the terminal, or 100 columns when not one)
+    #[arg(long, global = true)]
+    pub wide: bool,
     #[command(subcommand)]
     pub command: Command,
 }
@@ -68,20 +71,22 @@ pub fn main() -> i32 {
 /// Runs one parsed command; returns the exit status on success.
 pub(crate) fn run(cli: Cli) -> Result<i32, Error> {
     let quiet = cli.quiet;
-    match cli.command {
-        Command::Stats(args) => cmd::stats::run(&args, quiet),
-        Command::Check(args) => cmd::check::run(&args),
-        Command::Coverage(args) => cmd::coverage::run(&args),
+    let width = cmd::out::width(cli.wide);
+    let result = match cli.command {
+        Command::Stats(args) => cmd::stats::run(&args, quiet, width),
+        Command::Check(args) => cmd::check::run(&args, width),
+        Command::Coverage(args) => cmd::coverage::run(&args, width),
         Command::Report(args) => cmd::report::run(&args, quiet),
         Command::Add(args) => cmd::add::run(&args),
-        Command::Place(args) => cmd::place::run(&args),
-        Command::Audit(args) => cmd::audit::run(&args, quiet),
-        Command::Deform(args) => cmd::deform::run(&args),
+        Command::Place(args) => cmd::place::run(&args, width),
+        Command::Audit(args) => cmd::audit::run(&args, quiet, width),
+        Command::Deform(args) => cmd::deform::run(&args, width),
         Command::Synth(args) => cmd::synth::run(&args),
         Command::Snapshot(args) => cmd::snapshot::run(&args),
-        Command::History(args) => cmd::history::run(&args),
+        Command::History(args) => cmd::history::run(&args, width),
         Command::Completions(args) => cmd::completions::run(&args, Cli::command()),
         Command::Man(args) => cmd::man::run(&args, Cli::command()),
         Command::Schema(args) => cmd::schema::run(&args),
-    }
+    };
+    result.map_err(cmd::args::outside_checkout)
 }

@@ -127,13 +127,51 @@ pub(crate) fn full(x: Option<f64>) -> String {
         .map_or_else(String::new, |v| v.to_string())
 }
 
+/// Largest relative difference between a [`readable`] number and the value.
+const READABLE_TOLERANCE: f64 = 1e-12;
+
+/// A number for a CSV that people read and spreadsheets open: the shortest
+/// decimal (at most 15 significant digits) within 1e-12 of the value,
+/// relatively; empty when absent or not finite. Twelve digits and more are
+/// far beyond what a measurement carries, and the noise of binary arithmetic
+/// goes: the thumb's mean total reads "519.998", not "519.9979999999999", and
+/// a range max - min of 71.01 not "71.01000000000005". ([`full`] keeps every
+/// bit, for files read back.) Cost: at most 15 formatting passes.
+pub(crate) fn readable(x: Option<f64>) -> String {
+    let Some(v) = x.filter(|v| v.is_finite()) else {
+        return String::new();
+    };
+    if v == 0.0 {
+        return "0".to_string();
+    }
+    (1..=15)
+        .filter_map(|digits| {
+            format!("{v:.prec$e}", prec = digits - 1)
+                .parse::<f64>()
+                .ok()
+        })
+        .find(|r| (r - v).abs() <= READABLE_TOLERANCE * v.abs())
+        .unwrap_or(v)
+        .to_string()
+}
+
 /// The CSV cells of the four intervals, in table order: low and high of each
-/// at full precision, both empty where the interval is undefined.
+/// as [`readable`] numbers, both empty where the interval is undefined.
 pub(crate) fn interval_bounds(iv: &Intervals) -> Vec<String> {
     iv.all()
         .iter()
-        .flat_map(|i| [full(i.map(|i| i.low)), full(i.map(|i| i.high))])
+        .flat_map(|i| [readable(i.map(|i| i.low)), readable(i.map(|i| i.high))])
         .collect()
+}
+
+/// A number of X-rays as people read it: "1 X-ray", "5 X-rays" (the sample
+/// size n is always shown with its unit).
+pub(crate) fn xrays(n: usize) -> String {
+    if n == 1 {
+        "1 X-ray".to_string()
+    } else {
+        format!("{n} X-rays")
+    }
 }
 
 /// A proportion as a percentage with one decimal: 0.8312 -> "83.1%" (coverage, CV).
@@ -227,6 +265,34 @@ mod tests {
         assert_eq!(step_decimals(0.0025), 3);
         assert_eq!(step_decimals(50.0), 0);
         assert_eq!(step_decimals(0.0), 2);
+    }
+
+    #[test]
+    fn readable_numbers_drop_float_noise_only() {
+        // The mean total J of the paper's thumb, 519.998 from Table 1, as the
+        // analysis computes it in f64 (`phalanx stats --format json`).
+        let total = 519.997_999_999_999_9;
+        assert_eq!(full(Some(total)), "519.9979999999999");
+        assert_eq!(readable(Some(total)), "519.998");
+        // Its range, 566.39 - 495.38.
+        assert_eq!(readable(Some(566.39 - 495.38)), "71.01");
+        assert_eq!(readable(Some(0.1 + 0.2)), "0.3");
+        assert_eq!(readable(Some(0.484_636_048_070_876_83)), "0.484636048071");
+        assert_eq!(readable(Some(1e-20)), "0.00000000000000000001");
+        assert_eq!(readable(Some(-2.5)), "-2.5");
+        assert_eq!(readable(Some(-0.0)), "0");
+        assert_eq!(readable(Some(f64::NAN)), "");
+        assert_eq!(readable(None), "");
+        for x in [
+            519.997_999_999_999_9,
+            0.026_144_100_660_300_842,
+            1_234_567.891,
+            3e-7,
+            1.0 / 3.0,
+        ] {
+            let back: f64 = readable(Some(x)).parse().unwrap();
+            assert!((back - x).abs() <= 1e-12 * x.abs(), "{x} -> {back}");
+        }
     }
 
     #[test]

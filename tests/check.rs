@@ -26,7 +26,8 @@ fn cause_line<'a>(stdout: &'a str, id: &str) -> &'a str {
 fn shipped_data_and_claims_pass_with_the_misprints_explained() {
     let wd = Workdir::new();
     wd.copy_paper_data();
-    let run = wd.run(&["check"]);
+    // Every cause on one line: --wide.
+    let run = wd.run(&["check", "--wide"]);
     run.ok();
     assert!(run.stderr.is_empty(), "{}", run.stderr);
     let out = &run.stdout;
@@ -123,14 +124,16 @@ fn absolute_paths_work_from_any_directory() {
         claims.to_str().unwrap(),
     ]);
     run.ok().stdout_has(SUMMARY);
-    // Without them the defaults are missing: a data error naming the path.
+    // Without them the defaults are missing: a data error naming the path and what to do.
     wd.run(&["check"])
         .data_error()
-        .stderr_has("data/measurements.csv: no such file");
+        .stderr_has("data/measurements.csv is not in ")
+        .stderr_has("or give --data PATH");
     wd.write("data/measurements.csv", paper_data());
     wd.run(&["check"])
         .data_error()
-        .stderr_has("data/paper_claims.csv: no such file");
+        .stderr_has("data/paper_claims.csv is not in ")
+        .stderr_has("or give --claims PATH");
 }
 
 /// A claims file with the mean of eq. (6) stated as `stated`, erratum `erratum`.

@@ -94,13 +94,19 @@ fn coverage_of_degenerate_samples_is_explained_not_simulated() {
         assert!(q["coverage"].is_null(), "{q}");
         assert!(q["note"].is_string(), "{q}");
     }
-    wd.run(&["coverage", "--data", "one.csv", "--sims", "10"])
-        .ok()
-        .stdout_has("n = 1");
+    // The table still shows the curve; the data's own size is not in it, and a note says why.
+    let run = wd.run(&["coverage", "--data", "one.csv", "--sims", "10"]);
+    run.ok()
+        .stdout_has("index (1 X-ray): one X-ray has no spread to fit a model to");
+    assert!(
+        !run.stdout.lines().any(|l| l.ends_with("| this data |")),
+        "{}",
+        run.stdout
+    );
 }
 
 #[test]
-fn coverage_table_lists_every_quantity() {
+fn coverage_table_has_a_row_per_sample_size() {
     let wd = Workdir::new();
     wd.copy_paper_data();
     let run = wd.run(&["coverage", "--sims", "200"]);
@@ -110,5 +116,8 @@ fn coverage_table_lists_every_quantity() {
         .lines()
         .filter(|l| l.starts_with("| ") && l.contains('%'))
         .count();
-    assert_eq!(rows, 28, "{}", run.stdout);
+    // 3, 4, 5 (this data), 6, 8, 10, 15, 20, 30 and 50 X-rays.
+    assert_eq!(rows, 10, "{}", run.stdout);
+    let marked = run.stdout.lines().filter(|l| l.ends_with("| this data |"));
+    assert_eq!(marked.count(), 1, "{}", run.stdout);
 }

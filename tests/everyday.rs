@@ -19,7 +19,7 @@ fn group_by_a_column_without_values_gives_a_note_not_an_unknown_group() {
     for column in ["sex", "age"] {
         let run = wd.run(&["stats", "--group-by", column]);
         run.ok().stderr_has(&format!(
-            "note: --group-by {column}: no row of {DATA} has a {column} value, so there is nothing to group by"
+            "note: --group-by {column}: no row of {DATA} gives a value in the {column} column, so there is nothing to group by"
         ));
         assert!(!run.stdout.contains("unknown"), "{}", run.stdout);
         let json = wd.run(&["stats", "--group-by", column, "--format", "json"]);

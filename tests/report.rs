@@ -34,7 +34,7 @@ fn render_with(
         confidence: 0.95,
         max_n: Some(coverage::REPORT_MAX_N),
     };
-    let cov = coverage::of_analysis(&a, &cs);
+    let cov = coverage::curve(&coverage::data_sizes(&a, &cs), &cs);
     let places = placement::place_all(&a, 1000.0);
     let rigs: Vec<view::ReferenceAudit> =
         phalanx::rig::reference::load_dir(std::path::Path::new("data/rigs"))

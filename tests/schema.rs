@@ -251,6 +251,38 @@ fn audit_documents_satisfy_the_audit_schema() {
         .ok()
         .json();
     assert!(fixed["fix"]["moved"].is_array(), "no fix block: {fixed}");
+    // A real rig: siblings read by name, skin weights (bends), the skin's end
+    // as its tip, and the MCP and the tip judged with their own standing.
+    let webxr = manifest_dir().join("data/rigs/webxr-generic-hand/right.glb");
+    let webxr = webxr.to_str().unwrap();
+    let real = wd.run(&["audit", webxr, "--format", "json"]).ok().json();
+    let real_fixed = wd
+        .run(&["audit", webxr, "--fix", "webxr.glb", "--format", "json"])
+        .ok()
+        .json();
+    for finger in real["rig"]["fingers"].as_array().unwrap() {
+        let joints = finger["audit"]["joints"].as_array().unwrap();
+        let names: Vec<&str> = joints
+            .iter()
+            .map(|j| j["joint"].as_str().unwrap())
+            .collect();
+        assert_eq!(names.first(), Some(&"MCP"), "{names:?}");
+        assert_eq!(names.last(), Some(&"tip"), "{names:?}");
+        assert!(
+            joints.iter().all(|j| j["standing"].is_string()),
+            "{joints:?}"
+        );
+        assert!(!finger["bends"].as_array().unwrap().is_empty());
+    }
+    assert_refused(&v, "audit", &real, "an MCP without its standing", |d| {
+        d["rig"]["fingers"][0]["audit"]["joints"][0]
+            .as_object_mut()
+            .unwrap()
+            .remove("standing");
+    });
+    for doc in [&real, &real_fixed] {
+        assert_valid(&v, "audit", doc);
+    }
     for doc in [&with_tips, &vrm, &fixed] {
         assert!(!doc["rig"]["fingers"].as_array().unwrap().is_empty());
         assert_valid(&v, "audit", doc);

@@ -488,20 +488,20 @@ fn csv_format_has_one_row_per_finger_and_quantity() {
         want.extend(qs.iter().map(|q| (f.to_string(), q.to_string())));
     }
     assert_eq!(pairs, want);
-    // The numbers are the JSON document's, at full precision (to within the
-    // 1 ulp of serde_json's float parsing).
+    // The numbers are the JSON document's, to 1e-12 relatively (the CSV
+    // drops the noise of binary arithmetic: 519.998, not 519.9979999999999).
     for r in &records {
         assert_eq!(r.len(), header.len());
         assert_eq!(&r[col("n")], "5");
         let what = format!("{} {}", &r[col("finger")], &r[col("quantity")]);
         let q = quantity(&doc, &r[col("finger")], &r[col("quantity")]);
         let cell = |name: &str| -> f64 { r[col(name)].parse().unwrap() };
-        assert_rel(cell("mean"), num(&q["mean"]), 1e-15, &what);
-        assert_rel(cell("sd"), num(&q["sd"]), 1e-15, &what);
+        assert_rel(cell("mean"), num(&q["mean"]), 1e-12, &what);
+        assert_rel(cell("sd"), num(&q["sd"]), 1e-12, &what);
         for k in ["ci_t", "ci_percentile", "ci_bca", "pi"] {
             let (lo, hi) = interval(&q[k]);
-            assert_rel(cell(&format!("{k}_low")), lo, 1e-15, &what);
-            assert_rel(cell(&format!("{k}_high")), hi, 1e-15, &what);
+            assert_rel(cell(&format!("{k}_low")), lo, 1e-12, &what);
+            assert_rel(cell(&format!("{k}_high")), hi, 1e-12, &what);
         }
         assert_eq!(&r[col("bootstrap")], "exact", "{what}");
         assert_eq!(&r[col("confidence")], "0.95", "{what}");

@@ -17,6 +17,7 @@ mod option_ranges;
 mod options;
 mod place;
 mod properties;
+mod readable;
 mod report;
 mod schema;
 mod stats;

@@ -1,10 +1,11 @@
-//! Fuzzes the glTF rig reader, the audit of whatever it accepts, and `--fix` in memory.
+//! Fuzzes the glTF rig reader, the audit of whatever it accepts (bends from
+//! its skin weights included), and `--fix` in memory (weights and keys moved).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use phalanx::analysis::{Settings, analyse};
 use phalanx::dataset::Dataset;
-use phalanx::rig::{AuditedRig, GltfFile, Rig};
+use phalanx::rig::{AuditOptions, AuditedRig, GltfFile, Rig};
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -22,14 +23,28 @@ fuzz_target!(|data: &[u8]| {
     let Ok(rig) = Rig::from_file(file, None) else {
         return;
     };
-    let audited = AuditedRig::of("fuzz.glb", &rig.chains, &rig.notes, a);
+    let audited = AuditedRig::with(
+        "fuzz.glb",
+        &rig.chains,
+        &rig.notes,
+        a,
+        &AuditOptions::default(),
+        rig.weights.as_ref(),
+    );
     for f in &audited.fingers {
         for j in &f.audit.joints {
             assert!(j.suggested.is_finite());
         }
     }
     // External buffers resolve in a folder that does not exist: never read.
-    if let Ok(fixed) = phalanx::rig::fix::fix(&rig.file, &audited.fingers, Path::new("/nonexistent-phalanx-fuzz"), true) {
+    if let Ok(fixed) = phalanx::rig::fix::fix_with(
+        &rig.file,
+        &audited.fingers,
+        rig.weights.as_ref(),
+        Path::new("/nonexistent-phalanx-fuzz"),
+        true,
+        &phalanx::rig::fix::FixOptions::default(),
+    ) {
         let _ = GltfFile::from_bytes("fixed.glb", &fixed.bytes);
     }
 });

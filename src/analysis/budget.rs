@@ -39,23 +39,34 @@ pub(crate) fn check_bootstrap(n: usize, resamples: usize) -> Result<(), String> 
     ))
 }
 
-/// Refuses a coverage simulation of `sims` datasets at each sample size in
-/// `sizes` that would exceed [`MAX_WORK`] in total, saying how many fit.
-pub(crate) fn check_coverage(sizes: &[usize], sims: usize, resamples: usize) -> Result<(), String> {
-    let per_sim: u128 = sizes.iter().map(|&n| bootstrap_work(n, resamples)).sum();
+/// Refuses a coverage simulation of `sims` datasets at sample sizes with their
+/// own resamples, `(n, resamples)` each (the coverage curve uses fewer), that
+/// would exceed [`MAX_WORK`] in total, saying how many fit; `asked` is the
+/// `--resamples` the message quotes.
+pub(crate) fn check_coverage_runs(
+    runs: &[(usize, usize)],
+    sims: usize,
+    asked: usize,
+) -> Result<(), String> {
+    let per_sim: u128 = runs.iter().map(|&(n, b)| bootstrap_work(n, b)).sum();
     let work = per_sim * sims as u128;
     if work <= MAX_WORK {
         return Ok(());
     }
     let fits = (MAX_WORK / per_sim.max(1)).max(1);
     Err(format!(
-        "--sims {sims} with --resamples {resamples} at n = {} is {work} resample-X-ray pairs, more than {MAX_WORK} \
+        "--sims {sims} with --resamples {asked} at n = {} is {work} resample-X-ray pairs, more than {MAX_WORK} \
          (about a minute of work): give --sims {fits} or fewer, or fewer --resamples",
-        sizes
-            .iter()
-            .map(usize::to_string)
-            .collect::<Vec<_>>()
-            .join(", ")
+        {
+            let mut sizes: Vec<usize> = runs.iter().map(|&(n, _)| n).collect();
+            sizes.sort_unstable();
+            sizes.dedup();
+            sizes
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        }
     ))
 }
 
@@ -73,8 +84,8 @@ mod tests {
         let e = check_bootstrap(1_000_001, 10_000).unwrap_err();
         assert!(e.contains("give --resamples 9999 or fewer"), "{e}");
         // Coverage: 4000 sims x 10^4 resamples x 200 X-rays = 8e9 fits; 300 X-rays does not.
-        assert!(check_coverage(&[200], 4000, 10_000).is_ok());
-        let e = check_coverage(&[5, 300], 4000, 10_000).unwrap_err();
+        assert!(check_coverage_runs(&[(200, 10_000)], 4000, 10_000).is_ok());
+        let e = check_coverage_runs(&[(5, 10_000), (300, 10_000)], 4000, 10_000).unwrap_err();
         assert!(e.contains("at n = 5, 300"), "{e}");
         assert!(e.contains("give --sims 3332 or fewer"), "{e}");
     }

@@ -73,7 +73,7 @@ pub(crate) fn nothing_to_group(data: &Dataset, by: &GroupBy) -> Option<String> {
         .all(|r| by.label(&r.meta) == "unknown")
         .then(|| {
             format!(
-                "--group-by {0}: no row of {1} has a {0} value, so there is nothing to group by; fill the {0} column to get statistics per group",
+                "--group-by {0}: no row of {1} gives a value in the {0} column, so there is nothing to group by; fill the {0} column to get statistics per group",
                 by.name(),
                 data.path
             )
@@ -207,7 +207,10 @@ b,index,5,3,3,
         )
         .unwrap();
         let note = nothing_to_group(&d, &GroupBy::Sex).unwrap();
-        assert!(note.contains("no row of n.csv has a sex value"), "{note}");
+        assert!(
+            note.contains("no row of n.csv gives a value in the sex column"),
+            "{note}"
+        );
         assert!(nothing_to_group(&data(), &GroupBy::Sex).is_none());
         assert!(nothing_to_group(&d, &GroupBy::Age(DEFAULT_AGE_BINS.to_vec())).is_some());
     }

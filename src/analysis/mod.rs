@@ -339,7 +339,7 @@ pub(crate) fn quantity_stats(
     let cv = sd.map(|s| s / mean);
     let mut notes = Vec::new();
     let intervals = if n < 2 {
-        notes.push("n = 1: no spread can be estimated, so every interval is null".into());
+        notes.push("n = 1 X-ray: no spread can be estimated, so every interval is null".into());
         Intervals::NONE
     } else if zero_spread {
         notes.push(

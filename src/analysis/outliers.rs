@@ -59,6 +59,7 @@
 
 use super::{Analysis, Interval, Quantity};
 use crate::dataset::{Finger, Row};
+use crate::format::{num, trimmed};
 use crate::stats::describe;
 use serde::Serialize;
 
@@ -284,63 +285,8 @@ pub(crate) fn limits(a: &Analysis, finger: Finger) -> Option<String> {
 
 /// The flag of one row, with its message.
 fn flag(row: &Row, r: &Reference, found: &Findings) -> Flag {
-    let mut parts: Vec<String> = Vec::new();
-    let (constant, varying): (Vec<&Outside>, Vec<&Outside>) =
-        found.outside.iter().partition(|o| o.constant);
-    if !varying.is_empty() {
-        let list: Vec<String> = varying
-            .iter()
-            .map(|o| {
-                format!(
-                    "{} = {:.4} is outside [{:.4}, {:.4}]",
-                    relative(o.segment).symbol(),
-                    o.value,
-                    o.interval.low,
-                    o.interval.high
-                )
-            })
-            .collect();
-        parts.push(format!(
-            "{} ({}% prediction interval{} of the current {} X-rays, so that a genuine row is flagged at most {}% of the time)",
-            list.join(", "),
-            percent(r.level),
-            if varying.len() == 1 { "" } else { "s" },
-            r.n,
-            percent(ROW_ALPHA)
-        ));
-    }
-    for o in constant {
-        parts.push(format!(
-            "{} = {:.4} differs from {:.4}, the value of every current X-ray (zero spread: any other value is flagged)",
-            relative(o.segment).symbol(),
-            o.value,
-            o.interval.low
-        ));
-    }
-    for t in &found.typos {
-        parts.push(format!(
-            "j{} = {} is {} times the median j{} of the current X-rays ({})",
-            t.segment + 1,
-            t.value,
-            ratio_text(t.ratio),
-            t.segment + 1,
-            t.median
-        ));
-    }
-    let hint = match found.typos.as_slice() {
-        [t] => {
-            let power = t.ratio.log10().abs().round().max(1.0) as i32;
-            format!(
-                ": j{} looks {} times too {} (a misplaced decimal point?)",
-                t.segment + 1,
-                10u64.pow(power.unsigned_abs().min(18)),
-                if t.ratio > 1.0 { "large" } else { "small" }
-            )
-        }
-        [] => ": a likely measurement or typing error".to_string(),
-        _ => ": several lengths look mistyped (a misplaced decimal point, or another unit?)"
-            .to_string(),
-    };
+    let mut parts = outside_parts(r, &found.outside);
+    parts.extend(found.typos.iter().map(typo_part));
     Flag {
         xray: row.xray.to_string(),
         finger: row.finger.name().to_string(),
@@ -366,27 +312,98 @@ fn flag(row: &Row, r: &Reference, found: &Findings) -> Flag {
             })
             .collect(),
         reason: format!(
-            "{} X-ray '{}': {}{hint}",
+            "{} X-ray '{}': {}{}",
             row.finger,
             row.xray,
-            parts.join("; ")
+            parts.join("; "),
+            hint(&found.typos)
         ),
     }
 }
 
-/// A level as a percentage with no trailing zeros: 0.996667 -> "99.67", 0.01 -> "1".
+/// Decimals of a relative value in a flag's message.
+const VALUE_DECIMALS: usize = 4;
+
+/// The message parts for the relative values outside their intervals: the
+/// varying ones together with the level that bounds the false alarms, then one
+/// part per value that differs from a constant (zero-spread) quantity.
+fn outside_parts(r: &Reference, outside: &[Outside]) -> Vec<String> {
+    let d = VALUE_DECIMALS;
+    let (constant, varying): (Vec<&Outside>, Vec<&Outside>) =
+        outside.iter().partition(|o| o.constant);
+    let mut parts = Vec::new();
+    if !varying.is_empty() {
+        let list: Vec<String> = varying
+            .iter()
+            .map(|o| {
+                format!(
+                    "{} = {} is outside [{}, {}]",
+                    relative(o.segment).symbol(),
+                    num(o.value, d),
+                    num(o.interval.low, d),
+                    num(o.interval.high, d)
+                )
+            })
+            .collect();
+        parts.push(format!(
+            "{} ({}% prediction interval{} of the current {} X-rays, so that a genuine row is flagged at most {}% of the time)",
+            list.join(", "),
+            percent(r.level),
+            if varying.len() == 1 { "" } else { "s" },
+            r.n,
+            percent(ROW_ALPHA)
+        ));
+    }
+    parts.extend(constant.into_iter().map(|o| {
+        format!(
+            "{} = {} differs from {}, the value of every current X-ray (zero spread: any other value is flagged)",
+            relative(o.segment).symbol(),
+            num(o.value, d),
+            num(o.interval.low, d)
+        )
+    }));
+    parts
+}
+
+/// The message part of one length that looks mistyped.
+fn typo_part(t: &Typo) -> String {
+    format!(
+        "j{} = {} is {} times the median j{} of the current X-rays ({})",
+        t.segment + 1,
+        t.value,
+        ratio_text(t.ratio),
+        t.segment + 1,
+        t.median
+    )
+}
+
+/// The likely fix that ends a flag's message.
+fn hint(typos: &[Typo]) -> String {
+    match typos {
+        [t] => {
+            let power = t.ratio.log10().abs().round().max(1.0) as i32;
+            format!(
+                ": j{} looks {} times too {} (a misplaced decimal point?)",
+                t.segment + 1,
+                10u64.pow(power.unsigned_abs().min(18)),
+                if t.ratio > 1.0 { "large" } else { "small" }
+            )
+        }
+        [] => ": a likely measurement or typing error".to_string(),
+        _ => ": several lengths look mistyped (a misplaced decimal point, or another unit?)"
+            .to_string(),
+    }
+}
+
+/// A level as a percentage with at most 2 decimals and no trailing zeros:
+/// 0.996667 -> "99.67", 0.01 -> "1".
 fn percent(p: f64) -> String {
-    let text = format!("{:.2}", p * 100.0);
-    text.trim_end_matches('0').trim_end_matches('.').to_string()
+    trimmed(p * 100.0, 2)
 }
 
 /// A ratio for people: "10.0" or "0.10".
 fn ratio_text(r: f64) -> String {
-    if r >= 1.0 {
-        format!("{r:.1}")
-    } else {
-        format!("{r:.2}")
-    }
+    num(r, if r >= 1.0 { 1 } else { 2 })
 }
 
 #[cfg(test)]

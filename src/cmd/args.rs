@@ -15,6 +15,41 @@ pub(crate) const DEFAULT_DATA: &str = "data/measurements.csv";
 /// Default claims file.
 pub(crate) const DEFAULT_CLAIMS: &str = "data/paper_claims.csv";
 
+/// What to say when a default input is missing: most likely phalanx runs
+/// outside its checkout, where `data/` is not. `None` for any other path, or
+/// when the file is there.
+pub(crate) fn missing_default(path: &Path) -> Option<Error> {
+    let option = if path == Path::new(DEFAULT_DATA) {
+        "--data"
+    } else if path == Path::new(DEFAULT_CLAIMS) {
+        "--claims"
+    } else {
+        return None;
+    };
+    if path.exists() {
+        return None;
+    }
+    let here = std::env::current_dir()
+        .map(|d| d.display().to_string())
+        .unwrap_or_else(|_| "the current directory".to_string());
+    Some(Error::Usage(format!(
+        "{} is not in {here}: phalanx reads data/ from the directory it runs in. \
+         Run it from the phalanx checkout (the directory with Cargo.toml and data/), or give {option} PATH",
+        path.display()
+    )))
+}
+
+/// A command's error, with what to do when it is a default input that does
+/// not exist ([`missing_default`]); other errors pass through.
+pub(crate) fn outside_checkout(e: Error) -> Error {
+    match &e {
+        Error::Data(d) if d.problems.iter().all(|p| p.line.is_none()) => {
+            missing_default(Path::new(&d.file)).unwrap_or(e)
+        }
+        _ => e,
+    }
+}
+
 /// The dataset to read.
 #[derive(Args, Debug, Clone)]
 pub(crate) struct DataArgs {

@@ -4,8 +4,23 @@ use super::args::{BootArgs, DataArgs, TextFormat};
 use super::out;
 use crate::error::{EXIT_FAILURE, Error};
 use crate::report;
+use crate::report::layout::Width;
+use crate::rig::AuditOptions;
+use crate::rig::bend::BEND_TOLERANCE_MM;
+use crate::rig::judge::{DEFAULT_SOFT_TISSUE_MM, JudgeOptions, TipKind};
 use crate::rig::session::{self, Audit, AuditRequest, FixOutcome};
 use std::path::PathBuf;
+
+/// What a rig's tip nodes mark.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tip {
+    /// The skin; where the mesh reaches past the tip node, the mesh's end
+    Auto,
+    /// The skin at the end of the finger, at the tip node
+    Skin,
+    /// The end of the distal phalanx, as on an X-ray
+    Bone,
+}
 
 /// Judge a rigged hand (glTF 2.0) against the X-ray statistics; --fix writes a corrected copy
 #[derive(clap::Args, Debug)]
@@ -13,12 +28,16 @@ use std::path::PathBuf;
     after_help = "Finds the finger chains of either hand by their names (Mixamo mixamorig:RightHandIndex1..4, \
                   Rigify f_index.01.R / DEF-f_index.01.R / thumb.01.R, VRM rightIndexProximal or its humanoid table, \
                   Unreal index_01_r, WebXR index-finger-phalanx-proximal; case and separators ignored; --map for others) \
-                  and measures joint-to-joint distances in the node (bind) pose. Each inner joint is reported inside the \
-                  X-ray range, inside the prediction interval, or outside by how many mm and in which direction. \
-                  Rigs without tip nodes are judged on J2/J1 only.\n\n\
-                  --fix OUT.glb writes a copy with the middle joints at the mean positions along each finger (root and \
-                  tip fixed) and the inverse bind matrices updated so the mesh's rest shape is unchanged; the input is \
-                  never modified.\n\n\
+                  and measures joint-to-joint distances in the node (bind) pose; the joints need not be parent and \
+                  child when the names say which finger they belong to (WebXR). Every joint (MCP, PIP, DIP, tip) is \
+                  reported inside the X-ray range, inside the prediction interval, or outside by how many mm and in \
+                  which direction, and the misfit is explained by moving the fewest joints. Tips are read as skin tips \
+                  and compared with the X-rays' bone tips less the fingertip's soft tissue (--tip, --tip-soft-tissue). \
+                  Rigs without tip nodes are judged on J2/J1 only. Where the skin weights make the mesh bend is found \
+                  for each joint, and a joint further than --bend-tolerance from its bend is flagged.\n\n\
+                  --fix OUT.glb writes a copy with the explanation's joints moved along each finger, the skin weights \
+                  moved with them, translation keys offset, and the inverse bind matrices updated so the mesh's rest \
+                  shape is unchanged; the input is never modified.\n\n\
                   --map FILE: CSV with the header node,side,finger,joint (joint MCP, PIP, DIP, IP or tip).\n\n\
                   Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv"
 )]
@@ -36,6 +55,18 @@ pub(crate) struct Args {
     /// Write a corrected copy of the rig here (.glb, or .gltf with the buffer embedded)
     #[arg(long, value_name = "OUT")]
     fix: Option<PathBuf>,
+    /// With --fix: move only joints that are themselves outside the prediction interval
+    #[arg(long)]
+    only_outside: bool,
+    /// What the rig's tip nodes mark
+    #[arg(long, value_enum, default_value_t = Tip::Auto)]
+    tip: Tip,
+    /// Soft tissue between the bone tip and a skin tip, in mm (default 4, an assumption: see README)
+    #[arg(long, value_name = "MM")]
+    tip_soft_tissue: Option<f64>,
+    /// Flag a joint further than this from where its skin bends, in mm (default 3)
+    #[arg(long, value_name = "MM")]
+    bend_tolerance: Option<f64>,
     /// Exit with status 1 when a finger is outside the prediction interval
     #[arg(long)]
     strict: bool,
@@ -44,16 +75,18 @@ pub(crate) struct Args {
     format: TextFormat,
 }
 
-pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
+pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> {
     let audit = session::audit(&AuditRequest {
         rig: &args.rig,
         map: args.map.as_deref(),
         fix: args.fix.as_deref(),
         data: &args.data.data,
         settings: args.boot.settings()?,
+        options: options(args)?,
+        only_outside: args.only_outside,
     })?;
     let bytes = match args.format {
-        TextFormat::Table => table(&audit).into_bytes(),
+        TextFormat::Table => table(&audit, width).into_bytes(),
         TextFormat::Json => json(&audit)?,
     };
     out::print(&bytes)?;
@@ -70,11 +103,55 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     })
 }
 
+/// The tip and bend options, in metres; lengths must be finite, not negative
+/// (the bend tolerance above zero).
+fn options(args: &Args) -> Result<AuditOptions, Error> {
+    let mm = |name: &str, v: Option<f64>, default: f64, zero_ok: bool| -> Result<f64, Error> {
+        let x = v.unwrap_or(default);
+        if x.is_finite() && (x > 0.0 || (zero_ok && x == 0.0)) && x < 1000.0 {
+            Ok(x / 1000.0)
+        } else {
+            Err(Error::Usage(format!(
+                "--{name} {x}: give millimetres, {} and below 1000",
+                if zero_ok { "0 or more" } else { "above 0" }
+            )))
+        }
+    };
+    Ok(AuditOptions {
+        judge: JudgeOptions {
+            rig_tip: match args.tip {
+                Tip::Auto | Tip::Skin => TipKind::Skin,
+                Tip::Bone => TipKind::Bone,
+            },
+            soft_tissue: mm(
+                "tip-soft-tissue",
+                args.tip_soft_tissue,
+                DEFAULT_SOFT_TISSUE_MM,
+                true,
+            )?,
+            ..JudgeOptions::default()
+        },
+        bend_tolerance: mm(
+            "bend-tolerance",
+            args.bend_tolerance,
+            BEND_TOLERANCE_MM,
+            false,
+        )?,
+        measure_tip: args.tip == Tip::Auto,
+    })
+}
+
 /// The audit table.
-fn table(audit: &Audit) -> String {
+fn table(audit: &Audit, width: Width) -> String {
     let a = &audit.analysis;
-    let n_note = format!("{} X-rays", a.dataset.xrays);
-    report::audit::text(&audit.rig, &a.dataset.path, &n_note, a.settings.confidence)
+    let n_note = crate::format::xrays(a.dataset.xrays);
+    report::audit::text(
+        &audit.rig,
+        &a.dataset.path,
+        &n_note,
+        a.settings.confidence,
+        width,
+    )
 }
 
 /// The audit document, with what the fix did.

@@ -8,6 +8,7 @@ use crate::dataset::Dataset;
 use crate::dataset::claims::Claims;
 use crate::error::{EXIT_FAILURE, Error};
 use crate::report;
+use crate::report::layout::Width;
 use std::path::PathBuf;
 
 /// Recompute every number the paper states and explain each disagreement
@@ -27,13 +28,13 @@ pub(crate) struct Args {
     format: TextFormat,
 }
 
-pub(crate) fn run(args: &Args) -> Result<i32, Error> {
+pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     let dataset = Dataset::load(&args.data.data)?;
     let claims = Claims::load(&args.claims)?;
     claims.check_against(&dataset)?;
     let results = claims::check(&claims, &dataset);
     let bytes = match args.format {
-        TextFormat::Table => report::text::check(&results).into_bytes(),
+        TextFormat::Table => report::text::check(&results, width).into_bytes(),
         TextFormat::Json => {
             report::json::check(&DatasetInfo::of(&dataset), &claims.path, &results)?
         }

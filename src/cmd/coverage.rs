@@ -5,11 +5,14 @@ use super::out;
 use crate::analysis::coverage::{self, CoverageSettings};
 use crate::error::Error;
 use crate::report;
+use crate::report::layout::Width;
 
-/// Estimate by simulation how often each interval method really covers at the data's n
+/// Estimate by simulation how often each interval method really covers, at the data's n and from 3 to 50 X-rays
 #[derive(clap::Args, Debug)]
 #[command(
-    after_help = "Examples:\n  phalanx coverage\n  phalanx coverage --sims 20000 --format json"
+    after_help = "The table has one row per sample size: the data's own n (marked) and 3, 4, 5, 6, 8, 10, 15, 20, 30 and 50 X-rays. \
+                  --format json gives the simulation at the data's n for every finger and quantity.\n\n\
+                  Examples:\n  phalanx coverage\n  phalanx coverage --sims 20000 --format json"
 )]
 pub(crate) struct Args {
     #[command(flatten)]
@@ -24,7 +27,7 @@ pub(crate) struct Args {
     format: TextFormat,
 }
 
-pub(crate) fn run(args: &Args) -> Result<i32, Error> {
+pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     let settings = args.boot.settings()?;
     let s = CoverageSettings {
         sims: args.sims as usize,
@@ -34,14 +37,20 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
         max_n: None,
     };
     let data = crate::dataset::Dataset::load(&args.data.data)?;
-    super::report::check_coverage_budget(&data, &s)?;
+    super::report::check_coverage_budget(&data, &s, args.format == TextFormat::Table)?;
     super::within_budget(&data, &settings)?;
     let a = crate::analysis::analyse(&data, &settings);
     drop(data);
-    let rows = coverage::of_analysis(&a, &s);
     let bytes = match args.format {
-        TextFormat::Table => report::text::coverage(&rows, &s).into_bytes(),
-        TextFormat::Json => report::json::coverage(&a.dataset, &s, &rows)?,
+        TextFormat::Table => {
+            let points = coverage::curve(&coverage::data_sizes(&a, &s), &s);
+            let notes = coverage::not_simulated(&a, &s);
+            report::text::coverage(&points, &s, &notes, width).into_bytes()
+        }
+        TextFormat::Json => {
+            let rows = coverage::of_analysis(&a, &s);
+            report::json::coverage(&a.dataset, &s, &rows)?
+        }
     };
     out::print(&bytes)?;
     Ok(0)

@@ -6,6 +6,7 @@ use super::out;
 use crate::error::Error;
 use crate::report::deform::{self as view, DeformDocument, HandVerdicts, RigView};
 use crate::report::json::{MovedView, SCHEMA_VERSION};
+use crate::report::layout::Width;
 use crate::report::writer;
 use crate::rig::GltfFile;
 use crate::rig::deform::file::{self, DeformRequest, FileDeformation};
@@ -151,7 +152,7 @@ fn deform_parsed(
     Ok(file::deform_file(file, dir, req)?)
 }
 
-pub(crate) fn run(args: &Args) -> Result<i32, Error> {
+pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     let pose = args.pose()?;
     let map = args.map.as_deref().map(NameMap::load).transpose()?;
     let method = match args.skinning {
@@ -216,8 +217,8 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
     }
     let bytes = match args.format {
         TextFormat::Table => match &b {
-            Some(b) => view::text_two(&a, b, &verdicts, &pose, method),
-            None => view::text_one(&a, &pose, method),
+            Some(b) => view::text_two(&a, b, &verdicts, &pose, method, width),
+            None => view::text_one(&a, &pose, method, width),
         }
         .into_bytes(),
         TextFormat::Json => view::json(&DeformDocument {

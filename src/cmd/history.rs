@@ -7,6 +7,7 @@ use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
 use crate::error::Error;
 use crate::report;
+use crate::report::layout::Width;
 
 /// Show how the statistics moved, snapshot by snapshot
 #[derive(clap::Args, Debug)]
@@ -78,7 +79,13 @@ fn why_empty(
     )
 }
 
-pub(crate) fn run(args: &Args) -> Result<i32, Error> {
+pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
+    // Outside the checkout the default history is missing too: say why, not "no snapshots yet".
+    if args.history.path.is_none()
+        && let Some(e) = super::args::missing_default(&args.data.data)
+    {
+        return Err(e);
+    }
     let path = args.history.resolve(&args.data.data);
     let snaps = crate::dataset::history::read(&path)?;
     if !snaps.is_empty()
@@ -91,7 +98,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
     }
     let bytes = match args.format {
         TextFormat::Table => {
-            report::text::history(&path, &snaps, args.finger, args.quantity).into_bytes()
+            report::text::history(&path, &snaps, args.finger, args.quantity, width).into_bytes()
         }
         TextFormat::Json => report::json::history(&snaps, args.finger, args.quantity)?,
     };

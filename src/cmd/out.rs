@@ -1,8 +1,32 @@
 //! The one writer to standard output: a closed pipe (e.g. `| head`) is not an error.
 
 use crate::error::Error;
-use std::io::{StdoutLock, Write};
+use crate::report::layout::Width;
+use std::io::{IsTerminal, StdoutLock, Write};
 use std::path::Path;
+
+/// The width terminal tables and text are fitted to: everything with `--wide`;
+/// else `COLUMNS` when set to a whole number (as GNU tools read it); else the
+/// terminal's width when standard output is one; else [`Width::DEFAULT`].
+pub(crate) fn width(wide: bool) -> Width {
+    if wide {
+        return Width::Wide;
+    }
+    let columns = std::env::var("COLUMNS")
+        .ok()
+        .and_then(|c| c.trim().parse::<usize>().ok())
+        .filter(|&c| c > 0);
+    if let Some(c) = columns {
+        return Width::fit(c);
+    }
+    let stdout = std::io::stdout();
+    if stdout.is_terminal()
+        && let Some((terminal_size::Width(w), _)) = terminal_size::terminal_size_of(&stdout)
+    {
+        return Width::fit(usize::from(w));
+    }
+    Width::fit(Width::DEFAULT)
+}
 
 /// Writes to standard output.
 pub(crate) fn print(bytes: &[u8]) -> Result<(), Error> {

@@ -6,6 +6,7 @@ use crate::analysis::placement;
 use crate::dataset::Finger;
 use crate::error::Error;
 use crate::report;
+use crate::report::layout::Width;
 
 /// Where to put the joints of a model finger of a given length (from its root joint)
 #[derive(clap::Args, Debug)]
@@ -56,7 +57,7 @@ fn parse_hand(text: &str) -> Result<Hand, String> {
     Ok(Hand(out))
 }
 
-pub(crate) fn run(args: &Args) -> Result<i32, Error> {
+pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     let wanted = match (args.finger, args.length, &args.hand) {
         (Some(f), Some(l), None) => vec![(f, l)],
         (None, None, Some(h)) => h.0.clone(),
@@ -79,7 +80,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
     }
     let bytes = match args.format {
         TextFormat::Table => {
-            report::text::placement(&placements, a.settings.confidence).into_bytes()
+            report::text::placement(&placements, a.settings.confidence, width).into_bytes()
         }
         TextFormat::Json => report::json::placement(&a, &placements)?,
     };

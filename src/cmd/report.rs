@@ -104,12 +104,19 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         confidence: settings.confidence,
         max_n: Some(coverage::REPORT_MAX_N),
     };
-    check_coverage_budget(&dataset, &cov_settings)?;
+    let formats = formats(&args.format);
+    // The coverage is shown in HTML and Markdown only.
+    let show_coverage = formats.html || formats.markdown;
+    check_coverage_budget(&dataset, &cov_settings, show_coverage)?;
     let a = super::analyse_showing_progress(&dataset, &settings, quiet)?;
     super::warn_implausible(&a);
     drop(dataset);
     let rigs = audit_references(references, &a);
-    let cov = coverage::of_analysis(&a, &cov_settings);
+    let cov = if show_coverage {
+        coverage::curve(&coverage::data_sizes(&a, &cov_settings), &cov_settings)
+    } else {
+        Vec::new()
+    };
     let placements = placement::place_all(&a, args.model_length);
     let timestamp = args
         .timestamp
@@ -130,14 +137,19 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         groups: &groups,
         rigs: &rigs,
     };
-    let files = report::render(&inputs, formats(&args.format), &templates)?;
+    let files = report::render(&inputs, formats, &templates)?;
     write(&args.out, &files)?;
     Ok(0)
 }
 
 /// Refuses a coverage simulation too large to serve (see [`crate::analysis::budget`]),
-/// before any work.
-pub(crate) fn check_coverage_budget(data: &Dataset, s: &CoverageSettings) -> Result<(), Error> {
+/// before any work: at the data's sizes, and with `curve` at the sizes of
+/// [`coverage::curve`] too.
+pub(crate) fn check_coverage_budget(
+    data: &Dataset,
+    s: &CoverageSettings,
+    curve: bool,
+) -> Result<(), Error> {
     let mut sizes: Vec<usize> = crate::dataset::Finger::ALL
         .into_iter()
         .map(|f| data.rows_of(f).count())
@@ -145,7 +157,12 @@ pub(crate) fn check_coverage_budget(data: &Dataset, s: &CoverageSettings) -> Res
         .collect();
     sizes.sort_unstable();
     sizes.dedup();
-    crate::analysis::budget::check_coverage(&sizes, s.sims, s.resamples).map_err(Error::Usage)
+    let runs = if curve {
+        coverage::curve_runs(&sizes, s)
+    } else {
+        sizes.iter().map(|&n| (n, s.resamples)).collect()
+    };
+    crate::analysis::budget::check_coverage_runs(&runs, s.sims, s.resamples).map_err(Error::Usage)
 }
 
 /// Refuses an output directory that is a file (or lies under one) before any work.

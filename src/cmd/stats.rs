@@ -5,6 +5,7 @@ use super::out;
 use crate::dataset::Dataset;
 use crate::error::Error;
 use crate::report;
+use crate::report::layout::Width;
 use clap::ValueEnum;
 
 /// Statistics of every finger: the paper's (mean, min, max, range) and beyond
@@ -31,7 +32,7 @@ enum Format {
     Csv,
 }
 
-pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
+pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> {
     let settings = args.boot.settings()?;
     let by = args.groups.group_by()?;
     let dataset = Dataset::load(&args.data.data)?;
@@ -40,7 +41,9 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let groups = super::groups_of(&dataset, by.as_ref(), &settings);
     drop(dataset);
     match args.format {
-        Format::Table => out::print(report::text::stats_with_groups(&a, &groups).as_bytes())?,
+        Format::Table => {
+            out::print(report::text::stats_with_groups(&a, &groups, width).as_bytes())?
+        }
         // Streamed: the document of a large dataset is not held in memory.
         Format::Json => out::stream(|w| report::json::write_stats(w, &a, &groups))?,
         Format::Csv => out::print(&report::csv_out::stats(&a, &groups)?)?,

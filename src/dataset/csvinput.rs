@@ -459,6 +459,72 @@ impl<'s, C: Columns> Cells<'_, 's, C> {
     }
 }
 
+/// What a first line that is not a header of `C` looks like, and what to do,
+/// as one problem: a file of another separator (one field holding semicolons
+/// or tabs: Excel's "CSV" in locales with a decimal comma, a TSV export), or
+/// a file without a header line (no field names a column of `C`, and one
+/// looks like data: a number, a finger, a side or a joint). `None` when the
+/// line is a header with mistakes in it, which are reported column by column.
+fn sniff<C: Columns>(record: &Record<'_>) -> Option<Problem> {
+    let fields: Vec<&str> = (0..record.len())
+        .map(|i| record.get(i).unwrap_or(""))
+        .collect();
+    let line = fields.join(",");
+    let save = "save it as 'CSV UTF-8 (Comma delimited)'";
+    if let [only] = fields.as_slice() {
+        let semicolons = only.matches(';').count();
+        let tabs = only.matches('\t').count();
+        let message = if semicolons > 0 && semicolons >= tabs {
+            format!(
+                "the file looks semicolon-separated ({}), as Excel saves CSV in many locales; phalanx reads \
+                 comma-separated files: {save}, or replace each ';' with ',' and any decimal comma with a point \
+                 (339,96 -> 339.96)",
+                quote(only)
+            )
+        } else if tabs > 0 {
+            format!(
+                "the file looks tab-separated ({}), as a TSV export or cells pasted from a spreadsheet; phalanx \
+                 reads comma-separated files: {save}, or replace each tab with ','",
+                quote(&only.replace('\t', "\\t"))
+            )
+        } else {
+            return None;
+        };
+        return Some(Problem::line(record.line, message));
+    }
+    let names_a_column = fields
+        .iter()
+        .any(|f| C::ALL.iter().any(|c| c.name().eq_ignore_ascii_case(f)));
+    let data_like = |f: &&str| {
+        f.parse::<f64>().is_ok()
+            || super::Finger::parse(f).is_some()
+            || ["left", "right", "mcp", "pip", "dip", "ip", "tip"]
+                .iter()
+                .any(|v| v.eq_ignore_ascii_case(f))
+    };
+    if names_a_column || !fields.iter().any(data_like) {
+        return None;
+    }
+    let optional: Vec<&str> = C::ALL
+        .iter()
+        .filter(|c| !c.required())
+        .map(|c| c.name())
+        .collect();
+    let optional = if optional.is_empty() {
+        String::new()
+    } else {
+        format!(" (and any of the optional columns {})", optional.join(","))
+    };
+    Some(Problem::line(
+        record.line,
+        format!(
+            "the file has no header line: its first line, {}, is data; add the header line {}{optional} above it",
+            quote(&line),
+            required_names::<C>()
+        ),
+    ))
+}
+
 /// Reads a table of columns `C` from `input` (`label` names it in errors),
 /// handing each data record to `row`, which reads its cells and reports what
 /// is wrong with them. Returns the header and the file's SHA-256, or every
@@ -492,7 +558,15 @@ pub(crate) fn read_table<C: Columns>(
             problems,
         });
     };
+    let before_header = problems.len();
     let header = Header::<C>::parse(&record, &mut problems);
+    if problems.len() > before_header
+        && let Some(shape) = sniff::<C>(&record)
+    {
+        // One message saying what the file is, instead of one per header column.
+        problems.truncate(before_header);
+        problems.push(shape);
+    }
     let header_ok = problems.is_empty();
     let width = header.names.len();
     let mut records = 0usize;

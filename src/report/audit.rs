@@ -2,9 +2,12 @@
 //!
 //! Rig coordinates are taken as metres (the glTF unit) and shown in millimetres.
 
-use crate::analysis::Quantity;
+use super::layout::{Align, Give, Grid, Hidden, Width};
+use crate::analysis::placement::Joint;
+use crate::analysis::{Interval, Quantity};
 use crate::format::{level, num};
-use crate::rig::judge::{Basis, FingerAudit, Standing};
+use crate::rig::bend::Bend;
+use crate::rig::judge::{Basis, FingerAudit, JudgeOptions, Standing, TipKind};
 use crate::rig::{AuditedFinger, AuditedRig};
 
 /// Millimetres per rig unit (glTF units are metres).
@@ -14,37 +17,32 @@ pub(crate) const MM: f64 = 1000.0;
 pub(crate) const CAVEATS: [&str; 3] = [
     "The statistics come from X-rays of right hands; a left hand is judged as their mirror image.",
     "A rig's joints are rotation centres, while the X-ray lengths run between bone ends; the two differ by a few per cent, so read the prediction interval as a guide, not a verdict.",
-    "A rig's tip usually sits at the skin and so includes the fingertip's soft tissue, which the distal phalanx on an X-ray does not; this lengthens a rig's last segment.",
+    "A rig's tip usually sits at the skin and so includes the fingertip's soft tissue, which the distal phalanx on an X-ray does not; it is taken off the last segment (4 mm unless --tip-soft-tissue says otherwise, an assumption: no measured mean was found).",
 ];
 
-/// "inside the X-ray range", "OUTSIDE: too far towards the tip, 2.10 mm beyond the
-/// prediction interval", ...: how a joint stands.
+/// `text` as one line starting with `first`; [`super::layout::fit_text`]
+/// wraps it to the terminal's width at the end, continuing two columns further in.
+fn para(text: &str, first: &str) -> String {
+    format!("{first}{text}\n")
+}
+
+/// "in range", "OUT, 5.30 mm too distal": how a joint stands, short for the table.
 pub(crate) fn joint_standing(s: Standing, scale: f64) -> String {
     match s {
-        Standing::InRange => "inside the X-ray range".into(),
-        Standing::InPrediction => "inside the prediction interval".into(),
-        Standing::Above { by } => {
-            format!(
-                "OUTSIDE: too far towards the tip, {} mm beyond the prediction interval",
-                num(by * scale, 2)
-            )
-        }
-        Standing::Below { by } => {
-            format!(
-                "OUTSIDE: too close to the root, {} mm beyond the prediction interval",
-                num(by * scale, 2)
-            )
-        }
+        Standing::InRange => "in range".into(),
+        Standing::InPrediction => "in prediction".into(),
+        Standing::Above { by } => format!("OUT, {} mm too distal", num(by * scale, 2)),
+        Standing::Below { by } => format!("OUT, {} mm too proximal", num(by * scale, 2)),
     }
 }
 
-/// How a unitless value stands.
+/// How a unitless value stands, short for the table.
 pub(crate) fn value_standing(s: Standing) -> String {
     match s {
-        Standing::InRange => "inside the X-ray range".into(),
-        Standing::InPrediction => "inside the prediction interval".into(),
-        Standing::Above { by } => format!("OUTSIDE: {} above the prediction interval", num(by, 4)),
-        Standing::Below { by } => format!("OUTSIDE: {} below the prediction interval", num(by, 4)),
+        Standing::InRange => "in range".into(),
+        Standing::InPrediction => "in prediction".into(),
+        Standing::Above { by } => format!("OUT, {} above", num(by, 4)),
+        Standing::Below { by } => format!("OUT, {} below", num(by, 4)),
     }
 }
 
@@ -57,27 +55,78 @@ pub(crate) fn basis_words(a: &FingerAudit) -> String {
     }
 }
 
-/// A finger's heading: label, node names, segment lengths and length.
+/// How the tips are compared, in words.
+pub(crate) fn tip_words(t: &JudgeOptions) -> String {
+    let kind = |k: TipKind| match k {
+        TipKind::Skin => "skin",
+        TipKind::Bone => "bone",
+    };
+    let c = t.tip_correction();
+    let data = if t.data_tip == TipKind::Bone {
+        "the X-rays' tips taken as bone tips (the paper does not say)"
+    } else {
+        "the X-rays' tips are skin tips"
+    };
+    if c == 0.0 {
+        format!(
+            "Rig tips read as {} tips and compared as they are; {data}.",
+            kind(t.rig_tip)
+        )
+    } else {
+        format!(
+            "Rig tips read as {} tips, compared {} mm {} for the fingertip's soft tissue; {data}.",
+            kind(t.rig_tip),
+            num(c.abs() * MM, 1),
+            if c > 0.0 {
+                "nearer the root"
+            } else {
+                "further out"
+            }
+        )
+    }
+}
+
+/// A finger's heading: label and node names (wrapped), then its segments.
 pub(crate) fn heading(f: &AuditedFinger) -> String {
-    let names: Vec<&str> = f.chain.joints.iter().map(|j| j.name.as_str()).collect();
-    let segments: Vec<String> = f
-        .audit
+    let names: Vec<String> = f
+        .chain
+        .joints
+        .iter()
+        .map(|j| format!("{} ({})", j.name, j.joint.name()))
+        .collect();
+    let mut out = para(&format!("{}: {}", f.chain.label(), names.join(", ")), "");
+    let a = &f.audit;
+    let segments: Vec<String> = a
         .segments
         .iter()
         .enumerate()
         .map(|(k, c)| format!("J{} {}", k + 1, num(c * MM, 2)))
         .collect();
-    let length = f
-        .audit
-        .length
-        .map(|l| format!(", length {} mm", num(l * MM, 2)))
-        .unwrap_or_else(|| " mm".to_string());
-    format!(
-        "{} ({})\n  segments {}{length}",
-        f.chain.label(),
-        names.join(", "),
-        segments.join(", ")
-    )
+    let mut line = format!("segments {} mm", segments.join(", "));
+    if a.tip_correction != 0.0
+        && let Some(last) = a.compared.last()
+    {
+        line.push_str(&format!(
+            "; compared J{} {}",
+            a.compared.len(),
+            num(last * MM, 2)
+        ));
+    }
+    if let Some(l) = a.length {
+        line.push_str(&format!("; length {} mm", num(l * MM, 2)));
+    }
+    out.push_str(&para(&line, "  "));
+    if let (Some(t), Some(node)) = (&f.skin_tip, f.chain.joints.last()) {
+        out.push_str(&para(
+            &format!(
+                "tip: the skin's end on the mesh, {} mm past {} (the tip node lies inside the skin)",
+                num(t.beyond_node * MM, 2),
+                node.name
+            ),
+            "  ",
+        ));
+    }
+    out
 }
 
 /// The suggestion for one joint, in words.
@@ -87,80 +136,215 @@ pub(crate) fn suggestion(j: &crate::rig::judge::JointCheck) -> String {
     } else {
         "towards the root"
     };
-    if j.shift * MM < 0.005 {
-        "at the mean already".into()
-    } else {
-        format!(
-            "move {} mm {towards}, to ({}, {}, {}) m in glTF world space (Y up)",
-            num(j.shift * MM, 2),
-            num(j.suggested[0], 5),
-            num(j.suggested[1], 5),
-            num(j.suggested[2], 5)
-        )
+    format!(
+        "move {} {} mm {towards}, to ({}, {}, {}) m",
+        j.joint.name(),
+        num(j.shift * MM, 2),
+        num(j.suggested[0], 5),
+        num(j.suggested[1], 5),
+        num(j.suggested[2], 5)
+    )
+}
+
+/// "A, B and C".
+fn and_list(items: &[String]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.clone(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
     }
 }
 
-/// The terminal report of `phalanx audit`.
-pub(crate) fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) -> String {
+/// The explanation of a finger's misfit, in words.
+pub(crate) fn explanation_words(a: &FingerAudit) -> String {
+    let e = &a.explanation;
+    let soft = a.tip_correction != 0.0;
+    if a.basis == Basis::None {
+        return String::new();
+    }
+    if e.moved.is_empty() && e.consistent {
+        return if soft {
+            "Fits the X-rays as it is, the tip's soft tissue accounted for.".into()
+        } else {
+            "Fits the X-rays as it is.".into()
+        };
+    }
+    let moved: Vec<String> = a
+        .joints
+        .iter()
+        .filter(|j| j.moves)
+        .map(|j| {
+            let side = if j.shift_along < 0.0 {
+                "distal"
+            } else {
+                "proximal"
+            };
+            let web = if j.joint == Joint::Mcp && j.shift_along < 0.0 {
+                " (at the finger web, not the knuckle?)"
+            } else {
+                ""
+            };
+            format!(
+                "the {} sits {} mm {side} of where the X-rays put it{web}",
+                j.joint.name(),
+                num(j.shift_along.abs() * MM, 2)
+            )
+        })
+        .collect();
+    let names = |moving: bool, article: bool| -> Vec<String> {
+        a.joints
+            .iter()
+            .filter(|j| j.moves == moving)
+            .map(|j| match (j.joint, article) {
+                (Joint::Tip, _) => "the tip".to_string(),
+                (k, true) => format!("the {}", k.name()),
+                (k, false) => k.name().to_string(),
+            })
+            .collect()
+    };
+    let mut accounted = names(true, true);
+    if soft {
+        accounted.push("the soft tissue".into());
+    }
+    let others = names(false, false);
+    let mut out = if e.consistent {
+        let verb = |l: &[String]| if l.len() == 1 { "is" } else { "are" };
+        format!(
+            "Explanation: {}; {} {} consistent with the X-rays once {} {} accounted for.",
+            and_list(&moved),
+            and_list(&others),
+            verb(&others),
+            and_list(&accounted),
+            verb(&accounted)
+        )
+    } else {
+        format!(
+            "No move of up to two joints fits the X-rays; the closest: {}.",
+            and_list(&moved)
+        )
+    };
+    if !e.also.is_empty() {
+        let alt: Vec<String> = e
+            .also
+            .iter()
+            .map(|set| and_list(&set.iter().map(|j| j.name().to_string()).collect::<Vec<_>>()))
+            .collect();
+        out.push_str(&format!(
+            " Moving the {} instead would also fit.",
+            alt.join(" or the ")
+        ));
+    }
+    out
+}
+
+/// Where the skin bends, in words: one clause per joint.
+pub(crate) fn bend_words(bends: &[Bend], tolerance: f64) -> String {
+    let parts: Vec<String> = bends
+        .iter()
+        .map(|b| match b.offset {
+            None => format!("{} not found ({} vertices)", b.joint.name(), b.vertices),
+            Some(o) => {
+                let side = if o >= 0.0 { "distal" } else { "proximal" };
+                let flag = if b.flagged {
+                    format!(" (beyond {} mm: a rig defect)", num(tolerance * MM, 1))
+                } else {
+                    String::new()
+                };
+                format!(
+                    "{} {} mm {side}{flag}",
+                    b.joint.name(),
+                    num(o.abs() * MM, 2)
+                )
+            }
+        })
+        .collect();
+    format!("Skin bends (from each joint): {}.", parts.join(", "))
+}
+
+/// The table of one finger: each joint (mm from the rig's MCP) and each value,
+/// fitted to `width` (the X-ray range goes first, then the standings wrap).
+fn finger_table(a: &FingerAudit, c: &str, width: Width, hidden: &mut Hidden) -> String {
+    let mm = |x: f64| num(x * MM, 2);
+    let interval =
+        |i: Interval, f: &dyn Fn(f64) -> String| format!("[{}, {}]", f(i.low), f(i.high));
+    let mut t = Grid::new()
+        .col("", Align::Left, Give::Keep)
+        .col("rig", Align::Right, Give::Keep)
+        .col("X-ray mean", Align::Right, Give::Keep)
+        .col("X-ray range", Align::Left, Give::Drop(1))
+        .col(format!("prediction {c}"), Align::Left, Give::Keep)
+        .col("standing", Align::Left, Give::Wrap);
+    for j in &a.joints {
+        t.row(vec![
+            format!("{} (mm)", j.joint.name()),
+            mm(j.measured),
+            mm(j.expected),
+            interval(j.range, &mm),
+            j.pi.map_or("n/a".into(), |p| interval(p, &mm)),
+            joint_standing(j.standing, MM),
+        ]);
+    }
+    let v4 = |x: f64| num(x, 4);
+    for v in &a.values {
+        t.row(vec![
+            v.quantity.symbol().to_string(),
+            v4(v.measured),
+            v4(v.mean),
+            interval(v.range, &v4),
+            v.pi.map_or("n/a".into(), |p| interval(p, &v4)),
+            value_standing(v.standing),
+        ]);
+    }
+    t.render(width, 2, hidden)
+}
+
+/// The terminal report of `phalanx audit`, fitted to `width` (tables give way
+/// as [`super::layout`] says; the other lines wrap).
+pub(crate) fn text(
+    rig: &AuditedRig,
+    data: &str,
+    n_note: &str,
+    confidence: f64,
+    width: Width,
+) -> String {
+    let mut hidden = Hidden::new();
     let c = level(confidence);
-    let mut out = format!(
-        "Rig audit of {} against {data} ({n_note}); lengths in mm (glTF units are metres), {c} prediction intervals\n",
-        rig.label
+    let mut out = para(
+        &format!("Rig audit of {} against {data} ({n_note})", rig.label),
+        "",
     );
+    out.push_str(&para(
+        &format!(
+            "Joints in mm along each finger from the rig's MCP (distal = towards the tip; glTF \
+             units are metres, world space Y up); {c} prediction intervals. {}",
+            tip_words(&rig.tips)
+        ),
+        "",
+    ));
+    for w in &rig.warnings {
+        out.push_str(&para(&format!("Warning: {w}"), ""));
+    }
     for f in &rig.fingers {
-        out.push_str(&format!("\n{}\n  {}\n", heading(f), basis_words(&f.audit)));
-        if f.audit.joints.is_empty() {
+        out.push('\n');
+        out.push_str(&heading(f));
+        let a = &f.audit;
+        out.push_str(&para(&basis_words(a), "  "));
+        if a.joints.is_empty() {
             continue;
         }
-        let pi_head = format!("prediction {c}");
-        let header = ["", "rig", "X-ray mean", "X-ray range", &pi_head, "standing"];
-        // Left-aligned throughout, as the standings are sentences.
-        let mut t = super::text::table(&header, header.len());
-        for j in &f.audit.joints {
-            t.add_row(vec![
-                format!("{} from root (mm)", j.joint.name()),
-                num(j.measured * MM, 2),
-                num(j.expected * MM, 2),
-                format!(
-                    "[{}, {}]",
-                    num(j.range.low * MM, 2),
-                    num(j.range.high * MM, 2)
-                ),
-                j.pi.map_or("n/a".into(), |p| {
-                    format!("[{}, {}]", num(p.low * MM, 2), num(p.high * MM, 2))
-                }),
-                joint_standing(j.standing, MM),
-            ]);
+        out.push_str(&finger_table(a, &c, width, &mut hidden));
+        out.push_str(&para(&explanation_words(a), "  "));
+        for j in a.joints.iter().filter(|j| j.moves) {
+            out.push_str(&para(&suggestion(j), "  "));
         }
-        for v in &f.audit.values {
-            t.add_row(vec![
-                v.quantity.label().to_string(),
-                num(v.measured, 4),
-                num(v.mean, 4),
-                format!("[{}, {}]", num(v.range.low, 4), num(v.range.high, 4)),
-                v.pi.map_or("n/a".into(), |p| {
-                    format!("[{}, {}]", num(p.low, 4), num(p.high, 4))
-                }),
-                value_standing(v.standing),
-            ]);
-        }
-        for line in t.to_string().lines() {
-            out.push_str("  ");
-            out.push_str(line);
-            out.push('\n');
-        }
-        for j in &f.audit.joints {
-            out.push_str(&format!(
-                "  suggested {}: {}\n",
-                j.joint.name(),
-                suggestion(j)
-            ));
+        if !f.bends.is_empty() {
+            out.push_str(&para(&bend_words(&f.bends, rig.bend_tolerance), "  "));
         }
     }
     if !rig.notes.is_empty() {
         out.push_str("\nNotes:\n");
         for n in &rig.notes {
-            out.push_str(&format!("  - {n}\n"));
+            out.push_str(&para(n, "  - "));
         }
     }
     let judged = rig
@@ -168,16 +352,27 @@ pub(crate) fn text(rig: &AuditedRig, data: &str, n_note: &str, confidence: f64) 
         .iter()
         .filter(|f| f.audit.basis != Basis::None)
         .count();
-    out.push_str(&format!(
-        "\nSummary: {} of {} judged fingers have a joint or proportion outside the {c} prediction interval.\n",
+    let mut summary = format!(
+        "Summary: {} of {} judged fingers have a joint or proportion outside the {c} prediction \
+         interval.",
         rig.outside(),
         judged
-    ));
+    );
+    if rig.fingers.iter().any(|f| !f.bends.is_empty()) {
+        summary.push_str(&format!(
+            " {} inner joints lie more than {} mm from where their skin bends.",
+            rig.bends_flagged(),
+            num(rig.bend_tolerance * MM, 1)
+        ));
+    }
+    out.push('\n');
+    out.push_str(&para(&summary, ""));
     out.push_str("Caveats:\n");
     for c in CAVEATS {
-        out.push_str(&format!("  - {c}\n"));
+        out.push_str(&para(c, "  - "));
     }
-    out
+    hidden.append_to(&mut out, width);
+    super::layout::fit_text(&out, width)
 }
 
 /// The standing of a whole finger in one phrase, naming whatever lies outside.
@@ -219,7 +414,28 @@ pub(crate) fn finger_summary(a: &FingerAudit) -> String {
         .chain(a.values.iter().map(|v| v.standing))
         .all(|s| s == Standing::InRange);
     if !outside.is_empty() {
-        format!("outside the prediction interval: {}", outside.join("; "))
+        let fewest: Vec<String> = a
+            .joints
+            .iter()
+            .filter(|j| j.moves)
+            .map(|j| {
+                format!(
+                    "{} {} mm towards the {}",
+                    j.joint.name(),
+                    num(j.shift * MM, 2),
+                    if j.shift_along < 0.0 { "root" } else { "tip" }
+                )
+            })
+            .collect();
+        let explained = if fewest.is_empty() {
+            String::new()
+        } else {
+            format!("; fewest joints to move: {}", fewest.join(", "))
+        };
+        format!(
+            "outside the prediction interval: {}{explained}",
+            outside.join("; ")
+        )
     } else if all_in_range {
         "inside the X-ray range".into()
     } else {

@@ -1,9 +1,10 @@
-//! CSV output of the statistics: one row per finger and quantity, full precision.
+//! CSV output of the statistics: one row per finger and quantity, every number
+//! to 15 significant digits ([`crate::format::readable`]).
 
 use crate::analysis::Analysis;
 use crate::analysis::groups::Group;
 use crate::error::Error;
-use crate::format::{full, interval_bounds};
+use crate::format::{interval_bounds, readable};
 
 /// Header of the statistics CSV.
 pub(crate) const STATS_COLUMNS: [&str; 22] = [
@@ -84,18 +85,18 @@ fn write_analysis(
                 fa.finger.name().to_string(),
                 q.name.name().to_string(),
                 q.n.to_string(),
-                full(Some(q.mean)),
-                full(q.sd),
-                full(q.se),
-                full(Some(q.median)),
-                full(Some(q.min)),
-                full(Some(q.max)),
-                full(Some(q.range)),
-                full(q.cv),
+                readable(Some(q.mean)),
+                readable(q.sd),
+                readable(q.se),
+                readable(Some(q.median)),
+                readable(Some(q.min)),
+                readable(Some(q.max)),
+                readable(Some(q.range)),
+                readable(q.cv),
             ]);
             rec.extend(interval_bounds(&q.intervals));
             rec.push(method.to_string());
-            rec.push(full(Some(a.settings.confidence)));
+            rec.push(readable(Some(a.settings.confidence)));
             rec.push(safe_cell(&q.notes.join("; ")));
             w.write_record(&rec).map_err(err)?;
         }

@@ -7,8 +7,8 @@
 //! edge length)|, unitless.
 
 use super::audit::MM;
+use super::layout::{Align, Give, Grid, Hidden, Width, fit_text};
 use super::render3d::{Figure, MeshView, View};
-use super::text::table;
 use super::writer::OutputFile;
 use crate::error::Error;
 use crate::format::{num, percent, signed, trimmed};
@@ -233,8 +233,8 @@ fn better(b: Better) -> &'static str {
 fn heading(pose: &Pose, method: Skinning) -> String {
     let f = &pose.fingers[1];
     let t = &pose.fingers[0];
-    wrap(&format!(
-        "Pose {}: fingers MCP {}, PIP {}, DIP {} degrees; thumb MCP {}, IP {}. Skinning: {}.",
+    format!(
+        "Pose {}: fingers MCP {}, PIP {}, DIP {} degrees; thumb MCP {}, IP {}. Skinning: {}.\n",
         pose.name,
         trimmed(f.mcp, 1),
         trimmed(f.pip, 1),
@@ -245,7 +245,7 @@ fn heading(pose: &Pose, method: Skinning) -> String {
             Skinning::Lbs => "linear blend (LBS)",
             Skinning::Dqs => "dual quaternion (DQS)",
         }
-    ))
+    )
 }
 
 const LEGEND_ONE: &str = "loss: cross-section area lost across the joint (worst section, `at` mm from the joint, + distal); \
@@ -257,28 +257,14 @@ x: new self-intersecting triangle pairs; p95: 95th percentile of |ln(posed/rest 
 fold: where the skin folds, mm from the joint (+ distal); better: lower |loss|, fewer crossings, \
 lower p95 and |fold| (ties within 1 point, 0, 0.005, 0.5 mm).";
 
-/// Wraps `text` at 100 columns.
-fn wrap(text: &str) -> String {
-    let mut out = String::new();
-    let mut line = String::new();
-    for w in text.split_whitespace() {
-        if !line.is_empty() && line.len() + 1 + w.len() > 100 {
-            out.push_str(&line);
-            out.push('\n');
-            line.clear();
-        }
-        if !line.is_empty() {
-            line.push(' ');
-        }
-        line.push_str(w);
-    }
-    out.push_str(&line);
-    out.push('\n');
-    out
-}
-
 /// The table of one rig.
-pub(crate) fn text_one(rig: &FileDeformation, pose: &Pose, method: Skinning) -> String {
+pub(crate) fn text_one(
+    rig: &FileDeformation,
+    pose: &Pose,
+    method: Skinning,
+    width: Width,
+) -> String {
+    let mut hidden = Hidden::new();
     let mut out = format!("{}\n{}", rig.label, heading(pose, method));
     for h in &rig.hands {
         out.push_str(&format!(
@@ -287,15 +273,19 @@ pub(crate) fn text_one(rig: &FileDeformation, pose: &Pose, method: Skinning) -> 
             h.mesh.positions.len(),
             h.mesh.triangles.len()
         ));
-        let mut t = table(
-            &[
-                "finger", "joint", "deg", "loss", "at", "x", "p95", "max", "fold",
-            ],
-            2,
-        );
+        let mut t = Grid::new()
+            .col("finger", Align::Left, Give::Keep)
+            .col("joint", Align::Left, Give::Keep)
+            .col("deg", Align::Right, Give::Keep)
+            .col("loss", Align::Right, Give::Keep)
+            .col("at", Align::Right, Give::Drop(2))
+            .col("x", Align::Right, Give::Keep)
+            .col("p95", Align::Right, Give::Keep)
+            .col("max", Align::Right, Give::Drop(1))
+            .col("fold", Align::Right, Give::Keep);
         for f in &h.deformation.measures.fingers {
             for j in &f.joints {
-                t.add_row(vec![
+                t.row(vec![
                     f.finger.name().to_string(),
                     j.joint.name().to_string(),
                     trimmed(j.angle, 1),
@@ -308,12 +298,14 @@ pub(crate) fn text_one(rig: &FileDeformation, pose: &Pose, method: Skinning) -> 
                 ]);
             }
         }
-        out.push_str(&format!("{t}\n"));
+        out.push_str(&t.render(width, 0, &mut hidden));
         out.push_str(&notes(h));
     }
     out.push('\n');
-    out.push_str(&wrap(LEGEND_ONE));
-    out
+    out.push_str(LEGEND_ONE);
+    out.push('\n');
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
 }
 
 fn notes(h: &HandDeformation) -> String {
@@ -325,7 +317,7 @@ fn notes(h: &HandDeformation) -> String {
         .chain(&h.deformation.notes)
         .chain(h.deformation.measures.fingers.iter().flat_map(|f| &f.notes));
     for n in all {
-        out.push_str(&wrap(&format!("note: {n}")));
+        out.push_str(&format!("note: {n}\n"));
     }
     out
 }
@@ -367,7 +359,9 @@ pub(crate) fn text_two(
     verdicts: &[(Side, Vec<JointVerdict>)],
     pose: &Pose,
     method: Skinning,
+    width: Width,
 ) -> String {
+    let mut hidden = Hidden::new();
     let mut out = format!("A: {}\nB: {}\n{}", a.label, b.label, heading(pose, method));
     for (side, joints) in verdicts {
         let (Some(ha), Some(hb)) = (
@@ -377,18 +371,24 @@ pub(crate) fn text_two(
             continue;
         };
         out.push_str(&format!("\n{} hand\n", side.name()));
-        let mut t = table(
-            &[
-                "finger", "joint", "deg", "loss A", "loss B", "x A", "x B", "p95 A", "p95 B",
-                "fold A", "fold B", "better",
-            ],
-            2,
-        );
+        let mut t = Grid::new()
+            .col("finger", Align::Left, Give::Keep)
+            .col("joint", Align::Left, Give::Keep)
+            .col("deg", Align::Right, Give::Keep)
+            .col("loss A", Align::Right, Give::Keep)
+            .col("loss B", Align::Right, Give::Keep)
+            .col("x A", Align::Right, Give::Drop(1))
+            .col("x B", Align::Right, Give::Drop(1))
+            .col("p95 A", Align::Right, Give::Keep)
+            .col("p95 B", Align::Right, Give::Keep)
+            .col("fold A", Align::Right, Give::Drop(2))
+            .col("fold B", Align::Right, Give::Drop(2))
+            .col("better", Align::Left, Give::Keep);
         for v in joints {
             let (Some(ja), Some(jb)) = (find(ha, v), find(hb, v)) else {
                 continue;
             };
-            t.add_row(vec![
+            t.row(vec![
                 v.finger.name().to_string(),
                 v.joint.name().to_string(),
                 trimmed(ja.angle, 1),
@@ -403,16 +403,16 @@ pub(crate) fn text_two(
                 better(v.overall).to_string(),
             ]);
         }
-        out.push_str(&format!("{t}\n"));
+        out.push_str(&t.render(width, 0, &mut hidden));
         let count = |b: Better| joints.iter().filter(|v| v.overall == b).count();
-        out.push_str(&wrap(&format!(
-            "Verdict: B deforms better at {} joints, A at {}, mixed at {}, the same at {} (of {}).",
+        out.push_str(&format!(
+            "Verdict: B deforms better at {} joints, A at {}, mixed at {}, the same at {} (of {}).\n",
             count(Better::B),
             count(Better::A),
             count(Better::Mixed),
             count(Better::Same),
             joints.len()
-        )));
+        ));
         for v in joints {
             let line = match v.overall {
                 Better::A | Better::B => format!(
@@ -431,7 +431,7 @@ pub(crate) fn text_two(
                 ),
                 _ => continue,
             };
-            out.push_str(&wrap(&format!("  {line}")));
+            out.push_str(&format!("  {line}\n"));
         }
         for (label, h) in [("A", ha), ("B", hb)] {
             let n = notes(h);
@@ -441,6 +441,8 @@ pub(crate) fn text_two(
         }
     }
     out.push('\n');
-    out.push_str(&wrap(LEGEND_TWO));
-    out
+    out.push_str(LEGEND_TWO);
+    out.push('\n');
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
 }

@@ -8,6 +8,7 @@ pub(crate) mod audit;
 pub(crate) mod csv_out;
 pub(crate) mod deform;
 pub mod json;
+pub mod layout;
 pub mod plots;
 pub(crate) mod progress;
 pub mod render;
@@ -54,6 +55,12 @@ pub fn render(
         plots.extend(tracking_plots(inputs)?);
         if !inputs.rigs.is_empty() {
             plots.push(plots::rigs_plot(inputs.analysis, &rig_ratios(inputs.rigs))?);
+        }
+        if !inputs.coverage.is_empty() {
+            plots.push(plots::coverage_plot(
+                inputs.coverage,
+                inputs.coverage_settings.confidence,
+            )?);
         }
         let view = view::build(inputs, &plots);
         if formats.html {

@@ -15,6 +15,7 @@
 //! is handed to it unescaped; the `<title>` and `<desc>`, written by this
 //! module, are escaped by it (see `draw::escape`).
 
+mod coverage;
 mod draw;
 mod finger;
 mod forest;
@@ -44,6 +45,8 @@ pub enum PlotKind {
     Tracking,
     /// Popular rigs' segment ratios against the X-rays.
     Rigs,
+    /// Each interval method's simulated coverage against the number of X-rays.
+    Coverage,
 }
 
 /// One rendered plot.
@@ -117,6 +120,15 @@ pub(crate) use rigs::RigRatios;
 /// X-rays' mean, observed range and prediction interval.
 pub(crate) fn rigs_plot(a: &Analysis, rigs: &[RigRatios]) -> Result<Plot, Error> {
     rigs::plot(a, rigs)
+}
+
+/// Coverage plot (id `coverage`): each interval method's simulated coverage
+/// against the number of X-rays (log axis), with the nominal level as a line.
+pub fn coverage_plot(
+    points: &[crate::analysis::coverage::CurvePoint],
+    confidence: f64,
+) -> Result<Plot, Error> {
+    coverage::plot(points, confidence)
 }
 
 /// Every plot of a report, in display order: one per finger, the hand diagram, the forest plot.

@@ -1,59 +1,50 @@
-//! Terminal tables for `stats`, `check` and `coverage`.
+//! Terminal output of `stats`, `check`, `coverage`, `history` and `place`,
+//! fitted to the terminal's width by [`super::layout`].
 
+use super::layout::{Align, Give, Grid, Hidden, Width, fit_text};
 use crate::analysis::claims::{CheckSummary, ClaimResult};
-use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
+use crate::analysis::coverage::{CoverageSettings, CurvePoint};
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
 use crate::format::{
     decimals, exact, interval, interval_cells, length_decimals, level, num, opt, percent, signed,
+    xrays,
 };
-use comfy_table::{CellAlignment, ContentArrangement, Table, presets};
-
-/// A terminal table in Markdown style, columns from `right_from` on right-aligned.
-pub(super) fn table(header: &[&str], right_from: usize) -> Table {
-    let mut t = Table::new();
-    t.load_style(presets::ASCII_MARKDOWN)
-        .set_content_arrangement(ContentArrangement::Disabled)
-        .set_header(header.to_vec());
-    for i in right_from..header.len() {
-        if let Some(c) = t.column_mut(i) {
-            c.set_cell_alignment(CellAlignment::Right);
-        }
-    }
-    t
-}
 
 /// The statistics of every finger, 4 decimals for relative values as in the paper.
-pub(crate) fn stats(a: &Analysis) -> String {
+///
+/// Too wide for `width`, the percentile and BCa intervals go first, then the
+/// range, the SE and the t interval, then (below about 75 columns) the min
+/// and max: the mean, SD and prediction interval stay.
+fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden) -> String {
     let c = level(a.settings.confidence);
     let mut out = format!(
-        "phalanx statistics of {} ({} X-rays, {} rows); confidence {c}, seed {}\n",
-        a.dataset.path, a.dataset.xrays, a.dataset.rows, a.settings.seed
+        "phalanx statistics of {} ({}, {} rows); confidence {c}, seed {}\n",
+        a.dataset.path,
+        xrays(a.dataset.xrays),
+        a.dataset.rows,
+        a.settings.seed
     );
     for f in &a.fingers {
         out.push_str(&format!(
             "\n{} - n = {}; bootstrap {}\n",
             f.finger.display_name(),
-            f.n,
+            xrays(f.n),
             f.bootstrap.describe()
         ));
-        let mut t = table(
-            &[
-                "quantity",
-                "mean",
-                "min",
-                "max",
-                "range",
-                "sd",
-                "se",
-                "t CI",
-                "percentile CI",
-                "BCa CI",
-                "prediction",
-            ],
-            1,
-        );
+        let mut t = Grid::new()
+            .col("quantity", Align::Left, Give::Keep)
+            .col("mean", Align::Right, Give::Keep)
+            .col("min", Align::Right, Give::Drop(7))
+            .col("max", Align::Right, Give::Drop(6))
+            .col("range", Align::Right, Give::Drop(3))
+            .col("sd", Align::Right, Give::Keep)
+            .col("se", Align::Right, Give::Drop(4))
+            .col("t CI", Align::Right, Give::Drop(5))
+            .col("percentile CI", Align::Right, Give::Drop(1))
+            .col("BCa CI", Align::Right, Give::Drop(2))
+            .col("prediction", Align::Right, Give::Keep);
         for q in &f.quantities {
             let d = decimals(q.name.is_unitless());
             let mut row = vec![
@@ -66,10 +57,9 @@ pub(crate) fn stats(a: &Analysis) -> String {
                 opt(q.se, d),
             ];
             row.extend(interval_cells(&q.intervals, d));
-            t.add_row(row);
+            t.row(row);
         }
-        out.push_str(&t.to_string());
-        out.push('\n');
+        out.push_str(&t.render(width, 0, hidden));
         for q in &f.quantities {
             for n in &q.notes {
                 out.push_str(&format!("note ({}): {n}\n", q.name.name()));
@@ -80,32 +70,43 @@ pub(crate) fn stats(a: &Analysis) -> String {
 }
 
 /// The statistics of the whole dataset, then of each group (`--group-by`).
-pub(crate) fn stats_with_groups(a: &Analysis, groups: &[crate::analysis::groups::Group]) -> String {
-    let mut out = stats(a);
+pub(crate) fn stats_with_groups(
+    a: &Analysis,
+    groups: &[crate::analysis::groups::Group],
+    width: Width,
+) -> String {
+    let mut hidden = Hidden::new();
+    let mut out = stats_body(a, width, &mut hidden);
     for g in groups {
         out.push_str(&format!(
-            "\n==== {} = {} ({} X-ray{}) ====\n",
+            "\n==== {} = {} ({}) ====\n",
             g.by,
             g.label,
-            g.xrays,
-            if g.xrays == 1 { "" } else { "s" }
+            xrays(g.xrays)
         ));
         if let Some(n) = &g.note {
             out.push_str(&format!("note: {n}\n"));
         }
         // Skip the group's own title line (the dataset line repeats the overall one).
-        let body = stats(&g.analysis);
+        let body = stats_body(&g.analysis, width, &mut hidden);
         out.push_str(
             body.split_once('\n')
                 .map_or(body.as_str(), |(_, rest)| rest),
         );
     }
-    out
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
 }
 
-/// The claim-by-claim check, then a summary line.
-pub(crate) fn check(results: &[ClaimResult]) -> String {
-    let mut t = table(&["claim", "where", "stated", "computed", "verdict"], 2);
+/// The claim-by-claim check, then a summary line. Too wide for `width`, the
+/// "where" and "verdict" columns wrap.
+pub(crate) fn check(results: &[ClaimResult], width: Width) -> String {
+    let mut t = Grid::new()
+        .col("claim", Align::Left, Give::Keep)
+        .col("where", Align::Left, Give::Wrap)
+        .col("stated", Align::Right, Give::Keep)
+        .col("computed", Align::Right, Give::Keep)
+        .col("verdict", Align::Left, Give::Wrap);
     for r in results {
         let computed = match r.computed_rounded {
             Some(x) if r.verdict == crate::analysis::claims::Verdict::MatchesRounded => {
@@ -118,7 +119,7 @@ pub(crate) fn check(results: &[ClaimResult]) -> String {
             _ if r.decimals == 0 && r.computed.fract() == 0.0 => num(r.computed, 0),
             _ => num(r.computed, r.decimals + 2),
         };
-        t.add_row(vec![
+        t.row(vec![
             r.id.clone(),
             r.location.clone(),
             r.stated_text.clone(),
@@ -126,11 +127,8 @@ pub(crate) fn check(results: &[ClaimResult]) -> String {
             r.verdict.label().to_string(),
         ]);
     }
-    if let Some(c) = t.column_mut(4) {
-        c.set_cell_alignment(CellAlignment::Left);
-    }
-    let mut out = t.to_string();
-    out.push('\n');
+    let mut hidden = Hidden::new();
+    let mut out = t.render(width, 0, &mut hidden);
     let explained: Vec<&ClaimResult> = results.iter().filter(|r| r.cause.is_some()).collect();
     if !explained.is_empty() {
         out.push_str("\nWhy the disagreements:\n");
@@ -151,74 +149,99 @@ pub(crate) fn check(results: &[ClaimResult]) -> String {
         "\n{} claims: {} match, {} match from rounded values, {} known errata, {} new mismatches\n",
         s.claims, s.matches, s.matches_rounded, s.known_errata, s.mismatches
     ));
-    out
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
 }
 
-/// The simulated coverage of each interval method, per finger and quantity.
-pub(crate) fn coverage(rows: &[QuantityCoverage], settings: &CoverageSettings) -> String {
-    let mut t = table(
-        &[
-            "finger",
-            "quantity",
-            "n",
-            "t",
-            "percentile",
-            "BCa",
-            "prediction",
-        ],
-        2,
-    );
-    for r in rows {
-        let mut row = vec![
-            r.finger.name().to_string(),
-            r.quantity.name().to_string(),
-            r.n.to_string(),
-        ];
-        match &r.coverage {
-            Some(c) => row.extend(c.methods.iter().map(|m| percent(m.coverage))),
-            None => row.extend(std::iter::repeat_n(r.note.clone().unwrap_or_default(), 4)),
-        }
-        t.add_row(row);
+/// The simulated coverage of each interval method, one row per sample size
+/// (the dataset's own sizes marked), then why any of the data's sizes is not
+/// simulated (`notes`) and which interval to use.
+pub(crate) fn coverage(
+    points: &[CurvePoint],
+    settings: &CoverageSettings,
+    notes: &[String],
+    width: Width,
+) -> String {
+    let mut t = Grid::new()
+        .col("n (X-rays)", Align::Right, Give::Keep)
+        .col("t CI", Align::Right, Give::Keep)
+        .col("percentile CI", Align::Right, Give::Keep)
+        .col("BCa CI", Align::Right, Give::Keep)
+        .col("prediction", Align::Right, Give::Keep)
+        .col("", Align::Left, Give::Wrap);
+    for p in points {
+        let mut row = vec![p.n.to_string()];
+        row.extend(p.coverage.methods.iter().map(|m| percent(m.coverage)));
+        row.push(if p.in_data { "this data" } else { "" }.to_string());
+        t.row(row);
     }
-    format!(
-        "Simulated coverage of nominal {} intervals ({sims} simulated datasets per sample size; normal model fitted to each quantity).\n\
-         Confidence intervals are checked against the model mean; the prediction interval against one new draw.\n{t}\n",
+    let mut hidden = Hidden::new();
+    let table = t.render(width, 0, &mut hidden);
+    let data: Vec<String> = points
+        .iter()
+        .filter(|p| p.in_data)
+        .map(|p| xrays(p.n))
+        .collect();
+    let mut out = format!(
+        "Simulated coverage of nominal {} intervals: {sims} simulated datasets per sample size from a normal model \
+         (coverage depends on n alone). Confidence intervals are checked against the model mean; the prediction \
+         interval against one new draw. The bootstrap uses {} resamples at this data's n ({}) and at most {} elsewhere.\n",
         level(settings.confidence),
+        settings.resamples,
+        if data.is_empty() {
+            "none simulated".to_string()
+        } else {
+            data.join(", ")
+        },
+        crate::analysis::coverage::CURVE_RESAMPLES,
         sims = settings.sims
-    )
+    );
+    out.push_str(&table);
+    for n in notes {
+        out.push_str(&format!("note: {n}\n"));
+    }
+    if let Some(advice) = crate::report::view::interval_advice(points) {
+        out.push('\n');
+        out.push_str(&advice);
+        out.push('\n');
+    }
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
 }
 
-/// The history of each selected quantity, snapshot by snapshot.
+/// The history of each selected quantity, snapshot by snapshot. Too wide for
+/// `width`, the CI width goes first, then the SD, the event and the shift.
 pub(crate) fn history(
     path: &std::path::Path,
     snaps: &[Snapshot],
     finger: Option<Finger>,
     quantity: Option<Quantity>,
+    width: Width,
 ) -> String {
     if snaps.is_empty() {
-        return format!(
-            "No snapshots in {} yet: 'phalanx add' records one per addition, 'phalanx snapshot' one on demand.\n",
-            path.display()
+        return fit_text(
+            &format!(
+                "No snapshots in {} yet: 'phalanx add' records one per addition, 'phalanx snapshot' one on demand.\n",
+                path.display()
+            ),
+            width,
         );
     }
+    let mut hidden = Hidden::new();
     let mut out = format!("{} snapshots in {}\n", snaps.len(), path.display());
     for (f, q) in crate::analysis::tracking::selected(snaps, finger, quantity) {
         let d = decimals(q.is_unitless());
         out.push_str(&format!("\n{f} {}\n", q.label()));
-        let mut t = table(
-            &[
-                "#",
-                "time",
-                "event",
-                "n",
-                "mean",
-                "sd",
-                "t CI",
-                "CI width",
-                "mean shift",
-            ],
-            3,
-        );
+        let mut t = Grid::new()
+            .col("#", Align::Right, Give::Keep)
+            .col("time", Align::Left, Give::Keep)
+            .col("event", Align::Left, Give::Drop(3))
+            .col("n", Align::Right, Give::Keep)
+            .col("mean", Align::Right, Give::Keep)
+            .col("sd", Align::Right, Give::Drop(2))
+            .col("t CI", Align::Right, Give::Keep)
+            .col("CI width", Align::Right, Give::Drop(1))
+            .col("mean shift", Align::Right, Give::Drop(4));
         let mut previous: Option<f64> = None;
         for (i, s) in snaps.iter().enumerate() {
             let Some(r) = s
@@ -229,7 +252,7 @@ pub(crate) fn history(
                 continue;
             };
             let ci = r.intervals.ci_t;
-            t.add_row(vec![
+            t.row(vec![
                 (i + 1).to_string(),
                 s.time.clone(),
                 s.event.to_string(),
@@ -242,47 +265,41 @@ pub(crate) fn history(
             ]);
             previous = Some(r.mean);
         }
-        if let Some(c) = t.column_mut(1) {
-            c.set_cell_alignment(CellAlignment::Left);
-        }
-        if let Some(c) = t.column_mut(2) {
-            c.set_cell_alignment(CellAlignment::Left);
-        }
-        out.push_str(&t.to_string());
-        out.push('\n');
+        out.push_str(&t.render(width, 0, &mut hidden));
     }
-    out
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
 }
 
-/// Joint positions and segment lengths of model fingers, one table each.
+/// Joint positions and segment lengths of model fingers, one table each. Too
+/// wide for `width`, the percentile and BCa intervals go first, then the
+/// range, the max and the min.
 pub(crate) fn placement(
     ps: &[crate::analysis::placement::FingerPlacement],
     confidence: f64,
+    width: Width,
 ) -> String {
     let c = level(confidence);
+    let mut hidden = Hidden::new();
     let mut out = String::new();
     for p in ps {
         out.push_str(&format!(
-            "{} - model length {} (from {} X-rays); positions from the root joint (MCP at 0, tip at {})\n",
+            "{} - model length {} (from {}); positions from the root joint (MCP at 0, tip at {})\n",
             p.finger.display_name(),
             exact(p.length),
-            p.n,
+            xrays(p.n),
             exact(p.length)
         ));
-        let mut t = table(
-            &[
-                "",
-                "mean",
-                "min",
-                "max",
-                "range",
-                &format!("t CI {c}"),
-                "percentile CI",
-                "BCa CI",
-                "prediction",
-            ],
-            1,
-        );
+        let mut t = Grid::new()
+            .col("", Align::Left, Give::Keep)
+            .col("mean", Align::Right, Give::Keep)
+            .col("min", Align::Right, Give::Drop(5))
+            .col("max", Align::Right, Give::Drop(4))
+            .col("range", Align::Right, Give::Drop(3))
+            .col(format!("t CI {c}"), Align::Right, Give::Keep)
+            .col("percentile CI", Align::Right, Give::Drop(1))
+            .col("BCa CI", Align::Right, Give::Drop(2))
+            .col("prediction", Align::Right, Give::Keep);
         let rows = p
             .joints
             .iter()
@@ -302,13 +319,11 @@ pub(crate) fn placement(
                 num(v.range, d),
             ];
             row.extend(interval_cells(&v.intervals, d));
-            t.add_row(row);
+            t.row(row);
         }
-        if let Some(col) = t.column_mut(0) {
-            col.set_cell_alignment(CellAlignment::Left);
-        }
-        out.push_str(&t.to_string());
-        out.push_str("\n\n");
+        out.push_str(&t.render(width, 0, &mut hidden));
+        out.push('\n');
     }
-    out
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
 }

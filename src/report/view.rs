@@ -5,14 +5,14 @@
 
 use super::plots::{Plot, PlotKind};
 use crate::analysis::claims::{CheckSummary, ClaimResult, Verdict};
-use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
+use crate::analysis::coverage::{CoverageSettings, CurvePoint, MethodCoverage, holds};
 use crate::analysis::groups::Group;
 use crate::analysis::placement::FingerPlacement;
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
 use crate::format::{
-    decimals, exact, interval_cells, length_decimals, level, num, opt, percent, signed,
+    decimals, exact, interval_cells, length_decimals, level, num, opt, percent, signed, xrays,
 };
 use crate::stats::bootstrap::Plan;
 use crate::stats::{Intervals, rng};
@@ -25,6 +25,10 @@ pub const MAX_LISTED_XRAYS: usize = 100;
 #[derive(Debug, Clone, Serialize)]
 pub struct ReportView {
     pub title: String,
+    /// The box at the top: where the joints go, the misprints, which interval to use.
+    pub key: KeyResults,
+    /// How to cite the paper and phalanx.
+    pub citation: CitationView,
     pub provenance: Vec<Item>,
     pub settings: SettingsText,
     pub table1: Table1View,
@@ -236,6 +240,8 @@ pub struct ClaimsView {
 #[derive(Debug, Clone, Serialize)]
 pub struct ClaimRow {
     pub id: String,
+    /// HTML id of the claim's table row (`claim-` and the id, other characters as `-`).
+    pub anchor: String,
     pub location: String,
     pub refers_to: String,
     pub stated: String,
@@ -268,25 +274,105 @@ pub struct PlacementRow {
     pub intervals: IntervalCells,
 }
 
-/// Simulated coverage per method.
+/// Simulated coverage per method, one row per sample size.
 #[derive(Debug, Clone, Serialize)]
 pub struct CoverageView {
     pub sims: String,
-    /// What the simulation says, in words, per distinct n.
+    /// Resamples per simulated dataset at the data's own n and elsewhere, in words.
+    pub resamples: String,
+    /// What the simulation says at the data's n, and which interval to use.
     pub summary: String,
+    /// Sample sizes of the data not simulated (n = 1, or beyond the report's limit).
+    pub notes: Vec<String>,
     pub rows: Vec<CoverageRow>,
+    /// Coverage measured on real hands, beside the simulation (set when an
+    /// atlas of measured hands is given; `None` otherwise).
+    pub real: Option<RealCoverageView>,
 }
 
+/// The coverage of every method at one sample size.
 #[derive(Debug, Clone, Serialize)]
 pub struct CoverageRow {
-    pub finger: String,
-    pub quantity: String,
+    /// "5 X-rays".
     pub n: String,
     pub t: String,
     pub percentile: String,
     pub bca: String,
     pub prediction: String,
+    /// True for the data's own n.
+    pub this_data: bool,
 }
+
+/// Coverage measured on real hands (an atlas of X-ray measurements) rather
+/// than simulated from a normal model.
+#[derive(Debug, Clone, Serialize)]
+pub struct RealCoverageView {
+    /// Where the hands come from.
+    pub source: String,
+    /// How the coverage was measured.
+    pub note: String,
+    pub rows: Vec<CoverageRow>,
+}
+
+/// The "Key results" box at the top of the report.
+#[derive(Debug, Clone, Serialize)]
+pub struct KeyResults {
+    /// "5 X-rays".
+    pub xrays: String,
+    /// The confidence level, e.g. "95%".
+    pub confidence: String,
+    /// Each finger's inner joints as shares of the finger's length.
+    pub placements: Vec<KeyPlacement>,
+    pub misprints: KeyMisprints,
+    /// Which interval to use, from the coverage simulation.
+    pub intervals: String,
+}
+
+/// One finger's joints as shares of its length, root joint (MCP) to tip.
+#[derive(Debug, Clone, Serialize)]
+pub struct KeyPlacement {
+    pub finger: String,
+    /// "PIP at 48.5% (44.5% to 52.5%); DIP at ...": the mean and the prediction interval.
+    pub joints: String,
+}
+
+/// The claims that disagree with the data.
+#[derive(Debug, Clone, Serialize)]
+pub struct KeyMisprints {
+    /// "8 of the paper's 30 numbers disagree with its Table 1 (8 recorded errata, 0 new)."
+    pub summary: String,
+    pub items: Vec<KeyMisprint>,
+}
+
+/// One disagreeing claim, linked to its row of the claims table.
+#[derive(Debug, Clone, Serialize)]
+pub struct KeyMisprint {
+    pub id: String,
+    /// The claims table row's HTML id.
+    pub anchor: String,
+    /// "Sec. 2, eq. (6): stated 0.4946, recomputed 0.484636".
+    pub text: String,
+}
+
+/// How to cite the paper and phalanx.
+#[derive(Debug, Clone, Serialize)]
+pub struct CitationView {
+    /// Authors of the paper.
+    pub paper_authors: String,
+    pub paper_title: String,
+    /// Where it appeared, as far as the paper's text says.
+    pub paper_venue: String,
+    /// phalanx, its version and where its citation metadata are.
+    pub phalanx: String,
+}
+
+/// The paper's authors, as its title page gives them.
+pub const PAPER_AUTHORS: &str = "E. Chaudhry, L. H. You, X. Jin and Jian J. Zhang";
+/// The paper's title.
+pub const PAPER_TITLE: &str =
+    "Statistical Analysis of Joint Determination for Skeleton Driven Animation of Human Hands";
+/// The paper's venue: its text names none.
+pub const PAPER_VENUE: &str = "conference paper (National Centre for Computer Animation, Bournemouth University, UK; State Key Lab of CAD & CG, Zhejiang University, China); the paper's text names no venue, year or pages";
 
 /// One plot: inline SVG for HTML, a file link for Markdown.
 #[derive(Debug, Clone, Serialize)]
@@ -308,7 +394,8 @@ pub struct ReportInputs<'a> {
     /// Why the claims were not checked, when they were not.
     pub claims_note: Option<&'a str>,
     pub coverage_settings: &'a CoverageSettings,
-    pub coverage: &'a [QuantityCoverage],
+    /// The simulated coverage at each sample size (the data's and the curve's).
+    pub coverage: &'a [CurvePoint],
     pub placements: &'a [FingerPlacement],
     pub model_length: f64,
     /// Added to the provenance only when asked for (`--timestamp`).
@@ -383,16 +470,19 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
     if let Some(t) = &inputs.timestamp {
         provenance.push(item("Generated", t.clone()));
     }
+    let claims = claims(inputs.claims_file, inputs.claims, inputs.claims_note);
     ReportView {
         title: "phalanx: finger joint statistics from hand X-rays".into(),
+        key: key_results(inputs, &claims),
+        citation: citation(),
         provenance,
         settings,
         table1: table1(a),
         derived: a.fingers.iter().map(derived).collect(),
         stats: a.fingers.iter().map(stats).collect(),
-        claims: claims(inputs.claims_file, inputs.claims, inputs.claims_note),
+        claims,
         placement: placement(inputs.placements, inputs.model_length),
-        coverage: coverage(inputs.coverage_settings, inputs.coverage),
+        coverage: coverage(inputs),
         tracking: tracking(inputs),
         groups: groups_view(inputs.groups),
         rigs: rigs_view(inputs.rigs),
@@ -422,7 +512,7 @@ fn width_reason(a: &Analysis) -> String {
     let c = a.settings.confidence;
     match crate::stats::describe::t_quantile(c, n.saturating_sub(1)) {
         Some(t) => format!(
-            "With n = {n} the {} t quantile is {} ({} degrees of freedom), not the normal {}.",
+            "With n = {n} X-rays the {} t quantile is {} ({} degrees of freedom), not the normal {}.",
             level(c),
             num(t, 2),
             n - 1,
@@ -431,7 +521,10 @@ fn width_reason(a: &Analysis) -> String {
                 2
             )
         ),
-        None => format!("With n = {n} no interval can be estimated."),
+        None => format!(
+            "With n = {n} X-ray{} no interval can be estimated.",
+            if n == 1 { "" } else { "s" }
+        ),
     }
 }
 
@@ -559,7 +652,7 @@ fn stats(f: &crate::analysis::FingerAnalysis) -> StatsFinger {
     StatsFinger {
         finger: f.finger.display_name().to_string(),
         id: f.finger.name().to_string(),
-        n: f.n.to_string(),
+        n: xrays(f.n),
         bootstrap: plan_text(f.bootstrap),
         rows,
         notes,
@@ -582,6 +675,7 @@ fn claims(file: &str, results: &[ClaimResult], note: Option<&str>) -> ClaimsView
             };
             ClaimRow {
                 id: r.id.clone(),
+                anchor: claim_anchor(&r.id),
                 location: r.location.clone(),
                 refers_to: r.refers_to.clone(),
                 stated: r.stated_text.clone(),
@@ -648,63 +742,205 @@ fn placement(ps: &[FingerPlacement], length: f64) -> PlacementView {
     }
 }
 
-fn coverage(s: &CoverageSettings, rows: &[QuantityCoverage]) -> CoverageView {
-    let mut sentences = Vec::new();
-    let mut done = std::collections::BTreeSet::new();
-    for r in rows {
-        let Some(c) = &r.coverage else { continue };
-        if !done.insert(c.n) {
-            continue;
-        }
-        let get = |m: &str| {
-            c.methods
-                .iter()
-                .find(|x| x.method == m)
-                .map_or_else(|| "n/a".to_string(), |x| percent(x.coverage))
-        };
-        sentences.push(format!(
-            "At n = {}, the t interval covers the mean {} of the time, the bootstrap percentile interval {} and BCa {}, against a nominal {}; the prediction interval holds {} of new X-rays.",
-            c.n,
-            get("t"),
-            get("percentile"),
-            get("bca"),
-            level(s.confidence),
-            get("prediction")
-        ));
-    }
-    let summary = if sentences.is_empty() {
-        "Coverage could not be simulated for this data (fewer than 2 X-rays or no spread)."
-            .to_string()
-    } else {
-        sentences.push("Where the bootstrap falls short, prefer the t interval for the mean and the prediction interval for a new hand.".into());
-        sentences.join(" ")
+/// The coverage of method `name` at one point, if simulated.
+fn method<'c>(p: &'c CurvePoint, name: &str) -> Option<&'c MethodCoverage> {
+    p.coverage.methods.iter().find(|m| m.method == name)
+}
+
+/// A method's coverage as a percentage, "n/a" when not simulated.
+fn coverage_cell(p: &CurvePoint, name: &str) -> String {
+    method(p, name).map_or_else(|| "n/a".to_string(), |m| percent(m.coverage))
+}
+
+/// Which interval to use, read off the simulation at the data's smallest n:
+/// which methods hold their nominal level there ([`holds`]) and which fall
+/// short. `None` when the data's n was not simulated.
+pub fn interval_advice(points: &[CurvePoint]) -> Option<String> {
+    let p = points.iter().filter(|p| p.in_data).min_by_key(|p| p.n)?;
+    let t = method(p, "t")?;
+    let pi = method(p, "prediction")?;
+    let name = |m: &str| match m {
+        "t" => "t",
+        "percentile" => "bootstrap percentile",
+        "bca" => "BCa",
+        _ => "prediction",
     };
+    let short: Vec<String> = p
+        .coverage
+        .methods
+        .iter()
+        .filter(|m| !holds(m))
+        .map(|m| format!("{} ({})", name(m.method), percent(m.coverage)))
+        .collect();
+    let mut s = format!(
+        "At n = {}, the t interval covers the mean {} of the time and the prediction interval holds {} of new hands, against a nominal {}",
+        xrays(p.n),
+        percent(t.coverage),
+        percent(pi.coverage),
+        level(t.nominal)
+    );
+    match short.as_slice() {
+        [] => s.push_str("; every method holds its level at this size."),
+        [one] => s.push_str(&format!("; the {one} interval under-covers.")),
+        many => s.push_str(&format!(
+            "; the {} intervals under-cover.",
+            match many.split_last() {
+                Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+                None => String::new(),
+            }
+        )),
+    }
+    s.push(' ');
+    s.push_str(match (holds(t), holds(pi)) {
+        (true, true) => {
+            "Use the t interval for the mean of all hands and the prediction interval for where a new hand falls."
+        }
+        (true, false) => {
+            "Use the t interval for the mean of all hands; the prediction interval is too narrow at this size."
+        }
+        (false, true) => {
+            "Use the prediction interval for where a new hand falls; no confidence interval of the mean holds its level at this size."
+        }
+        (false, false) => "No interval holds its level at this size: read them as rough guides.",
+    });
+    Some(s)
+}
+
+fn coverage(inputs: &ReportInputs<'_>) -> CoverageView {
+    let s = inputs.coverage_settings;
+    let points = inputs.coverage;
+    let data: Vec<String> = points
+        .iter()
+        .filter(|p| p.in_data)
+        .map(|p| xrays(p.n))
+        .collect();
+    let notes = crate::analysis::coverage::not_simulated(inputs.analysis, s);
+    let summary = interval_advice(points).unwrap_or_else(|| {
+        "Coverage could not be simulated at this data's size (fewer than 2 X-rays, or more than the report simulates).".to_string()
+    });
     CoverageView {
         sims: s.sims.to_string(),
+        resamples: format!(
+            "{} bootstrap resamples per simulated dataset at this data's n ({}), at most {} at the other sizes",
+            s.resamples,
+            if data.is_empty() {
+                "not simulated".to_string()
+            } else {
+                data.join(", ")
+            },
+            crate::analysis::coverage::CURVE_RESAMPLES
+        ),
         summary,
-        rows: rows
+        notes,
+        rows: points
             .iter()
-            .filter(|r| r.quantity != Quantity::Total)
-            .map(|r| {
-                let get = |m: &str| match &r.coverage {
-                    Some(c) => c
-                        .methods
-                        .iter()
-                        .find(|x| x.method == m)
-                        .map_or_else(|| "n/a".to_string(), |x| percent(x.coverage)),
-                    None => r.note.clone().unwrap_or_else(|| "n/a".to_string()),
-                };
-                CoverageRow {
-                    finger: r.finger.display_name().to_string(),
-                    quantity: r.quantity.label().to_string(),
-                    n: r.n.to_string(),
-                    t: get("t"),
-                    percentile: get("percentile"),
-                    bca: get("bca"),
-                    prediction: get("prediction"),
-                }
+            .map(|p| CoverageRow {
+                n: xrays(p.n),
+                t: coverage_cell(p, "t"),
+                percentile: coverage_cell(p, "percentile"),
+                bca: coverage_cell(p, "bca"),
+                prediction: coverage_cell(p, "prediction"),
+                this_data: p.in_data,
             })
             .collect(),
+        real: None,
+    }
+}
+
+/// The HTML id of a claim's table row: `claim-` and its id, characters other
+/// than ASCII letters, digits, `-` and `_` written as `-`.
+fn claim_anchor(id: &str) -> String {
+    let slug: String = id
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect();
+    format!("claim-{slug}")
+}
+
+/// The "Key results" box: joints as shares of the finger, the misprints, which interval to use.
+fn key_results(inputs: &ReportInputs<'_>, claims: &ClaimsView) -> KeyResults {
+    let a = inputs.analysis;
+    let c = level(a.settings.confidence);
+    let placements = inputs
+        .placements
+        .iter()
+        .map(|p| {
+            let share = |x: f64| percent(x / p.length);
+            let joints: Vec<String> = p
+                .joints
+                .iter()
+                .map(|j| {
+                    let pi = j.position.intervals.pi.map_or_else(
+                        || "no prediction interval with one X-ray".to_string(),
+                        |i| format!("{} to {}", share(i.low), share(i.high)),
+                    );
+                    format!("{} at {} ({pi})", j.joint.name(), share(j.position.mean))
+                })
+                .collect();
+            KeyPlacement {
+                finger: p.finger.display_name().to_string(),
+                joints: joints.join("; "),
+            }
+        })
+        .collect();
+    let s = CheckSummary::of(inputs.claims);
+    let misprints = KeyMisprints {
+        summary: if let Some(note) = &claims.note {
+            note.clone()
+        } else if claims.misprints.is_empty() {
+            format!(
+                "All {} numbers the paper states agree with its Table 1.",
+                s.claims
+            )
+        } else {
+            format!(
+                "{} of the paper's {} stated numbers disagree with its Table 1 ({} recorded errata, {} new); the causes are in section 5.",
+                claims.misprints.len(),
+                s.claims,
+                s.known_errata,
+                s.mismatches
+            )
+        },
+        items: claims
+            .misprints
+            .iter()
+            .map(|m| KeyMisprint {
+                id: m.id.clone(),
+                anchor: m.anchor.clone(),
+                text: format!(
+                    "{}: stated {}, recomputed {}",
+                    m.location, m.stated, m.computed
+                ),
+            })
+            .collect(),
+    };
+    KeyResults {
+        xrays: xrays(a.dataset.xrays),
+        confidence: c,
+        placements,
+        misprints,
+        intervals: interval_advice(inputs.coverage).unwrap_or_else(|| {
+            "The coverage of the intervals could not be simulated at this data's size.".to_string()
+        }),
+    }
+}
+
+/// How to cite the paper and phalanx.
+fn citation() -> CitationView {
+    CitationView {
+        paper_authors: PAPER_AUTHORS.to_string(),
+        paper_title: PAPER_TITLE.to_string(),
+        paper_venue: PAPER_VENUE.to_string(),
+        phalanx: format!(
+            "phalanx {}, finger-joint statistics from hand X-rays (MIT OR Apache-2.0); citation metadata in CITATION.cff",
+            env!("CARGO_PKG_VERSION")
+        ),
     }
 }
 
@@ -720,84 +956,99 @@ fn plot(p: &Plot) -> PlotView {
 }
 
 fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
-    let a = inputs.analysis;
     let snaps = inputs.history;
-    let c = a.settings.confidence;
-    let describe_snap = |i: usize| {
-        let s = &snaps[i];
-        format!(
-            "snapshot {} ({}, {}, {} X-rays)",
-            i + 1,
-            s.time,
-            s.event,
-            s.xrays
-        )
-    };
     let (note, compared, changes) = if snaps.len() < 2 {
-        (
-            Some(format!(
-                "{} in {}: changes and plots appear once there are two. 'phalanx add' records one per addition; 'phalanx snapshot' one on demand.",
-                match snaps.len() {
-                    0 => "No snapshot yet".to_string(),
-                    1 => "One snapshot".to_string(),
-                    k => format!("{k} snapshots"),
-                },
-                inputs.history_file
-            )),
-            String::new(),
-            Vec::new(),
-        )
+        let count = match snaps.len() {
+            0 => "No snapshot yet".to_string(),
+            1 => "One snapshot".to_string(),
+            k => format!("{k} snapshots"),
+        };
+        let note = format!(
+            "{count} in {}: changes and plots appear once there are two. 'phalanx add' records one per addition; 'phalanx snapshot' one on demand.",
+            inputs.history_file
+        );
+        (Some(note), String::new(), Vec::new())
     } else {
         let (b, e) = (snaps.len() - 2, snaps.len() - 1);
-        let rows = crate::analysis::tracking::changes(&snaps[b], &snaps[e])
-            .into_iter()
-            .filter(|ch| ch.quantity != Quantity::Total)
-            .map(|ch| {
-                let d = decimals(ch.quantity.is_unitless());
-                ChangeRow {
-                    finger: ch.finger.display_name().to_string(),
-                    quantity: ch.quantity.label().to_string(),
-                    n: format!("{} -> {}", ch.n_before, ch.n_after),
-                    mean_before: num(ch.mean_before, d),
-                    mean_after: num(ch.mean_after, d),
-                    shift: signed(ch.mean_shift, d),
-                    width_before: opt(ch.ci_width_before, d),
-                    width_after: opt(ch.ci_width_after, d),
-                    width_change: match (ch.ci_width_before, ch.ci_width_after) {
-                        (Some(x), Some(y)) => signed(y - x, d),
-                        _ => "n/a".to_string(),
-                    },
-                }
-            })
-            .collect();
-        (
-            None,
-            format!("{} against {}", describe_snap(e), describe_snap(b)),
-            rows,
-        )
+        let compared = format!(
+            "{} against {}",
+            describe_snapshot(snaps, e),
+            describe_snapshot(snaps, b)
+        );
+        (None, compared, change_rows(&snaps[b], &snaps[e]))
     };
-    let needed = a
-        .fingers
+    TrackingView {
+        file: inputs.history_file.to_string(),
+        snapshots: snaps.len().to_string(),
+        note,
+        compared,
+        changes,
+        target: num(inputs.target, 4),
+        needed: needed_rows(inputs.analysis, inputs.target),
+    }
+}
+
+/// "snapshot 3 (time, event, 7 X-rays)" for snapshot `i` of `snaps`.
+fn describe_snapshot(snaps: &[Snapshot], i: usize) -> String {
+    let s = &snaps[i];
+    format!(
+        "snapshot {} ({}, {}, {} X-rays)",
+        i + 1,
+        s.time,
+        s.event,
+        s.xrays
+    )
+}
+
+/// One row per finger and relative quantity: how it changed from `before` to `after`.
+fn change_rows(before: &Snapshot, after: &Snapshot) -> Vec<ChangeRow> {
+    crate::analysis::tracking::changes(before, after)
+        .into_iter()
+        .filter(|ch| ch.quantity != Quantity::Total)
+        .map(|ch| {
+            let d = decimals(ch.quantity.is_unitless());
+            ChangeRow {
+                finger: ch.finger.display_name().to_string(),
+                quantity: ch.quantity.label().to_string(),
+                n: format!("{} -> {}", ch.n_before, ch.n_after),
+                mean_before: num(ch.mean_before, d),
+                mean_after: num(ch.mean_after, d),
+                shift: signed(ch.mean_shift, d),
+                width_before: opt(ch.ci_width_before, d),
+                width_after: opt(ch.ci_width_after, d),
+                width_change: match (ch.ci_width_before, ch.ci_width_after) {
+                    (Some(x), Some(y)) => signed(y - x, d),
+                    _ => "n/a".to_string(),
+                },
+            }
+        })
+        .collect()
+}
+
+/// The X-rays needed for a t interval of half-width `target`, plug-in and
+/// with 80% assurance, per finger and relative quantity.
+fn needed_rows(a: &Analysis, target: f64) -> Vec<NeededRow> {
+    use crate::analysis::tracking::{ASSURANCE, xrays_needed, xrays_needed_assured};
+    let c = a.settings.confidence;
+    let count = |n: Option<usize>| n.map_or_else(|| "n/a".to_string(), |n| n.to_string());
+    a.fingers
         .iter()
         .flat_map(|f| {
             f.quantities
                 .iter()
                 .filter(|q| q.name.is_relative())
                 .map(move |q| {
-                    use crate::analysis::tracking::{
-                        ASSURANCE, xrays_needed, xrays_needed_assured,
-                    };
-                    let need = q.sd.and_then(|sd| xrays_needed(sd, inputs.target, c));
+                    let need = q.sd.and_then(|sd| xrays_needed(sd, target, c));
                     let assured =
-                        q.sd.and_then(|sd| xrays_needed_assured(sd, inputs.target, c, ASSURANCE));
+                        q.sd.and_then(|sd| xrays_needed_assured(sd, target, c, ASSURANCE));
                     NeededRow {
                         finger: f.finger.display_name().to_string(),
                         quantity: q.name.label().to_string(),
                         n: q.n.to_string(),
                         sd: opt(q.sd, 4),
                         half_width: opt(q.intervals.ci_t.map(|i| i.width() / 2.0), 4),
-                        needed: need.map_or_else(|| "n/a".to_string(), |n| n.to_string()),
-                        assured: assured.map_or_else(|| "n/a".to_string(), |n| n.to_string()),
+                        needed: count(need),
+                        assured: count(assured),
                         more: match assured {
                             Some(n) if n <= q.n => "reached".to_string(),
                             Some(n) => format!("{} more", n - q.n),
@@ -806,16 +1057,7 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
                     }
                 })
         })
-        .collect();
-    TrackingView {
-        file: inputs.history_file.to_string(),
-        snapshots: snaps.len().to_string(),
-        note,
-        compared,
-        changes,
-        target: num(inputs.target, 4),
-        needed,
-    }
+        .collect()
 }
 
 fn groups_view(groups: &[Group]) -> Option<GroupsView> {

@@ -42,7 +42,7 @@ pub(crate) fn arc_positions(points: &[DVec3]) -> Vec<f64> {
 ///
 /// On the segment a + t (b - a), |a + t (b - a) - q|^2 = d^2 is the quadratic
 /// |b - a|^2 t^2 + 2 (a - q).(b - a) t + |a - q|^2 - d^2 = 0.
-fn forward_at(points: &[DVec3], arcs: &[f64], u0: f64, q: DVec3, d: f64) -> Option<f64> {
+pub fn forward_at(points: &[DVec3], arcs: &[f64], u0: f64, q: DVec3, d: f64) -> Option<f64> {
     for (k, w) in points.windows(2).enumerate() {
         let (a, b) = (w[0], w[1]);
         let len = arcs[k + 1] - arcs[k];
@@ -70,6 +70,41 @@ fn forward_at(points: &[DVec3], arcs: &[f64], u0: f64, q: DVec3, d: f64) -> Opti
         }
     }
     None
+}
+
+/// The last arc position at or before `u0` whose point lies at distance `d`
+/// from `q`, walking towards the start; `None` past the start. O(m).
+/// (The forward search on the reversed polyline.)
+pub fn backward_at(points: &[DVec3], arcs: &[f64], u0: f64, q: DVec3, d: f64) -> Option<f64> {
+    let total = *arcs.last()?;
+    let rev: Vec<DVec3> = points.iter().rev().copied().collect();
+    let rev_arcs: Vec<f64> = arcs.iter().rev().map(|a| total - a).collect();
+    forward_at(&rev, &rev_arcs, total - u0, q, d).map(|u| total - u)
+}
+
+/// The arc position of the point of the polyline nearest to `p`, and that
+/// point. Ties go to the earlier segment. O(m).
+pub fn project(points: &[DVec3], arcs: &[f64], p: DVec3) -> (f64, DVec3) {
+    let mut best = (
+        f64::INFINITY,
+        0.0,
+        points.first().copied().unwrap_or(DVec3::ZERO),
+    );
+    for (k, w) in points.windows(2).enumerate() {
+        let ab = w[1] - w[0];
+        let len2 = ab.length_squared();
+        let t = if len2 > 0.0 {
+            ((p - w[0]).dot(ab) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let q = w[0] + t * ab;
+        let d = q.distance_squared(p);
+        if d < best.0 {
+            best = (d, arcs[k] + t * (arcs[k + 1] - arcs[k]), q);
+        }
+    }
+    (best.1, best.2)
 }
 
 /// New inner points on the polyline `points` (ends fixed) whose chords have the
@@ -145,6 +180,31 @@ mod tests {
         for (got, s) in shares_of(&q).into_iter().zip(shares) {
             assert!((got - s).abs() < 1e-12, "{q:?}");
         }
+    }
+
+    #[test]
+    fn backward_search_and_projection_by_hand() {
+        // Along x from 0 to 10 then up y to (10, 10): from u = 15 ((10, 5)),
+        // walking back, the first point 5 from (10, 5) is (10, 0) at u = 10;
+        // 5.0 further than that from the end is none within the polyline at 13.
+        let pts = [
+            DVec3::ZERO,
+            DVec3::new(10.0, 0.0, 0.0),
+            DVec3::new(10.0, 10.0, 0.0),
+        ];
+        let arcs = arc_positions(&pts);
+        let q = DVec3::new(10.0, 5.0, 0.0);
+        let u = backward_at(&pts, &arcs, 15.0, q, 5.0).unwrap();
+        assert!((u - 10.0).abs() < 1e-12, "{u}");
+        // sqrt(5^2 + 5^2) from (10, 5) is (5, 0), at u = 5.
+        let u = backward_at(&pts, &arcs, 15.0, q, 50f64.sqrt()).unwrap();
+        assert!((u - 5.0).abs() < 1e-9, "{u}");
+        assert!(backward_at(&pts, &arcs, 15.0, q, 20.0).is_none());
+        // (4, 3) projects to (4, 0) at u = 4; (12, 7) to (10, 7) at u = 17.
+        let (u, p) = project(&pts, &arcs, DVec3::new(4.0, 3.0, 0.0));
+        assert_eq!((u, p), (4.0, DVec3::new(4.0, 0.0, 0.0)));
+        let (u, _) = project(&pts, &arcs, DVec3::new(12.0, 7.0, 0.0));
+        assert!((u - 17.0).abs() < 1e-12);
     }
 
     #[test]

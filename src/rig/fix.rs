@@ -1,20 +1,34 @@
-//! `audit --fix`: a copy of a rig with its fingers' middle joints at the mean.
+//! `audit --fix`: a copy of a rig with the joints the audit's explanation
+//! moves (see [`super::judge`]) where it puts them, the skin weights moved
+//! with them, and everything else kept.
 //!
-//! For each finger the judged inner joints move to their suggested points (on
-//! the rig's own chain, see [`super::judge`]); the root, the tip and
-//! any joint that was not judged keep their world positions. Only translations
-//! change: a moved node's local translation becomes P'^-1 x (P' its parent's
-//! new world matrix, x the target), and every later chain node is re-pinned
-//! to where it was, so descendants off the chain follow their parent. World
-//! rotations and scales are untouched.
+//! For each finger the explanation's joints (MCP, PIP, DIP: the fewest that
+//! bring the finger inside the X-rays' prediction intervals; with
+//! `--only-outside` only those whose own standing is outside) move to their
+//! suggested points on the rig's own chain; the tip and the other joints keep
+//! their world positions. Only translations change: a moved node's local
+//! translation becomes P'^-1 x (P' its parent's new world matrix, x the
+//! target), and every later chain node is re-pinned where it was, so
+//! descendants off the chain follow their parent. In a rig whose joints are
+//! siblings (WebXR) each joint node moves alone. World rotations and scales
+//! are untouched.
 //!
 //! The mesh's rest shape is kept exactly: a joint whose world matrix goes from
 //! W to W' gets the inverse bind matrix B' = W'^-1 W B, so W' B' = W B and every
-//! skinned vertex is where it was (up to the f32 the file stores). New inverse
-//! bind matrices are appended as a new accessor; everything else in the file's
-//! JSON is kept as it was. The output is one .glb (or a .gltf with its buffer
-//! embedded), every buffer merged into one.
+//! skinned vertex is where it was (up to the f32 the file stores). The skin
+//! weights of each moved finger are moved with its joints so its skin bends
+//! where the joints now are ([`super::remap`]). Translation keys of moved
+//! nodes are offset by their rest translation's change ([`super::anim`]);
+//! channels with paths glTF does not define are reported and left alone.
+//!
+//! Inverse bind matrices, weights and keys are rewritten in place in their
+//! accessors when nothing else uses them (else a copy is appended), so the
+//! fix leaves no unused accessor and a second fix of the fixed copy, which
+//! moves nothing, writes the same bytes. Everything else in the file's JSON
+//! is kept. The output is one .glb (or a .gltf with its buffer embedded),
+//! every buffer merged into one.
 
+use super::weights::SkinWeights;
 use super::{AuditedFinger, GltfFile, world_matrices};
 use crate::dataset::DataError;
 use base64::Engine;
@@ -22,6 +36,13 @@ use glam::{DMat4, DVec3};
 use serde_json::{Value, json};
 use std::collections::BTreeMap;
 use std::path::Path;
+
+/// How a fix chooses the joints it moves.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FixOptions {
+    /// Move only joints whose own standing is outside the prediction interval.
+    pub only_outside: bool,
+}
 
 /// The outcome of a fix: the new file's bytes and what was done.
 pub struct Fixed {
@@ -185,28 +206,70 @@ fn pad4(v: &mut Vec<u8>) {
     }
 }
 
-/// Writes the fixed copy. `dir` resolves external buffers; `glb` picks the container.
-///
-/// In steps: the target of every chain node, the nodes moved there (parents
-/// first), their new translations written into the JSON, every buffer merged
-/// into one, new inverse bind matrices for the skins whose joints moved, then
-/// the output container.
+/// Writes the fixed copy with the default options and without moving skin
+/// weights. `dir` resolves external buffers; `glb` picks the container.
 pub fn fix(
     file: &GltfFile,
     fingers: &[AuditedFinger],
     dir: &Path,
     glb: bool,
 ) -> Result<Fixed, DataError> {
-    let (targets, moved) = targets(fingers);
-    let (locals, world) = move_nodes(file, &targets)?;
+    fix_with(file, fingers, None, dir, glb, &FixOptions::default())
+}
+
+/// Writes the fixed copy; with `weights`, the moved fingers' skin weights
+/// move with their joints.
+///
+/// In steps: the target of every chain node, the nodes moved there (parents
+/// first), their new translations written into the JSON, every buffer merged
+/// into one, new inverse bind matrices for the skins whose joints moved, the
+/// moved nodes' translation keys, the moved fingers' weights, then the
+/// output container.
+pub fn fix_with(
+    file: &GltfFile,
+    fingers: &[AuditedFinger],
+    weights: Option<&SkinWeights>,
+    dir: &Path,
+    glb: bool,
+    opts: &FixOptions,
+) -> Result<Fixed, DataError> {
+    let plan = targets(fingers, opts.only_outside);
+    let (locals, world) = move_nodes(file, &plan.targets)?;
     let mut json = file.json.clone();
-    let mut touched: BTreeMap<usize, DVec3> = BTreeMap::new();
-    for &(node, _) in &targets {
-        touched.insert(node, locals[node].w_axis.truncate());
+    // Node -> (old, new) local translation.
+    let mut touched: BTreeMap<usize, (DVec3, DVec3)> = BTreeMap::new();
+    for &(node, _) in &plan.targets {
+        let old =
+            super::local_matrix(&file.document.nodes().nth(node).ok_or_else(|| {
+                DataError::whole_file(&file.label, format!("has no node {node}"))
+            })?)
+            .w_axis
+            .truncate();
+        let new = locals[node].w_axis.truncate();
+        touched.insert(node, (old, new));
     }
     write_translations(&mut json, &touched);
     let (data, mut bin) = merge_buffers(file, &mut json, dir)?;
     rebind_skins(file, &mut json, &data, &mut bin, &world)?;
+    let delta: BTreeMap<usize, (DVec3, DVec3)> = touched
+        .iter()
+        .filter(|(_, (old, new))| old != new)
+        .map(|(&n, &(old, new))| (n, (old, new - old)))
+        .collect();
+    let mut warnings = super::anim::offset_translations(&mut json, &mut bin, &delta);
+    if let Some(w) = weights {
+        let moves: Vec<super::remap::FingerMove<'_>> = plan
+            .fingers
+            .iter()
+            .map(|(i, new_positions)| super::remap::FingerMove {
+                chain: &fingers[*i].chain,
+                new_positions: new_positions.clone(),
+            })
+            .collect();
+        let (remapped, notes) = super::remap::remap(w, &moves);
+        warnings.extend(notes);
+        warnings.extend(super::remap::write(&mut json, &mut bin, w, &remapped));
+    }
     let mut buffer = json!({"byteLength": bin.len()});
     if !glb {
         buffer["uri"] = json!(format!(
@@ -217,12 +280,11 @@ pub fn fix(
     if !bin.is_empty() {
         json["buffers"] = json!([buffer]);
     }
-    let moved_nodes: Vec<usize> = touched.keys().copied().collect();
-    let warnings = warnings(file, &moved_nodes);
+    warnings.extend(other_warnings(file));
     let bytes = container(file, &json, bin, glb)?;
     Ok(Fixed {
         bytes,
-        moved,
+        moved: plan.moved,
         warnings,
     })
 }
@@ -230,32 +292,57 @@ pub fn fix(
 /// A node and the world position it goes to.
 type Target = (usize, DVec3);
 
-/// Where each chain node goes: moved joints to their suggestions, later chain
-/// joints pinned where they are (node, world position); and the moved joints'
-/// (name, distance).
-fn targets(fingers: &[AuditedFinger]) -> (Vec<Target>, Vec<(String, f64)>) {
-    let mut targets: Vec<Target> = Vec::new();
-    let mut moved = Vec::new();
-    for f in fingers {
+/// What a fix moves.
+struct Plan {
+    /// Nodes and the world positions they go to.
+    targets: Vec<Target>,
+    /// The moved joints' (name, distance).
+    moved: Vec<(String, f64)>,
+    /// Fingers (index into the audited fingers) with a moved joint, and
+    /// every joint's new position.
+    fingers: Vec<(usize, Vec<DVec3>)>,
+}
+
+/// Where each chain node goes: the joints the explanation moves to their
+/// suggestions, and the chain's other nodes after a moved one pinned where
+/// they are. With `only_outside`, a joint moves only when its own standing
+/// is outside the prediction interval.
+fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
+    let mut plan = Plan {
+        targets: Vec::new(),
+        moved: Vec::new(),
+        fingers: Vec::new(),
+    };
+    for (i, f) in fingers.iter().enumerate() {
         let (chain, audit) = (&f.chain, &f.audit);
-        let judged: Vec<_> = audit.joints.iter().filter(|j| j.shift > 0.0).collect();
-        if judged.is_empty() {
+        let moves = |rj: &super::RigJoint| {
+            audit.joint(rj.joint).filter(|j| {
+                j.moves && j.shift > 0.0 && !(only_outside && j.standing.is_consistent())
+            })
+        };
+        if !chain.joints.iter().any(|rj| moves(rj).is_some()) {
             continue;
         }
-        for (k, rj) in chain.joints.iter().enumerate().skip(1) {
-            let target = match audit.joints.get(k - 1) {
-                Some(j) if j.joint == rj.joint => {
-                    moved.push((rj.name.clone(), j.shift));
-                    j.suggested
+        let mut after_moved = false;
+        let mut positions = Vec::new();
+        for rj in &chain.joints {
+            let m = moves(rj);
+            positions.push(m.map_or(rj.position, |j| j.suggested));
+            let Some(node) = rj.node else { continue };
+            match m {
+                Some(j) => {
+                    plan.moved.push((rj.name.clone(), j.shift));
+                    plan.targets.push((node, j.suggested));
+                    after_moved = true;
                 }
-                _ => rj.position,
-            };
-            if let Some(node) = rj.node {
-                targets.push((node, target));
+                // Pinned: a later chain node keeps its place when one before it moves.
+                None if after_moved => plan.targets.push((node, rj.position)),
+                None => {}
             }
         }
+        plan.fingers.push((i, positions));
     }
-    (targets, moved)
+    plan
 }
 
 /// Moves each node to its target (world position), parents first, by changing
@@ -295,15 +382,19 @@ fn move_nodes(file: &GltfFile, targets: &[Target]) -> Result<(Vec<DMat4>, Vec<DM
                 ),
             ));
         }
-        locals[node].w_axis = t.extend(1.0);
+        // Stored at the f32 precision glTF files keep (so a second fix reads
+        // back exactly what it would write); the inverse bind matrices are
+        // computed from the rounded translation.
+        locals[node].w_axis = t.as_vec3().as_dvec3().extend(1.0);
         world = world_matrices(&file.parent, &locals).unwrap_or(world);
     }
     Ok((locals, world))
 }
 
-/// Writes new translations into the nodes' JSON (into `matrix` when a node has one).
-fn write_translations(json: &mut Value, touched: &BTreeMap<usize, DVec3>) {
-    for (&node, t) in touched {
+/// Writes new translations into the nodes' JSON (into `matrix` when a node
+/// has one); `touched` maps a node to its (old, new) local translation.
+fn write_translations(json: &mut Value, touched: &BTreeMap<usize, (DVec3, DVec3)>) {
+    for (&node, (_, t)) in touched {
         let nd = &mut json["nodes"][node];
         if let Some(m) = nd.get_mut("matrix").and_then(Value::as_array_mut) {
             for (k, v) in t.to_array().into_iter().enumerate() {
@@ -342,7 +433,7 @@ fn merge_buffers(
         starts.push(bin.len());
         bin.extend_from_slice(d);
     }
-    if let Some(views) = json["bufferViews"].as_array_mut() {
+    if let Some(views) = json.get_mut("bufferViews").and_then(Value::as_array_mut) {
         for (k, v) in views.iter_mut().enumerate() {
             let b = v["buffer"].as_u64().unwrap_or(0) as usize;
             let off = v["byteOffset"].as_u64().unwrap_or(0) as usize;
@@ -362,8 +453,10 @@ fn merge_buffers(
     Ok((data, bin))
 }
 
-/// Appends new inverse bind matrices B' = W'^-1 W B for every skin whose joints
-/// moved, as a new accessor, so the mesh keeps its rest shape.
+/// New inverse bind matrices B' = W'^-1 W B for every skin whose joints
+/// moved, so the mesh keeps its rest shape: written over the old ones when
+/// that accessor serves this skin alone, else as a new accessor (a skin
+/// without inverse bind matrices gets one).
 fn rebind_skins(
     file: &GltfFile,
     json: &mut Value,
@@ -378,11 +471,10 @@ fn rebind_skins(
         }
         let ibm = inverse_binds(data, &skin, joints.len())
             .map_err(|e| DataError::whole_file(&file.label, e))?;
-        pad4(bin);
-        let offset = bin.len();
+        let mut new = Vec::with_capacity(joints.len());
         for (&j, b) in joints.iter().zip(&ibm) {
-            let new = world[j].inverse() * file.world[j] * *b;
-            if !new.is_finite() {
+            let m = world[j].inverse() * file.world[j] * *b;
+            if !m.is_finite() {
                 return Err(DataError::whole_file(
                     &file.label,
                     format!(
@@ -390,49 +482,49 @@ fn rebind_skins(
                     ),
                 ));
             }
-            for v in new.to_cols_array() {
-                bin.extend_from_slice(&(v as f32).to_le_bytes());
+            new.push(m.to_cols_array().map(|v| v as f32));
+        }
+        let own = skin
+            .inverse_bind_matrices()
+            .map(|a| a.index())
+            .filter(|&a| super::accessor::references(json).get(&a) == Some(&1));
+        let span = own.and_then(|a| super::accessor::span(json, a, bin.len()).map(|s| (a, s)));
+        match span {
+            Some((a, span)) if span.component == 5126 && span.components == 16 => {
+                for (k, m) in new.iter().enumerate() {
+                    span.write_f32(bin, k, m);
+                }
+                super::accessor::refresh_bounds(json, a, &span, bin);
+            }
+            _ => {
+                pad4(bin);
+                let offset = bin.len();
+                for m in &new {
+                    for v in m {
+                        bin.extend_from_slice(&v.to_le_bytes());
+                    }
+                }
+                let view = push(
+                    json,
+                    "bufferViews",
+                    json!({"buffer": 0, "byteOffset": offset, "byteLength": 64 * joints.len()}),
+                );
+                let accessor = push(
+                    json,
+                    "accessors",
+                    json!({"bufferView": view, "componentType": 5126, "count": joints.len(), "type": "MAT4"}),
+                );
+                json["skins"][skin.index()]["inverseBindMatrices"] = json!(accessor);
             }
         }
-        let view = push(
-            json,
-            "bufferViews",
-            json!({"buffer": 0, "byteOffset": offset, "byteLength": 64 * joints.len()}),
-        );
-        let accessor = push(
-            json,
-            "accessors",
-            json!({"bufferView": view, "componentType": 5126, "count": joints.len(), "type": "MAT4"}),
-        );
-        json["skins"][skin.index()]["inverseBindMatrices"] = json!(accessor);
     }
     Ok(())
 }
 
-/// Remarks on what the fix cannot carry over: animations that key a moved
-/// joint's translation, and images left as external files.
-fn warnings(file: &GltfFile, moved_nodes: &[usize]) -> Vec<String> {
-    let mut warnings = Vec::new();
-    for anim in file.document.animations() {
-        let mut keyed: Vec<String> = anim
-            .channels()
-            .map(|ch| ch.target())
-            .filter(|t| {
-                t.property() == gltf::animation::Property::Translation
-                    && moved_nodes.contains(&t.node().index())
-            })
-            .map(|t| super::shown(t.node().name().unwrap_or("unnamed")))
-            .collect();
-        keyed.dedup();
-        if !keyed.is_empty() {
-            warnings.push(format!(
-                "animation {} keys the translation of {}: its keyframes are unchanged, and with the new \
-                 inverse bind matrices they would now distort the mesh; delete or re-bake those channels",
-                anim.name().map_or_else(|| format!("#{}", anim.index()), super::shown),
-                keyed.join(", ")
-            ));
-        }
-    }
+/// Remarks on what the fix leaves alone: animation channels with paths glTF
+/// does not define, and images left as external files.
+fn other_warnings(file: &GltfFile) -> Vec<String> {
+    let mut warnings = super::anim::unknown_paths(&file.json);
     if file.document.images().any(
         |i| matches!(i.source(), gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:")),
     ) {

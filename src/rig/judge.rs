@@ -2,28 +2,111 @@
 //!
 //! A rig finger is a chain of joint centres P0 (MCP), P1, P2 (PIP, DIP; the
 //! thumb has one inner joint, IP) and, when the rig has one, the tip. Its
-//! segments are the chords c_k = |P_k - P_(k-1)| and, with a tip, its length is
-//! L = sum c_k, so J~k = c_k / L (eq. 2 with the rig's segments for the bones).
-//! Each inner joint lies at s = c_1 + ... + c_k from the root, to be compared
-//! with the statistics placed at L (see [`crate::analysis::placement`]).
+//! segments are the chords c_k = |P_k - P_(k-1)|.
+//!
+//! **The tip.** A rig's tip node usually marks the skin at the end of the
+//! finger, while an X-ray's J3 ends at the bone tip (the distal phalanx's
+//! tuft). So, with a skin tip and bone-tip data, the last segment is
+//! compared as c_last - s, s the soft tissue beyond the bone tip
+//! ([`DEFAULT_SOFT_TISSUE_MM`], `--tip-soft-tissue`); with `--tip bone` it is
+//! compared as it is. In general the correction is s x ([rig tip is skin] -
+//! [data tip is skin]); the compared segments s_k are the chords with that
+//! correction on the last one, L = sum s_k and J~k = s_k / L (eq. 2).
+//!
+//! **Each joint against the others.** Every joint gets a standing: where the
+//! X-rays put it given the rest of the finger as the rig has it, in distances
+//! from the rig's MCP along the chain (+ towards the tip):
+//! - PIP (IP) at J~1 L and DIP at (1 - J~3) L (MCP and tip held);
+//! - MCP at s_1 - J1 with J1 = R x/(1 - x), x = J~1 and R = L - s_1 the rest
+//!   of the finger (PIP and tip held): J1/R = J~1/(1 - J~1);
+//! - tip at (L - s_last) + J_last + correction, J_last = R' x/(1 - x), x the
+//!   last J~ and R' = L - s_last (MCP and DIP held).
+//!
+//! x/(1 - x) is increasing, so the range and prediction interval of x map
+//! onto positions end to end (a monotone map keeps the coverage of an
+//! interval).
 //!
 //! Without a tip (VRM, Unreal) L is unknown; a finger is then judged on
-//! r = J2/J1 alone, holding MCP and DIP fixed: the PIP then belongs at
-//! s(r) = (c_1 + c_2) / (1 + r), which decreases with r, so the statistics of r
-//! map onto positions with their ends swapped. The DIP and the whole thumb
-//! cannot be judged without a tip.
+//! r = J2/J1 alone: the PIP belongs at (c_1 + c_2) / (1 + r) with MCP and DIP
+//! fixed (decreasing in r, so intervals swap ends), and the MCP at
+//! c_1 - c_2 / r with PIP and DIP fixed (increasing in r). The DIP and the whole thumb cannot be
+//! judged without a tip.
 //!
-//! Suggested positions stay on the rig's own chain (the polyline through its
-//! joints), with root and tip (or DIP) fixed, and are solved so the new chords
-//! have exactly the mean proportions (see `rig::chain`). No files, no glTF.
+//! **The fewest joints.** A misfit of the proportions can come from any joint:
+//! rigs often put the MCP at the finger's visible base (the web), distal of
+//! the knuckle, and the tip at the skin. So the judgement looks for the
+//! explanation that moves the fewest joints (MCP, PIP, DIP; the tip node is
+//! never moved: its soft tissue is modelled above): first none, then each
+//! joint alone, then pairs, keeping the first size at which every value lies
+//! inside its prediction interval. A joint alone is placed where the worst
+//! value is best (the smallest largest normalised distance from the mean, 1 at
+//! a prediction limit); a pair is placed exactly at the means. Between
+//! explanations of the same size the better fit wins, then the smaller total
+//! move. Joints move along the rig's own chain (the polyline through its
+//! joints), the MCP along the first segment's backward extension (at most one
+//! segment back, half a segment forward). See `rig::chain`. No files, no glTF.
 
-use super::chain::{arc_positions, on_chain};
+use super::chain::{arc_positions, backward_at, on_chain, point_at};
 use crate::analysis::placement::{Joint, Placed};
 use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
 use crate::dataset::Finger;
 use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
+
+/// Soft tissue between the bone tip (the distal phalanx's tuft) and the skin
+/// at the end of a finger, in mm, when the rig does not say.
+///
+/// An assumption, not a measured mean: no study measuring the soft tissue
+/// distal to the tuft along the finger's axis was found. The nearest measured
+/// figures are thinner tissues over the same bone: the nail bed (dorsal soft
+/// tissue between nail and tuft) measures 2.38 +/- 0.27 mm (range 1.75-3.10)
+/// on lateral radiographs of 100 normal adults (PubMed 18428986, 2008), and
+/// the soft tissue under the nail 1.6 +/- 0.1 mm by ultrasound (Diagnosis of
+/// digital clubbing by high-frequency ultrasound imaging); the pulp that caps
+/// the tip is thicker than the nail bed. 4 mm is taken, and `--tip-soft-tissue`
+/// sets it for a given hand.
+pub const DEFAULT_SOFT_TISSUE_MM: f64 = 4.0;
+
+/// What the tip node of a rig (or the end of an X-ray's J3) marks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum TipKind {
+    /// The skin at the end of the finger (most rigs; WebXR's `*-tip`).
+    Skin,
+    /// The end of the distal phalanx (an X-ray's bone tip).
+    Bone,
+}
+
+/// How a rig is compared with the data.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+pub struct JudgeOptions {
+    /// What the rig's tip nodes mark.
+    pub rig_tip: TipKind,
+    /// What the data's tips mark. The paper does not say; taken as bone tips.
+    pub data_tip: TipKind,
+    /// Soft tissue between bone tip and skin tip, in rig units (metres).
+    pub soft_tissue: f64,
+}
+
+impl Default for JudgeOptions {
+    fn default() -> JudgeOptions {
+        JudgeOptions {
+            rig_tip: TipKind::Skin,
+            data_tip: TipKind::Bone,
+            soft_tissue: DEFAULT_SOFT_TISSUE_MM / 1000.0,
+        }
+    }
+}
+
+impl JudgeOptions {
+    /// Taken off the rig's last segment to compare like with like:
+    /// s x ([rig tip is skin] - [data tip is skin]).
+    pub fn tip_correction(&self) -> f64 {
+        let skin = |t: TipKind| f64::from(u8::from(t == TipKind::Skin));
+        self.soft_tissue * (skin(self.rig_tip) - skin(self.data_tip))
+    }
+}
 
 /// One finger of a rig, as joint centres from the root.
 #[derive(Debug, Clone, PartialEq)]
@@ -115,20 +198,23 @@ pub struct ValueCheck {
     pub standing: Standing,
 }
 
-/// One inner joint of a rig finger against the X-rays, in the rig's units.
+/// One joint of a rig finger against the X-rays, in the rig's units, given
+/// the rest of the finger as the rig has it (see the module notes).
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct JointCheck {
     pub joint: Joint,
-    /// Distance from the root along the chain, as the rig has it.
+    /// Distance from the rig's MCP along the chain, as the rig has it (0 for the MCP).
     pub measured: f64,
-    /// Where the mean puts it.
+    /// Where the mean puts it, on the same scale (negative: proximal of the rig's MCP).
     pub expected: f64,
     pub range: Interval,
     pub pi: Option<Interval>,
     /// `Above` means the joint sits too far towards the tip.
     #[serde(flatten)]
     pub standing: Standing,
-    /// The joint at the mean, on the rig's chain.
+    /// True when the explanation moves this joint.
+    pub moves: bool,
+    /// Where the explanation puts the joint (the rig's joint when it does not move it).
     #[schemars(with = "[f64; 3]")]
     pub suggested: DVec3,
     /// Distance from the rig's joint to the suggested one.
@@ -136,6 +222,23 @@ pub struct JointCheck {
     /// How far the suggestion lies along the chain from the rig's joint:
     /// positive towards the tip, negative towards the root.
     pub shift_along: f64,
+}
+
+/// The fewest joints whose moves bring the finger inside the X-rays' prediction intervals.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct Explanation {
+    /// The joints that move, root first (empty: nothing needs to move).
+    pub moved: Vec<Joint>,
+    /// True when, with those moved, every value is inside its prediction interval.
+    pub consistent: bool,
+    /// The largest normalised distance of a value from its mean after the
+    /// moves: 0 at the mean, 1 at a prediction limit (`None` when no value
+    /// could be judged).
+    pub score: Option<f64>,
+    /// The values after the moves.
+    pub values: Vec<ValueCheck>,
+    /// Other sets of as many joints that would also bring the finger inside.
+    pub also: Vec<Vec<Joint>>,
 }
 
 /// A rig finger judged against the X-ray statistics.
@@ -148,12 +251,18 @@ pub struct FingerAudit {
     pub n: usize,
     /// The rig's segment lengths c_k (J1, J2[, J3]; without a tip one fewer).
     pub segments: Vec<f64>,
-    /// L = sum of the segments, with a tip.
+    /// Taken off the last segment to compare the rig's tip with the data's (see the module notes).
+    pub tip_correction: f64,
+    /// The segments compared with the X-rays: `segments` with the last one corrected.
+    pub compared: Vec<f64>,
+    /// L = sum of the compared segments, with a tip.
     pub length: Option<f64>,
     pub values: Vec<ValueCheck>,
+    /// MCP, the inner joints and the tip, each against the rest of the finger.
     pub joints: Vec<JointCheck>,
     /// Inner joints that could not be judged (no tip).
     pub unjudged: Vec<Joint>,
+    pub explanation: Explanation,
 }
 
 impl FingerAudit {
@@ -163,16 +272,34 @@ impl FingerAudit {
             && self.values.iter().all(|v| v.standing.is_consistent())
     }
 
-    /// The suggested chain: the rig's points with the judged inner joints moved.
-    pub fn suggested_chain(&self, chain: &ChainInput) -> Vec<DVec3> {
-        let mut out = chain.points.clone();
-        for (i, j) in self.joints.iter().enumerate() {
-            if let Some(p) = out.get_mut(i + 1) {
-                *p = j.suggested;
-            }
-        }
-        out
+    /// The check of `joint`, when judged.
+    pub fn joint(&self, joint: Joint) -> Option<&JointCheck> {
+        self.joints.iter().find(|j| j.joint == joint)
     }
+
+    /// The suggested chain: the rig's points with the explanation's joints moved.
+    pub fn suggested_chain(&self, chain: &ChainInput) -> Vec<DVec3> {
+        let kinds = chain_kinds(chain.finger, chain.has_tip);
+        chain
+            .points
+            .iter()
+            .zip(&kinds)
+            .map(|(p, k)| match self.joint(*k) {
+                Some(j) if j.moves => j.suggested,
+                _ => *p,
+            })
+            .collect()
+    }
+}
+
+/// The joints of a chain of `finger`, root first.
+fn chain_kinds(finger: Finger, has_tip: bool) -> Vec<Joint> {
+    let mut k = vec![Joint::Mcp];
+    k.extend_from_slice(Joint::inner(finger));
+    if has_tip {
+        k.push(Joint::Tip);
+    }
+    k
 }
 
 /// The statistics of `quantity` for `finger`, when the data has them.
@@ -192,16 +319,77 @@ fn value_check(q: Quantity, measured: f64, s: &QuantityStats) -> ValueCheck {
     }
 }
 
-/// Judges one rig finger. `None` when the data has no such finger or the chain
-/// has the wrong number of points, a non-finite point or a zero-length
-/// segment. O(1) apart from the suggested positions.
+/// The value of `q` for segments `s` (the thumb's two, a finger's three, or
+/// the first two without a tip).
+fn value_of(q: Quantity, s: &[f64]) -> f64 {
+    let total: f64 = s.iter().sum();
+    match q {
+        Quantity::RelJ1 => s[0] / total,
+        Quantity::RelJ2 => s[1] / total,
+        Quantity::RelJ3 => s[2] / total,
+        Quantity::RatioJ2J1 => s[1] / s[0],
+        Quantity::RatioJ3J2 => s[2] / s[1],
+        Quantity::Total => total,
+    }
+}
+
+/// The statistics a finger is judged on: every unitless quantity with a tip,
+/// J2/J1 without one (none for a thumb without a tip).
+fn judged_quantities<'a>(
+    a: &'a Analysis,
+    chain: &ChainInput,
+) -> Option<Vec<(Quantity, &'a QuantityStats)>> {
+    let qs: Vec<Quantity> = match (chain.has_tip, chain.finger) {
+        (true, f) => Quantity::of(f)
+            .iter()
+            .copied()
+            .filter(|q| q.is_unitless())
+            .collect(),
+        (false, Finger::Thumb) => Vec::new(),
+        (false, _) => vec![Quantity::RatioJ2J1],
+    };
+    qs.into_iter()
+        .map(|q| stats(a, chain.finger, q).map(|s| (q, s)))
+        .collect()
+}
+
+/// How far `x` lies from the mean of `s`, in units of the distance from the
+/// mean to the prediction limit on that side (the range's end without an
+/// interval): at most 1 inside. O(1).
+fn normalised(x: f64, s: &QuantityStats) -> f64 {
+    let (lo, hi) = s
+        .intervals
+        .pi
+        .map_or((s.min, s.max), |pi| (pi.low, pi.high));
+    let (d, half) = if x >= s.mean {
+        (x - s.mean, hi - s.mean)
+    } else {
+        (s.mean - x, s.mean - lo)
+    };
+    if half > 0.0 {
+        d / half
+    } else if d > 0.0 {
+        f64::INFINITY
+    } else {
+        0.0
+    }
+}
+
+/// Judges one rig finger with the default options (a skin tip, 4 mm soft tissue).
 pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
+    audit_with(a, chain, &JudgeOptions::default())
+}
+
+/// Judges one rig finger. `None` when the data has no such finger or the chain
+/// has the wrong number of points, a non-finite point, a zero-length segment
+/// or a last segment no longer than the tip correction. Cost: O(1) for the
+/// standings, a few thousand evaluations of the proportions for the explanation.
+pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Option<FingerAudit> {
     let finger = chain.finger;
     let fa = a.finger(finger)?;
-    if chain.points.len() != ChainInput::expected_points(finger, chain.has_tip) {
-        return None;
-    }
-    if chain.points.iter().any(|p| !p.is_finite()) {
+    if chain.points.len() != ChainInput::expected_points(finger, chain.has_tip)
+        || chain.points.iter().any(|p| !p.is_finite())
+    {
         return None;
     }
     let segments: Vec<f64> = chain
@@ -212,120 +400,491 @@ pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
     if segments.iter().any(|&c| !(c.is_finite() && c > 0.0)) {
         return None;
     }
-    let mut out = FingerAudit {
-        finger,
-        has_tip: chain.has_tip,
-        basis: Basis::None,
-        n: fa.n,
-        segments,
-        length: None,
-        values: Vec::new(),
-        joints: Vec::new(),
-        unjudged: Vec::new(),
-    };
-    if chain.has_tip {
-        judge_relative(a, chain, &mut out)?;
-    } else if finger != Finger::Thumb {
-        judge_ratio(a, chain, &mut out)?;
+    let tip_correction = if chain.has_tip {
+        opts.tip_correction()
     } else {
-        out.unjudged.push(Joint::Ip);
+        0.0
+    };
+    let mut compared = segments.clone();
+    if let Some(last) = compared.last_mut() {
+        *last -= tip_correction;
     }
-    Some(out)
-}
-
-/// With a tip: every relative value and ratio against its statistics, and each
-/// inner joint against the placement of the statistics at the rig's length.
-fn judge_relative(a: &Analysis, chain: &ChainInput, out: &mut FingerAudit) -> Option<()> {
-    let finger = chain.finger;
-    let segments = &out.segments;
-    let length: f64 = segments.iter().sum();
-    if length <= 0.0 {
+    if compared.iter().any(|&c| !(c.is_finite() && c > 0.0)) {
         return None;
     }
-    let mut values = Vec::new();
-    for &q in Quantity::of(finger) {
-        let measured = match q {
-            Quantity::RelJ1 => segments[0] / length,
-            Quantity::RelJ2 => segments[1] / length,
-            Quantity::RelJ3 => segments[2] / length,
-            Quantity::RatioJ2J1 => segments[1] / segments[0],
-            Quantity::RatioJ3J2 => segments[2] / segments[1],
-            Quantity::Total => continue,
-        };
-        values.push(value_check(q, measured, stats(a, finger, q)?));
-    }
-    let shares: Vec<f64> = [Quantity::RelJ1, Quantity::RelJ2, Quantity::RelJ3]
+    let quantities = judged_quantities(a, chain)?;
+    let basis = match (chain.has_tip, finger) {
+        (true, _) => Basis::Relative,
+        (false, Finger::Thumb) => Basis::None,
+        (false, _) => Basis::Ratio,
+    };
+    let values = quantities
         .iter()
-        .take(segments.len())
-        .map(|&q| stats(a, finger, q).map(|s| s.mean))
-        .collect::<Option<_>>()?;
-    let (suggested, at) = on_chain(&chain.points, &shares)?;
-    let arcs = arc_positions(&chain.points);
+        .map(|&(q, s)| value_check(q, value_of(q, &compared), s))
+        .collect();
+    let unjudged = match basis {
+        Basis::Relative => Vec::new(),
+        Basis::Ratio => vec![Joint::Dip],
+        Basis::None => vec![Joint::Ip],
+    };
+    let standings = match basis {
+        Basis::Relative => relative_standings(a, finger, &segments, &compared, tip_correction)?,
+        Basis::Ratio => ratio_standings(a, finger, &compared)?,
+        Basis::None => Vec::new(),
+    };
+    let axis = Axis::new(chain, &compared, tip_correction);
+    let explanation = explain(&axis, &quantities, basis);
+    let kinds = chain_kinds(finger, chain.has_tip);
     let mut joints = Vec::new();
+    for (joint, measured, expected, range, pi) in standings {
+        let k = kinds.iter().position(|&j| j == joint)?;
+        let moves = explanation.moved.contains(&joint);
+        let (suggested, shift_along) = match (&explanation.arcs, moves) {
+            (Some(arcs), true) => (
+                point_at(&axis.points, arcs[k]),
+                arcs[k] - axis.joint_arcs[k],
+            ),
+            _ => (chain.points[k], 0.0),
+        };
+        joints.push(JointCheck {
+            joint,
+            measured,
+            expected,
+            range,
+            pi,
+            standing: Standing::of(measured, range, pi),
+            moves,
+            suggested,
+            shift: chain.points[k].distance(suggested),
+            shift_along,
+        });
+    }
+    let explanation = Explanation {
+        moved: explanation.moved,
+        consistent: explanation.consistent,
+        score: explanation.score.is_finite().then_some(explanation.score),
+        values: explanation
+            .segments
+            .map(|s| {
+                quantities
+                    .iter()
+                    .map(|&(q, st)| value_check(q, value_of(q, &s), st))
+                    .collect()
+            })
+            .unwrap_or_default(),
+        also: explanation.also,
+    };
+    Some(FingerAudit {
+        finger,
+        has_tip: chain.has_tip,
+        basis,
+        n: fa.n,
+        length: (basis == Basis::Relative).then(|| compared.iter().sum()),
+        segments,
+        tip_correction,
+        compared,
+        values,
+        joints,
+        unjudged,
+        explanation,
+    })
+}
+
+/// A joint's standing inputs: (joint, measured, expected, range, prediction interval).
+type StandingInput = (Joint, f64, f64, Interval, Option<Interval>);
+
+/// x -> base x / (1 - x), the length a relative value x gives one segment
+/// when the others sum to `base`; `None` at x >= 1.
+fn share_to_length(base: f64, x: f64) -> Option<f64> {
+    (x < 1.0).then(|| base * x / (1.0 - x))
+}
+
+/// The MCP and tip standings of a finger with a tip, and the inner joints'.
+fn relative_standings(
+    a: &Analysis,
+    finger: Finger,
+    segments: &[f64],
+    compared: &[f64],
+    correction: f64,
+) -> Option<Vec<StandingInput>> {
+    let length: f64 = compared.iter().sum();
+    let m = compared.len();
+    let last = match m {
+        2 => Quantity::RelJ2,
+        _ => Quantity::RelJ3,
+    };
+    let rel1 = stats(a, finger, Quantity::RelJ1)?;
+    let rel_last = stats(a, finger, last)?;
+    // A monotone increasing map of a relative value's statistics onto positions.
+    let mapped = |s: &QuantityStats,
+                  f: &dyn Fn(f64) -> Option<f64>|
+     -> Option<(f64, Interval, Option<Interval>)> {
+        let mean = f(s.mean)?;
+        let range = Interval::new(f(s.min)?, f(s.max)?);
+        let pi = match s.intervals.pi {
+            Some(pi) => Some(Interval::new(f(pi.low.max(0.0))?, f(pi.high.min(0.999))?)),
+            None => None,
+        };
+        Some((mean, range, pi))
+    };
+    let flip = |i: Interval| Interval::new(i.high, i.low);
+    let mut out = Vec::new();
+    // MCP: at s_1 - J1, J1 = (L - s_1) x / (1 - x), decreasing in x.
+    let rest = length - compared[0];
+    let (mean, range, pi) = mapped(rel1, &|x| {
+        share_to_length(rest, x).map(|j1| compared[0] - j1)
+    })?;
+    out.push((Joint::Mcp, 0.0, mean, flip(range), pi.map(flip)));
     let mut measured = 0.0;
     for (k, &joint) in Joint::inner(finger).iter().enumerate() {
         measured += segments[k];
         // PIP/IP at J~1 L; DIP at (1 - J~3) L (see placement).
         let placed = if k == 0 {
-            Placed::affine(stats(a, finger, Quantity::RelJ1)?, 0.0, length)
+            Placed::affine(rel1, 0.0, length)
         } else {
             Placed::affine(stats(a, finger, Quantity::RelJ3)?, length, -length)
         };
-        let range = Interval::new(placed.min, placed.max);
-        joints.push(JointCheck {
+        out.push((
             joint,
             measured,
-            expected: placed.mean,
-            range,
-            pi: placed.intervals.pi,
-            standing: Standing::of(measured, range, placed.intervals.pi),
-            suggested: suggested[k + 1],
-            shift: chain.points[k + 1].distance(suggested[k + 1]),
-            shift_along: at[k] - arcs[k + 1],
-        });
+            placed.mean,
+            Interval::new(placed.min, placed.max),
+            placed.intervals.pi,
+        ));
     }
-    out.basis = Basis::Relative;
-    out.length = Some(length);
-    out.values = values;
-    out.joints = joints;
-    Some(())
+    // Tip: at (L - s_last) + J_last + correction, increasing in x.
+    let base = length - compared[m - 1];
+    let (mean, range, pi) = mapped(rel_last, &|x| {
+        share_to_length(base, x).map(|j| base + j + correction)
+    })?;
+    out.push((Joint::Tip, segments.iter().sum(), mean, range, pi));
+    Some(out)
 }
 
-/// Without a tip (not the thumb): J2/J1 against its statistics, and the PIP
-/// against the positions those put it at with MCP and DIP fixed.
-fn judge_ratio(a: &Analysis, chain: &ChainInput, out: &mut FingerAudit) -> Option<()> {
-    let s = stats(a, chain.finger, Quantity::RatioJ2J1)?;
-    let segments = &out.segments;
-    let r = segments[1] / segments[0];
-    let value = value_check(Quantity::RatioJ2J1, r, s);
-    let span = segments[0] + segments[1];
+/// The MCP and PIP standings of a finger without a tip, on J2/J1.
+fn ratio_standings(a: &Analysis, finger: Finger, s: &[f64]) -> Option<Vec<StandingInput>> {
+    let st = stats(a, finger, Quantity::RatioJ2J1)?;
     // A ratio is never negative, even where an interval's formula says so.
-    let at = |r: f64| span / (1.0 + r.max(0.0));
-    let flip = |i: Interval| Interval::new(at(i.high), at(i.low));
-    let range = flip(Interval::new(s.min, s.max));
-    let pi = s.intervals.pi.map(flip);
-    let mean_r = s.mean;
-    let (suggested, at_new) = on_chain(
-        &chain.points,
-        &[1.0 / (1.0 + mean_r), mean_r / (1.0 + mean_r)],
-    )?;
-    let arcs = arc_positions(&chain.points);
-    let joint = JointCheck {
-        joint: Joint::Pip,
-        measured: segments[0],
-        expected: at(mean_r),
-        range,
-        pi,
-        standing: Standing::of(segments[0], range, pi),
-        suggested: suggested[1],
-        shift: chain.points[1].distance(suggested[1]),
-        shift_along: at_new[0] - arcs[1],
+    let r = |x: f64| x.max(1e-9);
+    let span = s[0] + s[1];
+    let pip = |x: f64| span / (1.0 + r(x));
+    let mcp = |x: f64| s[0] - s[1] / r(x);
+    // The PIP's position falls with r, the MCP's rises.
+    let flip = |f: &dyn Fn(f64) -> f64, i: Interval| Interval::new(f(i.high), f(i.low));
+    let keep = |f: &dyn Fn(f64) -> f64, i: Interval| Interval::new(f(i.low), f(i.high));
+    let range = Interval::new(st.min, st.max);
+    Some(vec![
+        (
+            Joint::Mcp,
+            0.0,
+            mcp(st.mean),
+            keep(&mcp, range),
+            st.intervals.pi.map(|i| keep(&mcp, i)),
+        ),
+        (
+            Joint::Pip,
+            s[0],
+            pip(st.mean),
+            flip(&pip, range),
+            st.intervals.pi.map(|i| flip(&pip, i)),
+        ),
+    ])
+}
+
+/// The line the joints move along: the first segment's backward extension,
+/// then the rig's joints, ending at the compared tip (the bone tip for a skin
+/// tip) or, without a tip, at the last joint.
+struct Axis {
+    points: Vec<DVec3>,
+    arcs: Vec<f64>,
+    /// Arc position of each chain joint (MCP, inner joints, compared tip).
+    joint_arcs: Vec<f64>,
+    /// How far the MCP may move: (towards the root, towards the tip).
+    mcp_reach: (f64, f64),
+}
+
+impl Axis {
+    fn new(chain: &ChainInput, compared: &[f64], correction: f64) -> Axis {
+        let p = &chain.points;
+        let c1 = p[0].distance(p[1]);
+        let back = (p[0] - p[1]).normalize_or_zero();
+        let mut points = vec![p[0] + 1.5 * c1 * back];
+        points.extend_from_slice(p);
+        let n = p.len();
+        if chain.has_tip && correction != 0.0 {
+            // The compared tip lies on the last segment's line, `correction`
+            // nearer the DIP (beyond the tip when negative).
+            let dir = (p[n - 1] - p[n - 2]).normalize_or_zero();
+            points[n] = p[n - 1] - correction * dir;
+        }
+        debug_assert_eq!(compared.len(), n - 1);
+        let arcs = arc_positions(&points);
+        let joint_arcs = arcs[1..].to_vec();
+        Axis {
+            points,
+            arcs,
+            joint_arcs,
+            mcp_reach: (c1, 0.5 * c1),
+        }
+    }
+
+    /// The compared segments for joints at arc positions `u`.
+    fn segments(&self, u: &[f64]) -> Vec<f64> {
+        let q: Vec<DVec3> = u.iter().map(|&x| point_at(&self.points, x)).collect();
+        q.windows(2).map(|w| w[0].distance(w[1])).collect()
+    }
+}
+
+/// An explanation as solved, with the joints' arc positions.
+struct Solved {
+    moved: Vec<Joint>,
+    consistent: bool,
+    score: f64,
+    /// Arc positions of the chain's joints after the moves (`None`: nothing solved).
+    arcs: Option<Vec<f64>>,
+    segments: Option<Vec<f64>>,
+    also: Vec<Vec<Joint>>,
+}
+
+/// The largest normalised distance of the judged values of `segments`, and
+/// whether every value is inside its prediction interval (or range).
+fn fit(quantities: &[(Quantity, &QuantityStats)], segments: &[f64]) -> (f64, bool) {
+    if segments.iter().any(|&c| !(c.is_finite() && c > 0.0)) {
+        return (f64::INFINITY, false);
+    }
+    let mut worst: f64 = 0.0;
+    let mut inside = true;
+    for &(q, s) in quantities {
+        let x = value_of(q, segments);
+        worst = worst.max(normalised(x, s));
+        let range = Interval::new(s.min, s.max);
+        inside &= Standing::of(x, range, s.intervals.pi).is_consistent();
+    }
+    (worst, inside)
+}
+
+/// The explanation with the fewest moved joints (see the module notes).
+fn explain(axis: &Axis, quantities: &[(Quantity, &QuantityStats)], basis: Basis) -> Solved {
+    let none = Solved {
+        moved: Vec::new(),
+        consistent: false,
+        score: f64::INFINITY,
+        arcs: None,
+        segments: None,
+        also: Vec::new(),
     };
-    out.basis = Basis::Ratio;
-    out.values.push(value);
-    out.joints.push(joint);
-    out.unjudged.push(Joint::Dip);
-    Some(())
+    if basis == Basis::None || quantities.is_empty() {
+        return none;
+    }
+    let u0 = axis.joint_arcs.clone();
+    let n = u0.len();
+    // Movable joints: MCP and the inner joints (the last point stays).
+    let kinds: Vec<Joint> = std::iter::once(Joint::Mcp)
+        .chain(match n {
+            3 if basis == Basis::Ratio => vec![Joint::Pip],
+            3 => vec![Joint::Ip],
+            _ => vec![Joint::Pip, Joint::Dip],
+        })
+        .collect();
+    let mut tried: Vec<Vec<Solved>> = vec![Vec::new(), Vec::new(), Vec::new()];
+    let (score, inside) = fit(quantities, &axis.segments(&u0));
+    tried[0].push(Solved {
+        consistent: inside,
+        score,
+        arcs: Some(u0.clone()),
+        segments: Some(axis.segments(&u0)),
+        ..none_like()
+    });
+    for (k, &kind) in kinds.iter().enumerate() {
+        if let Some(u) = solve_one(axis, quantities, &u0, k) {
+            let s = axis.segments(&u);
+            let (score, inside) = fit(quantities, &s);
+            tried[1].push(Solved {
+                moved: vec![kind],
+                consistent: inside,
+                score,
+                arcs: Some(u),
+                segments: Some(s),
+                ..none_like()
+            });
+        }
+    }
+    if n == 4 {
+        for pair in [[1, 2], [0, 1], [0, 2]] {
+            if let Some(u) = solve_pair(axis, quantities, &u0, pair) {
+                let s = axis.segments(&u);
+                let (score, inside) = fit(quantities, &s);
+                tried[2].push(Solved {
+                    moved: pair.iter().map(|&k| kinds[k]).collect(),
+                    consistent: inside,
+                    score,
+                    arcs: Some(u),
+                    segments: Some(s),
+                    ..none_like()
+                });
+            }
+        }
+    }
+    let movement = |s: &Solved| -> f64 {
+        s.arcs.as_ref().map_or(f64::INFINITY, |a| {
+            a.iter().zip(&u0).map(|(x, y)| (x - y).abs()).sum()
+        })
+    };
+    let better = |a: &Solved, b: &Solved| -> bool {
+        if (a.score - b.score).abs() > 1e-6 {
+            a.score < b.score
+        } else {
+            movement(a) < movement(b)
+        }
+    };
+    for size in tried.iter_mut() {
+        if !size.iter().any(|s| s.consistent) {
+            continue;
+        }
+        let mut fits: Vec<Solved> = size.drain(..).filter(|s| s.consistent).collect();
+        let mut best = 0;
+        for i in 1..fits.len() {
+            if better(&fits[i], &fits[best]) {
+                best = i;
+            }
+        }
+        let mut chosen = fits.swap_remove(best);
+        chosen.also = fits.into_iter().map(|s| s.moved).collect();
+        return chosen;
+    }
+    // Nothing fits: the best fit of all, fewer joints first on a tie.
+    let mut best: Option<Solved> = None;
+    for s in tried.into_iter().flatten() {
+        if best.as_ref().is_none_or(|b| s.score < b.score - 1e-6) {
+            best = Some(s);
+        }
+    }
+    best.unwrap_or(none)
+}
+
+fn none_like() -> Solved {
+    Solved {
+        moved: Vec::new(),
+        consistent: false,
+        score: f64::INFINITY,
+        arcs: None,
+        segments: None,
+        also: Vec::new(),
+    }
+}
+
+/// The arc positions with joint `k` alone moved to where the worst value is
+/// best: a scan of 200 points over its span, then golden-section search
+/// around the best (the worst value is a maximum of functions each monotone
+/// in the joint's position, so it falls then rises). `None` for an empty span.
+fn solve_one(
+    axis: &Axis,
+    quantities: &[(Quantity, &QuantityStats)],
+    u0: &[f64],
+    k: usize,
+) -> Option<Vec<f64>> {
+    let n = u0.len();
+    let gap = 1e-4 * (u0[n - 1] - u0[0]);
+    let (lo, hi) = if k == 0 {
+        (
+            (u0[0] - axis.mcp_reach.0).max(axis.arcs[0]),
+            (u0[0] + axis.mcp_reach.1).min(u0[1] - gap),
+        )
+    } else {
+        (u0[k - 1] + gap, u0[k + 1] - gap)
+    };
+    if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
+        return None;
+    }
+    let mut u = u0.to_vec();
+    let mut eval = |x: f64| {
+        u[k] = x;
+        fit(quantities, &axis.segments(&u)).0
+    };
+    const STEPS: usize = 200;
+    let step = (hi - lo) / STEPS as f64;
+    let mut best = (f64::INFINITY, lo);
+    for i in 0..=STEPS {
+        let x = lo + step * i as f64;
+        let f = eval(x);
+        if f < best.0 {
+            best = (f, x);
+        }
+    }
+    let (mut a, mut b) = ((best.1 - step).max(lo), (best.1 + step).min(hi));
+    let g = (5f64.sqrt() - 1.0) / 2.0;
+    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
+    let (mut fc, mut fd) = (eval(c), eval(d));
+    for _ in 0..100 {
+        if fc <= fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - g * (b - a);
+            fc = eval(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + g * (b - a);
+            fd = eval(d);
+        }
+    }
+    let x = if fc <= fd { c } else { d };
+    let x = if eval(x) <= best.0 { x } else { best.1 };
+    let mut out = u0.to_vec();
+    out[k] = x;
+    Some(out)
+}
+
+/// The arc positions with the joints `pair` (of MCP 0, PIP 1, DIP 2; a finger
+/// with a tip) moved so the compared segments have the mean relative values
+/// exactly; the other joint and the tip stay. `None` when no such placement
+/// exists on the chain or the MCP would leave its reach.
+fn solve_pair(
+    axis: &Axis,
+    quantities: &[(Quantity, &QuantityStats)],
+    u0: &[f64],
+    pair: [usize; 2],
+) -> Option<Vec<f64>> {
+    let mean = |q: Quantity| {
+        quantities
+            .iter()
+            .find(|(x, _)| *x == q)
+            .map(|(_, s)| s.mean)
+    };
+    let m = [
+        mean(Quantity::RelJ1)?,
+        mean(Quantity::RelJ2)?,
+        mean(Quantity::RelJ3)?,
+    ];
+    let (pts, arcs) = (&axis.points, &axis.arcs);
+    let p = |x: f64| point_at(pts, x);
+    let mut u = u0.to_vec();
+    match pair {
+        [1, 2] => {
+            let sub: Vec<DVec3> = u0.iter().map(|&x| p(x)).collect();
+            let (_, at) = on_chain(&sub, &m)?;
+            u[1] = u0[0] + at[0];
+            u[2] = u0[0] + at[1];
+        }
+        [0, 1] => {
+            let l = p(u0[2]).distance(p(u0[3])) / m[2];
+            u[1] = backward_at(pts, arcs, u0[2], p(u0[2]), m[1] * l)?;
+            u[0] = backward_at(pts, arcs, u[1], p(u[1]), m[0] * l)?;
+        }
+        [0, 2] => {
+            let sub = [p(u0[1]), p(u0[2]), p(u0[3])];
+            let share = m[1] / (m[1] + m[2]);
+            let (q, at) = on_chain(&sub, &[share, 1.0 - share])?;
+            u[2] = u0[1] + at[0];
+            let l = (q[0].distance(q[1]) + q[1].distance(q[2])) / (m[1] + m[2]);
+            u[0] = backward_at(pts, arcs, u0[1], p(u0[1]), m[0] * l)?;
+        }
+        _ => return None,
+    }
+    let within = u[0] >= u0[0] - axis.mcp_reach.0 - 1e-12 && u[0] <= u0[0] + axis.mcp_reach.1;
+    (within && u.windows(2).all(|w| w[0] < w[1])).then_some(u)
 }
 
 #[cfg(test)]
@@ -339,6 +898,14 @@ mod tests {
     fn paper() -> Analysis {
         let d = Dataset::load(Path::new("data/measurements.csv")).unwrap();
         analyse(&d, &Settings::default())
+    }
+
+    /// Tips compared as they are (bone tips on both sides).
+    fn bone() -> JudgeOptions {
+        JudgeOptions {
+            rig_tip: TipKind::Bone,
+            ..JudgeOptions::default()
+        }
     }
 
     /// A straight finger along x with the given segment lengths (and a tip).
@@ -380,33 +947,49 @@ mod tests {
             .iter()
             .map(|&q| f.quantity(q).unwrap().mean * 80.0)
             .collect();
-        let r = audit(&a, &straight(Finger::Index, &m)).unwrap();
+        let r = audit_with(&a, &straight(Finger::Index, &m), &bone()).unwrap();
         assert_eq!(r.basis, Basis::Relative);
         assert!(r.is_consistent());
+        let kinds: Vec<Joint> = r.joints.iter().map(|j| j.joint).collect();
+        assert_eq!(kinds, [Joint::Mcp, Joint::Pip, Joint::Dip, Joint::Tip]);
         for j in &r.joints {
             assert_eq!(j.standing, Standing::InRange);
             assert!(j.shift < 1e-9, "{j:?}");
-            assert!((j.measured - j.expected).abs() < 1e-9);
+            // MCP and tip: the mean's x / (1 - x) of the rest is the mean's own segment.
+            assert!((j.measured - j.expected).abs() < 1e-9, "{j:?}");
         }
+        assert!(r.explanation.consistent && r.explanation.moved.is_empty());
         // PIP at J~1 L = 0.4846 x 80 (the corrected eq. 6 mean).
-        assert!((r.joints[0].expected - 0.4846 * 80.0).abs() < 0.01);
+        let pip = r.joint(Joint::Pip).unwrap();
+        assert!((pip.expected - 0.4846 * 80.0).abs() < 0.01);
     }
 
     #[test]
     fn a_pip_far_towards_the_tip_is_flagged_above_with_its_distance() {
         let a = paper();
         // J~1 = 0.6 of 100 units: the paper's index max is 0.5047.
-        let r = audit(&a, &straight(Finger::Index, &[60.0, 22.0, 18.0])).unwrap();
-        let pip = &r.joints[0];
+        let r = audit_with(&a, &straight(Finger::Index, &[60.0, 22.0, 18.0]), &bone()).unwrap();
+        let pip = r.joint(Joint::Pip).unwrap();
         let pi = pip.pi.unwrap();
         match pip.standing {
             Standing::Above { by } => assert!((by - (60.0 - pi.high)).abs() < 1e-9),
             s => panic!("{s:?}"),
         }
         assert!(!r.is_consistent());
-        // The suggestion is the mean position, on the (straight) chain.
-        assert!((pip.suggested[0] - pip.expected).abs() < 1e-9);
-        assert!((pip.shift - (60.0 - pip.expected)).abs() < 1e-9);
+        // One joint explains it: the PIP alone cannot (moved back to fit J~1 it
+        // leaves J2 too long), the MCP moved towards the tip can, on the
+        // (straight) chain.
+        assert!(r.explanation.consistent, "{:?}", r.explanation);
+        assert_eq!(r.explanation.moved, vec![Joint::Mcp], "{:?}", r.explanation);
+        let mcp = r.joint(Joint::Mcp).unwrap();
+        assert!(mcp.moves && mcp.shift_along > 0.0 && !pip.moves);
+        assert!((mcp.suggested[0] - mcp.shift_along).abs() < 1e-9);
+        assert!(
+            r.explanation
+                .values
+                .iter()
+                .all(|v| v.standing.is_consistent())
+        );
     }
 
     #[test]
@@ -516,7 +1099,10 @@ mod tests {
         assert_eq!(r.basis, Basis::Ratio);
         assert_eq!(r.unjudged, vec![Joint::Dip]);
         assert!((r.values[0].measured - s.mean).abs() < 1e-12);
-        assert!(r.joints[0].shift < 1e-9);
+        assert!(r.joints.iter().all(|j| j.shift < 1e-9));
+        // MCP at c1 - c2 / r: at the mean ratio exactly where it is.
+        let mcp = r.joint(Joint::Mcp).unwrap();
+        assert!(mcp.expected.abs() < 1e-9, "{mcp:?}");
         // A PIP too close to the root makes J2/J1 too large: flagged below.
         let close = ChainInput {
             points: vec![
@@ -527,9 +1113,19 @@ mod tests {
             ..chain
         };
         let r = audit(&a, &close).unwrap();
-        assert!(matches!(r.joints[0].standing, Standing::Below { .. }));
+        let pip = r.joint(Joint::Pip).unwrap();
+        assert!(matches!(pip.standing, Standing::Below { .. }));
         assert!(matches!(r.values[0].standing, Standing::Above { .. }));
-        assert!(r.joints[0].range.low < r.joints[0].range.high);
+        assert!(pip.range.low < pip.range.high);
+        // J2/J1 = 3: the X-rays put the MCP 60/0.64 = 94 back, so the rig's is far
+        // towards the tip; but it may move at most one segment (20) back, so the
+        // PIP alone explains it.
+        let mcp = r.joint(Joint::Mcp).unwrap();
+        assert!(matches!(mcp.standing, Standing::Above { .. }), "{mcp:?}");
+        assert!(mcp.range.low < mcp.range.high);
+        assert!((mcp.expected - (20.0 - 60.0 / s.mean)).abs() < 1e-9);
+        assert_eq!(r.explanation.moved, vec![Joint::Pip]);
+        assert!(r.explanation.also.is_empty());
         let thumb = ChainInput {
             finger: Finger::Thumb,
             points: vec![DVec3::ZERO, DVec3::new(1.0, 0.0, 0.0)],
@@ -538,5 +1134,90 @@ mod tests {
         let r = audit(&a, &thumb).unwrap();
         assert_eq!(r.basis, Basis::None);
         assert!(r.joints.is_empty() && r.values.is_empty());
+    }
+
+    #[test]
+    fn a_skin_tip_is_compared_without_its_soft_tissue() {
+        let a = paper();
+        let f = a.finger(Finger::Index).unwrap();
+        let m: Vec<f64> = [Quantity::RelJ1, Quantity::RelJ2, Quantity::RelJ3]
+            .iter()
+            .map(|&q| f.quantity(q).unwrap().mean * 80.0)
+            .collect();
+        // The X-ray mean finger with 4 units of soft tissue past the bone tip.
+        let skin = [m[0], m[1], m[2] + 4.0];
+        let opts = JudgeOptions {
+            soft_tissue: 4.0,
+            ..JudgeOptions::default()
+        };
+        let r = audit_with(&a, &straight(Finger::Index, &skin), &opts).unwrap();
+        assert_eq!(r.tip_correction, 4.0);
+        assert!((r.compared[2] - m[2]).abs() < 1e-12);
+        assert!((r.length.unwrap() - 80.0).abs() < 1e-9);
+        assert!(r.is_consistent() && r.explanation.moved.is_empty());
+        // The tip stands where the X-rays put the bone tip plus the soft tissue: 84.
+        let tip = r.joint(Joint::Tip).unwrap();
+        assert!((tip.measured - 84.0).abs() < 1e-9 && (tip.expected - 84.0).abs() < 1e-9);
+        // Read as a bone tip, the same rig's J~3 is too long.
+        let r = audit_with(&a, &straight(Finger::Index, &skin), &bone()).unwrap();
+        assert_eq!(r.tip_correction, 0.0);
+        assert!((r.values[2].measured - (m[2] + 4.0) / 84.0).abs() < 1e-12);
+        // Data with skin tips and a skin tip: nothing to correct; a bone tip gains it.
+        let both = JudgeOptions {
+            data_tip: TipKind::Skin,
+            ..opts
+        };
+        assert_eq!(both.tip_correction(), 0.0);
+        let rig_bone = JudgeOptions {
+            rig_tip: TipKind::Bone,
+            ..both
+        };
+        assert_eq!(rig_bone.tip_correction(), -4.0);
+    }
+
+    #[test]
+    fn an_mcp_at_the_web_is_named_not_the_pip() {
+        // X-ray 1b's index (Table 1, image units x 0.1 = mm-like units), with
+        // its MCP 10 units towards the tip: J1 shrinks by 10, nothing else moves.
+        let a = paper();
+        let segs = [34.247 - 10.0, 19.524, 18.670];
+        let r = audit_with(&a, &straight(Finger::Index, &segs), &bone()).unwrap();
+        assert!(!r.is_consistent());
+        assert_eq!(r.explanation.moved, vec![Joint::Mcp], "{:?}", r.explanation);
+        let mcp = r.joint(Joint::Mcp).unwrap();
+        assert!(matches!(mcp.standing, Standing::Above { .. }), "{mcp:?}");
+        // Moved back towards the root by about the 10 units it was pushed.
+        assert!(mcp.moves && (mcp.shift_along + 10.0).abs() < 3.0, "{mcp:?}");
+        assert!(!r.joint(Joint::Pip).unwrap().moves);
+        assert!(
+            r.explanation
+                .values
+                .iter()
+                .all(|v| v.standing.is_consistent())
+        );
+        // Its X-rays' own proportions restored would be inside the range: the
+        // solution lies inside every prediction interval.
+        assert!(r.explanation.score.is_some_and(|s| s <= 1.0));
+    }
+
+    #[test]
+    fn pairs_land_exactly_on_the_means() {
+        // PIP and DIP both far off: no single joint fits; the pair moved fits exactly.
+        let a = paper();
+        let r = audit_with(&a, &straight(Finger::Middle, &[60.0, 10.0, 30.0]), &bone()).unwrap();
+        assert_eq!(r.explanation.moved.len(), 2, "{:?}", r.explanation);
+        // The ratios of the means are not the means of the ratios: close, not 0.
+        assert!(
+            r.explanation.score.is_some_and(|s| s < 0.05),
+            "{:?}",
+            r.explanation
+        );
+        let f = a.finger(Finger::Middle).unwrap();
+        for v in &r.explanation.values {
+            if v.quantity.is_relative() {
+                let mean = f.quantity(v.quantity).unwrap().mean;
+                assert!((v.measured - mean).abs() < 1e-9, "{v:?}");
+            }
+        }
     }
 }

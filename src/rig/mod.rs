@@ -10,6 +10,9 @@
 //! read by [`naming`], VRM's humanoid bone tables when present, and a
 //! `--map` file ([`map`]) first of all.
 
+pub(crate) mod accessor;
+pub(crate) mod anim;
+pub mod bend;
 pub(crate) mod chain;
 pub mod deform;
 pub mod fix;
@@ -17,8 +20,10 @@ pub mod judge;
 pub mod map;
 pub mod naming;
 pub mod reference;
+pub(crate) mod remap;
 pub mod session;
 pub mod skin;
+pub mod weights;
 
 use crate::analysis::placement::Joint;
 use crate::dataset::{DataError, Finger, Problem};
@@ -29,7 +34,7 @@ use naming::{Part, Side, Slot};
 use schemars::JsonSchema;
 use serde::Serialize;
 use std::collections::{BTreeMap, HashMap};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// One joint of a rig finger.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
@@ -42,6 +47,23 @@ pub struct RigJoint {
     /// World position in the node pose.
     #[schemars(with = "[f64; 3]")]
     pub position: DVec3,
+    /// Whether the node carries skin weight (`None` when unknown: no skin, or
+    /// weights that could not be read).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub weighted: Option<bool>,
+}
+
+/// A node next to a finger: its metacarpal bone or the hand's wrist bone.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct RigNode {
+    pub node: usize,
+    pub name: String,
+    /// World position of the node's origin (the CMC joint for a metacarpal,
+    /// the wrist joint for a hand bone).
+    #[schemars(with = "[f64; 3]")]
+    pub position: DVec3,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub weighted: Option<bool>,
 }
 
 /// One finger chain found in a rig: root (MCP), inner joints, and the tip when present.
@@ -52,6 +74,15 @@ pub struct FingerChain {
     pub finger: Finger,
     pub joints: Vec<RigJoint>,
     pub has_tip: bool,
+    /// The finger's metacarpal bone (the thumb's CMC bone), when recognised.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub metacarpal: Option<RigNode>,
+    /// The hand's wrist (hand) bone, when recognised.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wrist: Option<RigNode>,
+    /// False when the joints are not parent and child in the node hierarchy
+    /// (WebXR's siblings): the chain is read from the names alone.
+    pub hierarchy: bool,
 }
 
 impl FingerChain {
@@ -86,6 +117,9 @@ pub struct GltfFile {
     pub parent: Vec<Option<usize>>,
     /// Each node's world matrix in the node pose.
     pub world: Vec<DMat4>,
+    /// The folder of the file, where external buffers are read (`None` for
+    /// bytes not read from a file: external buffers are then not read).
+    pub dir: Option<PathBuf>,
 }
 
 /// The local matrix of a node, in f64.
@@ -111,7 +145,24 @@ impl GltfFile {
     pub fn load(path: &Path) -> Result<GltfFile, DataError> {
         let label = path.display().to_string();
         let bytes = crate::dataset::csvinput::read_input(path)?;
-        GltfFile::from_bytes(&label, &bytes)
+        let mut file = GltfFile::from_bytes(&label, &bytes)?;
+        file.dir = Some(path.parent().unwrap_or(Path::new(".")).to_path_buf());
+        Ok(file)
+    }
+
+    /// The data of every buffer, when all can be read: from the GLB chunk
+    /// and data URIs, and from files beside it when read from a file.
+    pub fn buffer_data(&self) -> Option<Vec<Vec<u8>>> {
+        let external = self
+            .document
+            .buffers()
+            .any(|b| matches!(b.source(), gltf::buffer::Source::Uri(u) if !u.starts_with("data:")));
+        let dir = match (&self.dir, external) {
+            (Some(d), _) => d.clone(),
+            (None, false) => PathBuf::from("."),
+            (None, true) => return None,
+        };
+        fix::buffers(self, &dir).ok()
     }
 
     /// Parses the bytes of a glTF file; `label` names it in errors.
@@ -137,6 +188,21 @@ impl GltfFile {
         let mut for_document = json.clone();
         if let Some(o) = for_document.as_object_mut() {
             o.remove("extensionsRequired");
+        }
+        // Channels the gltf crate cannot read (a path it does not know, or
+        // KHR_animation_pointer's target without a node) are left out of its
+        // copy: the raw JSON keeps them, reported and untouched (see anim).
+        // (`get_mut`, not indexing: indexing a missing key would add a null.)
+        if let Some(list) = for_document
+            .get_mut("animations")
+            .and_then(serde_json::Value::as_array_mut)
+        {
+            for anim in list.iter_mut() {
+                if let Some(chs) = anim.get_mut("channels").and_then(|c| c.as_array_mut()) {
+                    chs.retain(anim::is_plain);
+                }
+            }
+            list.retain(|a| a["channels"].as_array().is_some_and(|c| !c.is_empty()));
         }
         let root: gltf::json::Root = serde_json::from_value(for_document).map_err(|e| {
             fail(format!(
@@ -176,6 +242,7 @@ impl GltfFile {
             blob: blob.map(<[u8]>::to_vec),
             parent,
             world,
+            dir: None,
         })
     }
 
@@ -351,10 +418,41 @@ pub struct Rig {
     pub chains: Vec<FingerChain>,
     /// Fingers seen but incomplete, and other remarks.
     pub notes: Vec<String>,
+    /// The skin weights, when the file has skins whose weights could be read.
+    pub weights: Option<weights::SkinWeights>,
 }
 
 /// How a node was recognised: (side, finger, slot, priority; lower wins).
 type Found = (Option<Side>, Finger, Slot, u8);
+
+/// Priorities of the nodes that fit a joint (lower wins): a `--map` entry, a
+/// VRM humanoid table, then a bone carrying skin weight (a Rigify `DEF-` bone
+/// first), a `DEF-` bone without weight, a skin joint, any other node.
+mod priority {
+    pub const MAP: u8 = 0;
+    pub const VRM: u8 = 1;
+    pub const WEIGHTED_DEFORM: u8 = 2;
+    pub const WEIGHTED: u8 = 3;
+    pub const DEFORM: u8 = 4;
+    pub const SKIN_JOINT: u8 = 5;
+    pub const OTHER: u8 = 6;
+
+    /// The priority of a node recognised by its name.
+    pub fn of(deform: bool, weighted: bool, skin_joint: bool) -> u8 {
+        match (weighted, deform, skin_joint) {
+            (true, true, _) => WEIGHTED_DEFORM,
+            (true, false, _) => WEIGHTED,
+            (false, true, _) => DEFORM,
+            (false, false, true) => SKIN_JOINT,
+            _ => OTHER,
+        }
+    }
+
+    /// True when the priority says the node carries skin weight.
+    pub fn weighted(p: u8) -> bool {
+        p == WEIGHTED_DEFORM || p == WEIGHTED
+    }
+}
 
 /// VRM humanoid bones (0.x `extensions.VRM`, 1.0 `extensions.VRMC_vrm`) as (node, bone name, 0.x?).
 fn vrm_bones(json: &serde_json::Value) -> Vec<(usize, String, bool)> {
@@ -409,12 +507,26 @@ fn candidates(file: &GltfFile) -> (Vec<bool>, Vec<bool>) {
     (candidate, skinned)
 }
 
+/// The skin weights of a file with a skin whose buffers are at hand.
+fn skin_weights(file: &GltfFile) -> Option<weights::SkinWeights> {
+    (file.document.skins().next().is_some())
+        .then(|| file.buffer_data())
+        .flatten()
+        .map(|data| weights::SkinWeights::read(file, &data))
+}
+
+/// Per node, whether any vertex is weighted to it (empty without weights).
+fn weighted_nodes(weights: Option<&weights::SkinWeights>, nodes: usize) -> Vec<bool> {
+    weights.map_or_else(Vec::new, |w| w.weighted_nodes(nodes))
+}
+
 /// How each node is recognised: by the `--map` file first, then by a VRM
 /// humanoid table, then by its name; with the priority of each (lower wins).
 fn recognise(
     file: &GltfFile,
     names: &[String],
     map: Option<&NameMap>,
+    weighted: &[bool],
 ) -> Result<Vec<Option<Found>>, DataError> {
     let n = names.len();
     let (candidate, skinned) = candidates(file);
@@ -423,7 +535,7 @@ fn recognise(
     if let Some(map) = map {
         for (name, &(side, finger, slot, line)) in &map.entries {
             match names.iter().position(|x| x == name) {
-                Some(i) => found[i] = Some((side, finger, slot, 0)),
+                Some(i) => found[i] = Some((side, finger, slot, priority::MAP)),
                 None => problems.push(Problem::line(
                     line,
                     format!(
@@ -467,13 +579,12 @@ fn recognise(
         if let Some((p, vrm)) = parsed[i] {
             let vrm0 = vrm.unwrap_or_else(|| vrm0_thumb.contains(&p.side));
             if let Some(slot) = naming::slot(p.finger, p.part, vrm0) {
-                let priority = match (vrm.is_some(), p.deform, skinned[i]) {
-                    (true, _, _) => 1,
-                    (_, true, _) => 2,
-                    (_, _, true) => 3,
-                    _ => 4,
+                let prio = if vrm.is_some() {
+                    priority::VRM
+                } else {
+                    priority::of(p.deform, weighted.get(i) == Some(&true), skinned[i])
                 };
-                found[i] = Some((p.side, p.finger, slot, priority));
+                found[i] = Some((p.side, p.finger, slot, prio));
             }
         }
     }
@@ -488,21 +599,56 @@ impl Rig {
     }
 
     /// Finds the finger chains of a parsed file: the best node for each joint
-    /// of each finger, then each finger's chain from those.
+    /// of each finger, then each finger's chain from those, with its
+    /// metacarpal and the hand's wrist bone when recognised.
     pub fn from_file(file: GltfFile, map: Option<&NameMap>) -> Result<Rig, DataError> {
         let names = file.node_names();
-        let found = recognise(&file, &names, map)?;
+        let weights = skin_weights(&file);
+        let weighted = weighted_nodes(weights.as_ref(), names.len());
+        let known = |i: usize| weights.as_ref().map(|_| weighted.get(i) == Some(&true));
+        let found = recognise(&file, &names, map, &weighted)?;
         let (best, ties) = choose_nodes(&found);
         let mut notes = tie_notes(&best, &ties, &names);
+        notes.extend(weight_note(&best, &found, &names));
+        let hands = wrists(&file, &names, &weighted);
         let mut groups: BTreeMap<(Option<Side>, Finger), HashMap<Slot, usize>> = BTreeMap::new();
         for (&(side, finger, slot), &(_, node)) in &best {
             groups.entry((side, finger)).or_default().insert(slot, node);
         }
         let mut chains = Vec::new();
         let mut bad = Vec::new();
+        let mut by_name = Vec::new();
         for ((side, finger), slots) in groups {
-            match finger_chain(&file, &names, side, finger, &slots, &mut notes) {
-                Ok(Some(chain)) => chains.push(chain),
+            let unambiguous = !ties.keys().any(|k| k.0 == side && k.1 == finger);
+            let found = FingerFound {
+                side,
+                finger,
+                slots: &slots,
+                unambiguous,
+            };
+            match finger_chain(&file, &names, &found, &mut notes) {
+                Ok(Some(mut chain)) => {
+                    for j in &mut chain.joints {
+                        j.weighted = j.node.and_then(known);
+                    }
+                    let node = |i: usize| RigNode {
+                        node: i,
+                        name: names[i].clone(),
+                        position: file.world[i].w_axis.truncate(),
+                        weighted: known(i),
+                    };
+                    chain.metacarpal = slots
+                        .get(&Slot::Carpal)
+                        .filter(|&&i| file.world[i].is_finite())
+                        .map(|&i| node(i));
+                    chain.wrist = wrist_of(&hands, side)
+                        .filter(|&i| file.world[i].is_finite())
+                        .map(node);
+                    if !chain.hierarchy {
+                        by_name.push(chain.label());
+                    }
+                    chains.push(chain);
+                }
                 Ok(None) => {}
                 Err(problem) => bad.push(problem),
             }
@@ -513,15 +659,147 @@ impl Rig {
                 problems: bad,
             });
         }
+        if !by_name.is_empty() {
+            notes.push(format!(
+                "{}: the joints are not parent and child in the node hierarchy (siblings, as in \
+                 WebXR's hands); each finger is read from its joint names alone, its lengths from \
+                 the joints' world positions, and --fix moves each joint node with its own inverse \
+                 bind matrix",
+                by_name.join(", ")
+            ));
+        }
         if chains.is_empty() {
             return Err(no_hand(&file.label, &names, notes));
+        }
+        if let Some(w) = &weights {
+            notes.extend(w.notes.iter().cloned());
         }
         Ok(Rig {
             file,
             chains,
             notes,
+            weights,
         })
     }
+
+    /// The chains of each hand for the deformation measures ([`deform`]):
+    /// per side, the fingers' metacarpal, bending joints and tip nodes and the
+    /// wrist. Fingers whose names carry no side (WebXR) are given `unsided`,
+    /// or left out when it is `None`. Reference chains without nodes are left out.
+    pub fn hand_chains(&self, unsided: Option<Side>) -> Vec<deform::HandChains> {
+        let mut hands: BTreeMap<Side, deform::HandChains> = BTreeMap::new();
+        for c in &self.chains {
+            let Some(side) = c.side.or(unsided) else {
+                continue;
+            };
+            if c.joints.iter().any(|j| j.node.is_none()) {
+                continue;
+            }
+            let bending: Vec<usize> = c
+                .joints
+                .iter()
+                .filter(|j| j.joint != Joint::Tip)
+                .filter_map(|j| j.node)
+                .collect();
+            let hand = hands.entry(side).or_insert_with(|| deform::HandChains {
+                side,
+                wrist: c.wrist.as_ref().map(|w| w.node),
+                fingers: Vec::new(),
+            });
+            if hand.wrist.is_none() {
+                hand.wrist = c.wrist.as_ref().map(|w| w.node);
+            }
+            hand.fingers.push(deform::FingerNodes {
+                finger: c.finger,
+                metacarpal: c.metacarpal.as_ref().map(|m| m.node),
+                joints: bending,
+                tip: c
+                    .joints
+                    .iter()
+                    .find(|j| j.joint == Joint::Tip)
+                    .and_then(|j| j.node),
+            });
+        }
+        hands.into_values().collect()
+    }
+}
+
+/// What was found for one finger: its nodes per slot, and whether no other
+/// node would fit any of them as well.
+struct FingerFound<'a> {
+    side: Option<Side>,
+    finger: Finger,
+    slots: &'a HashMap<Slot, usize>,
+    unambiguous: bool,
+}
+
+/// The wrist (hand) bones recognised: (side, priority, node), best first per side.
+fn wrists(file: &GltfFile, names: &[String], weighted: &[bool]) -> Vec<(Option<Side>, u8, usize)> {
+    let (candidate, skinned) = candidates(file);
+    let mut out: Vec<(Option<Side>, u8, usize)> = names
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| candidate[i] || skinned[i])
+        .filter_map(|(i, name)| {
+            naming::parse_hand(name).map(|h| {
+                let p = priority::of(h.deform, weighted.get(i) == Some(&true), skinned[i]);
+                (h.side, p, i)
+            })
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+/// The wrist of the hand on `side`: the best of that side; for a finger
+/// without a side, the only hand bone of the file.
+fn wrist_of(hands: &[(Option<Side>, u8, usize)], side: Option<Side>) -> Option<usize> {
+    if let Some(&(_, _, i)) = hands.iter().find(|h| h.0 == side) {
+        return Some(i);
+    }
+    let sides: std::collections::BTreeSet<Option<Side>> = hands.iter().map(|h| h.0).collect();
+    (side.is_none() && sides.len() == 1).then(|| hands[0].2)
+}
+
+/// One note for the joints where a bone carrying skin weight was chosen over
+/// an unweighted namesake (Rigify's `DEF-thumb.02.R` over `ORG-thumb.02.R`).
+fn weight_note(best: &Best, found: &[Option<Found>], names: &[String]) -> Option<String> {
+    let mut pairs = Vec::new();
+    for (&(side, finger, slot), &(prio, chosen)) in best {
+        if !priority::weighted(prio) {
+            continue;
+        }
+        let losers: Vec<usize> = found
+            .iter()
+            .enumerate()
+            .filter(|&(i, f)| {
+                i != chosen
+                    && f.is_some_and(|(s, g, t, p)| {
+                        (s, g, t) == (side, finger, slot) && p > priority::WEIGHTED
+                    })
+            })
+            .map(|(i, _)| i)
+            .collect();
+        if let Some(&l) = losers.first() {
+            pairs.push(format!(
+                "{} over {}",
+                shown(&names[chosen]),
+                shown(&names[l])
+            ));
+        }
+    }
+    if pairs.is_empty() {
+        return None;
+    }
+    let n = pairs.len();
+    pairs.truncate(3);
+    Some(format!(
+        "{n} joint{} had a namesake without skin weight; the bone that carries skin weight was \
+         used: {}{}",
+        if n == 1 { "" } else { "s" },
+        pairs.join(", "),
+        if n > 3 { ", ..." } else { "" }
+    ))
 }
 
 /// A joint of a finger of a hand: (side, finger, slot).
@@ -569,16 +847,17 @@ fn tie_notes(best: &Best, ties: &Ties, names: &[String]) -> Vec<String> {
 }
 
 /// The chain of one finger from the nodes chosen for its slots. `Ok(None)`, with
-/// a note why when it helps, when the finger lacks a joint or its nodes are not
-/// one chain in the hierarchy; an error when a node's world transform is not finite.
+/// a note why when it helps, when the finger lacks a joint, or its nodes are
+/// not one chain in the hierarchy while other nodes would fit as well (when
+/// the names leave no doubt, the chain needs no hierarchy); an error when a
+/// node's world transform is not finite.
 fn finger_chain(
     file: &GltfFile,
     names: &[String],
-    side: Option<Side>,
-    finger: Finger,
-    slots: &HashMap<Slot, usize>,
+    found: &FingerFound<'_>,
     notes: &mut Vec<String>,
 ) -> Result<Option<FingerChain>, Problem> {
+    let (side, finger, slots) = (found.side, found.finger, found.slots);
     let label = match side {
         Some(s) => format!("{} {finger}", s.name()),
         None => finger.to_string(),
@@ -605,10 +884,14 @@ fn finger_chain(
         return Ok(None);
     }
     let mut tip = slots.get(&Slot::Tip).copied();
+    let mut hierarchy = true;
     if let Some(t) = tip {
         let last = slots[&wanted[wanted.len() - 1].0];
         if below(&file.parent, t, last) {
             wanted.push((Slot::Tip, Joint::Tip));
+        } else if found.unambiguous {
+            wanted.push((Slot::Tip, Joint::Tip));
+            hierarchy = false;
         } else {
             notes.push(format!(
                 "{label}: tip {} is not below {} in the node hierarchy, so it is not used",
@@ -622,18 +905,24 @@ fn finger_chain(
         .windows(2)
         .find(|w| !below(&file.parent, slots[&w[1].0], slots[&w[0].0]))
     {
-        notes.push(format!(
-            "{label}: {} is not below {} in the node hierarchy, so these are not one finger; left out (give --map to choose)",
-            shown(&names[slots[&w[1].0]]),
-            shown(&names[slots[&w[0].0]])
-        ));
-        return Ok(None);
+        if !found.unambiguous {
+            notes.push(format!(
+                "{label}: {} is not below {} in the node hierarchy, so these are not one finger; left out (give --map to choose)",
+                shown(&names[slots[&w[1].0]]),
+                shown(&names[slots[&w[0].0]])
+            ));
+            return Ok(None);
+        }
+        hierarchy = false;
     }
     Ok(Some(FingerChain {
         side,
         finger,
         joints: rig_joints(file, names, &label, &wanted, slots)?,
         has_tip: tip.is_some(),
+        metacarpal: None,
+        wrist: None,
+        hierarchy,
     }))
 }
 
@@ -666,6 +955,7 @@ fn rig_joints(
                 node: Some(node),
                 name: names[node].clone(),
                 position: file.world[node].w_axis.truncate(),
+                weighted: None,
             }
         })
         .collect())
@@ -698,12 +988,54 @@ fn no_hand(label: &str, names: &[String], notes: Vec<String>) -> DataError {
     e
 }
 
+/// How a rig is judged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AuditOptions {
+    pub judge: judge::JudgeOptions,
+    /// A joint further than this from where its skin bends is flagged (rig units).
+    pub bend_tolerance: f64,
+    /// With skin tips: take the skin's end from the mesh when it reaches
+    /// past the tip node (`--tip auto`).
+    pub measure_tip: bool,
+}
+
+impl Default for AuditOptions {
+    fn default() -> AuditOptions {
+        AuditOptions {
+            judge: judge::JudgeOptions::default(),
+            bend_tolerance: bend::BEND_TOLERANCE_MM / 1000.0,
+            measure_tip: true,
+        }
+    }
+}
+
+/// A tip node this far (metres) or more inside the skin's end is not at the
+/// skin: WebXR's `*-tip` joints, the centres of the fingertips' spheres, lie
+/// 10-12 mm inside the generic hand's skin. 2 mm leaves room for a mesh's
+/// faceting at a rounded tip.
+pub const TIP_INSIDE: f64 = 0.002;
+
+/// The skin's end of a finger, measured on its mesh and used as its tip.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct SkinTip {
+    /// How far the skin reaches past the tip node, along the last segment.
+    pub beyond_node: f64,
+    /// The point used as the tip.
+    #[schemars(with = "[f64; 3]")]
+    pub position: DVec3,
+}
+
 /// A rig finger with its judgement.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct AuditedFinger {
     #[serde(flatten)]
     pub chain: FingerChain,
     pub audit: judge::FingerAudit,
+    /// Where the skin bends at each joint (empty without skin weights).
+    pub bends: Vec<bend::Bend>,
+    /// The skin's end used as the tip, when the tip node lies inside the skin.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub skin_tip: Option<SkinTip>,
 }
 
 /// Every finger of a rig judged against the statistics.
@@ -711,40 +1043,139 @@ pub struct AuditedFinger {
 pub struct AuditedRig {
     /// The file (or reference rig) the chains come from.
     pub label: String,
+    /// How the tips were compared.
+    pub tips: judge::JudgeOptions,
+    /// The bend tolerance used, in rig units.
+    pub bend_tolerance: f64,
     pub fingers: Vec<AuditedFinger>,
     /// Fingers left out and other remarks.
     pub notes: Vec<String>,
+    /// Things that make the judgement doubtful (the rig's scale).
+    pub warnings: Vec<String>,
+}
+
+/// Plausible lengths of an adult finger from MCP to tip, in metres: a
+/// fingertip-to-knuckle length is 50-110 mm; half and twice that allow for
+/// children and stylised characters.
+const PLAUSIBLE_FINGER: (f64, f64) = (0.025, 0.22);
+
+/// A warning when the fingers' median length (MCP to the last point, in file
+/// units read as metres) is implausible, naming the unit that would make it
+/// plausible (the one nearest a 75 mm finger).
+fn scale_warning(lengths: &[f64]) -> Option<String> {
+    let mut l: Vec<f64> = lengths
+        .iter()
+        .copied()
+        .filter(|x| x.is_finite() && *x > 0.0)
+        .collect();
+    if l.is_empty() {
+        return None;
+    }
+    l.sort_by(f64::total_cmp);
+    let median = l[l.len() / 2];
+    let plausible = |x: f64| (PLAUSIBLE_FINGER.0..=PLAUSIBLE_FINGER.1).contains(&x);
+    if plausible(median) {
+        return None;
+    }
+    let units = [
+        ("centimetres", 0.01),
+        ("millimetres", 0.001),
+        ("inches", 0.0254),
+        ("decimetres", 0.1),
+    ];
+    let likely = units
+        .iter()
+        .filter(|(_, m)| plausible(median * m))
+        .min_by(|a, b| {
+            let off = |m: f64| (median * m / 0.075).ln().abs();
+            off(a.1).total_cmp(&off(b.1))
+        });
+    let shown = format!(
+        "its fingers are {} m long (median, MCP to tip), implausible for a hand in metres",
+        crate::format::num(median, 4)
+    );
+    Some(match likely {
+        Some((unit, m)) => format!(
+            "{shown}; the file is likely in {unit} ({} mm fingers). glTF units are metres: \
+             re-export in metres. The mm figures, the soft tissue and the bend tolerance are off; \
+             relative values and ratios are not",
+            crate::format::num(median * m * 1000.0, 1)
+        ),
+        None => format!(
+            "{shown} or in any common unit; the mm figures, the soft tissue and the bend \
+             tolerance are off; relative values and ratios are not"
+        ),
+    })
 }
 
 impl AuditedRig {
-    /// Judges `chains` against the analysis; fingers the data lacks become notes.
+    /// Judges `chains` against the analysis with the default options and no
+    /// skin; fingers the data lacks become notes.
     pub fn of(
         label: &str,
         chains: &[FingerChain],
         notes: &[String],
         a: &crate::analysis::Analysis,
     ) -> AuditedRig {
+        AuditedRig::with(label, chains, notes, a, &AuditOptions::default(), None)
+    }
+
+    /// Judges `chains` against the analysis with `opts`, and finds where the
+    /// skin bends when `weights` are given.
+    pub fn with(
+        label: &str,
+        chains: &[FingerChain],
+        notes: &[String],
+        a: &crate::analysis::Analysis,
+        opts: &AuditOptions,
+        weights: Option<&weights::SkinWeights>,
+    ) -> AuditedRig {
         let mut notes = notes.to_vec();
         let mut fingers = Vec::new();
+        let mut lengths = Vec::new();
         for chain in chains {
-            match judge::audit(a, &chain.input()) {
+            let mut input = chain.input();
+            let mut skin_tip = None;
+            let n = input.points.len();
+            if opts.measure_tip
+                && opts.judge.rig_tip == judge::TipKind::Skin
+                && let Some(w) = weights
+                && let Some(reach) = bend::skin_end(chain, w)
+                && n >= 2
+            {
+                let (last, tip) = (input.points[n - 2], input.points[n - 1]);
+                let node = last.distance(tip);
+                if reach > node + TIP_INSIDE {
+                    let position = last + (tip - last).normalize_or_zero() * reach;
+                    input.points[n - 1] = position;
+                    skin_tip = Some(SkinTip {
+                        beyond_node: reach - node,
+                        position,
+                    });
+                }
+            }
+            lengths.push(
+                input
+                    .points
+                    .windows(2)
+                    .map(|w| w[0].distance(w[1]))
+                    .sum::<f64>(),
+            );
+            match judge::audit_with(a, &input, &opts.judge) {
                 Some(audit) => {
-                    let span: f64 = audit.segments.iter().sum();
-                    if !(0.005..=0.3).contains(&span) {
-                        notes.push(format!(
-                            "{}: its joints span {} mm, unlike a finger: are the file's units metres? \
-                             The mm figures would be off; relative values and ratios are not",
-                            chain.label(),
-                            crate::format::num(span * 1000.0, 1)
-                        ));
-                    }
+                    let bends = weights
+                        .map(|w| bend::bends(chain, w, opts.bend_tolerance))
+                        .unwrap_or_default();
                     fingers.push(AuditedFinger {
-                    chain: chain.clone(),
-                    audit,
+                        chain: chain.clone(),
+                        audit,
+                        bends,
+                        skin_tip,
                     });
                 }
                 None => notes.push(format!(
-                    "{}: {} has no statistics for this finger (or the chain has zero length), so it is not judged",
+                    "{}: {} has no statistics for this finger (or the chain has zero length, or \
+                     a last segment no longer than the tip's soft tissue), so it is not judged",
                     chain.label(),
                     a.dataset.path
                 )),
@@ -752,8 +1183,11 @@ impl AuditedRig {
         }
         AuditedRig {
             label: label.to_string(),
+            tips: opts.judge,
+            bend_tolerance: opts.bend_tolerance,
             fingers,
             notes,
+            warnings: scale_warning(&lengths).into_iter().collect(),
         }
     }
 
@@ -763,5 +1197,35 @@ impl AuditedRig {
             .iter()
             .filter(|f| !f.audit.is_consistent())
             .count()
+    }
+
+    /// Joints further from their bend than the tolerance.
+    pub fn bends_flagged(&self) -> usize {
+        self.fingers
+            .iter()
+            .flat_map(|f| &f.bends)
+            .filter(|b| b.flagged)
+            .count()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_implausible_scale_names_the_likely_unit() {
+        // 7.5 file units: centimetres (75 mm); 75: millimetres; 3 units: inches
+        // (76.2 mm), not centimetres (30 mm is further from 75 mm).
+        assert!(scale_warning(&[0.075, 0.08, 0.06]).is_none());
+        let w = scale_warning(&[7.5, 8.0, 6.0]).unwrap();
+        assert!(w.contains("likely in centimetres (75.0 mm fingers)"), "{w}");
+        let w = scale_warning(&[75.0, 80.0]).unwrap();
+        assert!(w.contains("likely in millimetres"), "{w}");
+        let w = scale_warning(&[3.0]).unwrap();
+        assert!(w.contains("likely in inches (76.2 mm"), "{w}");
+        let w = scale_warning(&[1e6]).unwrap();
+        assert!(w.contains("or in any common unit"), "{w}");
+        assert!(scale_warning(&[]).is_none());
     }
 }

@@ -9,13 +9,21 @@
 //! index to little 1 = MCP, 2 = PIP, 3 = DIP, 4 = tip; for the thumb
 //! 1 = CMC (carpometacarpal, not used), 2 = MCP, 3 = IP, 4 = tip. A `_end`,
 //! `_nub` or `_leaf` suffix (Blender's leaf bones) is the tail of that bone,
-//! the next joint. Named parts follow VRM and WebXR: metacarpal, proximal
+//! the next joint; but a suffix followed by the side (UE5's `index_04_leaf_l`)
+//! marks a leaf bone that is itself the numbered part, so `_04_leaf_l` is the
+//! tip. Metacarpal bones: `index_metacarpal_r` (UE5), `index-finger-metacarpal`
+//! (WebXR), Rigify's `palm.01.R` .. `palm.04.R` (index .. little; its thumb's
+//! metacarpal is `thumb.01`). Named parts follow VRM and WebXR: metacarpal, proximal
 //! (MCP), intermediate (PIP), distal (DIP), tip; for the thumb VRM 1.0 and
 //! WebXR read metacarpal = CMC, proximal = MCP, distal = IP, while VRM 0.x
 //! reads proximal = CMC, intermediate = MCP, distal = IP (told apart by whether
 //! the thumb has an `intermediate`). Any prefix may come before the side
 //! (`Character1_`, `b_`, `Armature/`); a name with a word like MCH, IK, CTRL,
 //! target, pole or twist is a control or helper and never a joint.
+//!
+//! The wrist (hand) bone of each convention is read by [`parse_hand`]:
+//! Mixamo `mixamorig:RightHand`, Rigify `hand.R` / `DEF-hand.R`, VRM
+//! `rightHand`, Unreal `hand_r`, WebXR `wrist`; its origin is the wrist joint.
 
 use crate::dataset::Finger;
 use regex::Regex;
@@ -99,6 +107,7 @@ fn pattern(sides: &str) -> Regex {
         (?P<part>0?[1-4]|metacarpal|proximal|intermediate|distal|tip)
         (?P<s2>right|left|r|l)?
         (?P<end>end|nub|leaf|tip)?
+        (?P<s3>right|left|r|l)?
         $"
     ))
     .expect("the name pattern is valid")
@@ -106,6 +115,23 @@ fn pattern(sides: &str) -> Regex {
 
 static PATTERN: LazyLock<Regex> = LazyLock::new(|| pattern("right|left|r|l"));
 static PATTERN_WORDS: LazyLock<Regex> = LazyLock::new(|| pattern("right|left"));
+
+/// Rigify's metacarpals: `palm.01` (index) .. `palm.04` (little).
+static PALM: LazyLock<Regex> = LazyLock::new(|| {
+    Regex::new(r"^(?P<prefix>.*?)palm0?(?P<n>[1-4])(?P<s2>right|left|r|l)?$")
+        .expect("the palm pattern is valid")
+});
+
+/// The wrist or hand bone, with single-letter sides before it allowed or not.
+fn hand_pattern(sides: &str) -> Regex {
+    Regex::new(&format!(
+        r"^(?P<prefix>.*?)(?P<s1>{sides})?(?:hand|wrist)(?P<s2>right|left|r|l)?$"
+    ))
+    .expect("the hand pattern is valid")
+}
+
+static HAND: LazyLock<Regex> = LazyLock::new(|| hand_pattern("right|left|r|l"));
+static HAND_WORDS: LazyLock<Regex> = LazyLock::new(|| hand_pattern("right|left"));
 
 /// The name compared (namespace dropped, lower case, letters and digits only)
 /// and, for each of its characters, the one before it in the name without the
@@ -162,6 +188,9 @@ pub(crate) fn parse(name: &str) -> Option<Parsed> {
         return None;
     }
     let (c, before) = compact_with_origin(name);
+    if let Some(p) = parse_palm(&c) {
+        return Some(p);
+    }
     let mut m = PATTERN.captures(&c)?;
     if let Some(s1) = m.name("s1")
         && s1.len() == 1
@@ -169,17 +198,14 @@ pub(crate) fn parse(name: &str) -> Option<Parsed> {
     {
         m = PATTERN_WORDS.captures(&c)?;
     }
-    let side = match (m.name("s1"), m.name("s2")) {
-        (Some(a), Some(b)) if Side::parse(a.as_str()) != Side::parse(b.as_str()) => return None,
-        (Some(a), _) => Side::parse(a.as_str()),
-        (None, Some(b)) => Side::parse(b.as_str()),
-        (None, None) => None,
-    };
+    let side = one_side(&[m.name("s1"), m.name("s2"), m.name("s3")])?;
     let finger = match &m["finger"] {
         "mid" => Finger::Middle,
         f => Finger::parse(f)?,
     };
-    let end = m.name("end").is_some();
+    // A suffix then the side (UE5's `_04_leaf_l`) is a leaf bone named for
+    // its own part; a suffix after the side is the tail of the bone before.
+    let end = m.name("end").is_some() && m.name("s3").is_none();
     let part = match &m["part"] {
         "metacarpal" => Part::Metacarpal,
         "proximal" => Part::Proximal,
@@ -200,6 +226,85 @@ pub(crate) fn parse(name: &str) -> Option<Parsed> {
         deform: m
             .name("prefix")
             .is_some_and(|p| p.as_str().starts_with("def")),
+    })
+}
+
+/// The one side the captured side words name; `Some(None)` when none does,
+/// `None` when two disagree.
+fn one_side(captures: &[Option<regex::Match<'_>>]) -> Option<Option<Side>> {
+    let mut side = None;
+    for m in captures.iter().flatten() {
+        let s = Side::parse(m.as_str());
+        if side.is_some() && s != side {
+            return None;
+        }
+        side = s;
+    }
+    Some(side)
+}
+
+/// Rigify's `palm.0N` metacarpal bones (compact name `c`).
+fn parse_palm(c: &str) -> Option<Parsed> {
+    let m = PALM.captures(c)?;
+    let finger = match &m["n"] {
+        "1" => Finger::Index,
+        "2" => Finger::Middle,
+        "3" => Finger::Ring,
+        _ => Finger::Little,
+    };
+    let prefix = m.name("prefix").map_or("", |p| p.as_str());
+    Some(Parsed {
+        side: one_side(&[m.name("s2")])?,
+        finger,
+        part: Part::Metacarpal,
+        deform: prefix.starts_with("def"),
+    })
+}
+
+/// A wrist or hand bone as its name says: the side and whether it is a
+/// Rigify deform bone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct HandBone {
+    pub side: Option<Side>,
+    pub deform: bool,
+}
+
+/// Reads a node name as the wrist (hand) bone of a hand; `None` otherwise.
+/// The same rules as [`parse`]: namespace dropped, controls and helpers
+/// refused, a one-letter side only at the start of a word.
+pub fn parse_hand(name: &str) -> Option<HandBone> {
+    if name.len() > MAX_NAME {
+        return None;
+    }
+    let base = name.rsplit([':', '|']).next().unwrap_or(name);
+    if base
+        .split(|c: char| !c.is_ascii_alphanumeric())
+        .any(|w| NOT_JOINTS.contains(&w.to_ascii_lowercase().as_str()))
+    {
+        return None;
+    }
+    let (c, before) = compact_with_origin(name);
+    let mut m = HAND.captures(&c)?;
+    if let Some(s1) = m.name("s1")
+        && s1.len() == 1
+        && !starts_word(name, &before, s1.start())
+    {
+        m = HAND_WORDS.captures(&c)?;
+    }
+    let prefix = m.name("prefix").map_or("", |p| p.as_str());
+    // A prefix that ends in a finger's name is no hand (`RightIndexHand`?):
+    // only plain prefixes (namespaces, `def`, `jbip`, `ccbase`) are read.
+    if [
+        "thumb", "index", "middle", "ring", "pinky", "little", "finger",
+    ]
+    .iter()
+    .any(|f| prefix.contains(f))
+    {
+        return None;
+    }
+    Some(HandBone {
+        side: one_side(&[m.name("s1"), m.name("s2")])?,
+        deform: prefix.starts_with("def"),
     })
 }
 

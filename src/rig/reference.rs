@@ -151,6 +151,7 @@ fn read_chain(
                 node: None,
                 name: format!("{fname} {}", j.name()),
                 position: DVec3::from_array(*p),
+                weighted: None,
             }),
             Some(_) => problems.push(Problem::file(format!(
                 "{fname} {}: not a finite point",
@@ -167,6 +168,9 @@ fn read_chain(
         finger,
         joints: chain,
         has_tip,
+        metacarpal: None,
+        wrist: None,
+        hierarchy: true,
     }
 }
 
@@ -256,7 +260,12 @@ mod values {
         let value = |id: &str, finger: Finger, q: Quantity| {
             let r = rigs.iter().find(|r| r.id == id).unwrap();
             let c = r.chains.iter().find(|c| c.finger == finger).unwrap();
-            let audit = crate::rig::judge::audit(&a, &c.input()).unwrap();
+            // The rig's own proportions: its tips compared as they are.
+            let opts = crate::rig::judge::JudgeOptions {
+                rig_tip: crate::rig::judge::TipKind::Bone,
+                ..Default::default()
+            };
+            let audit = crate::rig::judge::audit_with(&a, &c.input(), &opts).unwrap();
             audit
                 .values
                 .iter()

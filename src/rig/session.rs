@@ -4,7 +4,7 @@
 
 use super::fix::{self, Fixed};
 use super::map::NameMap;
-use super::{AuditedRig, GltfFile, Rig};
+use super::{AuditOptions, AuditedRig, GltfFile, Rig};
 use crate::analysis::{self, Analysis, Settings};
 use crate::dataset::Dataset;
 use crate::error::Error;
@@ -22,6 +22,10 @@ pub struct AuditRequest<'a> {
     pub data: &'a Path,
     /// Used as given: build them with [`Settings::new`].
     pub settings: Settings,
+    /// How tips are compared and bends flagged.
+    pub options: AuditOptions,
+    /// `--only-outside`: the fix moves only joints outside the prediction interval.
+    pub only_outside: bool,
 }
 
 /// A finished audit.
@@ -60,12 +64,29 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     analysis::budget::check_bootstrap(dataset.xray_count(), req.settings.resamples)
         .map_err(Error::Usage)?;
     let analysis = analysis::analyse(&dataset, &req.settings);
-    let audited = AuditedRig::of(&rig.file.label, &rig.chains, &rig.notes, &analysis);
+    let audited = AuditedRig::with(
+        &rig.file.label,
+        &rig.chains,
+        &rig.notes,
+        &analysis,
+        &req.options,
+        rig.weights.as_ref(),
+    );
     let fix = match (req.fix, fix_glb) {
         (Some(out), Some(glb)) => {
             let dir = req.rig.parent().unwrap_or(Path::new("."));
-            let fixed = fix::fix(&rig.file, &audited.fingers, dir, glb)?;
-            let reaudit = write_checked(&rig, &fixed, out, map.as_ref(), &analysis)?;
+            let opts = fix::FixOptions {
+                only_outside: req.only_outside,
+            };
+            let fixed = fix::fix_with(
+                &rig.file,
+                &audited.fingers,
+                rig.weights.as_ref(),
+                dir,
+                glb,
+                &opts,
+            )?;
+            let reaudit = write_checked(&rig, &fixed, out, map.as_ref(), &analysis, &req.options)?;
             Some(FixOutcome {
                 output: out.to_path_buf(),
                 moved: fixed.moved,
@@ -105,9 +126,25 @@ pub fn fix_in_memory(
     analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)
         .map_err(Error::Usage)?;
     let analysis = analysis::analyse(&dataset, &settings);
-    let audited = AuditedRig::of(&loaded.file.label, &loaded.chains, &loaded.notes, &analysis);
+    // `audit --fix OUT.glb` with its default options: the same judgement
+    // (skin tips, bends from the skin weights) and the same fix.
+    let audited = AuditedRig::with(
+        &loaded.file.label,
+        &loaded.chains,
+        &loaded.notes,
+        &analysis,
+        &AuditOptions::default(),
+        loaded.weights.as_ref(),
+    );
     let dir = rig.parent().unwrap_or(Path::new("."));
-    let out = fix::fix(&loaded.file, &audited.fingers, dir, true)?;
+    let out = fix::fix_with(
+        &loaded.file,
+        &audited.fingers,
+        loaded.weights.as_ref(),
+        dir,
+        true,
+        &fix::FixOptions::default(),
+    )?;
     let label = format!("{} (as audit --fix would write it)", loaded.file.label);
     let fixed = GltfFile::from_bytes(&label, &out.bytes).map_err(|e| {
         Error::render(
@@ -153,6 +190,7 @@ fn write_checked(
     out: &Path,
     map: Option<&NameMap>,
     analysis: &Analysis,
+    options: &AuditOptions,
 ) -> Result<AuditedRig, Error> {
     // Read the new file back before it is written: a copy that would not
     // load is never left on disk.
@@ -169,11 +207,13 @@ fn write_checked(
             )
         })?;
     crate::atomic::replace(out, &fixed.bytes).map_err(Error::write(out))?;
-    Ok(AuditedRig::of(
+    Ok(AuditedRig::with(
         &re.file.label,
         &re.chains,
         &re.notes,
         analysis,
+        options,
+        re.weights.as_ref(),
     ))
 }
 

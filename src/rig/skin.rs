@@ -203,10 +203,10 @@ const WEIGHTS: &[(DataType, Dimensions)] = &[
 ];
 
 /// One primitive's vertices: positions and their (slot, weight) influences, unnormalised.
-type PrimitiveData = (Vec<DVec3>, Vec<Vec<(u16, f64)>>);
+pub(crate) type PrimitiveData = (Vec<DVec3>, Vec<Vec<(u16, f64)>>);
 
 /// Reads one triangle primitive's positions and influences, or says what is wrong.
-fn read_vertices(
+pub(crate) fn read_vertices(
     prim: &gltf::Primitive<'_>,
     at: &str,
     data: &[Vec<u8>],

@@ -5,7 +5,9 @@
 //! the five measured hands and must fall inside the X-ray range. The hand sits
 //! under an `Armature` scaled 0.01 (centimetres, as Mixamo exports), turned 30
 //! degrees, and each finger bends 12 degrees at its middle joints, so world
-//! transforms compose rotation, scale and translation.
+//! transforms compose rotation, scale and translation. Tip nodes sit at the
+//! skin: 0.4 cm (the audit's default soft tissue) past the bone tip X-ray 1b
+//! gives, unless the spec says otherwise.
 
 use glam::{DMat4, DQuat, DVec3};
 use serde_json::{Value, json};
@@ -27,6 +29,8 @@ pub enum Naming {
     Rigify,
     /// Unreal mannequin: index_01_r.., thumb_02_r = MCP; no tips.
     Unreal,
+    /// UE5 mannequin: index_01_r..index_03_r, index_04_leaf_r tips, hand_r.
+    Unreal5,
     /// WebXR joint names, no side: index-finger-phalanx-proximal.., index-finger-tip.
     WebXr,
     /// Hips, Spine, Bone.000..: nothing recognisable.
@@ -58,6 +62,24 @@ pub struct HandSpec {
     pub moves: Vec<(&'static str, usize, f64)>,
     /// Extra top-level JSON members (e.g. extensionsRequired).
     pub extra: Vec<(&'static str, Value)>,
+    /// Soft tissue past the bone tip, in cm: where the tip nodes sit.
+    pub tip_tissue_cm: f64,
+    /// The Armature's scale: 0.01 makes the centimetres of the nodes metres.
+    pub armature_scale: f64,
+    /// Every finger node a child of the hand node (matrices), as WebXR's siblings.
+    pub siblings: bool,
+    /// A metacarpal node between the hand and each finger (named by the convention).
+    pub metacarpals: bool,
+    /// Rigify twins named `ORG-` and carrying no skin weight (else `f_index.01.R`, weighted).
+    pub org_twins: bool,
+    /// A dense tube of skin around each finger with smooth weights, instead of two
+    /// vertices per joint; each joint's skin bends this many mm from it (+ distal):
+    /// (finger, joint from MCP = 0, mm).
+    pub smooth: Option<Vec<(&'static str, usize, f64)>>,
+    /// Two keyframes per finger joint: translation and rotation at rest.
+    pub animate: bool,
+    /// Finger joints (finger, joint) whose second translation key moves 3 mm along y.
+    pub varying: Vec<(&'static str, usize)>,
 }
 
 impl HandSpec {
@@ -68,6 +90,14 @@ impl HandSpec {
             matrices: false,
             moves: Vec::new(),
             extra: Vec::new(),
+            tip_tissue_cm: 0.4,
+            armature_scale: 0.01,
+            siblings: false,
+            metacarpals: false,
+            org_twins: false,
+            smooth: None,
+            animate: false,
+            varying: Vec::new(),
         }
     }
 
@@ -126,6 +156,12 @@ fn joint_name(
             k + 1 + usize::from(thumb),
             s.to_lowercase()
         ),
+        Naming::Unreal5 if tip => format!("{pinky}_04_leaf_{}", s.to_lowercase()),
+        Naming::Unreal5 => format!(
+            "{pinky}_{:02}_{}",
+            k + 1 + usize::from(thumb),
+            s.to_lowercase()
+        ),
         Naming::WebXr => {
             let f = if thumb {
                 "thumb".to_string()
@@ -157,6 +193,27 @@ fn joint_name(
                 format!("DEF-{f}.{n:02}.{s}")
             }
         }
+    })
+}
+
+/// The name of a finger's metacarpal node, where the convention has one.
+fn metacarpal_name(naming: Naming, left: bool, finger: &str) -> Option<String> {
+    let pinky = if finger == "little" { "pinky" } else { finger };
+    let (side, s) = if left { ("left", "L") } else { ("right", "R") };
+    let thumb = finger == "thumb";
+    let palm = ["index", "middle", "ring", "little"]
+        .iter()
+        .position(|f| *f == finger)
+        .map(|i| i + 1);
+    Some(match naming {
+        Naming::Unreal5 if thumb => format!("thumb_01_{}", s.to_lowercase()),
+        Naming::Unreal5 => format!("{pinky}_metacarpal_{}", s.to_lowercase()),
+        Naming::WebXr if thumb => "thumb-metacarpal".into(),
+        Naming::WebXr => format!("{pinky}-finger-metacarpal"),
+        Naming::Rigify if thumb => format!("DEF-thumb.01.{s}"),
+        Naming::Rigify => format!("DEF-palm.{:02}.{s}", palm?),
+        Naming::Vrm if thumb => format!("{side}ThumbMetacarpal"),
+        _ => return None,
     })
 }
 
@@ -202,13 +259,20 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
     };
     let armature = tree.add(
         None,
-        json!({"name": "Armature", "scale": [0.01, 0.01, 0.01], "rotation": quat_arr(DQuat::from_rotation_x(0.2))}),
+        json!({"name": "Armature", "scale": [spec.armature_scale, spec.armature_scale, spec.armature_scale], "rotation": quat_arr(DQuat::from_rotation_x(0.2))}),
     );
     let hips = tree.add(
         Some(armature),
         json!({"name": hips, "translation": [0.0, 100.0, 0.0]}),
     );
     let mut joints = Vec::new();
+    // Per skin joint: whether vertices are weighted to it.
+    let mut weighted: Vec<bool> = Vec::new();
+    // Per finger: the node its root bends against (hand or metacarpal), its chain nodes.
+    let mut chains: Vec<(usize, Vec<usize>)> = Vec::new();
+    // Finger joint nodes: (node, finger, joint from MCP = 0).
+    let mut tags: Vec<(usize, &str, usize)> = Vec::new();
+    let mut hands: Vec<usize> = Vec::new();
     let mut vrm_table = serde_json::Map::new();
     let mut vrm0_table = Vec::new();
     let mut serial = 0;
@@ -231,6 +295,11 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
             (Naming::Anonymous, _) => "Spine".to_string(),
             (Naming::Mixamo, false) => "mixamorig:RightHand".into(),
             (Naming::Mixamo, true) => "mixamorig:LeftHand".into(),
+            (Naming::Unreal5, false) => "hand_r".into(),
+            (Naming::Unreal5, true) => "hand_l".into(),
+            (Naming::WebXr, _) => "wrist".into(),
+            (Naming::Rigify, false) => "DEF-hand.R".into(),
+            (Naming::Rigify, true) => "DEF-hand.L".into(),
             (_, false) => "RightHand".into(),
             (_, true) => "LeftHand".into(),
         };
@@ -239,14 +308,39 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
         let hand_node =
             json!({"name": hand_name, "translation": pos.to_array(), "rotation": quat_arr(rot)});
         let hand = tree.add(Some(hips), hand_node);
+        hands.push(hand);
         joints.push(hand);
+        weighted.push(true);
         for (fi, (finger, segs)) in XRAY_1B.iter().enumerate() {
             let count = segs.len() + 1;
             let mut parent = hand;
+            let r = roots[fi];
+            let root = DVec3::new(mirror * r.0, r.1, r.2);
+            // A metacarpal node 35% of the way from the hand to the MCP.
+            let mc_share = match metacarpal_name(spec.naming, left, finger) {
+                Some(name) if spec.metacarpals => {
+                    let mc = tree.add(
+                        Some(hand),
+                        json!({"name": name, "translation": (0.35 * root).to_array()}),
+                    );
+                    joints.push(mc);
+                    weighted.push(true);
+                    chains.push((mc, vec![]));
+                    parent = mc;
+                    0.35
+                }
+                _ => 0.0,
+            };
+            let chain_at = chains.len();
+            chains.push((hand, Vec::new()));
+            if mc_share > 0.0 {
+                chains[chain_at].0 = parent;
+            }
             for k in 0..count {
                 let mut t = if k == 0 {
-                    let r = roots[fi];
-                    DVec3::new(mirror * r.0, r.1, r.2)
+                    (1.0 - mc_share) * root
+                } else if k + 1 == count {
+                    DVec3::new(0.0, segs[k - 1] * CM_PER_UNIT + spec.tip_tissue_cm, 0.0)
                 } else {
                     DVec3::new(0.0, segs[k - 1] * CM_PER_UNIT, 0.0)
                 };
@@ -263,6 +357,7 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
                 serial += 1;
                 let Some(name) = name else { continue };
                 let mut node = json!({"name": name, "translation": t.to_array()});
+                tags.push((tree.nodes.len(), finger, k));
                 if k >= 1 && k + 1 < count {
                     node["rotation"] = quat_arr(DQuat::from_rotation_x(12f64.to_radians()));
                 }
@@ -280,33 +375,74 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
                     }
                 }
                 if spec.naming == Naming::Rigify && k + 1 < count {
-                    // A skinned control twin without DEF-, 1 cm off: the reader must take the DEF- bone.
+                    // A control twin 1 cm off: the reader must take the DEF- bone.
+                    // Either skinned and weighted without DEF-, or an ORG- twin
+                    // listed in the skin without any weight (Rigify's ORG bones).
+                    let prefix = if spec.org_twins { "ORG-" } else { "" };
                     let twin = tree.nodes[i]["name"]
                         .as_str()
                         .unwrap()
-                        .replacen("DEF-", "", 1);
+                        .replacen("DEF-", prefix, 1);
                     let twin = tree.add(
                         Some(parent),
                         json!({"name": twin, "translation": [t.x + 1.0, t.y, t.z]}),
                     );
                     joints.push(twin);
+                    weighted.push(!spec.org_twins);
                 }
                 // Tips are unskinned leaves, as Blender's leaf bones are.
                 if k + 1 < count || spec.naming == Naming::Mixamo {
                     joints.push(i);
+                    weighted.push(k + 1 < count || spec.smooth.is_none());
                 }
+                chains[chain_at].1.push(i);
                 parent = i;
             }
         }
     }
+    chains.retain(|c| !c.1.is_empty());
     let Tree {
         mut nodes,
-        children,
+        mut children,
     } = tree;
-    for (i, c) in children.iter().enumerate() {
-        if !c.is_empty() {
-            nodes[i]["children"] = json!(c);
+    let set_children = |nodes: &mut Vec<Value>, children: &[Vec<usize>]| {
+        for (i, c) in children.iter().enumerate() {
+            if let Some(o) = nodes[i].as_object_mut() {
+                o.remove("children");
+            }
+            if !c.is_empty() {
+                nodes[i]["children"] = json!(c);
+            }
         }
+    };
+    set_children(&mut nodes, &children);
+    if spec.siblings {
+        // Every node below a hand (finger joints, tips, metacarpals, twins)
+        // becomes a child of the hand, with the local matrix that keeps its
+        // world matrix.
+        let world = world_of(&nodes);
+        for &h in &hands {
+            let mut below = Vec::new();
+            let mut stack: Vec<usize> = children[h].clone();
+            while let Some(n) = stack.pop() {
+                below.push(n);
+                stack.extend(children[n].iter().copied());
+            }
+            for n in below {
+                for c in children.iter_mut() {
+                    c.retain(|&x| x != n);
+                }
+                children[h].push(n);
+                let local = world[h].inverse() * world[n];
+                if let Some(o) = nodes[n].as_object_mut() {
+                    for k in ["translation", "rotation", "scale"] {
+                        o.remove(k);
+                    }
+                }
+                nodes[n]["matrix"] = json!(local.to_cols_array());
+            }
+        }
+        set_children(&mut nodes, &children);
     }
     if spec.matrices {
         for n in nodes.iter_mut() {
@@ -321,21 +457,62 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
     }
     // World matrices of the bind pose, computed here independently of phalanx.
     let world = world_of(&nodes);
-    // Vertices: two per joint, 3 mm off its centre, weighted 0.6 to the joint and
-    // 0.4 to its parent joint (or the first hand).
     let mut positions: Vec<[f32; 3]> = Vec::new();
     let mut joint_ids: Vec<[u16; 4]> = Vec::new();
     let mut weights: Vec<[f32; 4]> = Vec::new();
-    for (ji, &node) in joints.iter().enumerate() {
-        let parent_ji = nodes_parent(&children, node)
-            .and_then(|p| joints.iter().position(|&j| j == p))
-            .unwrap_or(0);
-        let c = world[node].w_axis.truncate();
-        for off in [DVec3::new(0.003, 0.0, 0.0), DVec3::new(0.0, 0.0, -0.003)] {
-            let p = c + off;
-            positions.push([p.x as f32, p.y as f32, p.z as f32]);
-            joint_ids.push([ji as u16, parent_ji as u16, 0, 0]);
-            weights.push([0.6, 0.4, 0.0, 0.0]);
+    let slot = |node: usize| joints.iter().position(|&j| j == node).unwrap() as u16;
+    if let Some(offsets) = &spec.smooth {
+        for (root, chain) in &chains {
+            let finger = tags.iter().find(|t| t.0 == chain[0]).map_or("", |t| t.1);
+            let has_tip = chain.len()
+                == XRAY_1B
+                    .iter()
+                    .find(|f| f.0 == finger)
+                    .map_or(0, |f| f.1.len() + 1);
+            let bending = if has_tip {
+                chain.len() - 1
+            } else {
+                chain.len()
+            };
+            let pts: Vec<DVec3> = chain.iter().map(|&n| world[n].w_axis.truncate()).collect();
+            let bends: Vec<f64> = (0..bending)
+                .map(|k| {
+                    offsets
+                        .iter()
+                        .find(|o| o.0 == finger && o.1 == k)
+                        .map_or(0.0, |o| o.2 / 1000.0)
+                })
+                .collect();
+            let mut owners = vec![*root];
+            owners.extend(chain.iter().take(bending).copied());
+            tube(
+                &pts,
+                has_tip,
+                &bends,
+                &owners.iter().map(|&n| slot(n)).collect::<Vec<_>>(),
+                &mut positions,
+                &mut joint_ids,
+                &mut weights,
+            );
+        }
+    } else {
+        // Two vertices per weighted joint, 3 mm off its centre, weighted 0.6 to
+        // the joint and 0.4 to its parent joint (or the first hand).
+        for (ji, &node) in joints.iter().enumerate() {
+            if !weighted[ji] {
+                continue;
+            }
+            let parent_ji = nodes_parent(&children, node)
+                .and_then(|p| joints.iter().position(|&j| j == p))
+                .filter(|&p| weighted[p])
+                .unwrap_or(0);
+            let c = world[node].w_axis.truncate();
+            for off in [DVec3::new(0.003, 0.0, 0.0), DVec3::new(0.0, 0.0, -0.003)] {
+                let p = c + off;
+                positions.push([p.x as f32, p.y as f32, p.z as f32]);
+                joint_ids.push([ji as u16, parent_ji as u16, 0, 0]);
+                weights.push([0.6, 0.4, 0.0, 0.0]);
+            }
         }
     }
     let mut bin: Vec<u8> = Vec::new();
@@ -365,6 +542,46 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
         .flat_map(|&j| world[j].inverse().to_cols_array().map(|x| x as f32))
         .collect();
     let v_ibm = push_view(&mut bin, &f32s(&ibm));
+    // Two keyframes on every finger joint: translation and rotation at rest
+    // (the varying ones move 0.3 node units along y on the second key).
+    let mut anim_accessors = Vec::new();
+    let mut samplers = Vec::new();
+    let mut channels = Vec::new();
+    if spec.animate {
+        let v_time = push_view(&mut bin, &f32s(&[0.0, 1.0]));
+        anim_accessors.push(json!({"bufferView": v_time, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0.0], "max": [1.0]}));
+        for &(node, finger, k) in &tags {
+            let n = &nodes[node];
+            let t = n["translation"].as_array().map_or([0.0; 3], |a| {
+                [
+                    a[0].as_f64().unwrap(),
+                    a[1].as_f64().unwrap(),
+                    a[2].as_f64().unwrap(),
+                ]
+            });
+            let r: Vec<f32> = n["rotation"]
+                .as_array()
+                .map_or(vec![0.0, 0.0, 0.0, 1.0], |a| {
+                    a.iter().map(|x| x.as_f64().unwrap() as f32).collect()
+                });
+            let mut t2 = t;
+            if spec.varying.contains(&(finger, k)) {
+                t2[1] += 0.3;
+            }
+            let keys: Vec<f32> = t.iter().chain(&t2).map(|&x| x as f32).collect();
+            let v_t = push_view(&mut bin, &f32s(&keys));
+            let v_r = push_view(&mut bin, &f32s(&[r.clone(), r].concat()));
+            for (view, ty, path) in [(v_t, "VEC3", "translation"), (v_r, "VEC4", "rotation")] {
+                anim_accessors.push(
+                    json!({"bufferView": view, "componentType": 5126, "count": 2, "type": ty}),
+                );
+                samplers.push(json!({"input": 4, "output": 4 + anim_accessors.len() - 1, "interpolation": "LINEAR"}));
+                channels.push(
+                    json!({"sampler": samplers.len() - 1, "target": {"node": node, "path": path}}),
+                );
+            }
+        }
+    }
     let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
     for p in &positions {
         for k in 0..3 {
@@ -399,10 +616,93 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
         doc["extensionsUsed"] = json!(["VRM"]);
         doc["extensions"] = json!({"VRM": {"humanoid": {"humanBones": vrm0_table}}});
     }
+    if spec.animate {
+        doc["accessors"]
+            .as_array_mut()
+            .unwrap()
+            .extend(anim_accessors);
+        doc["animations"] = json!([{"name": "Idle", "samplers": samplers, "channels": channels}]);
+    }
     for (k, v) in &spec.extra {
         doc[*k] = v.clone();
     }
     glb(&doc, bin)
+}
+
+/// A tube of skin around a finger through `pts` (MCP first; the last is the
+/// tip when `has_tip`): rings of 8 vertices 6 mm from the axis every 0.5 mm,
+/// from one first segment before the MCP (the palm) to the tip (or one last
+/// segment past the last joint). The weights pass from bone to bone with a
+/// smoothstep 8 mm wide centred `bends[k]` (m) distal of joint k; `owners`
+/// are the skin slots of the bone before the MCP and of each bone from a
+/// joint (MCP first).
+fn tube(
+    pts: &[DVec3],
+    has_tip: bool,
+    bends: &[f64],
+    owners: &[u16],
+    positions: &mut Vec<[f32; 3]>,
+    joint_ids: &mut Vec<[u16; 4]>,
+    weights: &mut Vec<[f32; 4]>,
+) {
+    let n = pts.len();
+    let mut axis = vec![pts[0] - (pts[1] - pts[0])];
+    axis.extend_from_slice(pts);
+    if !has_tip {
+        axis.push(pts[n - 1] + (pts[n - 1] - pts[n - 2]));
+    }
+    let mut arcs = vec![0.0];
+    for w in axis.windows(2) {
+        arcs.push(arcs.last().unwrap() + w[0].distance(w[1]));
+    }
+    let origin = arcs[1];
+    let joint_u: Vec<f64> = (0..bends.len()).map(|k| arcs[k + 1] - origin).collect();
+    let smooth = |x: f64| {
+        let t = ((x + 0.004) / 0.008).clamp(0.0, 1.0);
+        t * t * (3.0 - 2.0 * t)
+    };
+    let total = arcs[arcs.len() - 1];
+    let mut a = 0.0;
+    while a <= total + 1e-12 {
+        let seg = (0..axis.len() - 1)
+            .find(|&i| a <= arcs[i + 1] + 1e-12)
+            .unwrap_or(axis.len() - 2);
+        let t = (a - arcs[seg]) / (arcs[seg + 1] - arcs[seg]);
+        let c = axis[seg].lerp(axis[seg + 1], t);
+        let dir = (axis[seg + 1] - axis[seg]).normalize();
+        let side = dir.cross(DVec3::Z).normalize();
+        let up = dir.cross(side);
+        let u = a - origin;
+        // s_k: how far past joint k's bend; the bone from joint k weighs s_k - s_(k+1).
+        let s: Vec<f64> = joint_u
+            .iter()
+            .zip(bends)
+            .map(|(j, b)| smooth(u - j - b))
+            .collect();
+        let mut w: Vec<(u16, f64)> = vec![(owners[0], 1.0 - s[0])];
+        for k in 0..s.len() {
+            let next = s.get(k + 1).copied().unwrap_or(0.0);
+            w.push((owners[k + 1], s[k] - next));
+        }
+        w.retain(|x| x.1 > 0.0);
+        w.sort_by(|x, y| y.1.total_cmp(&x.1));
+        w.truncate(4);
+        let sum: f64 = w.iter().map(|x| x.1).sum();
+        for i in 0..8 {
+            let ang = i as f64 * std::f64::consts::TAU / 8.0;
+            let p = c + 0.006 * (ang.cos() * side + ang.sin() * up);
+            positions.push([p.x as f32, p.y as f32, p.z as f32]);
+            let mut ids = [0u16; 4];
+            let mut ws = [0f32; 4];
+            for (k, &(j, x)) in w.iter().enumerate() {
+                ids[k] = j;
+                ws[k] = (x / sum) as f32;
+            }
+            joint_ids.push(ids);
+            weights.push(ws);
+        }
+        a += 0.0005;
+    }
 }
 
 /// A GLB container around a JSON document and a binary chunk.
@@ -504,17 +804,58 @@ pub fn read_glb(bytes: &[u8]) -> (Value, Vec<u8>) {
 /// Every vertex of skin 0's mesh in its rest pose: sum_i w_i (W_i B_i) v, with W
 /// the joints' world matrices and B the inverse bind matrices (glTF 2.0 skinning).
 pub fn skinned_rest_vertices(bytes: &[u8]) -> Vec<DVec3> {
+    skinned_vertices(bytes, None)
+}
+
+/// `doc` with its nodes posed by keyframe `key` of animation 0 (unchanged
+/// for `None`): each channel's output element `key` (linear keys) replaces
+/// its node's translation, rotation or scale.
+pub fn posed(mut doc: Value, bin: &[u8], key: Option<usize>) -> Value {
+    let Some(k) = key else { return doc };
+    let f32_at = |o: usize| f32::from_le_bytes(bin[o..o + 4].try_into().unwrap()) as f64;
+    let anim = doc["animations"][0].clone();
+    for ch in anim["channels"].as_array().unwrap() {
+        let s = &anim["samplers"][ch["sampler"].as_u64().unwrap() as usize];
+        let a = &doc["accessors"][s["output"].as_u64().unwrap() as usize];
+        let v = &doc["bufferViews"][a["bufferView"].as_u64().unwrap() as usize];
+        let o = v["byteOffset"].as_u64().unwrap_or(0) as usize
+            + a["byteOffset"].as_u64().unwrap_or(0) as usize;
+        let path = ch["target"]["path"].as_str().unwrap();
+        let n = match path {
+            "translation" | "scale" => 3,
+            "rotation" => 4,
+            _ => continue,
+        };
+        let vals: Vec<f64> = (0..n).map(|c| f32_at(o + 4 * (n * k + c))).collect();
+        let node = ch["target"]["node"].as_u64().unwrap() as usize;
+        doc["nodes"][node][path] = json!(vals);
+    }
+    doc
+}
+
+/// Every vertex of skin 0's mesh (first primitive), with the nodes posed by
+/// keyframe `key` of animation 0 when given: each channel's output element
+/// `key` (linear keys) replaces its node's translation, rotation or scale.
+/// Written here from the glTF 2.0 specification, independently of phalanx.
+pub fn skinned_vertices(bytes: &[u8], key: Option<usize>) -> Vec<DVec3> {
     let (doc, bin) = read_glb(bytes);
-    let nodes = doc["nodes"].as_array().unwrap();
-    let world = world_of(nodes);
-    let accessor = |i: usize| -> (usize, usize) {
+    let doc = posed(doc, &bin, key);
+    let f32_at = |o: usize| f32::from_le_bytes(bin[o..o + 4].try_into().unwrap()) as f64;
+    // (byte offset, count, stride in bytes or 0 when packed, componentType).
+    let accessor = |doc: &Value, i: usize| -> (usize, usize, usize, u64) {
         let a = &doc["accessors"][i];
         let v = &doc["bufferViews"][a["bufferView"].as_u64().unwrap() as usize];
         let off = v["byteOffset"].as_u64().unwrap_or(0) as usize
             + a["byteOffset"].as_u64().unwrap_or(0) as usize;
-        (off, a["count"].as_u64().unwrap() as usize)
+        (
+            off,
+            a["count"].as_u64().unwrap() as usize,
+            v["byteStride"].as_u64().unwrap_or(0) as usize,
+            a["componentType"].as_u64().unwrap(),
+        )
     };
-    let f32_at = |o: usize| f32::from_le_bytes(bin[o..o + 4].try_into().unwrap()) as f64;
+    let nodes = doc["nodes"].as_array().unwrap();
+    let world = world_of(nodes);
     let skin = &doc["skins"][0];
     let joints: Vec<usize> = skin["joints"]
         .as_array()
@@ -522,7 +863,7 @@ pub fn skinned_rest_vertices(bytes: &[u8]) -> Vec<DVec3> {
         .iter()
         .map(|j| j.as_u64().unwrap() as usize)
         .collect();
-    let (ib, _) = accessor(skin["inverseBindMatrices"].as_u64().unwrap() as usize);
+    let (ib, ..) = accessor(&doc, skin["inverseBindMatrices"].as_u64().unwrap() as usize);
     let mats: Vec<DMat4> = joints
         .iter()
         .enumerate()
@@ -532,24 +873,28 @@ pub fn skinned_rest_vertices(bytes: &[u8]) -> Vec<DVec3> {
         })
         .collect();
     let prim = &doc["meshes"][0]["primitives"][0]["attributes"];
-    let (p, n) = accessor(prim["POSITION"].as_u64().unwrap() as usize);
-    let (ji, _) = accessor(prim["JOINTS_0"].as_u64().unwrap() as usize);
-    let (w, _) = accessor(prim["WEIGHTS_0"].as_u64().unwrap() as usize);
+    let (p, n, ps, _) = accessor(&doc, prim["POSITION"].as_u64().unwrap() as usize);
+    let (ji, _, js, jt) = accessor(&doc, prim["JOINTS_0"].as_u64().unwrap() as usize);
+    let (w, _, ws, _) = accessor(&doc, prim["WEIGHTS_0"].as_u64().unwrap() as usize);
+    let (ps, ws) = (ps.max(12), ws.max(16));
+    let jsize = if jt == 5121 { 1 } else { 2 };
+    let js = js.max(4 * jsize);
     (0..n)
         .map(|v| {
             let pos = DVec3::new(
-                f32_at(p + 12 * v),
-                f32_at(p + 12 * v + 4),
-                f32_at(p + 12 * v + 8),
+                f32_at(p + ps * v),
+                f32_at(p + ps * v + 4),
+                f32_at(p + ps * v + 8),
             );
             let mut out = DVec3::ZERO;
             for k in 0..4 {
-                let j = u16::from_le_bytes(
-                    bin[ji + 8 * v + 2 * k..ji + 8 * v + 2 * k + 2]
-                        .try_into()
-                        .unwrap(),
-                ) as usize;
-                let wt = f32_at(w + 16 * v + 4 * k);
+                let at = ji + js * v + jsize * k;
+                let j = if jsize == 1 {
+                    bin[at] as usize
+                } else {
+                    u16::from_le_bytes(bin[at..at + 2].try_into().unwrap()) as usize
+                };
+                let wt = f32_at(w + ws * v + 4 * k);
                 out += wt * mats[j].transform_point3(pos);
             }
             out

@@ -134,8 +134,10 @@ impl Workdir {
     /// A `phalanx` command with this directory as its current directory.
     pub fn command(&self, args: &[&str]) -> Command {
         let mut cmd = Command::cargo_bin("phalanx").expect("the phalanx binary");
+        // Tables fit 100 columns when not on a terminal; a COLUMNS of the caller's would change that.
         cmd.current_dir(self.dir.path())
             .args(args)
+            .env_remove("COLUMNS")
             .timeout(Duration::from_secs(120));
         cmd
     }

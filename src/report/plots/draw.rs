@@ -131,7 +131,7 @@ impl Kind {
     }
 
     /// Prediction intervals are dashed, so they differ from the CIs without colour.
-    fn dashed(self) -> bool {
+    pub(super) fn dashed(self) -> bool {
         self == Kind::Prediction
     }
 }
@@ -696,11 +696,7 @@ pub(super) fn stats_values(s: &QuantityStats) -> Vec<f64> {
 
 /// "1 X-ray", "5 X-rays".
 pub(super) fn xrays(n: usize) -> String {
-    if n == 1 {
-        "1 X-ray".to_string()
-    } else {
-        format!("{n} X-rays")
-    }
+    format::xrays(n)
 }
 
 /// Text without control characters (XML 1.0 cannot carry most of them).

@@ -285,7 +285,7 @@ fn draw_intervals(
                 pen.diamond(at(s.mean, y), 4)?;
             }
             None => {
-                let why = if s.n < 2 { "n = 1" } else { "see notes" };
+                let why = if s.n < 2 { "1 X-ray" } else { "see notes" };
                 let p = at(left, y);
                 pen.note((p.0 + 8, p.1), &format!("not available ({why})"))?;
             }

@@ -110,7 +110,7 @@ fn draw_row(pen: &Pen, at: &dyn Fn(f64) -> Px, s: &QuantityStats, right_px: i32)
         return Ok(());
     }
     let note = if missing.len() == Kind::ALL.len() {
-        let why = if s.n < 2 { " (n = 1)" } else { "" };
+        let why = if s.n < 2 { " (1 X-ray)" } else { "" };
         format!("no intervals{why}")
     } else {
         format!("not available: {}", missing.join(", "))

@@ -394,9 +394,9 @@ fn a_single_xray_draws_without_intervals() {
     for p in &plots {
         assert_accessible(p);
     }
-    assert!(plots[0].svg.contains("not available (n = 1)"));
+    assert!(plots[0].svg.contains("not available (1 X-ray)"));
     assert!(plots[2].svg.contains("L = 50 model units"));
-    assert!(plots[3].svg.contains("no intervals (n = 1)"));
+    assert!(plots[3].svg.contains("no intervals (1 X-ray)"));
     assert!(plots[0].description.contains("from 1 X-ray."));
 }
 

@@ -28,7 +28,10 @@ pub fn hands(
     side: Option<Side>,
 ) -> Result<Vec<HandChains>, DataError> {
     let names = file.node_names();
-    let found = crate::rig::recognise(file, &names, map)?;
+    // The same weights as the audit weighs candidates with.
+    let weights = crate::rig::skin_weights(file);
+    let weighted = crate::rig::weighted_nodes(weights.as_ref(), names.len());
+    let found = crate::rig::recognise(file, &names, map, &weighted)?;
     let (best, _) = crate::rig::choose_nodes(&found);
     let mut groups: BTreeMap<Option<Side>, BTreeMap<Finger, HashMap<Slot, usize>>> =
         BTreeMap::new();

@@ -1,6 +1,5 @@
-//! The WebXR generic hands (MIT; beside the repository in
-//! `../shared/rigs/webxr-generic-hand/`, or vendored in
-//! `tests/fixtures/webxr-generic-hand/`): read, curled, measured and drawn.
+//! The WebXR generic hands (MIT; vendored in `data/rigs/webxr-generic-hand/`
+//! with their licence and source): read, curled, measured and drawn.
 //! Skipped, saying why, when the files are not there.
 //!
 //! Their 25 joints are siblings under `Armature`, so the chains are built
@@ -14,13 +13,8 @@ use crate::rig::skin::{SkinnedMesh, pick_skin};
 use std::path::{Path, PathBuf};
 
 fn rig_dir() -> Option<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    [
-        root.join("tests/fixtures/webxr-generic-hand"),
-        root.join("../shared/rigs/webxr-generic-hand"),
-    ]
-    .into_iter()
-    .find(|d| d.join("left.glb").is_file() && d.join("right.glb").is_file())
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/rigs/webxr-generic-hand");
+    (dir.join("left.glb").is_file() && dir.join("right.glb").is_file()).then_some(dir)
 }
 
 /// The chains of a WebXR hand, by joint name.
@@ -99,9 +93,7 @@ fn table(label: &str, m: &HandMeasures) {
 #[test]
 fn the_webxr_hands_curl_into_a_fist() {
     let Some(dir) = rig_dir() else {
-        eprintln!(
-            "skipped: the WebXR generic hands are not beside the repository (../shared/rigs/webxr-generic-hand) nor vendored"
-        );
+        eprintln!("skipped: the WebXR generic hands are not in data/rigs/webxr-generic-hand");
         return;
     };
     let out = std::env::var_os("PHALANX_RENDER_DIR").map(PathBuf::from);
@@ -110,6 +102,11 @@ fn the_webxr_hands_curl_into_a_fist() {
     for (name, side) in [("left", Side::Left), ("right", Side::Right)] {
         let file = GltfFile::load(&dir.join(format!("{name}.glb"))).unwrap();
         let hand = chains(&file, side);
+        // The audit's reading of the rig gives the same chains (its names carry
+        // no side: the caller gives it).
+        let rig = crate::rig::Rig::load(&dir.join(format!("{name}.glb")), None).unwrap();
+        assert_eq!(rig.hand_chains(Some(side)), vec![hand.clone()]);
+        assert!(rig.hand_chains(None).is_empty());
         let nodes: Vec<usize> = hand.fingers.iter().flat_map(|f| f.joints.clone()).collect();
         let skin = pick_skin(&file, &nodes).unwrap();
         let mesh = SkinnedMesh::read(&file, &dir, skin).unwrap();

@@ -1,0 +1,253 @@
+//! Animation channels of a rig, read from the file's JSON rather than
+//! through the gltf crate (whose `Target::property` panics on a path it does
+//! not know: a misspelt `rottaion`, or KHR_animation_pointer's `pointer`).
+//! Such channels are reported and left alone.
+//!
+//! When `--fix` moves a joint it changes the node's rest translation by d
+//! (in its parent's space). Translation keys of that node are offset by the
+//! same d: a constant channel equal to the old rest translation (what Mixamo
+//! and Blender export on every bone) becomes the new rest translation; a
+//! channel that varies keeps its motion about the new rest, with a note.
+//! Cubic-spline keys offset their values, not their tangents.
+
+use super::accessor::{self, Span};
+use glam::DVec3;
+use serde_json::{Value, json};
+use std::collections::BTreeMap;
+
+/// The four paths glTF 2.0 animates.
+const PATHS: [&str; 4] = ["translation", "rotation", "scale", "weights"];
+
+/// One channel as the JSON has it.
+#[derive(Debug, Clone)]
+pub struct Channel {
+    pub animation: usize,
+    pub channel: usize,
+    pub sampler: Option<usize>,
+    pub node: Option<usize>,
+    pub path: Option<String>,
+}
+
+/// The name of animation `a` for messages.
+fn animation_name(json: &Value, a: usize) -> String {
+    json["animations"][a]["name"]
+        .as_str()
+        .map_or_else(|| format!("#{a}"), super::shown)
+}
+
+/// Every channel of every animation. O(channels).
+pub fn channels(json: &Value) -> Vec<Channel> {
+    let mut out = Vec::new();
+    for (a, anim) in json["animations"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .enumerate()
+    {
+        for (c, ch) in anim["channels"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
+            out.push(Channel {
+                animation: a,
+                channel: c,
+                sampler: ch["sampler"].as_u64().map(|s| s as usize),
+                node: ch["target"]["node"].as_u64().map(|n| n as usize),
+                path: ch["target"]["path"].as_str().map(str::to_string),
+            });
+        }
+    }
+    out
+}
+
+/// True when a channel names a node and a path glTF 2.0 knows: the gltf
+/// crate may read it.
+pub fn is_plain(ch: &Value) -> bool {
+    ch["target"]["node"].is_u64()
+        && ch["target"]["path"]
+            .as_str()
+            .is_some_and(|p| PATHS.contains(&p))
+}
+
+/// One remark per animation with channels the audit leaves alone: unknown
+/// paths (misspelt, or an extension's such as KHR_animation_pointer).
+pub fn unknown_paths(json: &Value) -> Vec<String> {
+    let mut by_anim: BTreeMap<usize, Vec<String>> = BTreeMap::new();
+    for ch in channels(json) {
+        let known = ch.path.as_deref().is_some_and(|p| PATHS.contains(&p));
+        if !known || ch.node.is_none() {
+            let what = match ch.path.as_deref() {
+                Some("pointer") => format!("channel {} (KHR_animation_pointer)", ch.channel),
+                Some(p) => format!("channel {} (path {})", ch.channel, super::shown(p)),
+                None => format!("channel {} (no path)", ch.channel),
+            };
+            by_anim.entry(ch.animation).or_default().push(what);
+        }
+    }
+    by_anim
+        .into_iter()
+        .map(|(a, list)| {
+            format!(
+                "animation {}: {} target no node path glTF 2.0 defines (translation, rotation, \
+                 scale, weights); left alone: if one animates a moved joint, re-bake it",
+                animation_name(json, a),
+                list.join(", ")
+            )
+        })
+        .collect()
+}
+
+/// Offsets the translation keys of every node in `delta` (node -> change of
+/// its rest translation), in place where the keys' accessor serves only
+/// those keys, else in a copy with its own sampler. Returns remarks.
+pub fn offset_translations(
+    json: &mut Value,
+    bin: &mut Vec<u8>,
+    delta: &BTreeMap<usize, (DVec3, DVec3)>,
+) -> Vec<String> {
+    let mut notes = Vec::new();
+    let mut varying: BTreeMap<usize, Vec<String>> = BTreeMap::new();
+    let mut constant: BTreeMap<usize, usize> = BTreeMap::new();
+    let all = channels(json);
+    for ch in &all {
+        let (Some(node), Some(sampler), Some("translation")) =
+            (ch.node, ch.sampler, ch.path.as_deref())
+        else {
+            continue;
+        };
+        let Some(&(old, d)) = delta.get(&node) else {
+            continue;
+        };
+        let name = json["nodes"][node]["name"]
+            .as_str()
+            .map_or_else(|| format!("node {node}"), super::shown);
+        let s = &json["animations"][ch.animation]["samplers"][sampler];
+        let (Some(output), cubic) = (
+            s["output"].as_u64().map(|o| o as usize),
+            s["interpolation"].as_str() == Some("CUBICSPLINE"),
+        ) else {
+            continue;
+        };
+        let span = match accessor::span(json, output, bin.len()) {
+            Some(sp) if sp.component == 5126 && sp.components == 3 => sp,
+            _ => {
+                notes.push(format!(
+                    "animation {}: the translation keys of {name} are not stored as plain floats; \
+                     they are not offset: re-bake them",
+                    animation_name(json, ch.animation)
+                ));
+                continue;
+            }
+        };
+        // In place when no other sampler or channel uses these keys.
+        let users = all
+            .iter()
+            .filter(|c| c.animation == ch.animation && c.sampler == Some(sampler))
+            .count();
+        let exclusive = accessor::references(json).get(&output) == Some(&1) && users == 1;
+        let values: Vec<usize> = (0..span.count).filter(|i| !cubic || i % 3 == 1).collect();
+        let keys: Vec<DVec3> = values
+            .iter()
+            .map(|&i| DVec3::from_slice(&span.read(bin, i)))
+            .collect();
+        let tol = 1e-6 * old.length().max(1e-3);
+        if keys.iter().all(|k| k.distance(old) <= tol) {
+            *constant.entry(ch.animation).or_default() += 1;
+        } else {
+            varying.entry(ch.animation).or_default().push(name.clone());
+        }
+        let target = if exclusive {
+            (output, span)
+        } else {
+            match copy_accessor(json, bin, output, &span) {
+                Some(t) => {
+                    let mut s2 = json["animations"][ch.animation]["samplers"][sampler].clone();
+                    s2["output"] = json!(t.0);
+                    let new = push(&mut json["animations"][ch.animation]["samplers"], s2);
+                    json["animations"][ch.animation]["channels"][ch.channel]["sampler"] =
+                        json!(new);
+                    t
+                }
+                None => continue,
+            }
+        };
+        for (&i, k) in values.iter().zip(&keys) {
+            let v = *k + d;
+            target
+                .1
+                .write_f32(bin, i, &[v.x as f32, v.y as f32, v.z as f32]);
+        }
+        accessor::refresh_bounds(json, target.0, &target.1, bin);
+    }
+    for (a, n) in constant {
+        notes.push(format!(
+            "animation {}: {n} constant translation channel{} of moved joints now key the new rest \
+             translation",
+            animation_name(json, a),
+            if n == 1 { "" } else { "s" }
+        ));
+    }
+    for (a, names) in varying {
+        notes.push(format!(
+            "animation {}: the translation keys of {} vary; each key is offset by its joint's \
+             move, so the motion is kept about the new rest position: check it",
+            animation_name(json, a),
+            names.join(", ")
+        ));
+    }
+    notes
+}
+
+/// Appends a copy of a float accessor's elements (tightly packed, 4-byte
+/// aligned) with its own view; returns the new accessor and its span.
+fn copy_accessor(
+    json: &mut Value,
+    bin: &mut Vec<u8>,
+    acc: usize,
+    span: &Span,
+) -> Option<(usize, Span)> {
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let start = bin.len();
+    for i in 0..span.count {
+        let v: Vec<f32> = span.read(bin, i).into_iter().map(|x| x as f32).collect();
+        for x in v {
+            bin.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+    let size = 4 * span.components;
+    let view = push(
+        &mut json["bufferViews"],
+        json!({"buffer": 0, "byteOffset": start, "byteLength": size * span.count}),
+    );
+    let mut a = json["accessors"][acc].clone();
+    let o = a.as_object_mut()?;
+    o.insert("bufferView".into(), json!(view));
+    o.remove("byteOffset");
+    let new = push(&mut json["accessors"], a);
+    Some((
+        new,
+        Span {
+            start,
+            stride: size,
+            ..*span
+        },
+    ))
+}
+
+/// Appends `value` to the JSON array `list` (made one when it is not); its index.
+pub fn push(list: &mut Value, value: Value) -> usize {
+    if !list.is_array() {
+        *list = json!([]);
+    }
+    match list.as_array_mut() {
+        Some(arr) => {
+            arr.push(value);
+            arr.len() - 1
+        }
+        None => 0,
+    }
+}

@@ -1,0 +1,199 @@
+//! Naming conventions and layouts of real rigs, built by the tests: UE5's leaf
+//! tips and metacarpals, Rigify's weighted DEF- bones against unweighted ORG-
+//! twins, sibling joints read by name (with --map too), an MCP at the finger
+//! web, and a rig in centimetres.
+
+use super::hand::{HandSpec, Naming, build};
+use super::{audit_json, finger_of, fingers, joint_of, worst_vertex_move};
+use crate::common::*;
+
+#[test]
+fn a_ue5_hand_with_leaf_tips_is_judged_on_relative_values() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let mut spec = HandSpec::new(Naming::Unreal5);
+    spec.metacarpals = true;
+    spec.left_too = true;
+    wd.write("ue5.glb", build(&spec));
+    let doc = audit_json(&wd, "ue5.glb");
+    assert_eq!(fingers(&doc).len(), 10);
+    for f in fingers(&doc) {
+        let (name, side) = (f["finger"].as_str().unwrap(), f["side"].as_str().unwrap());
+        let s = &side[..1];
+        let pinky = if name == "little" { "pinky" } else { name };
+        assert_eq!(f["audit"]["basis"], "relative", "{side} {name}");
+        let joints = f["joints"].as_array().unwrap();
+        assert_eq!(
+            joints.last().unwrap()["name"],
+            format!("{pinky}_04_leaf_{s}")
+        );
+        assert_eq!(joints.last().unwrap()["joint"], "tip");
+        let mc = if name == "thumb" {
+            format!("thumb_01_{s}")
+        } else {
+            format!("{pinky}_metacarpal_{s}")
+        };
+        assert_eq!(f["metacarpal"]["name"], mc, "{side} {name}");
+        assert_eq!(f["wrist"]["name"], format!("hand_{s}"));
+        assert_eq!(f["hierarchy"], true);
+    }
+    // X-ray 1b's proportions with skin tips: inside the prediction intervals.
+    assert_eq!(doc["fingers_outside"], 0);
+}
+
+#[test]
+fn rigify_uses_the_weighted_def_bone_over_its_unweighted_org_twin_and_says_so() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let mut spec = HandSpec::new(Naming::Rigify);
+    spec.org_twins = true;
+    spec.metacarpals = true;
+    wd.write("rigify.glb", build(&spec));
+    let doc = audit_json(&wd, "rigify.glb");
+    let thumb = finger_of(&doc, "thumb");
+    assert_eq!(thumb["joints"][0]["name"], "DEF-thumb.02.R");
+    assert_eq!(thumb["joints"][0]["weighted"], true);
+    assert_eq!(thumb["joints"][1]["name"], "DEF-thumb.03.R");
+    assert_eq!(thumb["metacarpal"]["name"], "DEF-thumb.01.R");
+    assert_eq!(
+        finger_of(&doc, "index")["metacarpal"]["name"],
+        "DEF-palm.01.R"
+    );
+    assert_eq!(
+        finger_of(&doc, "little")["metacarpal"]["name"],
+        "DEF-palm.04.R"
+    );
+    assert_eq!(thumb["wrist"]["name"], "DEF-hand.R");
+    let notes = doc["rig"]["notes"].to_string();
+    assert!(
+        notes.contains("the bone that carries skin weight was used")
+            && notes.contains("'DEF-thumb.02.R' over 'ORG-thumb.02.R'"),
+        "{notes}"
+    );
+    assert_eq!(doc["fingers_outside"], 0);
+}
+
+#[test]
+fn sibling_joints_are_read_by_name_and_through_a_map() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let mut spec = HandSpec::new(Naming::WebXr).moved("index", 1, 1.0);
+    spec.siblings = true;
+    spec.metacarpals = true;
+    let input = build(&spec);
+    wd.write("xr.glb", &input);
+    let doc = audit_json(&wd, "xr.glb");
+    assert_eq!(fingers(&doc).len(), 5);
+    for f in fingers(&doc) {
+        assert_eq!(f["hierarchy"], false, "{}", f["finger"]);
+    }
+    assert_eq!(
+        finger_of(&doc, "index")["audit"]["explanation"]["moved"],
+        serde_json::json!(["PIP"])
+    );
+    wd.run(&["audit", "xr.glb", "--fix", "fixed.glb"])
+        .ok()
+        .stderr_has("1 joints moved; re-audited, 0 of 5 fingers outside");
+    assert!(worst_vertex_move(&input, &wd.read("fixed.glb")) < 1e-5);
+    // Anonymous siblings, named by a map.
+    let mut spec = HandSpec::new(Naming::Anonymous).moved("index", 1, 1.0);
+    spec.siblings = true;
+    let input = build(&spec);
+    wd.write("bones.glb", &input);
+    // Bone serials: thumb 0-2, index 3-6.
+    let mut map = String::from("node,side,finger,joint\n");
+    for (k, j) in ["MCP", "PIP", "DIP", "tip"].iter().enumerate() {
+        map.push_str(&format!("Bone.{:03},right,index,{j}\n", 3 + k));
+    }
+    wd.write("names.csv", &map);
+    let doc = wd
+        .run(&[
+            "audit",
+            "bones.glb",
+            "--map",
+            "names.csv",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    let idx = finger_of(&doc, "index");
+    assert_eq!(idx["hierarchy"], false);
+    assert_eq!(joint_of(idx, "PIP")["standing"], "above");
+    wd.run(&[
+        "audit",
+        "bones.glb",
+        "--map",
+        "names.csv",
+        "--fix",
+        "out.glb",
+    ])
+    .ok()
+    .stderr_has("0 of 1 fingers outside");
+    assert!(worst_vertex_move(&input, &wd.read("out.glb")) < 1e-5);
+}
+
+#[test]
+fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    // The index MCP 1 cm towards the tip (at the web); PIP, DIP and the
+    // skin tip where X-ray 1b has them.
+    let input = build(&HandSpec::new(Naming::Mixamo).moved("index", 0, 1.0));
+    wd.write("web.glb", &input);
+    let doc = audit_json(&wd, "web.glb");
+    let idx = finger_of(&doc, "index");
+    assert_eq!(
+        idx["audit"]["explanation"]["moved"],
+        serde_json::json!(["MCP"])
+    );
+    let mcp = joint_of(idx, "MCP");
+    assert_eq!(mcp["standing"], "above");
+    // Moved back towards the root by about the 10 mm it was pushed.
+    let back = -num(&mcp["shift_along"]);
+    assert!((0.007..0.013).contains(&back), "{back}");
+    assert_eq!(joint_of(idx, "PIP")["moves"], false);
+    assert_eq!(joint_of(idx, "DIP")["moves"], false);
+    // The words, however the lines wrap.
+    let words = wd
+        .run(&["audit", "web.glb"])
+        .ok()
+        .stdout
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    for needle in [
+        "Explanation: the MCP sits ",
+        " mm distal of where the X-rays put it (at the finger web, not the knuckle?); PIP, DIP and \
+         the tip are consistent with the X-rays once the MCP and the soft tissue are accounted for.",
+        "move MCP ",
+    ] {
+        assert!(words.contains(needle), "{needle}\n{words}");
+    }
+    // The fix moves the MCP alone, back into the range, and keeps the mesh.
+    wd.run(&["audit", "web.glb", "--fix", "fixed.glb"])
+        .ok()
+        .stderr_has("1 joints moved; re-audited, 0 of 5 fingers outside");
+    assert!(worst_vertex_move(&input, &wd.read("fixed.glb")) < 1e-5);
+}
+
+#[test]
+fn a_rig_in_centimetres_gets_a_warning_naming_the_unit() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let mut spec = HandSpec::new(Naming::Mixamo);
+    spec.armature_scale = 1.0;
+    wd.write("cm.glb", build(&spec));
+    let doc = audit_json(&wd, "cm.glb");
+    let w = doc["rig"]["warnings"].to_string();
+    assert!(w.contains("likely in centimetres"), "{w}");
+    wd.run(&["audit", "cm.glb"])
+        .ok()
+        .stdout_has("Warning: its fingers are ");
+    // In metres: no warning.
+    wd.write("m.glb", build(&HandSpec::new(Naming::Mixamo)));
+    assert_eq!(
+        audit_json(&wd, "m.glb")["rig"]["warnings"],
+        serde_json::json!([])
+    );
+}
