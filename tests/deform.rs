@@ -536,5 +536,22 @@ fn the_webxr_hands_deform_and_draw() {
         let fix = wd.run(&["deform", rig, "--fix", "--out", &format!("f-{side}")]);
         fix.ok().stdout_has("B: ").stdout_has("Verdict:");
         eprintln!("{}", fix.stdout);
+        if side == "right" {
+            // The README's --fix table is what the command prints.
+            let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
+            let rows: Vec<&str> = fix.stdout.lines().filter(|l| l.starts_with('|')).collect();
+            assert_eq!(rows.len(), 16, "{}", fix.stdout);
+            for line in rows.iter().chain(
+                fix.stdout
+                    .lines()
+                    .find(|l| l.starts_with("Verdict:"))
+                    .iter(),
+            ) {
+                assert!(
+                    readme.contains(line),
+                    "README lacks the --fix line:\n{line}"
+                );
+            }
+        }
     }
 }
