@@ -13,7 +13,10 @@ if [ ! -x /usr/bin/time ]; then
     exit 1
 fi
 cargo build --release -q
+cargo build --release -q --example tube_hand
 bin=target/release/phalanx
+# A synthetic skinned right hand of about 30,000 triangles (32 vertices per ring, a ring every 1.44 mm).
+target/release/examples/tube_hand "$work/hand30k-right.glb" right 32 1.44 0 2> /dev/null
 
 "$bin" synth --xrays 10000 --seed 1 --out "$work/x10k.csv"
 "$bin" synth --xrays 100000 --seed 1 --out "$work/x100k.csv"
@@ -51,6 +54,8 @@ measure "100,000 X-rays, stats --format json" "10 s / 300 MB" -- "$bin" stats --
 measure "100,000 X-rays, full report" "15 s / 400 MB" -- "$bin" report --data "$work/x100k.csv" --out "$work/r1"
 measure "rig audit (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb
 measure "rig audit --fix (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb --fix "$work/fixed.glb"
+measure "deform, 30,000-triangle hand, fist, LBS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb"
+measure "deform --fix --out, 30,000 triangles, DQS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb" --fix --skinning dqs --out "$work/d30k"
 echo
 echo "Growth with X-rays (stats --format json, 10,000 resamples):"
 echo

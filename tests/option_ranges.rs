@@ -379,3 +379,40 @@ fn add_lengths_and_age_at_every_value() {
         }
     }
 }
+
+/// `deform --angles`: each of the probe values as every one of the three
+/// angles; exit 0 or 2, and on 2 the range in the message.
+#[test]
+fn deform_angles() {
+    use phalanx::rig::deform::synthetic::{HandSpec, tube_hand};
+    let wd = Workdir::new();
+    wd.write(
+        "right.glb",
+        tube_hand(&HandSpec {
+            around: 6,
+            ring_spacing: 0.004,
+            ..HandSpec::default()
+        })
+        .to_glb()
+        .unwrap(),
+    );
+    for v in [
+        "0", "1", "180", "180.0001", "-30", "-30.0001", U64_MAX, "-1", "inf", "NaN",
+    ] {
+        for k in 0..3 {
+            let mut angles = ["0"; 3];
+            angles[k] = v;
+            let angles = angles.join(",");
+            let run = wd.run(&["deform", "right.glb", "--angles", &angles]);
+            match run.code {
+                Some(0) => {}
+                Some(2) => {
+                    run.stderr_has("from -30 to 180");
+                }
+                other => panic!("--angles {angles}: exit {other:?}\n{}", run.stderr),
+            }
+        }
+    }
+    let help = wd.run(&["deform", "--help"]);
+    help.ok().stdout_has("from -30 to 180");
+}

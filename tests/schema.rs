@@ -474,3 +474,49 @@ fn compare_and_population_documents_satisfy_their_schemas() {
         },
     );
 }
+
+#[test]
+fn deform_documents_satisfy_the_deform_schema() {
+    use phalanx::rig::deform::synthetic::{HandSpec, tube_hand};
+    let v = validator("deform");
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.write(
+        "right.glb",
+        tube_hand(&HandSpec::default()).to_glb().unwrap(),
+    );
+    // One rig, and with --fix and figures.
+    let one = wd
+        .run(&["deform", "right.glb", "--format", "json"])
+        .ok()
+        .json();
+    let two = wd
+        .run(&[
+            "deform",
+            "right.glb",
+            "--fix",
+            "--out",
+            "r",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    assert!(two["verdicts"][0]["joints"].is_array() && two["renders"][0]["panels"].is_array());
+    for doc in [&one, &two] {
+        assert_valid(&v, "deform", doc);
+    }
+    assert_version_pinned(&v, "deform", &one);
+    assert_refused(&v, "deform", &two, "a verdict 'both'", |d| {
+        d["verdicts"][0]["joints"][0]["overall"] = json!("both");
+    });
+    assert_refused(&v, "deform", &one, "a joint without its volume loss", |d| {
+        d["rig"]["hands"][0]["measures"]["fingers"][0]["joints"][0]
+            .as_object_mut()
+            .unwrap()
+            .remove("volume_loss");
+    });
+    assert_refused(&v, "deform", &one, "a skinning 'blend'", |d| {
+        d["skinning"] = json!("blend");
+    });
+}

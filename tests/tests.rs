@@ -11,6 +11,7 @@ mod confidence_level;
 mod coverage;
 mod crash_report;
 mod data;
+mod deform;
 mod everyday;
 mod import;
 mod option_ranges;

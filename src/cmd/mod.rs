@@ -12,6 +12,7 @@ pub(crate) mod check;
 pub(crate) mod compare;
 pub(crate) mod completions;
 pub(crate) mod coverage;
+pub(crate) mod deform;
 pub(crate) mod history;
 pub(crate) mod import;
 pub(crate) mod man;

@@ -7,6 +7,7 @@
 pub(crate) mod audit;
 pub(crate) mod compare;
 pub(crate) mod csv_out;
+pub(crate) mod deform;
 pub mod json;
 pub mod layout;
 pub mod plots;

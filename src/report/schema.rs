@@ -30,6 +30,7 @@ pub(crate) const DOCUMENTS: &[(&str, Generator)] = &[
     ("compare", of::<json::CompareDocument<'static>>),
     ("place", of::<json::PlacementDocument<'static>>),
     ("audit", of::<json::AuditDocument<'static>>),
+    ("deform", of::<super::deform::DeformDocument<'static>>),
     ("history", of::<json::HistoryDocument<'static>>),
     ("history-record", of::<Snapshot>),
 ];

@@ -507,6 +507,19 @@ fn candidates(file: &GltfFile) -> (Vec<bool>, Vec<bool>) {
     (candidate, skinned)
 }
 
+/// The skin weights of a file with a skin whose buffers are at hand.
+fn skin_weights(file: &GltfFile) -> Option<weights::SkinWeights> {
+    (file.document.skins().next().is_some())
+        .then(|| file.buffer_data())
+        .flatten()
+        .map(|data| weights::SkinWeights::read(file, &data))
+}
+
+/// Per node, whether any vertex is weighted to it (empty without weights).
+fn weighted_nodes(weights: Option<&weights::SkinWeights>, nodes: usize) -> Vec<bool> {
+    weights.map_or_else(Vec::new, |w| w.weighted_nodes(nodes))
+}
+
 /// How each node is recognised: by the `--map` file first, then by a VRM
 /// humanoid table, then by its name; with the priority of each (lower wins).
 fn recognise(
@@ -590,13 +603,8 @@ impl Rig {
     /// metacarpal and the hand's wrist bone when recognised.
     pub fn from_file(file: GltfFile, map: Option<&NameMap>) -> Result<Rig, DataError> {
         let names = file.node_names();
-        let weights = (file.document.skins().next().is_some())
-            .then(|| file.buffer_data())
-            .flatten()
-            .map(|data| weights::SkinWeights::read(&file, &data));
-        let weighted: Vec<bool> = weights
-            .as_ref()
-            .map_or_else(Vec::new, |w| w.weighted_nodes(names.len()));
+        let weights = skin_weights(&file);
+        let weighted = weighted_nodes(weights.as_ref(), names.len());
         let known = |i: usize| weights.as_ref().map(|_| weighted.get(i) == Some(&true));
         let found = recognise(&file, &names, map, &weighted)?;
         let (best, ties) = choose_nodes(&found);

@@ -103,6 +103,62 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     })
 }
 
+/// A rig as `audit --fix` would write it, in memory: the parsed rig and its
+/// fixed copy (a GLB, read back), with the moved joints (name, distance).
+pub struct FixedInMemory {
+    pub original: GltfFile,
+    pub fixed: GltfFile,
+    pub moved: Vec<(String, f64)>,
+}
+
+/// Judges `rig` against the statistics of `data` and fixes it as
+/// [`audit`] with `--fix` does, without writing anything: the fixed copy is
+/// the same bytes `audit --fix OUT.glb` writes, parsed from memory.
+pub fn fix_in_memory(
+    rig: &Path,
+    map: Option<&Path>,
+    data: &Path,
+    settings: Settings,
+) -> Result<FixedInMemory, Error> {
+    let map = map.map(NameMap::load).transpose()?;
+    let loaded = Rig::load(rig, map.as_ref())?;
+    let dataset = Dataset::load(data)?;
+    analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)
+        .map_err(Error::Usage)?;
+    let analysis = analysis::analyse(&dataset, &settings);
+    // `audit --fix OUT.glb` with its default options: the same judgement
+    // (skin tips, bends from the skin weights) and the same fix.
+    let audited = AuditedRig::with(
+        &loaded.file.label,
+        &loaded.chains,
+        &loaded.notes,
+        &analysis,
+        &AuditOptions::default(),
+        loaded.weights.as_ref(),
+    );
+    let dir = rig.parent().unwrap_or(Path::new("."));
+    let out = fix::fix_with(
+        &loaded.file,
+        &audited.fingers,
+        loaded.weights.as_ref(),
+        dir,
+        true,
+        &fix::FixOptions::default(),
+    )?;
+    let label = format!("{} (as audit --fix would write it)", loaded.file.label);
+    let fixed = GltfFile::from_bytes(&label, &out.bytes).map_err(|e| {
+        Error::render(
+            format!("the fixed copy of {} did not read back", loaded.file.label),
+            e,
+        )
+    })?;
+    Ok(FixedInMemory {
+        original: loaded.file,
+        fixed,
+        moved: out.moved,
+    })
+}
+
 /// The container of a fixed copy written to `out`: `true` for GLB (.glb,
 /// .vrm), `false` for .gltf; refuses an output that is the input rig.
 fn fix_container(rig: &Path, out: &Path) -> Result<bool, Error> {

@@ -70,11 +70,12 @@ use crate::analysis::placement::Joint;
 use crate::dataset::Finger;
 use crate::rig::skin::SkinnedMesh;
 use glam::{DVec2, DVec3};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet, HashSet};
 
 /// The measures of one joint of a finger.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct JointMeasures {
     pub joint: Joint,
     /// Flexion in the pose, degrees.
@@ -97,7 +98,7 @@ pub struct JointMeasures {
 }
 
 /// The measures of one finger.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct FingerMeasures {
     pub finger: Finger,
     pub vertices: usize,
@@ -113,7 +114,7 @@ pub struct FingerMeasures {
 }
 
 /// Every finger of a hand, measured.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct HandMeasures {
     pub fingers: Vec<FingerMeasures>,
 }
@@ -262,6 +263,15 @@ pub fn measure(
     HandMeasures { fingers }
 }
 
+/// The skinned mesh and the two poses being measured.
+struct Meshes<'a> {
+    mesh: &'a SkinnedMesh,
+    rest: &'a [DVec3],
+    posed: &'a [DVec3],
+}
+
+/// Measures one finger, in steps: its skin, its axis, strain per zone, new
+/// crossings per zone, then each joint.
 fn measure_finger(
     mesh: &SkinnedMesh,
     rest: &[DVec3],
@@ -269,7 +279,54 @@ fn measure_finger(
     f: &PosedFinger,
     half: f64,
 ) -> FingerMeasures {
+    let m = Meshes { mesh, rest, posed };
     let mut notes = Vec::new();
+    let (vertices, tris) = finger_skin(mesh, f);
+    if vertices == 0 {
+        notes.push(format!(
+            "no vertex has its largest weight on the {} joints, so its skin is not measured",
+            f.finger
+        ));
+    }
+    let axis = finger_axis(f);
+    let joint_s: Vec<f64> = f.joints.iter().map(|j| axis.project(j.rest)).collect();
+    let strains = edge_strains(mesh, rest, posed, tris.iter().map(|&t| mesh.triangles[t]));
+    let mut all: Vec<f64> = strains.iter().map(|e| e.1).collect();
+    let (p95, max) = p95_max(&mut all);
+    let (mut by_zone, vertex_s) = strain_along(&m, &strains, &axis, &joint_s);
+    let (crossings, crossings_by_zone) = new_crossings(&m, &tris, &axis, &joint_s);
+    let joints = (0..f.joints.len())
+        .map(|k| {
+            let zone_strains = by_zone.get_mut(&k).map(std::mem::take).unwrap_or_default();
+            let zone_crossings = crossings_by_zone.get(&k).copied().unwrap_or(0);
+            joint_measures(
+                &m,
+                f,
+                k,
+                &joint_s,
+                half,
+                &vertex_s,
+                zone_strains,
+                zone_crossings,
+                &mut notes,
+            )
+        })
+        .collect();
+    FingerMeasures {
+        finger: f.finger,
+        vertices,
+        triangles: tris.len(),
+        self_intersections: crossings,
+        strain_p95: p95,
+        strain_max: max,
+        joints,
+        notes,
+    }
+}
+
+/// The finger's skin: how many vertices have their largest weight on its
+/// joints, and the triangles with at least one such vertex.
+fn finger_skin(mesh: &SkinnedMesh, f: &PosedFinger) -> (usize, Vec<usize>) {
     let slots: BTreeSet<u16> = f.nodes.iter().filter_map(|&n| mesh.slot_of(n)).collect();
     let mine: Vec<bool> = (0..mesh.positions.len())
         .map(|v| mesh.dominant(v).is_some_and(|j| slots.contains(&j)))
@@ -277,31 +334,37 @@ fn measure_finger(
     let tris: Vec<usize> = (0..mesh.triangles.len())
         .filter(|&t| mesh.triangles[t].iter().any(|&v| mine[v as usize]))
         .collect();
-    let vertices = mine.iter().filter(|&&m| m).count();
-    if vertices == 0 {
-        notes.push(format!(
-            "no vertex has its largest weight on the {} joints, so its skin is not measured",
-            f.finger
-        ));
-    }
+    (mine.iter().filter(|&&m| m).count(), tris)
+}
+
+/// The finger's rest axis (with the root before a lone joint).
+fn finger_axis(f: &PosedFinger) -> Axis {
     let mut axis_points = f.rest_axis();
     if axis_points.len() < 2
         && let Some(r) = f.root
     {
         axis_points.insert(0, r);
     }
-    let axis = Axis::new(axis_points);
-    let joint_s: Vec<f64> = f.joints.iter().map(|j| axis.project(j.rest)).collect();
-    // Edge strain, per finger and per zone.
-    let strains = edge_strains(mesh, rest, posed, tris.iter().map(|&t| mesh.triangles[t]));
-    let mut all: Vec<f64> = strains.iter().map(|e| e.1).collect();
-    let (p95, max) = p95_max(&mut all);
+    Axis::new(axis_points)
+}
+
+/// Edge strains per joint zone.
+type ZoneStrains = BTreeMap<usize, Vec<f64>>;
+
+/// Edge strains by joint zone (an edge by its rest midpoint), and each
+/// vertex's (arc length, mean strain of its edges), for the creases.
+fn strain_along(
+    m: &Meshes<'_>,
+    strains: &[((u32, u32), f64)],
+    axis: &Axis,
+    joint_s: &[f64],
+) -> (ZoneStrains, Vec<(f64, f64)>) {
     let mut by_zone: BTreeMap<usize, Vec<f64>> = BTreeMap::new();
     let mut vsum: BTreeMap<u32, (f64, u32)> = BTreeMap::new();
-    for &((a, b), r) in &strains {
-        let mid = (rest[a as usize] + rest[b as usize]) / 2.0;
+    for &((a, b), r) in strains {
+        let mid = (m.rest[a as usize] + m.rest[b as usize]) / 2.0;
         by_zone
-            .entry(zone(&joint_s, axis.project(mid)))
+            .entry(zone(joint_s, axis.project(mid)))
             .or_default()
             .push(r);
         for v in [a, b] {
@@ -310,77 +373,87 @@ fn measure_finger(
             e.1 += 1;
         }
     }
-    // New crossings: pairs crossing in the pose that did not at rest.
-    let corners = |p: &[DVec3], t: usize| mesh.triangles[t].map(|v| p[v as usize]);
-    let new: Vec<(usize, usize)> = crossing_pairs(posed, &mesh.welded, &mesh.triangles, &tris)
-        .into_iter()
-        .filter(|&(i, j)| !triangles_cross(&corners(rest, i), &corners(rest, j)))
+    let vertex_s = vsum
+        .iter()
+        .map(|(&v, &(sum, n))| (axis.project(m.rest[v as usize]), sum / f64::from(n)))
         .collect();
-    let mut crossings_by_zone: BTreeMap<usize, usize> = BTreeMap::new();
+    (by_zone, vertex_s)
+}
+
+/// New crossings: triangle pairs of the finger crossing in the pose that did
+/// not at rest; their count, and the count per joint zone (a pair by the mean
+/// of its rest centroids).
+fn new_crossings(
+    m: &Meshes<'_>,
+    tris: &[usize],
+    axis: &Axis,
+    joint_s: &[f64],
+) -> (usize, BTreeMap<usize, usize>) {
+    let mesh = m.mesh;
+    let corners = |p: &[DVec3], t: usize| mesh.triangles[t].map(|v| p[v as usize]);
+    let new: Vec<(usize, usize)> = crossing_pairs(m.posed, &mesh.welded, &mesh.triangles, tris)
+        .into_iter()
+        .filter(|&(i, j)| !triangles_cross(&corners(m.rest, i), &corners(m.rest, j)))
+        .collect();
+    let mut by_zone: BTreeMap<usize, usize> = BTreeMap::new();
     let centroid = |t: usize| {
         mesh.triangles[t]
             .iter()
-            .map(|&v| rest[v as usize])
+            .map(|&v| m.rest[v as usize])
             .sum::<DVec3>()
             / 3.0
     };
     for &(i, j) in &new {
         let s = axis.project((centroid(i) + centroid(j)) / 2.0);
-        *crossings_by_zone.entry(zone(&joint_s, s)).or_default() += 1;
+        *by_zone.entry(zone(joint_s, s)).or_default() += 1;
     }
-    // Vertex strains along the axis, for the creases.
-    let vertex_s: Vec<(f64, f64)> = vsum
-        .iter()
-        .map(|(&v, &(sum, n))| (axis.project(rest[v as usize]), sum / f64::from(n)))
-        .collect();
-    let joints = f
-        .joints
-        .iter()
-        .enumerate()
-        .map(|(k, j)| {
-            let mut zs = by_zone.get_mut(&k).map(std::mem::take).unwrap_or_default();
-            let (zp95, zmax) = p95_max(&mut zs);
-            // The window: half the shorter bone next to the joint.
-            let before_len = if k > 0 {
-                Some(joint_s[k] - joint_s[k - 1])
-            } else {
-                f.root.map(|r| r.distance(j.rest))
-            };
-            let after_len = if k + 1 < joint_s.len() {
-                Some(joint_s[k + 1] - joint_s[k])
-            } else {
-                f.tip.map(|t| t.distance(j.rest))
-            };
-            let w = before_len
-                .into_iter()
-                .chain(after_len)
-                .filter(|x| *x > 0.0)
-                .fold(f64::INFINITY, f64::min)
-                / 2.0;
-            let worst = worst_section(mesh, rest, posed, f, k, w, half, &mut notes);
-            JointMeasures {
-                joint: j.joint,
-                angle: j.angle.to_degrees(),
-                rest_area: worst.map(|x| x.rest),
-                posed_area: worst.map(|x| x.posed),
-                volume_loss: worst.map(|x| 1.0 - x.posed / x.rest),
-                volume_loss_at: worst.map(|x| x.offset),
-                self_intersections: crossings_by_zone.get(&k).copied().unwrap_or(0),
-                strain_p95: zp95,
-                strain_max: zmax,
-                crease_offset: crease(&vertex_s, joint_s[k], w),
-            }
-        })
-        .collect();
-    FingerMeasures {
-        finger: f.finger,
-        vertices,
-        triangles: tris.len(),
-        self_intersections: new.len(),
-        strain_p95: p95,
-        strain_max: max,
-        joints,
-        notes,
+    (new.len(), by_zone)
+}
+
+/// The measures of joint `k`: its window (half the shorter bone next to it),
+/// the worst section there, its zone's strain and crossings, and the crease.
+#[allow(clippy::too_many_arguments)]
+fn joint_measures(
+    m: &Meshes<'_>,
+    f: &PosedFinger,
+    k: usize,
+    joint_s: &[f64],
+    half: f64,
+    vertex_s: &[(f64, f64)],
+    mut zone_strains: Vec<f64>,
+    zone_crossings: usize,
+    notes: &mut Vec<String>,
+) -> JointMeasures {
+    let j = &f.joints[k];
+    let (zp95, zmax) = p95_max(&mut zone_strains);
+    let before_len = if k > 0 {
+        Some(joint_s[k] - joint_s[k - 1])
+    } else {
+        f.root.map(|r| r.distance(j.rest))
+    };
+    let after_len = if k + 1 < joint_s.len() {
+        Some(joint_s[k + 1] - joint_s[k])
+    } else {
+        f.tip.map(|t| t.distance(j.rest))
+    };
+    let w = before_len
+        .into_iter()
+        .chain(after_len)
+        .filter(|x| *x > 0.0)
+        .fold(f64::INFINITY, f64::min)
+        / 2.0;
+    let worst = worst_section(m.mesh, m.rest, m.posed, f, k, w, half, notes);
+    JointMeasures {
+        joint: j.joint,
+        angle: j.angle.to_degrees(),
+        rest_area: worst.map(|x| x.rest),
+        posed_area: worst.map(|x| x.posed),
+        volume_loss: worst.map(|x| 1.0 - x.posed / x.rest),
+        volume_loss_at: worst.map(|x| x.offset),
+        self_intersections: zone_crossings,
+        strain_p95: zp95,
+        strain_max: zmax,
+        crease_offset: crease(vertex_s, joint_s[k], w),
     }
 }
 

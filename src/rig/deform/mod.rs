@@ -17,6 +17,8 @@
 //! relative only in f64 (f32 keeps about 6e-8), and a 30,000-triangle finger
 //! set costs milliseconds either way. Units are the file's (metres in glTF).
 
+pub mod file;
+pub mod hand;
 pub mod measures;
 pub mod pose;
 pub mod skinning;

@@ -41,11 +41,12 @@ use crate::analysis::placement::Joint;
 use crate::dataset::Finger;
 use crate::rig::naming::Side;
 use glam::{DMat3, DMat4, DQuat, DVec3};
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// Flexion angles of one finger in degrees (positive towards the palm).
 /// For the thumb, `mcp` is its MCP and `pip` its IP; `dip` is unused.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 pub struct Angles {
     pub mcp: f64,
     pub pip: f64,
@@ -53,7 +54,7 @@ pub struct Angles {
 }
 
 /// A named set of flexion angles for the five fingers.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct Pose {
     pub name: String,
     /// Thumb, index, middle, ring, little ([`Finger::ALL`] order).

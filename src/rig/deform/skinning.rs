@@ -24,10 +24,11 @@
 
 use crate::rig::skin::SkinnedMesh;
 use glam::{DMat3, DMat4, DQuat, DVec3};
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// How a mesh follows its joints.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Skinning {
     /// Linear blend skinning.

@@ -15,10 +15,11 @@
 use super::measures::{HandMeasures, JointMeasures};
 use crate::analysis::placement::Joint;
 use crate::dataset::Finger;
+use schemars::JsonSchema;
 use serde::Serialize;
 
 /// One of the four measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Measure {
     VolumeLoss,
@@ -77,7 +78,7 @@ impl Measure {
 }
 
 /// Which rig a measure (or the rule) favours.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Better {
     A,
@@ -90,7 +91,7 @@ pub enum Better {
 }
 
 /// One measure at one joint, for both rigs.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct MeasureVerdict {
     pub measure: Measure,
     pub a: Option<f64>,
@@ -101,7 +102,7 @@ pub struct MeasureVerdict {
 }
 
 /// One joint, both rigs.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct JointVerdict {
     pub finger: Finger,
     pub joint: Joint,

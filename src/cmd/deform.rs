@@ -1,0 +1,276 @@
+//! `phalanx deform`: curl a rigged hand, skin it, measure the skin, and
+//! compare it with another version of the rig or with what `audit --fix` writes.
+
+use super::args::{BootArgs, DataArgs, TextFormat};
+use super::out;
+use crate::error::Error;
+use crate::report::deform::{self as view, DeformDocument, HandVerdicts, RigView};
+use crate::report::json::{MovedView, SCHEMA_VERSION};
+use crate::report::layout::Width;
+use crate::report::writer;
+use crate::rig::GltfFile;
+use crate::rig::deform::file::{self, DeformRequest, FileDeformation};
+use crate::rig::deform::hand::side_from_label;
+use crate::rig::deform::{Pose, Skinning};
+use crate::rig::map::NameMap;
+use crate::rig::naming::Side;
+use crate::rig::session;
+use clap::ValueEnum;
+use std::path::{Path, PathBuf};
+
+/// Curl a rigged hand (glTF 2.0) and measure how its skin deforms; compare with --against or --fix
+#[derive(clap::Args, Debug)]
+#[command(
+    after_help = "Curls every finger of the rig's hand(s) to a pose, each joint about its flexion axis (in the palm's \
+                  plane, across the finger; mirrored for a left hand), skins the rig's own mesh (JOINTS_n/WEIGHTS_n) \
+                  and measures, per finger and joint: volume loss (cross-section area lost across the bent joint), \
+                  new self-intersections, edge strain (95th percentile and maximum of |ln(posed/rest edge length)|) \
+                  and crease offset (where the skin folds, from the joint). With --against or --fix it poses both rigs \
+                  alike and says per joint which deforms better, by which measure and by how much.\n\n\
+                  Default pose: fist, MCP 60, PIP 90, DIP 60 degrees (about two thirds of each joint's active range, \
+                  AAOS averages MCP 90, PIP 100, DIP 80: the fingertips reach the palm without pressing into it); the \
+                  thumb bends half as far (MCP 30, IP 45: its MCP's range is about half the fingers', and a thumb bent \
+                  as far would pass through the index finger, which is not modelled). grip: 45, 60, 30 (a 4 cm bar). \
+                  point: the index straight, the rest in the fist. --angles MCP,PIP,DIP: degrees from -30 to 180 \
+                  (negative: hyperextension), the thumb at half the MCP and PIP angles.\n\n\
+                  --fix compares the rig with the copy `phalanx audit RIG --fix OUT` would write (made in memory, \
+                  judged against --data). Rigs whose joint names carry no side (WebXR) take --side, or the side \
+                  the file name says.\n\n\
+                  --out DIR writes deform-<side>.png per hand: the rig(s) posed, from the side and from above, one \
+                  column per rig (A left, B right), coloured by strain (grey 0, amber 0.1, red 0.25 and more).\n\n\
+                  Examples:\n  phalanx deform hand.glb\n  phalanx deform hand.glb --fix --out renders\n  \
+                  phalanx deform hand.glb --against hand-fixed.glb --skinning dqs\n  \
+                  phalanx deform right.glb --angles 45,90,45 --format json"
+)]
+pub(crate) struct Args {
+    /// The rig: a .glb, .gltf or .vrm (glTF 2.0) file with a skinned mesh
+    #[arg(value_name = "RIG")]
+    rig: PathBuf,
+    /// Compare with this version of the rig (B)
+    #[arg(long, value_name = "FIXED.glb", conflicts_with = "fix")]
+    against: Option<PathBuf>,
+    /// Compare with what `audit --fix` would write (B), made in memory
+    #[arg(long)]
+    fix: bool,
+    /// Named pose
+    #[arg(long, value_enum, default_value_t = PoseName::Fist, conflicts_with = "angles")]
+    pose: PoseName,
+    /// Flexion of every finger's MCP, PIP and DIP in degrees, each from -30 to 180 (thumb: half the MCP and PIP)
+    #[arg(long, value_name = "MCP,PIP,DIP", value_parser = parse_angles, allow_hyphen_values = true)]
+    angles: Option<[f64; 3]>,
+    /// Skinning: linear blend (lbs) or dual quaternion (dqs)
+    #[arg(long, value_enum, default_value_t = Method::Lbs)]
+    skinning: Method,
+    /// The side of a hand whose joint names do not say (default: from the file name)
+    #[arg(long, value_enum)]
+    side: Option<SideArg>,
+    /// Custom joint names: CSV with node,side,finger,joint
+    #[arg(long, value_name = "FILE")]
+    map: Option<PathBuf>,
+    /// Write the figures (deform-<side>.png) into this directory
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    #[command(flatten)]
+    data: DataArgs,
+    #[command(flatten)]
+    boot: BootArgs,
+    /// Output format
+    #[arg(long, value_enum, default_value_t = TextFormat::Table)]
+    format: TextFormat,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum PoseName {
+    Fist,
+    Grip,
+    Point,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum Method {
+    Lbs,
+    Dqs,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum SideArg {
+    Left,
+    Right,
+}
+
+/// Three angles in degrees, each finite and from -30 to 180.
+fn parse_angles(text: &str) -> Result<[f64; 3], String> {
+    let bad = || {
+        format!(
+            "'{text}' is not three angles MCP,PIP,DIP in degrees, each from -30 to 180; give e.g. 60,90,60"
+        )
+    };
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| bad())?;
+    match v[..] {
+        [a, b, c]
+            if v.iter()
+                .all(|x| x.is_finite() && (-30.0..=180.0).contains(x)) =>
+        {
+            Ok([a, b, c])
+        }
+        _ => Err(bad()),
+    }
+}
+
+impl Args {
+    fn pose(&self) -> Result<Pose, Error> {
+        match self.angles {
+            Some([m, p, d]) => Pose::from_angles("angles", m, p, d).map_err(Error::Usage),
+            None => {
+                let name = match self.pose {
+                    PoseName::Fist => "fist",
+                    PoseName::Grip => "grip",
+                    PoseName::Point => "point",
+                };
+                Pose::named(name).ok_or_else(|| Error::Usage(format!("unknown pose {name}")))
+            }
+        }
+    }
+}
+
+/// Reads `path` and deforms it.
+fn deform_path(path: &Path, req: &DeformRequest<'_>) -> Result<FileDeformation, Error> {
+    let file = GltfFile::load(path)?;
+    deform_parsed(&file, path, req)
+}
+
+fn deform_parsed(
+    file: &GltfFile,
+    path: &Path,
+    req: &DeformRequest<'_>,
+) -> Result<FileDeformation, Error> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    Ok(file::deform_file(file, dir, req)?)
+}
+
+pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
+    let pose = args.pose()?;
+    let map = args.map.as_deref().map(NameMap::load).transpose()?;
+    let method = match args.skinning {
+        Method::Lbs => Skinning::Lbs,
+        Method::Dqs => Skinning::Dqs,
+    };
+    let side = match args.side {
+        Some(SideArg::Left) => Some(Side::Left),
+        Some(SideArg::Right) => Some(Side::Right),
+        None => side_from_label(&args.rig.display().to_string()),
+    };
+    let req = DeformRequest {
+        map: map.as_ref(),
+        side,
+        pose: &pose,
+        method,
+    };
+    let (a, b, moved) = if args.fix {
+        let fixed = session::fix_in_memory(
+            &args.rig,
+            args.map.as_deref(),
+            &args.data.data,
+            args.boot.settings()?,
+        )?;
+        let a = deform_parsed(&fixed.original, &args.rig, &req)?;
+        let b = deform_parsed(&fixed.fixed, &args.rig, &req)?;
+        (a, Some(b), Some(fixed.moved))
+    } else {
+        let a = deform_path(&args.rig, &req)?;
+        let b = args
+            .against
+            .as_deref()
+            .map(|p| deform_path(p, &req))
+            .transpose()?;
+        (a, b, None)
+    };
+    let verdicts = b
+        .as_ref()
+        .map(|b| file::compare_files(&a, b))
+        .unwrap_or_default();
+    if let Some(b) = &b
+        && verdicts.is_empty()
+    {
+        return Err(Error::Usage(format!(
+            "{} and {} have no hand in common (by side), so there is nothing to compare",
+            a.label, b.label
+        )));
+    }
+    // The figures first: nothing is printed when they cannot be written.
+    let mut renders = Vec::new();
+    if let Some(dir) = &args.out {
+        let mut files = Vec::new();
+        for ha in &a.hands {
+            let hb = b
+                .as_ref()
+                .and_then(|b| b.hands.iter().find(|h| h.chains.side == ha.chains.side));
+            let (f, r) = view::figure(ha, hb)?;
+            files.push(f);
+            renders.push(r);
+        }
+        writer::write_all(dir, &files)?;
+    }
+    let bytes = match args.format {
+        TextFormat::Table => match &b {
+            Some(b) => view::text_two(&a, b, &verdicts, &pose, method, width),
+            None => view::text_one(&a, &pose, method, width),
+        }
+        .into_bytes(),
+        TextFormat::Json => view::json(&DeformDocument {
+            schema_version: SCHEMA_VERSION,
+            units: "m",
+            pose: &pose,
+            skinning: method,
+            rig: RigView::of(&a),
+            against: b.as_ref().map(RigView::of),
+            moved: moved.as_ref().map(|m| {
+                m.iter()
+                    .map(|(node, shift)| MovedView {
+                        node,
+                        shift: *shift,
+                    })
+                    .collect()
+            }),
+            verdicts: verdicts
+                .iter()
+                .map(|(side, joints)| HandVerdicts {
+                    side: *side,
+                    joints,
+                })
+                .collect(),
+            renders,
+            caveats: &view::CAVEATS,
+        })?,
+    };
+    out::print(&bytes)?;
+    Ok(0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn angles_are_three_finite_degrees_in_range() {
+        assert_eq!(parse_angles("60,90,60"), Ok([60.0, 90.0, 60.0]));
+        assert_eq!(parse_angles(" -30, 0,180"), Ok([-30.0, 0.0, 180.0]));
+        for bad in [
+            "",
+            "60,90",
+            "60,90,60,1",
+            "NaN,0,0",
+            "inf,0,0",
+            "0,181,0",
+            "-31,0,0",
+            "a,b,c",
+        ] {
+            let e = parse_angles(bad).unwrap_err();
+            assert!(e.contains("from -30 to 180"), "{bad}: {e}");
+        }
+    }
+}

@@ -1,0 +1,448 @@
+//! What `phalanx deform` shows: the measures table (one rig, or two side by
+//! side with a verdict per joint), the figures (PNG, both rigs posed, from the
+//! side and from above, coloured by strain) and the JSON document.
+//!
+//! Rig coordinates are metres (the glTF unit), shown in millimetres; volume
+//! loss as a percentage of the rest cross-section; strain as |ln(posed / rest
+//! edge length)|, unitless.
+
+use super::audit::MM;
+use super::layout::{Align, Give, Grid, Hidden, Width, fit_text};
+use super::render3d::{Figure, MeshView, View};
+use super::writer::OutputFile;
+use crate::error::Error;
+use crate::format::{num, percent, signed, trimmed};
+use crate::rig::deform::file::{FileDeformation, HandDeformation};
+use crate::rig::deform::measures::{HandMeasures, JointMeasures};
+use crate::rig::deform::verdict::{Better, JointVerdict, Measure};
+use crate::rig::deform::{Pose, Skinning};
+use crate::rig::naming::Side;
+use schemars::JsonSchema;
+use serde::Serialize;
+
+/// What every deformation comparison carries.
+pub(crate) const CAVEATS: [&str; 4] = [
+    "The measures compare skins, not anatomy: a rig whose skin folds at its joints and keeps its cross-sections deforms well by these measures even if the joints are far from where the X-rays put them.",
+    "Volume loss is the cross-section area lost in planes across each bent joint (the worst across a window of half the shorter bone each side), not the enclosed volume; under linear blend skinning it depends on how the weights blend, not on where the joint is.",
+    "Crease offset is the strain-weighted centre of the fold along the finger relative to the joint; it tells where the skin folds, not whether the fold looks right.",
+    "Both rigs are posed with the same angles about each rig's own flexion axes; muscles, tendons, collisions with the palm and corrective shapes are not modelled.",
+];
+
+/// One panel of a figure: where each fingertip (or the last joint) of a rig is drawn.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub(crate) struct PanelView {
+    /// "side" or "above".
+    pub view: &'static str,
+    /// "a" (the rig) or "b" (--against or the fixed copy).
+    pub rig: &'static str,
+    /// Pixel position (x right, y down) of each finger's posed tip.
+    pub tips: Vec<TipPixel>,
+}
+
+/// A fingertip's pixel in a figure.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub(crate) struct TipPixel {
+    pub finger: crate::dataset::Finger,
+    pub x: f64,
+    pub y: f64,
+}
+
+/// A figure written by `--out`.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub(crate) struct RenderView {
+    /// File name inside the --out directory.
+    pub file: String,
+    pub side: Side,
+    pub width: u32,
+    pub height: u32,
+    /// Row by row (side, then above), column by column (a, then b).
+    pub panels: Vec<PanelView>,
+}
+
+/// Pixels per panel of a figure.
+const PANEL: (u32, u32) = (420, 300);
+
+/// The figure of one hand: rig A (and B) posed, from the side and from above
+/// in A's palm frame; PNG bytes and where the fingertips are drawn.
+pub(crate) fn figure(
+    a: &HandDeformation,
+    b: Option<&HandDeformation>,
+) -> Result<(OutputFile, RenderView), Error> {
+    let rigs: Vec<&HandDeformation> = std::iter::once(a).chain(b).collect();
+    let meshes: Vec<MeshView<'_>> = rigs
+        .iter()
+        .map(|h| MeshView {
+            positions: &h.deformation.posed,
+            triangles: &h.mesh.triangles,
+            strain: &h.deformation.vertex_strain,
+        })
+        .collect();
+    let views = [View::side(&a.posed.frame), View::above(&a.posed.frame)];
+    let fig = Figure::layout(&meshes, &views, PANEL.0, PANEL.1);
+    let png = fig
+        .render(&meshes)
+        .map_err(|e| Error::render("cannot draw the deformation figure", e))?;
+    let mut panels = Vec::new();
+    for (row, view) in views.iter().enumerate() {
+        for (col, h) in rigs.iter().enumerate() {
+            let tips = h
+                .posed
+                .fingers
+                .iter()
+                .filter_map(|f| {
+                    let last = f.joints.last()?;
+                    let p = last.after.transform_point3(f.tip.unwrap_or(last.rest));
+                    let (x, y) = fig.project(row, col, p)?;
+                    Some(TipPixel {
+                        finger: f.finger,
+                        x,
+                        y,
+                    })
+                })
+                .collect();
+            panels.push(PanelView {
+                view: view.name,
+                rig: if col == 0 { "a" } else { "b" },
+                tips,
+            });
+        }
+    }
+    let side = a.chains.side;
+    let file = format!("deform-{}.png", side.name());
+    Ok((
+        OutputFile::new(&file, png),
+        RenderView {
+            file,
+            side,
+            width: fig.width,
+            height: fig.height,
+            panels,
+        },
+    ))
+}
+
+/// The deformation of one hand, for the JSON document.
+#[derive(Debug, Serialize, JsonSchema)]
+pub(crate) struct HandView<'a> {
+    pub side: Side,
+    /// Index of the skin deformed.
+    pub skin: usize,
+    pub vertices: usize,
+    pub triangles: usize,
+    /// Remarks from reading the mesh and skinning it.
+    pub notes: Vec<String>,
+    pub measures: &'a HandMeasures,
+}
+
+/// One rig deformed, for the JSON document.
+#[derive(Debug, Serialize, JsonSchema)]
+pub(crate) struct RigView<'a> {
+    pub label: &'a str,
+    pub hands: Vec<HandView<'a>>,
+}
+
+impl<'a> RigView<'a> {
+    pub(crate) fn of(f: &'a FileDeformation) -> RigView<'a> {
+        RigView {
+            label: &f.label,
+            hands: f
+                .hands
+                .iter()
+                .map(|h| {
+                    let mut notes = h.mesh.notes.clone();
+                    notes.extend(h.deformation.notes.iter().cloned());
+                    HandView {
+                        side: h.chains.side,
+                        skin: h.mesh.skin,
+                        vertices: h.mesh.positions.len(),
+                        triangles: h.mesh.triangles.len(),
+                        notes,
+                        measures: &h.deformation.measures,
+                    }
+                })
+                .collect(),
+        }
+    }
+}
+
+/// The verdicts of one hand.
+#[derive(Debug, Serialize, JsonSchema)]
+pub(crate) struct HandVerdicts<'a> {
+    pub side: Side,
+    pub joints: &'a [JointVerdict],
+}
+
+/// `phalanx deform --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct DeformDocument<'a> {
+    #[schemars(extend("const" = super::json::SCHEMA_VERSION))]
+    pub schema_version: u32,
+    /// Units of every length: "m" (areas m^2; strain and loss unitless).
+    pub units: &'static str,
+    pub pose: &'a Pose,
+    pub skinning: Skinning,
+    /// The rig as given: A.
+    pub rig: RigView<'a>,
+    /// What it is compared with (B): the --against file, or the fixed copy with --fix.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub against: Option<RigView<'a>>,
+    /// With --fix: the joints the fix moves (node name, distance in m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub moved: Option<Vec<super::json::MovedView<'a>>>,
+    /// Per hand both rigs have: per joint, which deforms better, by which measure, by how much.
+    pub verdicts: Vec<HandVerdicts<'a>>,
+    /// The figures written with --out.
+    pub renders: Vec<RenderView>,
+    pub caveats: &'static [&'static str],
+}
+
+/// The JSON bytes of `doc`.
+pub(crate) fn json(doc: &DeformDocument<'_>) -> Result<Vec<u8>, Error> {
+    let mut out =
+        serde_json::to_vec_pretty(doc).map_err(|e| Error::render("cannot serialise JSON", e))?;
+    out.push(b'\n');
+    Ok(out)
+}
+
+/// A loss as a percentage, "n/a" when absent.
+fn loss(x: Option<f64>) -> String {
+    x.map_or_else(|| "n/a".into(), percent)
+}
+
+/// A length in mm with its sign, "n/a" when absent.
+fn mm(x: Option<f64>) -> String {
+    x.map_or_else(|| "n/a".into(), |v| signed(v * MM, 1))
+}
+
+/// A strain, 3 decimals.
+fn strain(x: Option<f64>) -> String {
+    x.map_or_else(|| "n/a".into(), |v| num(v, 3))
+}
+
+fn better(b: Better) -> &'static str {
+    match b {
+        Better::A => "A",
+        Better::B => "B",
+        Better::Same => "same",
+        Better::Mixed => "mixed",
+        Better::Unknown => "?",
+    }
+}
+
+/// The heading of the tables: pose and skinning.
+fn heading(pose: &Pose, method: Skinning) -> String {
+    let f = &pose.fingers[1];
+    let t = &pose.fingers[0];
+    format!(
+        "Pose {}: fingers MCP {}, PIP {}, DIP {} degrees; thumb MCP {}, IP {}. Skinning: {}.\n",
+        pose.name,
+        trimmed(f.mcp, 1),
+        trimmed(f.pip, 1),
+        trimmed(f.dip, 1),
+        trimmed(t.mcp, 1),
+        trimmed(t.pip, 1),
+        match method {
+            Skinning::Lbs => "linear blend (LBS)",
+            Skinning::Dqs => "dual quaternion (DQS)",
+        }
+    )
+}
+
+const LEGEND_ONE: &str = "loss: cross-section area lost across the joint (worst section, `at` mm from the joint, + distal); \
+x: new self-intersecting triangle pairs; p95, max: |ln(posed/rest edge length)|; \
+fold: where the skin folds, mm from the joint (+ distal).";
+
+const LEGEND_TWO: &str = "A is the rig, B what it is compared with. loss: cross-section area lost across the joint; \
+x: new self-intersecting triangle pairs; p95: 95th percentile of |ln(posed/rest edge length)|; \
+fold: where the skin folds, mm from the joint (+ distal); better: lower |loss|, fewer crossings, \
+lower p95 and |fold| (ties within 1 point, 0, 0.005, 0.5 mm).";
+
+/// The table of one rig.
+pub(crate) fn text_one(
+    rig: &FileDeformation,
+    pose: &Pose,
+    method: Skinning,
+    width: Width,
+) -> String {
+    let mut hidden = Hidden::new();
+    let mut out = format!("{}\n{}", rig.label, heading(pose, method));
+    for h in &rig.hands {
+        out.push_str(&format!(
+            "\n{} hand: {} vertices, {} triangles\n",
+            h.chains.side.name(),
+            h.mesh.positions.len(),
+            h.mesh.triangles.len()
+        ));
+        let mut t = Grid::new()
+            .col("finger", Align::Left, Give::Keep)
+            .col("joint", Align::Left, Give::Keep)
+            .col("deg", Align::Right, Give::Keep)
+            .col("loss", Align::Right, Give::Keep)
+            .col("at", Align::Right, Give::Drop(2))
+            .col("x", Align::Right, Give::Keep)
+            .col("p95", Align::Right, Give::Keep)
+            .col("max", Align::Right, Give::Drop(1))
+            .col("fold", Align::Right, Give::Keep);
+        for f in &h.deformation.measures.fingers {
+            for j in &f.joints {
+                t.row(vec![
+                    f.finger.name().to_string(),
+                    j.joint.name().to_string(),
+                    trimmed(j.angle, 1),
+                    loss(j.volume_loss),
+                    mm(j.volume_loss_at),
+                    j.self_intersections.to_string(),
+                    strain(j.strain_p95),
+                    strain(j.strain_max),
+                    mm(j.crease_offset),
+                ]);
+            }
+        }
+        out.push_str(&t.render(width, 0, &mut hidden));
+        out.push_str(&notes(h));
+    }
+    out.push('\n');
+    out.push_str(LEGEND_ONE);
+    out.push('\n');
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
+}
+
+fn notes(h: &HandDeformation) -> String {
+    let mut out = String::new();
+    let all = h
+        .mesh
+        .notes
+        .iter()
+        .chain(&h.deformation.notes)
+        .chain(h.deformation.measures.fingers.iter().flat_map(|f| &f.notes));
+    for n in all {
+        out.push_str(&format!("note: {n}\n"));
+    }
+    out
+}
+
+fn find<'a>(h: &'a HandDeformation, v: &JointVerdict) -> Option<&'a JointMeasures> {
+    h.deformation
+        .measures
+        .fingers
+        .iter()
+        .find(|f| f.finger == v.finger)?
+        .joints
+        .iter()
+        .find(|j| j.joint == v.joint)
+}
+
+/// How much better, in words: "volume loss 12.3 points, strain p95 0.021".
+fn by_how_much(v: &JointVerdict, side: Better) -> String {
+    v.measures
+        .iter()
+        .filter(|m| m.better == side)
+        .map(|m| {
+            let by = m.by.unwrap_or(0.0);
+            let amount = match m.measure {
+                Measure::VolumeLoss => format!("{} points", num(by * 100.0, 1)),
+                Measure::SelfIntersections => format!("{} pairs", num(by, 0)),
+                Measure::StrainP95 => num(by, 3),
+                Measure::CreaseOffset => format!("{} mm", num(by * MM, 1)),
+            };
+            format!("{} {amount}", m.measure.name())
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The table of two rigs with the verdicts.
+pub(crate) fn text_two(
+    a: &FileDeformation,
+    b: &FileDeformation,
+    verdicts: &[(Side, Vec<JointVerdict>)],
+    pose: &Pose,
+    method: Skinning,
+    width: Width,
+) -> String {
+    let mut hidden = Hidden::new();
+    let mut out = format!("A: {}\nB: {}\n{}", a.label, b.label, heading(pose, method));
+    for (side, joints) in verdicts {
+        let (Some(ha), Some(hb)) = (
+            a.hands.iter().find(|h| h.chains.side == *side),
+            b.hands.iter().find(|h| h.chains.side == *side),
+        ) else {
+            continue;
+        };
+        out.push_str(&format!("\n{} hand\n", side.name()));
+        let mut t = Grid::new()
+            .col("finger", Align::Left, Give::Keep)
+            .col("joint", Align::Left, Give::Keep)
+            .col("deg", Align::Right, Give::Keep)
+            .col("loss A", Align::Right, Give::Keep)
+            .col("loss B", Align::Right, Give::Keep)
+            .col("x A", Align::Right, Give::Drop(1))
+            .col("x B", Align::Right, Give::Drop(1))
+            .col("p95 A", Align::Right, Give::Keep)
+            .col("p95 B", Align::Right, Give::Keep)
+            .col("fold A", Align::Right, Give::Drop(2))
+            .col("fold B", Align::Right, Give::Drop(2))
+            .col("better", Align::Left, Give::Keep);
+        for v in joints {
+            let (Some(ja), Some(jb)) = (find(ha, v), find(hb, v)) else {
+                continue;
+            };
+            t.row(vec![
+                v.finger.name().to_string(),
+                v.joint.name().to_string(),
+                trimmed(ja.angle, 1),
+                loss(ja.volume_loss),
+                loss(jb.volume_loss),
+                ja.self_intersections.to_string(),
+                jb.self_intersections.to_string(),
+                strain(ja.strain_p95),
+                strain(jb.strain_p95),
+                mm(ja.crease_offset),
+                mm(jb.crease_offset),
+                better(v.overall).to_string(),
+            ]);
+        }
+        out.push_str(&t.render(width, 0, &mut hidden));
+        let count = |b: Better| joints.iter().filter(|v| v.overall == b).count();
+        out.push_str(&format!(
+            "Verdict: B deforms better at {} joints, A at {}, mixed at {}, the same at {} (of {}).\n",
+            count(Better::B),
+            count(Better::A),
+            count(Better::Mixed),
+            count(Better::Same),
+            joints.len()
+        ));
+        for v in joints {
+            let line = match v.overall {
+                Better::A | Better::B => format!(
+                    "{} {}: {} better by {}",
+                    v.finger,
+                    v.joint.name(),
+                    better(v.overall),
+                    by_how_much(v, v.overall)
+                ),
+                Better::Mixed => format!(
+                    "{} {}: mixed; A better by {}; B better by {}",
+                    v.finger,
+                    v.joint.name(),
+                    by_how_much(v, Better::A),
+                    by_how_much(v, Better::B)
+                ),
+                _ => continue,
+            };
+            out.push_str(&format!("  {line}\n"));
+        }
+        for (label, h) in [("A", ha), ("B", hb)] {
+            let n = notes(h);
+            if !n.is_empty() {
+                out.push_str(&format!("{label}:\n{n}"));
+            }
+        }
+    }
+    out.push('\n');
+    out.push_str(LEGEND_TWO);
+    out.push('\n');
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
+}

@@ -1,0 +1,557 @@
+//! `phalanx deform`, the real binary in temporary directories: synthetic tube
+//! hands built here (with the library's synthetic module, whose joints and
+//! weights are known exactly) and the WebXR generic hands when present.
+
+use crate::common;
+
+use common::*;
+use phalanx::rig::deform::synthetic::{HandSpec, tube_hand};
+use phalanx::rig::naming::Side;
+use serde_json::Value;
+use std::path::PathBuf;
+
+/// Writes a tube hand built from `spec` to `name`.
+fn write_hand(wd: &Workdir, name: &str, spec: &HandSpec) -> PathBuf {
+    wd.write(name, tube_hand(spec).to_glb().expect("a GLB"))
+}
+
+/// The measures of `finger` `joint` of the first hand of `rig` ("rig" or "against").
+fn joint<'a>(doc: &'a Value, rig: &str, finger: &str, joint: &str) -> &'a Value {
+    doc[rig]["hands"][0]["measures"]["fingers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["finger"] == finger)
+        .unwrap_or_else(|| panic!("no {finger} in {rig}"))["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|j| j["joint"] == joint)
+        .unwrap_or_else(|| panic!("no {finger} {joint}"))
+}
+
+/// The verdict of `finger` `joint` of the first hand.
+fn verdict<'a>(doc: &'a Value, finger: &str, joint: &str) -> &'a Value {
+    doc["verdicts"][0]["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|j| j["finger"] == finger && j["joint"] == joint)
+        .unwrap_or_else(|| panic!("no verdict for {finger} {joint}"))
+}
+
+fn measure_call<'a>(v: &'a Value, measure: &str) -> &'a Value {
+    v["measures"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["measure"] == measure)
+        .unwrap()
+}
+
+#[test]
+fn the_table_fits_and_the_closed_forms_hold_for_lbs_and_dqs() {
+    let wd = Workdir::new();
+    write_hand(&wd, "right.glb", &HandSpec::default());
+    let run = wd.run(&["deform", "right.glb"]);
+    run.ok().stdout_has("right hand").stdout_has("| index ");
+    for line in run.stdout.lines() {
+        assert!(line.chars().count() <= 100, "too wide: {line}");
+    }
+    // The fist bends every PIP 90 degrees. A tube's ring weighted 1/2 to each
+    // bone keeps cos(theta/2) of its area under LBS (by hand: 1 - cos 45 deg =
+    // 0.2929 lost) and all of it under DQS, which turns each ring rigidly.
+    let lbs = wd
+        .run(&["deform", "right.glb", "--format", "json"])
+        .ok()
+        .json();
+    let dqs = wd
+        .run(&[
+            "deform",
+            "right.glb",
+            "--skinning",
+            "dqs",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    assert_eq!(lbs["schema_version"], 1);
+    assert_eq!(lbs["rig"]["hands"][0]["side"], "right");
+    for finger in ["index", "middle", "ring", "little"] {
+        let l = num(&joint(&lbs, "rig", finger, "PIP")["volume_loss"]);
+        let d = num(&joint(&dqs, "rig", finger, "PIP")["volume_loss"]);
+        assert_close(l, 1.0 - 45f64.to_radians().cos(), 0.02, finger);
+        assert!(d.abs() < 0.02 && d < l, "{finger}: DQS {d}, LBS {l}");
+    }
+}
+
+#[test]
+fn dqs_loses_less_volume_than_lbs_at_90_degrees() {
+    let wd = Workdir::new();
+    write_hand(&wd, "right.glb", &HandSpec::default());
+    let at = |method: &str| {
+        let doc = wd
+            .run(&[
+                "deform",
+                "right.glb",
+                "--angles",
+                "0,90,0",
+                "--skinning",
+                method,
+                "--format",
+                "json",
+            ])
+            .ok()
+            .json();
+        num(&joint(&doc, "rig", "middle", "PIP")["volume_loss"])
+    };
+    let (lbs, dqs) = (at("lbs"), at("dqs"));
+    assert!(dqs < lbs - 0.2, "DQS {dqs}, LBS {lbs}");
+}
+
+#[test]
+fn weights_centred_on_the_joint_beat_weights_5mm_off() {
+    // A: every joint's weights blend 5 mm distal of it; B: centred on it.
+    let wd = Workdir::new();
+    write_hand(
+        &wd,
+        "off-right.glb",
+        &HandSpec {
+            weight_shift: 0.005,
+            ..HandSpec::default()
+        },
+    );
+    write_hand(&wd, "centred-right.glb", &HandSpec::default());
+    let doc = wd
+        .run(&[
+            "deform",
+            "off-right.glb",
+            "--against",
+            "centred-right.glb",
+            "--angles",
+            "0,90,0",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    let v = verdict(&doc, "index", "PIP");
+    // Less strain and the fold at the joint: B wins on both, by how much said.
+    assert_eq!(measure_call(v, "strain_p95")["better"], "b", "{v}");
+    let crease = measure_call(v, "crease_offset");
+    assert_eq!(crease["better"], "b", "{v}");
+    // The fold sits where the weights blend: 5 mm distal for A (by construction), at the joint for B.
+    assert_close(num(&crease["a"]), 0.005, 0.001, "A's crease");
+    assert_close(num(&crease["b"]), 0.0, 1e-6, "B's crease");
+    // The truth, not the wish: under LBS the section collapses by the same
+    // 1 - cos 45 deg wherever the blend sits, so volume loss calls them the same.
+    assert_eq!(measure_call(v, "volume_loss")["better"], "same", "{v}");
+    // Nor does the joint 5 mm off lose on every count: its palm-side skin folds
+    // over a wider band, and fewer triangle pairs pass through each other at 90
+    // degrees (59 against 71 on the index here). So the joint is mixed, and the
+    // disagreement is named rather than averaged away.
+    assert_eq!(measure_call(v, "self_intersections")["better"], "a", "{v}");
+    assert_eq!(v["overall"], "mixed");
+    let d = v["disagreement"].as_str().unwrap();
+    assert!(
+        d.contains("A is better by self-intersections") && d.contains("B is better by strain p95"),
+        "{d}"
+    );
+    // The table says so too.
+    let table = wd.run(&[
+        "deform",
+        "off-right.glb",
+        "--against",
+        "centred-right.glb",
+        "--angles",
+        "0,90,0",
+    ]);
+    table
+        .ok()
+        .stdout_has("index PIP: mixed; A better by self-intersections")
+        .stdout_has("Verdict: B deforms better at");
+}
+
+#[test]
+fn a_fold_onto_itself_crosses_the_skin() {
+    let wd = Workdir::new();
+    write_hand(&wd, "right.glb", &HandSpec::default());
+    let folded = wd
+        .run(&[
+            "deform",
+            "right.glb",
+            "--angles",
+            "0,170,0",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    let straight = wd
+        .run(&[
+            "deform",
+            "right.glb",
+            "--angles",
+            "0,0,0",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    for finger in ["index", "middle", "ring", "little"] {
+        assert!(
+            joint(&folded, "rig", finger, "PIP")["self_intersections"]
+                .as_u64()
+                .unwrap()
+                > 0,
+            "{finger}"
+        );
+        assert_eq!(
+            joint(&straight, "rig", finger, "PIP")["self_intersections"],
+            0
+        );
+    }
+}
+
+#[test]
+fn a_left_hand_deforms_as_the_mirror_image_of_the_right() {
+    let wd = Workdir::new();
+    write_hand(&wd, "right.glb", &HandSpec::default());
+    write_hand(
+        &wd,
+        "left.glb",
+        &HandSpec {
+            side: Side::Left,
+            ..HandSpec::default()
+        },
+    );
+    let r = wd
+        .run(&["deform", "right.glb", "--out", "r", "--format", "json"])
+        .ok()
+        .json();
+    let l = wd
+        .run(&["deform", "left.glb", "--out", "l", "--format", "json"])
+        .ok()
+        .json();
+    assert_eq!(l["rig"]["hands"][0]["side"], "left");
+    for finger in ["thumb", "index", "little"] {
+        for j in ["MCP", "PIP", "DIP", "IP"] {
+            if finger == "thumb" && (j == "PIP" || j == "DIP") || finger != "thumb" && j == "IP" {
+                continue;
+            }
+            let (a, b) = (joint(&r, "rig", finger, j), joint(&l, "rig", finger, j));
+            assert_close(num(&a["volume_loss"]), num(&b["volume_loss"]), 1e-4, finger);
+            assert_eq!(a["self_intersections"], b["self_intersections"]);
+        }
+    }
+    // Drawn mirrored: from above, each tip is as far left of the panel's
+    // middle (x = 210) in the left hand as right of it in the right hand.
+    let tips = |doc: &Value| -> Vec<(String, f64)> {
+        let p = doc["renders"][0]["panels"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["view"] == "above")
+            .unwrap();
+        p["tips"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| (t["finger"].as_str().unwrap().to_string(), num(&t["x"])))
+            .collect()
+    };
+    for ((fr, xr), (fl, xl)) in tips(&r).iter().zip(&tips(&l)) {
+        assert_eq!(fr, fl);
+        assert!(((xr - 210.0) + (xl - 210.0)).abs() < 0.5, "{fr}: {xr} {xl}");
+        assert!((xr - 210.0).abs() > 5.0 || fr == "middle", "{fr}: {xr}");
+    }
+}
+
+/// The pixel (r, g, b) at (x, y).
+fn pixel(img: &tiny_skia::Pixmap, x: f64, y: f64) -> [u8; 3] {
+    let p = img
+        .pixel(x.round() as u32, y.round() as u32)
+        .expect("inside the image");
+    [p.red(), p.green(), p.blue()]
+}
+
+#[test]
+fn the_figure_draws_the_mesh_where_it_projects() {
+    let wd = Workdir::new();
+    write_hand(&wd, "right.glb", &HandSpec::default());
+    let doc = wd
+        .run(&[
+            "deform",
+            "right.glb",
+            "--pose",
+            "point",
+            "--out",
+            "renders",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    let render = &doc["renders"][0];
+    assert_eq!(render["file"], "deform-right.png");
+    let img = tiny_skia::Pixmap::decode_png(&wd.read("renders/deform-right.png")).unwrap();
+    assert_eq!(u64::from(img.width()), render["width"].as_u64().unwrap());
+    // Not blank, not constant: background between 20% and 95%, many colours.
+    let white = img
+        .pixels()
+        .iter()
+        .filter(|p| p.red() == 255 && p.green() == 255 && p.blue() == 255)
+        .count();
+    let share = white as f64 / img.pixels().len() as f64;
+    assert!((0.2..0.95).contains(&share), "{share}");
+    let colours: std::collections::BTreeSet<[u8; 3]> = img
+        .pixels()
+        .iter()
+        .map(|p| [p.red(), p.green(), p.blue()])
+        .collect();
+    assert!(colours.len() > 20, "{} colours", colours.len());
+    // The pointing index finger is straight; from above it points up the image.
+    // Its tip is drawn where its projection says: the pixel just inside is the
+    // mesh, and walking up the column from there the mesh ends within 2 pixels
+    // (the tip is the end of the tube), then white.
+    let above = render["panels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["view"] == "above" && p["rig"] == "a")
+        .unwrap();
+    let tip = above["tips"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|t| t["finger"] == "index")
+        .unwrap();
+    let (x, y) = (num(&tip["x"]), num(&tip["y"]));
+    assert_ne!(
+        pixel(&img, x, y + 2.0),
+        [255, 255, 255],
+        "no mesh at the index tip ({x}, {y})"
+    );
+    let mut top = y + 2.0;
+    while top > 0.0 && pixel(&img, x, top - 1.0) != [255, 255, 255] {
+        top -= 1.0;
+    }
+    assert!(
+        (top - y).abs() <= 2.0,
+        "the mesh ends at y = {top}, the tip projects to {y}"
+    );
+    // An unbent finger does not strain: its tip is drawn in the ramp's grey (shaded).
+    let [r, g, b] = pixel(&img, x, y + 3.0);
+    assert!(
+        b >= r && b >= g,
+        "the straight tip is not grey-blue: {r} {g} {b}"
+    );
+}
+
+#[test]
+fn fix_compares_with_what_audit_fix_writes_without_writing_it() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    write_hand(&wd, "right.glb", &HandSpec::default());
+    let before: Vec<_> = std::fs::read_dir(wd.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    let fix = wd
+        .run(&["deform", "right.glb", "--fix", "--format", "json"])
+        .ok()
+        .json();
+    let after: Vec<_> = std::fs::read_dir(wd.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    assert_eq!(before, after, "--fix wrote a file");
+    assert!(
+        fix["against"]["label"]
+            .as_str()
+            .unwrap()
+            .contains("audit --fix")
+    );
+    assert!(
+        fix["moved"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|m| num(&m["shift"]) > 0.0)
+    );
+    // The same as deforming the file audit --fix writes.
+    wd.run(&["audit", "right.glb", "--fix", "fixed-right.glb"])
+        .ok();
+    let against = wd
+        .run(&[
+            "deform",
+            "right.glb",
+            "--against",
+            "fixed-right.glb",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    assert_eq!(fix["against"]["hands"], against["against"]["hands"]);
+    assert_eq!(fix["verdicts"], against["verdicts"]);
+    wd.run(&["deform", "right.glb", "--fix"])
+        .ok()
+        .stdout_has("B: right.glb (as audit --fix would write it)");
+}
+
+#[test]
+fn bad_input_is_refused_naming_the_file_and_nothing_is_written() {
+    let wd = Workdir::new();
+    write_hand(&wd, "right.glb", &HandSpec::default());
+    wd.write("junk.glb", b"glTF not really");
+    // A skeleton without a skin.
+    wd.write(
+        "bare-right.gltf",
+        r#"{"asset":{"version":"2.0"},"nodes":[
+            {"name":"wrist","children":[1,4,7,10,13]},
+            {"name":"thumb-phalanx-proximal","translation":[-0.03,0.04,0],"children":[2]},{"name":"thumb-phalanx-distal","translation":[0,0.03,0],"children":[3]},{"name":"thumb-tip","translation":[0,0.03,0]},
+            {"name":"index-finger-phalanx-proximal","translation":[-0.02,0.09,0],"children":[5]},{"name":"index-finger-phalanx-intermediate","translation":[0,0.04,0],"children":[6]},{"name":"index-finger-phalanx-distal","translation":[0,0.025,0]},
+            {"name":"middle-finger-phalanx-proximal","translation":[0,0.09,0],"children":[8]},{"name":"middle-finger-phalanx-intermediate","translation":[0,0.045,0],"children":[9]},{"name":"middle-finger-phalanx-distal","translation":[0,0.028,0]},
+            {"name":"ring-finger-phalanx-proximal","translation":[0.015,0.088,0],"children":[11]},{"name":"ring-finger-phalanx-intermediate","translation":[0,0.042,0],"children":[12]},{"name":"ring-finger-phalanx-distal","translation":[0,0.027,0]},
+            {"name":"pinky-finger-phalanx-proximal","translation":[0.03,0.08,0],"children":[14]},{"name":"pinky-finger-phalanx-intermediate","translation":[0,0.033,0],"children":[15]},{"name":"pinky-finger-phalanx-distal","translation":[0,0.02,0]}
+        ],"scenes":[{"nodes":[0]}],"scene":0}"#,
+    );
+    for (args, words) in [
+        (
+            &["deform", "missing.glb", "--out", "out"][..],
+            "missing.glb",
+        ),
+        (&["deform", "junk.glb", "--out", "out"], "junk.glb"),
+        (&["deform", "bare-right.gltf", "--out", "out"], "no skin"),
+        (
+            &[
+                "deform",
+                "right.glb",
+                "--against",
+                "junk.glb",
+                "--out",
+                "out",
+            ],
+            "junk.glb",
+        ),
+        (
+            &["deform", "right.glb", "--angles", "0,200,0", "--out", "out"],
+            "from -30 to 180",
+        ),
+        (
+            &["deform", "right.glb", "--angles", "NaN,0,0", "--out", "out"],
+            "from -30 to 180",
+        ),
+        (
+            &["deform", "right.glb", "--angles", "1,2", "--out", "out"],
+            "from -30 to 180",
+        ),
+        (
+            &["deform", "right.glb", "--pose", "wave", "--out", "out"],
+            "wave",
+        ),
+        (
+            &["deform", "right.glb", "--fix", "--against", "right.glb"],
+            "cannot be used with",
+        ),
+        (
+            &[
+                "deform",
+                "right.glb",
+                "--fix",
+                "--data",
+                "none.csv",
+                "--out",
+                "out",
+            ],
+            "none.csv",
+        ),
+    ] {
+        wd.run(args).data_error().stderr_has(words);
+        assert!(!wd.path().join("out").exists(), "{args:?} wrote its output");
+    }
+    // A hand whose names carry no side, in a file whose name does not say either.
+    std::fs::copy(wd.path().join("right.glb"), wd.path().join("hand.glb")).unwrap();
+    wd.run(&["deform", "hand.glb"])
+        .data_error()
+        .stderr_has("--side");
+    wd.run(&["deform", "hand.glb", "--side", "right"]).ok();
+}
+
+/// The WebXR generic hands: vendored, or beside the repository.
+fn webxr_dir() -> Option<PathBuf> {
+    let root = manifest_dir();
+    [
+        root.join("data/rigs/webxr-generic-hand"),
+        root.join("../shared/rigs/webxr-generic-hand"),
+    ]
+    .into_iter()
+    .find(|d| d.join("left.glb").is_file() && d.join("right.glb").is_file())
+}
+
+#[test]
+fn the_webxr_hands_deform_and_draw() {
+    let Some(dir) = webxr_dir() else {
+        eprintln!(
+            "skipped: the WebXR generic hands are in neither data/rigs/webxr-generic-hand nor ../shared/rigs/webxr-generic-hand"
+        );
+        return;
+    };
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    for side in ["left", "right"] {
+        let rig = dir.join(format!("{side}.glb"));
+        let rig = rig.to_str().unwrap();
+        let out = format!("r-{side}");
+        let doc = wd
+            .run(&["deform", rig, "--out", &out, "--format", "json"])
+            .ok()
+            .json();
+        let hand = &doc["rig"]["hands"][0];
+        assert_eq!(hand["side"], side);
+        // The file's own counts (accessors 0 and 5 of its JSON).
+        assert_eq!(hand["vertices"], 1360);
+        assert_eq!(hand["triangles"], 6942 / 3);
+        // Every finger's PIP (thumb: IP) is bent, so LBS loses some area there.
+        for f in hand["measures"]["fingers"].as_array().unwrap() {
+            let j = &f["joints"][1];
+            assert!(num(&j["volume_loss"]) > 0.0, "{f}");
+        }
+        let png = wd.read(&format!("{out}/deform-{side}.png"));
+        let img = tiny_skia::Pixmap::decode_png(&png).unwrap();
+        let white = img
+            .pixels()
+            .iter()
+            .filter(|p| p.red() == 255 && p.green() == 255 && p.blue() == 255)
+            .count();
+        let share = white as f64 / img.pixels().len() as f64;
+        assert!((0.2..0.95).contains(&share), "{side}: {share}");
+        let table = wd.run(&["deform", rig]);
+        table.ok().stdout_has(&format!("{side} hand"));
+        eprintln!("{}", table.stdout);
+        let fix = wd.run(&["deform", rig, "--fix", "--out", &format!("f-{side}")]);
+        fix.ok().stdout_has("B: ").stdout_has("Verdict:");
+        eprintln!("{}", fix.stdout);
+        if side == "right" {
+            // The README's --fix table is what the command prints.
+            let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
+            let rows: Vec<&str> = fix.stdout.lines().filter(|l| l.starts_with('|')).collect();
+            assert_eq!(rows.len(), 16, "{}", fix.stdout);
+            for line in rows.iter().chain(
+                fix.stdout
+                    .lines()
+                    .find(|l| l.starts_with("Verdict:"))
+                    .iter(),
+            ) {
+                assert!(
+                    readme.contains(line),
+                    "README lacks the --fix line:\n{line}"
+                );
+            }
+        }
+    }
+}
