@@ -492,6 +492,85 @@ pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Opti
     })
 }
 
+/// The MCP judged from the CMC against a dataset's metacarpals (the Digital
+/// Hand Atlas's by default): a guide beside the finger's own judgement, which
+/// it does not change.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct MetacarpalCheck {
+    /// The metacarpal node; its origin is the CMC.
+    pub node: String,
+    /// The rig's metacarpal mc: CMC to MCP, in rig units.
+    pub mc: f64,
+    /// The finger's length J as compared (MCP to tip, the tip's soft tissue taken off).
+    pub length: f64,
+    /// mc/J and J1/mc against the dataset.
+    pub values: Vec<ValueCheck>,
+    /// Where the dataset puts the MCP, in rig units from the CMC along the
+    /// CMC-MCP line, the CMC and the tip held: mc/J x J with J the finger's
+    /// length when the MCP is there.
+    pub expected: f64,
+    pub range: Interval,
+    pub pi: Option<Interval>,
+    /// The rig's MCP (at `mc` from the CMC) against `expected`: above = too distal.
+    #[serde(flatten)]
+    pub standing: Standing,
+    /// The MCP where the dataset puts it (at `expected` from the CMC).
+    #[schemars(with = "[f64; 3]")]
+    pub suggested: DVec3,
+}
+
+/// Judges a finger's MCP from its CMC (`cmc`, the metacarpal node's origin)
+/// against the metacarpal statistics of `a`, given the finger as judged and
+/// its MCP `mcp`.
+///
+/// With S = mc + J (CMC to the compared tip through the MCP, held) and x = mc/J,
+/// the MCP belongs at S x / (1 + x) from the CMC, increasing in x, so the
+/// range and prediction interval of x map onto positions end to end. Moving
+/// the MCP along the line lengthens mc as much as it shortens J; holding J
+/// instead would read a 10 mm shift as about 10 (1 + x) mm. `None` without a
+/// tip (J unknown), without the dataset's mc/J for the finger, or for a CMC on
+/// the MCP. O(1).
+pub fn metacarpal(
+    a: &Analysis,
+    audit: &FingerAudit,
+    node: &str,
+    cmc: DVec3,
+    mcp: DVec3,
+) -> Option<MetacarpalCheck> {
+    let length = audit.length?;
+    let mc = cmc.distance(mcp);
+    if !(cmc.is_finite() && mcp.is_finite() && mc > 0.0 && length > 0.0) {
+        return None;
+    }
+    let rel = stats(a, audit.finger, Quantity::RatioMcJ)?;
+    let values: Vec<ValueCheck> = [
+        (Quantity::RatioMcJ, mc / length),
+        (Quantity::RatioJ1Mc, audit.compared.first()? / mc),
+    ]
+    .into_iter()
+    .filter_map(|(q, x)| stats(a, audit.finger, q).map(|s| value_check(q, x, s)))
+    .collect();
+    let span = mc + length;
+    let at = |x: f64| span * x.max(0.0) / (1.0 + x.max(0.0));
+    let expected = at(rel.mean);
+    let range = Interval::new(at(rel.min), at(rel.max));
+    let pi = rel
+        .intervals
+        .pi
+        .map(|i| Interval::new(at(i.low), at(i.high)));
+    Some(MetacarpalCheck {
+        node: node.to_string(),
+        mc,
+        length,
+        values,
+        expected,
+        range,
+        pi,
+        standing: Standing::of(mc, range, pi),
+        suggested: cmc + (mcp - cmc).normalize_or_zero() * expected,
+    })
+}
+
 /// A joint's standing inputs: (joint, measured, expected, range, prediction interval).
 type StandingInput = (Joint, f64, f64, Interval, Option<Interval>);
 
