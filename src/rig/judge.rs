@@ -1004,6 +1004,87 @@ mod tests {
         }
     }
 
+    /// The mean of mc / (J1 + J2 + J3) over the atlas's rows of `finger` that
+    /// measure the metacarpal, read from the CSV by hand (not by the dataset reader).
+    fn atlas_mean_mc_over_j(finger: &str) -> f64 {
+        let text = std::fs::read_to_string("data/atlas/measurements.csv").unwrap();
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+        let (f, mc, js) = (col("finger"), col("mc"), [col("j1"), col("j2"), col("j3")]);
+        let ratios: Vec<f64> = lines
+            .map(|l| l.split(',').collect::<Vec<_>>())
+            .filter(|r| r[f] == finger && !r[mc].is_empty())
+            .map(|r| {
+                let j: f64 = js.iter().filter_map(|&k| r[k].parse::<f64>().ok()).sum();
+                r[mc].parse::<f64>().unwrap() / j
+            })
+            .collect();
+        assert!(
+            ratios.len() > 100,
+            "{} atlas rows for {finger}",
+            ratios.len()
+        );
+        ratios.iter().sum::<f64>() / ratios.len() as f64
+    }
+
+    #[test]
+    fn an_mcp_10_mm_towards_the_web_is_out_too_distal_on_the_metacarpal_line() {
+        let d = Dataset::load(Path::new("data/atlas/measurements.csv")).unwrap();
+        let atlas = analyse(&d, &Settings::default());
+        let x = atlas_mean_mc_over_j("index");
+        // A straight index finger along x: CMC at the origin, the metacarpal
+        // at the atlas's mean mc/J of an 80 mm finger (J~ at the paper's
+        // means), the skin tip 4 mm past the bone tip (the default).
+        let length = 0.080;
+        let mc = x * length;
+        let segs = [0.4846 * length, 0.2726 * length, 0.2428 * length + 0.004];
+        let finger = |mcp: f64| {
+            let mut c = straight(Finger::Index, &segs);
+            c.points[0].x = mcp;
+            for (k, p) in c.points.iter_mut().enumerate().skip(1) {
+                p.x = mc + segs[..k].iter().sum::<f64>();
+            }
+            c
+        };
+        let judge = |c: &ChainInput| {
+            let audit = audit_with(&atlas, c, &JudgeOptions::default()).unwrap();
+            metacarpal(
+                &atlas,
+                &audit,
+                "index_metacarpal_r",
+                DVec3::ZERO,
+                c.points[0],
+            )
+            .unwrap()
+        };
+        let at_mean = judge(&finger(mc));
+        assert!((at_mean.length - length).abs() < 1e-12);
+        assert!((at_mean.values[0].measured - x).abs() < 1e-9);
+        assert!(
+            (at_mean.values[0].mean - x).abs() < 1e-9,
+            "the atlas mean, by hand"
+        );
+        assert_eq!(at_mean.standing, Standing::InRange);
+        let moved = judge(&finger(mc + 0.010));
+        // CMC and tip held, the atlas still puts the MCP where it was.
+        assert!(
+            (moved.expected - mc).abs() < 1e-9,
+            "{} vs {mc}",
+            moved.expected
+        );
+        assert!((moved.suggested.x - mc).abs() < 1e-9);
+        let pi = moved.pi.unwrap();
+        match moved.standing {
+            Standing::Above { by } => {
+                assert!((by - (mc + 0.010 - pi.high)).abs() < 1e-12);
+                assert!(by > 0.0 && by < 0.010, "{by}");
+            }
+            s => panic!("expected too distal, got {s:?}"),
+        }
+        assert!(matches!(moved.values[0].standing, Standing::Above { .. }));
+    }
+
     #[test]
     fn standing_orders_range_then_prediction_then_outside() {
         let range = Interval::new(0.4, 0.5);
