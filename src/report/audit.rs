@@ -381,7 +381,7 @@ pub(crate) fn text(
         if !f.bends.is_empty() {
             out.push_str(&para(&bend_words(&f.bends, rig.bend_tolerance), "  "));
         }
-        if let Some(m) = &f.metacarpal {
+        if let Some(m) = &f.metacarpal_check {
             out.push_str(&para(&metacarpal_words(m, &c), "  "));
         }
     }

@@ -1030,9 +1030,10 @@ pub struct AuditedFinger {
     pub skin_tip: Option<SkinTip>,
     /// The MCP judged from the CMC against the metacarpals' dataset, when the
     /// rig has a metacarpal node and the audit was given one
-    /// ([`AuditedRig::judge_metacarpals`]).
+    /// ([`AuditedRig::judge_metacarpals`]). Not `metacarpal`: that key is
+    /// the chain's metacarpal node.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub metacarpal: Option<judge::MetacarpalCheck>,
+    pub metacarpal_check: Option<judge::MetacarpalCheck>,
 }
 
 /// Every finger of a rig judged against the statistics.
@@ -1168,7 +1169,7 @@ impl AuditedRig {
                         audit,
                         bends,
                         skin_tip,
-                        metacarpal: None,
+                        metacarpal_check: None,
                     });
                 }
                 None => notes.push(format!(
@@ -1207,9 +1208,9 @@ impl AuditedRig {
             let (Some(node), Some(mcp)) = (&f.chain.metacarpal, f.chain.joints.first()) else {
                 continue;
             };
-            f.metacarpal =
+            f.metacarpal_check =
                 judge::metacarpal(atlas, &f.audit, &node.name, node.position, mcp.position);
-            match f.metacarpal {
+            match f.metacarpal_check {
                 Some(_) => judged += 1,
                 None => self.notes.push(format!(
                     "{}: its MCP is not judged from the metacarpal {} ({})",
