@@ -67,6 +67,10 @@ pub(crate) struct Args {
     /// Flag a joint further than this from where its skin bends, in mm (default 3)
     #[arg(long, value_name = "MM")]
     bend_tolerance: Option<f64>,
+    /// Also judge each MCP from its metacarpal (CMC) against this dataset's mc column
+    /// [default: data/atlas/measurements.csv, when it exists]
+    #[arg(long, value_name = "DATASET")]
+    metacarpals: Option<PathBuf>,
     /// Exit with status 1 when a finger is outside the prediction interval
     #[arg(long)]
     strict: bool,
@@ -75,8 +79,15 @@ pub(crate) struct Args {
     format: TextFormat,
 }
 
+/// The metacarpals' dataset when given or when the default exists.
+const DEFAULT_METACARPALS: &str = "data/atlas/measurements.csv";
+
 pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> {
-    let audit = session::audit(&AuditRequest {
+    let metacarpals = match &args.metacarpals {
+        Some(path) => Some(path.clone()),
+        None => Some(PathBuf::from(DEFAULT_METACARPALS)).filter(|p| p.is_file()),
+    };
+    let mut audit = session::audit(&AuditRequest {
         rig: &args.rig,
         map: args.map.as_deref(),
         fix: args.fix.as_deref(),
@@ -84,7 +95,21 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         settings: args.boot.settings()?,
         options: options(args)?,
         only_outside: args.only_outside,
+        metacarpals: metacarpals.as_deref(),
     })?;
+    if metacarpals.is_none()
+        && audit
+            .rig
+            .fingers
+            .iter()
+            .any(|f| f.chain.metacarpal.is_some())
+    {
+        audit.rig.notes.push(format!(
+            "Metacarpals: the rig has them, but {DEFAULT_METACARPALS} (the Digital Hand Atlas) \
+             was not found here, so its MCPs are not judged from their CMCs; give a dataset with \
+             an mc column with --metacarpals DATASET"
+        ));
+    }
     let bytes = match args.format {
         TextFormat::Table => table(&audit, width).into_bytes(),
         TextFormat::Json => json(&audit)?,

@@ -7,7 +7,7 @@ use crate::analysis::placement::Joint;
 use crate::analysis::{Interval, Quantity};
 use crate::format::{level, num};
 use crate::rig::bend::Bend;
-use crate::rig::judge::{Basis, FingerAudit, JudgeOptions, Standing, TipKind};
+use crate::rig::judge::{Basis, FingerAudit, JudgeOptions, MetacarpalCheck, Standing, TipKind};
 use crate::rig::{AuditedFinger, AuditedRig};
 
 /// Millimetres per rig unit (glTF units are metres).
@@ -261,6 +261,47 @@ pub(crate) fn bend_words(bends: &[Bend], tolerance: f64) -> String {
     format!("Skin bends (from each joint): {}.", parts.join(", "))
 }
 
+/// The MCP judged from the CMC against the atlas's metacarpals, in words.
+pub(crate) fn metacarpal_words(m: &MetacarpalCheck, c: &str) -> String {
+    let mm = |x: f64| num(x * MM, 2);
+    let values: Vec<String> = m
+        .values
+        .iter()
+        .map(|v| {
+            format!(
+                "{} {} (atlas mean {}, {c} prediction {}: {})",
+                v.quantity.symbol(),
+                num(v.measured, 4),
+                num(v.mean, 4),
+                v.pi.map_or("n/a".into(), |p| format!(
+                    "[{}, {}]",
+                    num(p.low, 4),
+                    num(p.high, 4)
+                )),
+                value_standing(v.standing)
+            )
+        })
+        .collect();
+    format!(
+        "Metacarpal ({}): mc {} mm, J {} mm; {}. MCP from the CMC: {}; the atlas puts it {} mm \
+         from the CMC ({c} prediction {}; CMC and tip held), at ({}, {}, {}) m.",
+        m.node,
+        mm(m.mc),
+        mm(m.length),
+        values.join("; "),
+        joint_standing(m.standing, MM),
+        mm(m.expected),
+        m.pi.map_or("n/a".into(), |p| format!(
+            "[{}, {}] mm",
+            mm(p.low),
+            mm(p.high)
+        )),
+        num(m.suggested[0], 5),
+        num(m.suggested[1], 5),
+        num(m.suggested[2], 5)
+    )
+}
+
 /// The table of one finger: each joint (mm from the rig's MCP) and each value,
 /// fitted to `width` (the X-ray range goes first, then the standings wrap).
 fn finger_table(a: &FingerAudit, c: &str, width: Width, hidden: &mut Hidden) -> String {
@@ -339,6 +380,9 @@ pub(crate) fn text(
         }
         if !f.bends.is_empty() {
             out.push_str(&para(&bend_words(&f.bends, rig.bend_tolerance), "  "));
+        }
+        if let Some(m) = &f.metacarpal_check {
+            out.push_str(&para(&metacarpal_words(m, &c), "  "));
         }
     }
     if !rig.notes.is_empty() {

@@ -492,6 +492,85 @@ pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Opti
     })
 }
 
+/// The MCP judged from the CMC against a dataset's metacarpals (the Digital
+/// Hand Atlas's by default): a guide beside the finger's own judgement, which
+/// it does not change.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct MetacarpalCheck {
+    /// The metacarpal node; its origin is the CMC.
+    pub node: String,
+    /// The rig's metacarpal mc: CMC to MCP, in rig units.
+    pub mc: f64,
+    /// The finger's length J as compared (MCP to tip, the tip's soft tissue taken off).
+    pub length: f64,
+    /// mc/J and J1/mc against the dataset.
+    pub values: Vec<ValueCheck>,
+    /// Where the dataset puts the MCP, in rig units from the CMC along the
+    /// CMC-MCP line, the CMC and the tip held: mc/J x J with J the finger's
+    /// length when the MCP is there.
+    pub expected: f64,
+    pub range: Interval,
+    pub pi: Option<Interval>,
+    /// The rig's MCP (at `mc` from the CMC) against `expected`: above = too distal.
+    #[serde(flatten)]
+    pub standing: Standing,
+    /// The MCP where the dataset puts it (at `expected` from the CMC).
+    #[schemars(with = "[f64; 3]")]
+    pub suggested: DVec3,
+}
+
+/// Judges a finger's MCP from its CMC (`cmc`, the metacarpal node's origin)
+/// against the metacarpal statistics of `a`, given the finger as judged and
+/// its MCP `mcp`.
+///
+/// With S = mc + J (CMC to the compared tip through the MCP, held) and x = mc/J,
+/// the MCP belongs at S x / (1 + x) from the CMC, increasing in x, so the
+/// range and prediction interval of x map onto positions end to end. Moving
+/// the MCP along the line lengthens mc as much as it shortens J; holding J
+/// instead would read a 10 mm shift as about 10 (1 + x) mm. `None` without a
+/// tip (J unknown), without the dataset's mc/J for the finger, or for a CMC on
+/// the MCP. O(1).
+pub fn metacarpal(
+    a: &Analysis,
+    audit: &FingerAudit,
+    node: &str,
+    cmc: DVec3,
+    mcp: DVec3,
+) -> Option<MetacarpalCheck> {
+    let length = audit.length?;
+    let mc = cmc.distance(mcp);
+    if !(cmc.is_finite() && mcp.is_finite() && mc > 0.0 && length > 0.0) {
+        return None;
+    }
+    let rel = stats(a, audit.finger, Quantity::RatioMcJ)?;
+    let values: Vec<ValueCheck> = [
+        (Quantity::RatioMcJ, mc / length),
+        (Quantity::RatioJ1Mc, audit.compared.first()? / mc),
+    ]
+    .into_iter()
+    .filter_map(|(q, x)| stats(a, audit.finger, q).map(|s| value_check(q, x, s)))
+    .collect();
+    let span = mc + length;
+    let at = |x: f64| span * x.max(0.0) / (1.0 + x.max(0.0));
+    let expected = at(rel.mean);
+    let range = Interval::new(at(rel.min), at(rel.max));
+    let pi = rel
+        .intervals
+        .pi
+        .map(|i| Interval::new(at(i.low), at(i.high)));
+    Some(MetacarpalCheck {
+        node: node.to_string(),
+        mc,
+        length,
+        values,
+        expected,
+        range,
+        pi,
+        standing: Standing::of(mc, range, pi),
+        suggested: cmc + (mcp - cmc).normalize_or_zero() * expected,
+    })
+}
+
 /// A joint's standing inputs: (joint, measured, expected, range, prediction interval).
 type StandingInput = (Joint, f64, f64, Interval, Option<Interval>);
 
@@ -923,6 +1002,87 @@ mod tests {
             points,
             has_tip: true,
         }
+    }
+
+    /// The mean of mc / (J1 + J2 + J3) over the atlas's rows of `finger` that
+    /// measure the metacarpal, read from the CSV by hand (not by the dataset reader).
+    fn atlas_mean_mc_over_j(finger: &str) -> f64 {
+        let text = std::fs::read_to_string("data/atlas/measurements.csv").unwrap();
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+        let (f, mc, js) = (col("finger"), col("mc"), [col("j1"), col("j2"), col("j3")]);
+        let ratios: Vec<f64> = lines
+            .map(|l| l.split(',').collect::<Vec<_>>())
+            .filter(|r| r[f] == finger && !r[mc].is_empty())
+            .map(|r| {
+                let j: f64 = js.iter().filter_map(|&k| r[k].parse::<f64>().ok()).sum();
+                r[mc].parse::<f64>().unwrap() / j
+            })
+            .collect();
+        assert!(
+            ratios.len() > 100,
+            "{} atlas rows for {finger}",
+            ratios.len()
+        );
+        ratios.iter().sum::<f64>() / ratios.len() as f64
+    }
+
+    #[test]
+    fn an_mcp_10_mm_towards_the_web_is_out_too_distal_on_the_metacarpal_line() {
+        let d = Dataset::load(Path::new("data/atlas/measurements.csv")).unwrap();
+        let atlas = analyse(&d, &Settings::default());
+        let x = atlas_mean_mc_over_j("index");
+        // A straight index finger along x: CMC at the origin, the metacarpal
+        // at the atlas's mean mc/J of an 80 mm finger (J~ at the paper's
+        // means), the skin tip 4 mm past the bone tip (the default).
+        let length = 0.080;
+        let mc = x * length;
+        let segs = [0.4846 * length, 0.2726 * length, 0.2428 * length + 0.004];
+        let finger = |mcp: f64| {
+            let mut c = straight(Finger::Index, &segs);
+            c.points[0].x = mcp;
+            for (k, p) in c.points.iter_mut().enumerate().skip(1) {
+                p.x = mc + segs[..k].iter().sum::<f64>();
+            }
+            c
+        };
+        let judge = |c: &ChainInput| {
+            let audit = audit_with(&atlas, c, &JudgeOptions::default()).unwrap();
+            metacarpal(
+                &atlas,
+                &audit,
+                "index_metacarpal_r",
+                DVec3::ZERO,
+                c.points[0],
+            )
+            .unwrap()
+        };
+        let at_mean = judge(&finger(mc));
+        assert!((at_mean.length - length).abs() < 1e-12);
+        assert!((at_mean.values[0].measured - x).abs() < 1e-9);
+        assert!(
+            (at_mean.values[0].mean - x).abs() < 1e-9,
+            "the atlas mean, by hand"
+        );
+        assert_eq!(at_mean.standing, Standing::InRange);
+        let moved = judge(&finger(mc + 0.010));
+        // CMC and tip held, the atlas still puts the MCP where it was.
+        assert!(
+            (moved.expected - mc).abs() < 1e-9,
+            "{} vs {mc}",
+            moved.expected
+        );
+        assert!((moved.suggested.x - mc).abs() < 1e-9);
+        let pi = moved.pi.unwrap();
+        match moved.standing {
+            Standing::Above { by } => {
+                assert!((by - (mc + 0.010 - pi.high)).abs() < 1e-12);
+                assert!(by > 0.0 && by < 0.010, "{by}");
+            }
+            s => panic!("expected too distal, got {s:?}"),
+        }
+        assert!(matches!(moved.values[0].standing, Standing::Above { .. }));
     }
 
     #[test]

@@ -1036,6 +1036,12 @@ pub struct AuditedFinger {
     /// The skin's end used as the tip, when the tip node lies inside the skin.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub skin_tip: Option<SkinTip>,
+    /// The MCP judged from the CMC against the metacarpals' dataset, when the
+    /// rig has a metacarpal node and the audit was given one
+    /// ([`AuditedRig::judge_metacarpals`]). Not `metacarpal`: that key is
+    /// the chain's metacarpal node.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub metacarpal_check: Option<judge::MetacarpalCheck>,
 }
 
 /// Every finger of a rig judged against the statistics.
@@ -1171,6 +1177,7 @@ impl AuditedRig {
                         audit,
                         bends,
                         skin_tip,
+                        metacarpal_check: None,
                     });
                 }
                 None => notes.push(format!(
@@ -1197,6 +1204,52 @@ impl AuditedRig {
             .iter()
             .filter(|f| !f.audit.is_consistent())
             .count()
+    }
+
+    /// Judges the MCP of every finger with a metacarpal node from its CMC
+    /// against `atlas`'s metacarpal statistics ([`judge::metacarpal`]); the
+    /// fingers' own standings are unchanged. A finger that has a metacarpal
+    /// but cannot be judged (no tip, no mc/J in `atlas`) gets a note.
+    pub fn judge_metacarpals(&mut self, atlas: &crate::analysis::Analysis) {
+        let mut judged = 0;
+        for f in &mut self.fingers {
+            let (Some(node), Some(mcp)) = (&f.chain.metacarpal, f.chain.joints.first()) else {
+                continue;
+            };
+            f.metacarpal_check =
+                judge::metacarpal(atlas, &f.audit, &node.name, node.position, mcp.position);
+            match f.metacarpal_check {
+                Some(_) => judged += 1,
+                None => self.notes.push(format!(
+                    "{}: its MCP is not judged from the metacarpal {} ({})",
+                    f.chain.label(),
+                    node.name,
+                    if f.audit.length.is_none() {
+                        "the rig has no tip, so the finger's length is unknown".to_string()
+                    } else {
+                        format!("{} has no mc/J for this finger", atlas.dataset.path)
+                    }
+                )),
+            }
+        }
+        if judged > 0 {
+            self.notes.push(format!(
+                "Metacarpals: each MCP is also judged from its CMC against {} ({} with the \
+                 metacarpal measured), with the same settings. The Digital Hand Atlas (the \
+                 default) is children's left hands with landmarks at bone ends, not joint \
+                 centres: read this as a guide.",
+                atlas.dataset.path,
+                crate::format::xrays(
+                    atlas
+                        .fingers
+                        .iter()
+                        .filter_map(|fa| fa.quantity(crate::dataset::Quantity::RatioMcJ))
+                        .map(|s| s.n)
+                        .max()
+                        .unwrap_or(0)
+                )
+            ));
+        }
     }
 
     /// Joints further from their bend than the tolerance.

@@ -26,6 +26,9 @@ pub struct AuditRequest<'a> {
     pub options: AuditOptions,
     /// `--only-outside`: the fix moves only joints outside the prediction interval.
     pub only_outside: bool,
+    /// The dataset with metacarpals (an `mc` column) each MCP is also judged
+    /// against from its CMC, analysed with `settings`; `None`: not judged.
+    pub metacarpals: Option<&'a Path>,
 }
 
 /// A finished audit.
@@ -64,7 +67,16 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     analysis::budget::check_bootstrap(dataset.xray_count(), req.settings.resamples)
         .map_err(Error::Usage)?;
     let analysis = analysis::analyse(&dataset, &req.settings);
-    let audited = AuditedRig::with(
+    let atlas = match req.metacarpals {
+        Some(path) => {
+            let atlas = Dataset::load(path)?;
+            analysis::budget::check_bootstrap(atlas.xray_count(), req.settings.resamples)
+                .map_err(Error::Usage)?;
+            Some(analysis::analyse(&atlas, &req.settings))
+        }
+        None => None,
+    };
+    let mut audited = AuditedRig::with(
         &rig.file.label,
         &rig.chains,
         &rig.notes,
@@ -72,6 +84,9 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         &req.options,
         rig.weights.as_ref(),
     );
+    if let Some(atlas) = &atlas {
+        audited.judge_metacarpals(atlas);
+    }
     let fix = match (req.fix, fix_glb) {
         (Some(out), Some(glb)) => {
             let dir = req.rig.parent().unwrap_or(Path::new("."));

@@ -154,3 +154,61 @@ fn a_fix_moves_sibling_joints_alone_and_keeps_the_mesh() {
         "a second fix changed the file"
     );
 }
+
+/// The WebXR hands have `*-metacarpal` joints: with the atlas at its default
+/// path every finger's MCP is also judged from its CMC, mc the distance
+/// between the two nodes and mc/J over the finger's length as judged.
+#[test]
+fn every_webxr_finger_gets_a_metacarpal_judgement_from_the_atlas() {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let Some(_) = hand(&wd, "right") else { return };
+    let no_atlas = wd.run(&["audit", "right.glb"]).ok().stdout.clone();
+    assert!(!no_atlas.contains("Metacarpal ("), "{no_atlas}");
+    let doc = audit_json(&wd, "right.glb");
+    assert!(
+        fingers(&doc)
+            .iter()
+            .all(|f| f.get("metacarpal_check").is_none())
+    );
+    assert!(
+        no_atlas.contains("--metacarpals DATASET"),
+        "a note says why: {no_atlas}"
+    );
+    let atlas = manifest_dir().join("data/atlas/measurements.csv");
+    let Ok(bytes) = std::fs::read(&atlas) else {
+        eprintln!("skipped: {} is not readable", atlas.display());
+        return;
+    };
+    wd.write("data/atlas/measurements.csv", &bytes);
+    let doc = audit_json(&wd, "right.glb");
+    for f in fingers(&doc) {
+        let m = &f["metacarpal_check"];
+        let name = f["finger"].as_str().unwrap();
+        assert_eq!(m["node"], f["metacarpal"]["name"], "{name}");
+        let node = m["node"].as_str().unwrap_or_else(|| panic!("{name}: {f}"));
+        assert!(node.ends_with("-metacarpal"), "{name}: {node}");
+        let p = |v: &Value| -> Vec<f64> { (0..3).map(|k| num(&v[k])).collect() };
+        let (cmc, mcp) = (
+            p(&f["metacarpal"]["position"]),
+            p(&f["joints"][0]["position"]),
+        );
+        let mc = (0..3)
+            .map(|k| (cmc[k] - mcp[k]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        assert_close(num(&m["mc"]), mc, 1e-9, name);
+        assert_close(num(&m["length"]), num(&f["audit"]["length"]), 1e-12, name);
+        let ratio = &m["values"][0];
+        assert_eq!(ratio["quantity"], "ratio_mc_j", "{name}");
+        assert_close(num(&ratio["measured"]), mc / num(&m["length"]), 1e-9, name);
+        assert!(m["standing"].is_string(), "{name}: {m}");
+    }
+    wd.run(&["audit", "right.glb"])
+        .ok()
+        .stdout_has("Metacarpal (index-finger-metacarpal): mc ")
+        .stdout_has("children's left hands");
+    // A named dataset that is missing is an error, not a silent skip.
+    wd.run(&["audit", "right.glb", "--metacarpals", "nowhere.csv"])
+        .data_error();
+}
