@@ -92,7 +92,7 @@ pub(super) fn read(
                 v.insert(cells.line());
             }
         }
-        let slot = slot(cells, id, name, landmark, [x_text, y_text]);
+        let slot = slot(cells, id, name, landmark, x_text, y_text);
         if let Some((finger, s)) = landmark.slot() {
             *hands[h].slot_mut(finger, s) = slot;
         }
@@ -153,7 +153,8 @@ fn slot(
     id: &str,
     name: &str,
     landmark: Landmark,
-    [x_text, y_text]: [&str; 2],
+    x_text: &str,
+    y_text: &str,
 ) -> Slot {
     if x_text.is_empty() && y_text.is_empty() {
         return Slot::Unlabelled(place(cells, Column::Landmark));
