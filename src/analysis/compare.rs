@@ -479,8 +479,30 @@ pub fn cohorts(a: &Dataset, b: &Dataset, settings: &Settings) -> Cohorts {
     if !same_unit {
         notes.push(total_note(&info_a.unit, &info_b.unit));
     }
-    let (blocks_a, blocks_b) = (blocks(a), blocks(b));
-    // Pairs of blocks (A's, B's) of a finger with the quantities both measure.
+    let pairs = paired_blocks(&blocks(a), &blocks(b), same_unit, &mut notes);
+    let results = compare_pairs(&pairs, settings);
+    let mut fingers = by_finger(&pairs, results);
+    for f in &mut fingers {
+        f.last_segment = last_segment(f, &info_a.tips, &info_b.tips, &pairs);
+    }
+    Cohorts {
+        a: info_a,
+        b: info_b,
+        settings: *settings,
+        fingers,
+        notes,
+    }
+}
+
+/// Pairs of blocks (A's, B's) of each finger both cohorts have, each cut to the quantities
+/// both measure (J only when `same_unit`); notes the fingers and metacarpal quantities only
+/// one cohort has.
+fn paired_blocks(
+    blocks_a: &[Block],
+    blocks_b: &[Block],
+    same_unit: bool,
+    notes: &mut Vec<String>,
+) -> Vec<(Block, Block)> {
     let mut pairs: Vec<(Block, Block)> = Vec::new();
     let mut mc_missing: Vec<&str> = Vec::new();
     for f in Finger::ALL {
@@ -490,7 +512,7 @@ pub fn cohorts(a: &Dataset, b: &Dataset, settings: &Settings) -> Cohorts {
                 .cloned()
                 .collect::<Vec<_>>()
         };
-        let (fa, fb) = (of(&blocks_a), of(&blocks_b));
+        let (fa, fb) = (of(blocks_a), of(blocks_b));
         if fa.is_empty() || fb.is_empty() {
             if !(fa.is_empty() && fb.is_empty()) {
                 notes.push(format!(
@@ -507,24 +529,8 @@ pub fn cohorts(a: &Dataset, b: &Dataset, settings: &Settings) -> Cohorts {
         }
         for x in &fa {
             for y in &fb {
-                let quantities: Vec<Quantity> = x
-                    .quantities
-                    .iter()
-                    .copied()
-                    .filter(|q| y.quantities.contains(q))
-                    .filter(|&q| q != Quantity::Total || same_unit)
-                    .collect();
-                if !quantities.is_empty() {
-                    pairs.push((
-                        Block {
-                            quantities: quantities.clone(),
-                            ..x.clone()
-                        },
-                        Block {
-                            quantities,
-                            ..y.clone()
-                        },
-                    ));
+                if let Some(pair) = shared_quantities(x, y, same_unit) {
+                    pairs.push(pair);
                 }
             }
         }
@@ -535,8 +541,38 @@ pub fn cohorts(a: &Dataset, b: &Dataset, settings: &Settings) -> Cohorts {
             mc_missing.join(", ")
         ));
     }
-    // Pairs whose X-rays are the same in A and in B share one bootstrap.
-    let groups = group_by(&pairs, |p, q| {
+    pairs
+}
+
+/// Blocks `x` and `y` cut to the quantities both measure (J only when `same_unit`); `None`
+/// when they share none.
+fn shared_quantities(x: &Block, y: &Block, same_unit: bool) -> Option<(Block, Block)> {
+    let quantities: Vec<Quantity> = x
+        .quantities
+        .iter()
+        .copied()
+        .filter(|q| y.quantities.contains(q))
+        .filter(|&q| q != Quantity::Total || same_unit)
+        .collect();
+    if quantities.is_empty() {
+        return None;
+    }
+    Some((
+        Block {
+            quantities: quantities.clone(),
+            ..x.clone()
+        },
+        Block {
+            quantities,
+            ..y.clone()
+        },
+    ))
+}
+
+/// The comparisons of every pair's quantities ([`compare_all`]); pairs whose X-rays are the
+/// same in A and in B share one bootstrap. A group [`compare_all`] cannot compare is left empty.
+fn compare_pairs(pairs: &[(Block, Block)], settings: &Settings) -> Vec<Vec<QuantityComparison>> {
+    let groups = group_by(pairs, |p, q| {
         same_xrays(&p.0.xrays, &q.0.xrays) && same_xrays(&p.1.xrays, &q.1.xrays)
     });
     let mut results: Vec<Vec<QuantityComparison>> = vec![Vec::new(); pairs.len()];
@@ -562,6 +598,14 @@ pub fn cohorts(a: &Dataset, b: &Dataset, settings: &Settings) -> Cohorts {
                 .collect();
         }
     }
+    results
+}
+
+/// The pairs' comparisons gathered per finger, in the pairs' order (last segments not yet set).
+fn by_finger(
+    pairs: &[(Block, Block)],
+    results: Vec<Vec<QuantityComparison>>,
+) -> Vec<FingerComparison> {
     let mut fingers: Vec<FingerComparison> = Vec::new();
     for ((x, y), r) in pairs.iter().zip(results) {
         match fingers.iter_mut().find(|f| f.finger == x.finger) {
@@ -575,16 +619,7 @@ pub fn cohorts(a: &Dataset, b: &Dataset, settings: &Settings) -> Cohorts {
             }),
         }
     }
-    for f in &mut fingers {
-        f.last_segment = last_segment(f, &info_a.tips, &info_b.tips, &pairs);
-    }
-    Cohorts {
-        a: info_a,
-        b: info_b,
-        settings: *settings,
-        fingers,
-        notes,
-    }
+    fingers
 }
 
 /// Why the total length J is not compared.

@@ -1328,21 +1328,59 @@ pub struct AtlasProportionRow {
     pub j1_mc_pi: String,
 }
 
+/// The section "The paper against N atlas radiographs" from the paper's analysis and the atlas's.
 fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
-    use super::compare::{
-        Names, bootstrap_cell, cohort_line, coverage_cell, difference_cell, finger_sentence,
-        hedges_cell, mean_sd, short, tip_sentence, welch_cell,
-    };
+    use super::compare::cohort_line;
     let c = &atlas.cohorts;
+    let p = &atlas.population;
     let confidence = paper.settings.confidence;
-    let names = Names {
-        a: "the paper",
-        b: "the atlas",
+    let (comparison, external, (inside, tested)) = atlas_comparison(c);
+    let external_summary = format!(
+        "Over every finger and relative value, {} of the atlas's values ({inside} of {tested}) lie inside the paper's {} prediction interval for one new hand, which promises {}.",
+        percent(inside as f64 / tested.max(1) as f64),
+        level(confidence),
+        level(confidence),
+    );
+    let proportions_intro = format!(
+        "Where the MCP sits: the paper measures the fingers only, the atlas also the metacarpal (CMC to MCP). mc/J is the metacarpal's length over the finger's (J1 + J2 + J3), J1/mc the first phalanx over the metacarpal: for a rig, the MCP lies (mc/J) L from the CMC for a finger of length L. Mean (SD) and the {} prediction interval for one new hand, over the atlas's X-rays.",
+        level(confidence)
+    );
+    let title = format!("The paper against {} atlas radiographs", c.b.xrays);
+    AtlasView {
+        anchor: format!("12-{}", title.to_ascii_lowercase().replace(' ', "-")),
+        title,
+        cohorts: vec![
+            format!("The paper: {}", cohort_line(&c.a)),
+            format!("The atlas: {}", cohort_line(&c.b)),
+        ],
+        differs: format!(
+            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with landmarks at the joint centres and at the tips of the bones; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin. A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
+            c.b.xrays, c.a.xrays
+        ),
+        comparison,
+        sentences: atlas_sentences(c, confidence),
+        external,
+        external_summary,
+        population_intro: atlas_population_intro(p, confidence),
+        population: atlas_population(p),
+        proportions_intro,
+        proportions: atlas_proportions(&atlas.analysis),
+        notes: c.notes.iter().chain(&p.notes).cloned().collect(),
+    }
+}
+
+/// The comparison rows of every finger and quantity, the external-validity rows of the
+/// relative ones, and how many atlas values lie inside the paper's prediction interval (of how
+/// many tested).
+fn atlas_comparison(
+    c: &crate::analysis::compare::Cohorts,
+) -> (Vec<AtlasCompareRow>, Vec<AtlasExternalRow>, (usize, usize)) {
+    use super::compare::{
+        bootstrap_cell, coverage_cell, difference_cell, hedges_cell, mean_sd, short, welch_cell,
     };
     let d = |q: Quantity| decimals(q.is_unitless());
     let mut comparison = Vec::new();
     let mut external = Vec::new();
-    let mut sentences = Vec::new();
     let (mut inside, mut tested) = (0usize, 0usize);
     for f in &c.fingers {
         for qc in &f.quantities {
@@ -1372,8 +1410,22 @@ fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
                 });
             }
         }
-        sentences.push(finger_sentence(f, names, confidence));
     }
+    (comparison, external, (inside, tested))
+}
+
+/// One sentence per finger, then one per finger's last segment (the tip).
+fn atlas_sentences(c: &crate::analysis::compare::Cohorts, confidence: f64) -> Vec<String> {
+    use super::compare::{Names, finger_sentence, tip_sentence};
+    let names = Names {
+        a: "the paper",
+        b: "the atlas",
+    };
+    let mut sentences: Vec<String> = c
+        .fingers
+        .iter()
+        .map(|f| finger_sentence(f, names, confidence))
+        .collect();
     for f in &c.fingers {
         if let Some(last) = &f.last_segment {
             sentences.push(format!(
@@ -1383,13 +1435,26 @@ fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
             ));
         }
     }
-    let external_summary = format!(
-        "Over every finger and relative value, {} of the atlas's values ({inside} of {tested}) lie inside the paper's {} prediction interval for one new hand, which promises {}.",
-        percent(inside as f64 / tested.max(1) as f64),
+    sentences
+}
+
+/// The text above the coverage on real hands: what was drawn and the Monte-Carlo SE.
+fn atlas_population_intro(
+    p: &crate::analysis::population::PopulationStudy,
+    confidence: f64,
+) -> String {
+    let xrays = p.quantities.first().map_or(0, |q| q.population);
+    format!(
+        "The atlas taken as the population of hands ({xrays} X-rays): {} samples of each size n drawn from its X-rays with replacement, every interval built as the statistics build it, and counted when it holds the atlas's mean (the prediction interval: one further atlas X-ray). Each figure is the mean over the {} relative values; beside it, the normal model's figure. Monte-Carlo SE about {} per value at {}.",
+        p.settings.sims,
+        p.quantities.len(),
+        percent((confidence * (1.0 - confidence) / p.settings.sims.max(1) as f64).sqrt()),
         level(confidence),
-        level(confidence),
-    );
-    let p = &atlas.population;
+    )
+}
+
+/// Per sample size, the coverage on atlas hands and, below it, the normal model's.
+fn atlas_population(p: &crate::analysis::population::PopulationStudy) -> Vec<AtlasPopulationRow> {
     let pooled = p.pooled();
     let mut population = Vec::new();
     for (k, &n) in p.sizes.iter().enumerate() {
@@ -1431,16 +1496,14 @@ fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
             });
         }
     }
-    let xrays = p.quantities.first().map_or(0, |q| q.population);
-    let population_intro = format!(
-        "The atlas taken as the population of hands ({xrays} X-rays): {} samples of each size n drawn from its X-rays with replacement, every interval built as the statistics build it, and counted when it holds the atlas's mean (the prediction interval: one further atlas X-ray). Each figure is the mean over the {} relative values; beside it, the normal model's figure. Monte-Carlo SE about {} per value at {}.",
-        p.settings.sims,
-        p.quantities.len(),
-        percent((confidence * (1.0 - confidence) / p.settings.sims.max(1) as f64).sqrt()),
-        level(confidence),
-    );
+    population
+}
+
+/// Each finger's mc/J and J1/mc over the atlas's X-rays (fingers without both are left out).
+fn atlas_proportions(analysis: &Analysis) -> Vec<AtlasProportionRow> {
+    use super::compare::mean_sd;
     let mut proportions = Vec::new();
-    for f in &atlas.analysis.fingers {
+    for f in &analysis.fingers {
         let get = |q: Quantity| f.quantities.iter().find(|s| s.name == q);
         let (Some(mc_j), Some(j1_mc)) = (get(Quantity::RatioMcJ), get(Quantity::RatioJ1Mc)) else {
             continue;
@@ -1454,32 +1517,7 @@ fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
             j1_mc_pi: crate::format::interval(j1_mc.intervals.pi, 4),
         });
     }
-    let proportions_intro = format!(
-        "Where the MCP sits: the paper measures the fingers only, the atlas also the metacarpal (CMC to MCP). mc/J is the metacarpal's length over the finger's (J1 + J2 + J3), J1/mc the first phalanx over the metacarpal: for a rig, the MCP lies (mc/J) L from the CMC for a finger of length L. Mean (SD) and the {} prediction interval for one new hand, over the atlas's X-rays.",
-        level(confidence)
-    );
-    let title = format!("The paper against {} atlas radiographs", c.b.xrays);
-    AtlasView {
-        anchor: format!("12-{}", title.to_ascii_lowercase().replace(' ', "-")),
-        title,
-        cohorts: vec![
-            format!("The paper: {}", cohort_line(&c.a)),
-            format!("The atlas: {}", cohort_line(&c.b)),
-        ],
-        differs: format!(
-            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with landmarks at the joint centres and at the tips of the bones; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin. A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
-            c.b.xrays, c.a.xrays
-        ),
-        comparison,
-        sentences,
-        external,
-        external_summary,
-        population_intro,
-        population,
-        proportions_intro,
-        proportions,
-        notes: c.notes.iter().chain(&p.notes).cloned().collect(),
-    }
+    proportions
 }
 
 /// "exact (126 resamples)", "random (200 resamples)".

@@ -39,13 +39,7 @@ pub(super) fn read(
 ) -> Result<Vec<Hand>, DataError> {
     let mut hands = Vec::new();
     let mut first_line: HashMap<Arc<str>, u64> = HashMap::new();
-    // Which chain slot each landmark fills, if any.
-    let mut slot_of: [Option<(Finger, usize)>; LANDMARKS] = [None; LANDMARKS];
-    for (finger, marks) in CHAINS {
-        for (k, &m) in marks.iter().enumerate() {
-            slot_of[m] = Some((finger, k));
-        }
-    }
+    let slot_of = slots();
     csvinput::read_headerless(label, input, problems, |rec: &Fields<'_, '_>, problems| {
         let line = rec.line();
         if rec.len() != FIELDS {
@@ -58,83 +52,21 @@ pub(super) fn read(
             ));
             return;
         }
-        let Some(id) = rec.get(0) else { return };
-        if id.is_empty() {
-            problems.push(Problem::field(
-                line,
-                1,
-                "image_id",
-                "is empty; give every line the id of its image",
-            ));
+        let Some(image) = image_id(rec, &mut first_line, problems) else {
             return;
-        }
-        if looks_like_formula(id) {
-            problems.push(Problem::field(
-                line,
-                1,
-                "image_id",
-                format!(
-                    "{} starts like a spreadsheet formula; remove the leading '{}'",
-                    quote(id),
-                    id.chars().next().unwrap_or('=')
-                ),
-            ));
-            return;
-        }
-        let image: Arc<str> = Arc::from(id);
-        if let Some(first) = first_line.get(&image) {
-            problems.push(Problem::field(
-                line,
-                1,
-                "image_id",
-                format!(
-                    "image {} is repeated: line {first} has it already; give each image one line, or correct the id",
-                    quote(id)
-                ),
-            ));
-            return;
-        }
-        first_line.insert(image.clone(), line);
+        };
         let mut hand = Hand::new(image, None, Place::csv(line, 1, "image_id"));
         for (k, slot) in slot_of.iter().enumerate() {
-            let mut xy = [0.0; 2];
-            let mut ok = true;
-            for (axis, v) in xy.iter_mut().enumerate() {
-                let column = x_column(k) + axis;
-                let Some(text) = rec.get(column - 1) else {
-                    ok = false; // not UTF-8: reported by the scanner
-                    continue;
-                };
-                match parse_coordinate(text) {
-                    Ok(c) => *v = c,
-                    Err(why) => {
-                        ok = false;
-                        let axis_name = if axis == 0 { "x" } else { "y" };
-                        let what = slot.map_or(String::new(), |(f, s)| {
-                            format!(" ({} {})", f.name(), super::names::chain(f)[s].name())
-                        });
-                        problems.push(Problem::field(
-                            line,
-                            column,
-                            &format!("{axis_name}{k}"),
-                            format!(
-                                "image {}, landmark {k}{what}: {axis_name} {why}",
-                                quote(&hand.image)
-                            ),
-                        ));
-                    }
-                }
-            }
+            let xy = landmark(rec, k, *slot, &hand.image, problems);
             if let Some((finger, s)) = *slot {
-                *hand.slot_mut(finger, s) = if ok {
-                    Slot::Marked(Mark {
-                        x: xy[0],
-                        y: xy[1],
+                *hand.slot_mut(finger, s) = match xy {
+                    Some([x, y]) => Slot::Marked(Mark {
+                        x,
+                        y,
                         place: Place::csv(line, x_column(k), format!("landmark {k}")),
                         label: format!("landmark {k}"),
-                    })
-                } else {
-                    Slot::Invalid
+                    }),
+                    None => Slot::Invalid,
                 };
             }
         }
@@ -146,4 +78,103 @@ pub(super) fn read(
         ));
     }
     Ok(hands)
+}
+
+/// Which chain slot (finger, index along [`CHAINS`]) each landmark fills, if any.
+fn slots() -> [Option<(Finger, usize)>; LANDMARKS] {
+    let mut slot_of: [Option<(Finger, usize)>; LANDMARKS] = [None; LANDMARKS];
+    for (finger, marks) in CHAINS {
+        for (k, &m) in marks.iter().enumerate() {
+            slot_of[m] = Some((finger, k));
+        }
+    }
+    slot_of
+}
+
+/// The line's image id, recorded in `first_line`; `None` after a problem (empty, a formula,
+/// or repeated).
+fn image_id(
+    rec: &Fields<'_, '_>,
+    first_line: &mut HashMap<Arc<str>, u64>,
+    problems: &mut Vec<Problem>,
+) -> Option<Arc<str>> {
+    let line = rec.line();
+    let id = rec.get(0)?;
+    if id.is_empty() {
+        problems.push(Problem::field(
+            line,
+            1,
+            "image_id",
+            "is empty; give every line the id of its image",
+        ));
+        return None;
+    }
+    if looks_like_formula(id) {
+        problems.push(Problem::field(
+            line,
+            1,
+            "image_id",
+            format!(
+                "{} starts like a spreadsheet formula; remove the leading '{}'",
+                quote(id),
+                id.chars().next().unwrap_or('=')
+            ),
+        ));
+        return None;
+    }
+    let image: Arc<str> = Arc::from(id);
+    if let Some(first) = first_line.get(&image) {
+        problems.push(Problem::field(
+            line,
+            1,
+            "image_id",
+            format!(
+                "image {} is repeated: line {first} has it already; give each image one line, or correct the id",
+                quote(id)
+            ),
+        ));
+        return None;
+    }
+    first_line.insert(image.clone(), line);
+    Some(image)
+}
+
+/// Landmark `k`'s x and y; `None` when either is not a coordinate (a problem is pushed for
+/// each, naming the finger and joint of `slot`) or not UTF-8 (reported by the scanner).
+fn landmark(
+    rec: &Fields<'_, '_>,
+    k: usize,
+    slot: Option<(Finger, usize)>,
+    image: &str,
+    problems: &mut Vec<Problem>,
+) -> Option<[f64; 2]> {
+    let mut xy = [0.0; 2];
+    let mut ok = true;
+    for (axis, v) in xy.iter_mut().enumerate() {
+        let column = x_column(k) + axis;
+        let Some(text) = rec.get(column - 1) else {
+            ok = false; // not UTF-8: reported by the scanner
+            continue;
+        };
+        match parse_coordinate(text) {
+            Ok(c) => *v = c,
+            Err(why) => {
+                ok = false;
+                let axis_name = if axis == 0 { "x" } else { "y" };
+                let what = slot.map_or(String::new(), |(f, s)| {
+                    format!(" ({} {})", f.name(), super::names::chain(f)[s].name())
+                });
+                problems.push(Problem::field(
+                    rec.line(),
+                    column,
+                    &format!("{axis_name}{k}"),
+                    format!(
+                        "image {}, landmark {k}{what}: {axis_name} {why}",
+                        quote(image)
+                    ),
+                ));
+            }
+        }
+    }
+    ok.then_some(xy)
 }

@@ -213,6 +213,49 @@ fn geometry(
     }
     full.extend(joints[1..].iter().copied().zip(marks.iter().copied()));
     let before = problems.len();
+    check_distinct(&image, finger, &full, problems);
+    if problems.len() > before {
+        return None;
+    }
+    check_outwards(&image, finger, joints, marks, problems);
+    if problems.len() > before {
+        return None;
+    }
+    check_folds(&image, finger, &full, problems);
+    if problems.len() > before {
+        return None;
+    }
+    let segs: Vec<f64> = marks.windows(2).map(|w| dist(w[0], w[1])).collect();
+    if let Some(problem) = implausible_proportions(hand, &image, finger, &segs) {
+        problems.push(problem);
+        return None;
+    }
+    let (lengths, mc) = match scaled(hand, &image, finger, cmc, marks[0], &segs, meta) {
+        Ok(scaled) => scaled,
+        Err(problem) => {
+            problems.push(problem);
+            return None;
+        }
+    };
+    Some(LandmarkRow {
+        image: hand.image.clone(),
+        finger,
+        lengths,
+        mc,
+        side: hand.side.or(meta.side),
+        unit: meta.unit.clone(),
+        source: meta.source.clone(),
+        tip: meta.tip,
+    })
+}
+
+/// Check 2: no two consecutive joints (CMC included) at the same point.
+fn check_distinct(
+    image: &str,
+    finger: Finger,
+    full: &[(Joint, &Mark)],
+    problems: &mut Vec<Problem>,
+) {
     for w in full.windows(2) {
         let ((ja, a), (jb, b)) = (w[0], w[1]);
         if a.x == b.x && a.y == b.y {
@@ -225,9 +268,17 @@ fn geometry(
             )));
         }
     }
-    if problems.len() > before {
-        return None;
-    }
+}
+
+/// Check 3: each joint from the PIP (thumb: IP) on lies farther from the MCP than the one
+/// before it.
+fn check_outwards(
+    image: &str,
+    finger: Finger,
+    joints: &[Joint],
+    marks: &[&Mark],
+    problems: &mut Vec<Problem>,
+) {
     let mcp = marks[0];
     for k in 2..marks.len() {
         let (near, far) = (dist(mcp, marks[k - 1]), dist(mcp, marks[k]));
@@ -248,9 +299,10 @@ fn geometry(
             )));
         }
     }
-    if problems.len() > before {
-        return None;
-    }
+}
+
+/// Check 4: consecutive segments turn by at most [`MAX_FOLD_DEGREES`].
+fn check_folds(image: &str, finger: Finger, full: &[(Joint, &Mark)], problems: &mut Vec<Problem>) {
     for w in full.windows(3) {
         let ((ja, a), (jb, b), (jc, c)) = (w[0], w[1], w[2]);
         let (ux, uy, vx, vy) = (b.x - a.x, b.y - a.y, c.x - b.x, c.y - b.y);
@@ -270,10 +322,15 @@ fn geometry(
             )));
         }
     }
-    if problems.len() > before {
-        return None;
-    }
-    let segs: Vec<f64> = marks.windows(2).map(|w| dist(w[0], w[1])).collect();
+}
+
+/// Check 5: the problem when one phalanx is over [`MAX_SEGMENT_RATIO`] times another.
+fn implausible_proportions(
+    hand: &Hand,
+    image: &str,
+    finger: Finger,
+    segs: &[f64],
+) -> Option<Problem> {
     let (lo, hi) =
         segs.iter()
             .enumerate()
@@ -283,45 +340,48 @@ fn geometry(
                     if s > hi.1 { (i, s) } else { hi },
                 )
             });
-    if hi.1 > MAX_SEGMENT_RATIO * lo.1 {
-        let shown: Vec<String> = segs
-            .iter()
-            .enumerate()
-            .map(|(i, s)| format!("J{} = {}", i + 1, num(*s, 1)))
-            .collect();
-        problems.push(hand.place.problem(format!(
-            "image {image}: the {} finger's segments ({} px) make no plausible finger: J{} is {} times J{} (over {} times); check its landmarks",
-            finger.name(),
-            shown.join(", "),
-            hi.0 + 1,
-            num(hi.1 / lo.1, 1),
-            lo.0 + 1,
-            num(MAX_SEGMENT_RATIO, 0)
-        )));
+    if hi.1 <= MAX_SEGMENT_RATIO * lo.1 {
         return None;
     }
+    let shown: Vec<String> = segs
+        .iter()
+        .enumerate()
+        .map(|(i, s)| format!("J{} = {}", i + 1, num(*s, 1)))
+        .collect();
+    Some(hand.place.problem(format!(
+        "image {image}: the {} finger's segments ({} px) make no plausible finger: J{} is {} times J{} (over {} times); check its landmarks",
+        finger.name(),
+        shown.join(", "),
+        hi.0 + 1,
+        num(hi.1 / lo.1, 1),
+        lo.0 + 1,
+        num(MAX_SEGMENT_RATIO, 0)
+    )))
+}
+
+/// The phalanx lengths and the metacarpal's (from the CMC, when marked) scaled by the pixel
+/// spacing; the problem when one falls outside (0, [`MAX_LENGTH`]].
+fn scaled(
+    hand: &Hand,
+    image: &str,
+    finger: Finger,
+    cmc: Option<&Mark>,
+    mcp: &Mark,
+    segs: &[f64],
+    meta: &RowMeta,
+) -> Result<([f64; 3], Option<f64>), Problem> {
     let mut lengths = [0.0; 3];
-    for (l, s) in lengths.iter_mut().zip(&segs) {
+    for (l, s) in lengths.iter_mut().zip(segs) {
         *l = s * meta.scale;
     }
     let mc = cmc.map(|c| dist(c, mcp) * meta.scale);
     let in_range = |l: &f64| *l > 0.0 && *l <= MAX_LENGTH;
     if !(lengths[..segs.len()].iter().all(in_range) && mc.iter().all(in_range)) {
-        problems.push(hand.place.problem(format!(
+        return Err(hand.place.problem(format!(
             "image {image}: the {} finger's lengths scaled by the pixel spacing {} fall outside (0, {MAX_LENGTH:e}]; check the pixel spacing",
             finger.name(),
             meta.scale
         )));
-        return None;
     }
-    Some(LandmarkRow {
-        image: hand.image.clone(),
-        finger,
-        lengths,
-        mc,
-        side: hand.side.or(meta.side),
-        unit: meta.unit.clone(),
-        source: meta.source.clone(),
-        tip: meta.tip,
-    })
+    Ok((lengths, mc))
 }

@@ -64,133 +64,196 @@ pub(super) fn read(
     let mut other_side = 0usize;
     for (k, ann) in annotations.iter().enumerate() {
         let here = format!("annotations[{k}]");
-        let Value::Object(ann) = ann else {
-            problems.push(Place::json(&here).problem("is not an object; each annotation is {\"image_id\": ..., \"keypoints\": [...], ...}"));
-            continue;
-        };
-        let Some(id) = ann.get("image_id") else {
-            problems.push(
-                Place::json(&here).problem(
-                    "has no image_id; give the id of the image (from 'images') it annotates",
-                ),
-            );
-            continue;
-        };
-        let Some(&i) = id_text(id).and_then(|t| images.by_id.get(&t)) else {
-            problems.push(Place::json(format!("{here}.image_id")).problem(format!(
-                "{} points at no image: no entry of 'images' has this id; add the image or correct the id",
-                short(id)
-            )));
+        let Some((i, ann)) = annotated_image(ann, &here, &images, problems) else {
             continue;
         };
         annotated[i] = true;
         let name = &images.order[i];
-        let whole_body = ann.contains_key("lefthand_kpts") || ann.contains_key("righthand_kpts");
-        let mut found: Vec<Found> = Vec::new();
-        if whole_body {
-            for (key, valid, s) in [
-                ("lefthand_kpts", "lefthand_valid", Side::Left),
-                ("righthand_kpts", "righthand_valid", Side::Right),
-            ] {
-                let Some(kpts) = ann.get(key) else { continue };
-                if ann.get(valid) == Some(&Value::Bool(false)) {
-                    continue;
-                }
-                let path = format!("{here}.{key}");
-                let Value::Array(kpts) = kpts else {
-                    problems.push(Place::json(&path).problem(
-                        "is not a list; give 21 x 3 numbers: x, y, visibility of each keypoint",
-                    ));
-                    continue;
-                };
-                if kpts.len() != 3 * STANDARD_21.len() {
-                    problems.push(Place::json(&path).problem(format!(
-                        "has {} numbers; a COCO-WholeBody hand has 21 keypoints x 3 (x, y, visibility) = 63",
-                        kpts.len()
-                    )));
-                    continue;
-                }
-                if kpts
-                    .iter()
-                    .skip(2)
-                    .step_by(3)
-                    .all(|v| v.as_f64() == Some(0.0))
-                {
-                    continue; // no keypoint labelled: the person's hand is not annotated
-                }
-                if side.is_some_and(|want| want != s) {
-                    other_side += 1;
-                    continue;
-                }
-                let image: Arc<str> = Arc::from(format!("{name}:{}", s.name()));
-                found.push(Found {
-                    hand: Hand::new(image, Some(s), Place::json(&here)),
-                    kpts,
-                    names: standard_names(),
-                    path,
-                });
-            }
+        let found = if ann.contains_key("lefthand_kpts") || ann.contains_key("righthand_kpts") {
+            whole_body_hands(ann, &here, name, side, &mut other_side, problems)
         } else {
-            let path = format!("{here}.keypoints");
-            let kpts = match ann.get("keypoints") {
-                Some(Value::Array(a)) => a,
-                Some(_) => {
-                    problems.push(Place::json(&path).problem(
-                        "is not a list; give x, y, visibility of each keypoint in one flat list",
-                    ));
-                    continue;
-                }
-                None => {
-                    problems.push(Place::json(&here).problem(
-                        "has no keypoints (nor COCO-WholeBody's lefthand_kpts or righthand_kpts); add the hand's keypoints",
-                    ));
-                    continue;
-                }
-            };
-            let Some(names) = categories.names_for(ann, &here, problems) else {
-                continue;
-            };
-            let names = names.clone().unwrap_or_else(standard_names);
-            if kpts.len() != 3 * names.len() {
-                problems.push(Place::json(&path).problem(format!(
-                    "has {} numbers, but its category has {} keypoints of 3 numbers each (x, y, visibility): {} expected",
-                    kpts.len(),
-                    names.len(),
-                    3 * names.len()
-                )));
-                continue;
+            plain_hand(ann, &here, name, &mut categories, problems)
+                .into_iter()
+                .collect()
+        };
+        for found in found {
+            if let Some(hand) = claim(found, k, &here, &mut first, problems) {
+                hands.push(hand);
             }
-            let image: Arc<str> = Arc::from(name.as_str());
-            found.push(Found {
-                hand: Hand::new(image, None, Place::json(&here)),
-                kpts,
-                names,
-                path,
-            });
-        }
-        for Found {
-            mut hand,
-            kpts,
-            names,
-            path,
-        } in found
-        {
-            if let Some(j) = first.get(&hand.image) {
-                problems.push(Place::json(&here).problem(format!(
-                    "image {} already has a hand in annotations[{j}]; phalanx reads one hand per image (and side): remove one, or give each hand its own image",
-                    quote(&hand.image)
-                )));
-                continue;
-            }
-            first.insert(hand.image.clone(), k);
-            fill(&mut hand, kpts, &names, &path, problems);
-            hands.push(hand);
         }
     }
-    let lonely: Vec<String> = images
-        .order
+    note_unannotated(&images.order, &annotated, notes);
+    note_other_side(other_side, side, notes);
+    Ok(hands)
+}
+
+/// The annotation as an object and the index of the image it annotates; `None` after a problem.
+fn annotated_image<'v>(
+    ann: &'v Value,
+    here: &str,
+    images: &Images,
+    problems: &mut Vec<Problem>,
+) -> Option<(usize, &'v Map<String, Value>)> {
+    let Value::Object(ann) = ann else {
+        problems.push(Place::json(here).problem(
+            "is not an object; each annotation is {\"image_id\": ..., \"keypoints\": [...], ...}",
+        ));
+        return None;
+    };
+    let Some(id) = ann.get("image_id") else {
+        problems.push(
+            Place::json(here)
+                .problem("has no image_id; give the id of the image (from 'images') it annotates"),
+        );
+        return None;
+    };
+    let Some(&i) = id_text(id).and_then(|t| images.by_id.get(&t)) else {
+        problems.push(Place::json(format!("{here}.image_id")).problem(format!(
+            "{} points at no image: no entry of 'images' has this id; add the image or correct the id",
+            short(id)
+        )));
+        return None;
+    };
+    Some((i, ann))
+}
+
+/// The labelled COCO-WholeBody hands of an annotation (`lefthand_kpts`, `righthand_kpts`),
+/// counting those of the side not asked for in `other_side`.
+fn whole_body_hands<'v>(
+    ann: &'v Map<String, Value>,
+    here: &str,
+    name: &str,
+    side: Option<Side>,
+    other_side: &mut usize,
+    problems: &mut Vec<Problem>,
+) -> Vec<Found<'v>> {
+    let mut found: Vec<Found> = Vec::new();
+    for (key, valid, s) in [
+        ("lefthand_kpts", "lefthand_valid", Side::Left),
+        ("righthand_kpts", "righthand_valid", Side::Right),
+    ] {
+        let Some(kpts) = ann.get(key) else { continue };
+        if ann.get(valid) == Some(&Value::Bool(false)) {
+            continue;
+        }
+        let path = format!("{here}.{key}");
+        let Value::Array(kpts) = kpts else {
+            problems.push(
+                Place::json(&path).problem(
+                    "is not a list; give 21 x 3 numbers: x, y, visibility of each keypoint",
+                ),
+            );
+            continue;
+        };
+        if kpts.len() != 3 * STANDARD_21.len() {
+            problems.push(Place::json(&path).problem(format!(
+                "has {} numbers; a COCO-WholeBody hand has 21 keypoints x 3 (x, y, visibility) = 63",
+                kpts.len()
+            )));
+            continue;
+        }
+        if kpts
+            .iter()
+            .skip(2)
+            .step_by(3)
+            .all(|v| v.as_f64() == Some(0.0))
+        {
+            continue; // no keypoint labelled: the person's hand is not annotated
+        }
+        if side.is_some_and(|want| want != s) {
+            *other_side += 1;
+            continue;
+        }
+        let image: Arc<str> = Arc::from(format!("{name}:{}", s.name()));
+        found.push(Found {
+            hand: Hand::new(image, Some(s), Place::json(here)),
+            kpts,
+            names: standard_names(),
+            path,
+        });
+    }
+    found
+}
+
+/// The hand of a plain COCO annotation (`keypoints` named by its category); `None` after a
+/// problem.
+fn plain_hand<'v>(
+    ann: &'v Map<String, Value>,
+    here: &str,
+    name: &str,
+    categories: &mut Categories,
+    problems: &mut Vec<Problem>,
+) -> Option<Found<'v>> {
+    let path = format!("{here}.keypoints");
+    let kpts = match ann.get("keypoints") {
+        Some(Value::Array(a)) => a,
+        Some(_) => {
+            problems.push(
+                Place::json(&path).problem(
+                    "is not a list; give x, y, visibility of each keypoint in one flat list",
+                ),
+            );
+            return None;
+        }
+        None => {
+            problems.push(Place::json(here).problem(
+                "has no keypoints (nor COCO-WholeBody's lefthand_kpts or righthand_kpts); add the hand's keypoints",
+            ));
+            return None;
+        }
+    };
+    let names = categories.names_for(ann, here, problems)?;
+    let names = names.clone().unwrap_or_else(standard_names);
+    if kpts.len() != 3 * names.len() {
+        problems.push(Place::json(&path).problem(format!(
+            "has {} numbers, but its category has {} keypoints of 3 numbers each (x, y, visibility): {} expected",
+            kpts.len(),
+            names.len(),
+            3 * names.len()
+        )));
+        return None;
+    }
+    let image: Arc<str> = Arc::from(name);
+    Some(Found {
+        hand: Hand::new(image, None, Place::json(here)),
+        kpts,
+        names,
+        path,
+    })
+}
+
+/// Reads a found hand's keypoints unless its image (and side) already has a hand from an
+/// earlier annotation, which is a problem.
+fn claim(
+    found: Found,
+    k: usize,
+    here: &str,
+    first: &mut HashMap<Arc<str>, usize>,
+    problems: &mut Vec<Problem>,
+) -> Option<Hand> {
+    let Found {
+        mut hand,
+        kpts,
+        names,
+        path,
+    } = found;
+    if let Some(j) = first.get(&hand.image) {
+        problems.push(Place::json(here).problem(format!(
+            "image {} already has a hand in annotations[{j}]; phalanx reads one hand per image (and side): remove one, or give each hand its own image",
+            quote(&hand.image)
+        )));
+        return None;
+    }
+    first.insert(hand.image.clone(), k);
+    fill(&mut hand, kpts, &names, &path, problems);
+    Some(hand)
+}
+
+/// Notes the images no annotation points at (the first 10 by name).
+fn note_unannotated(order: &[String], annotated: &[bool], notes: &mut Notes) {
+    let lonely: Vec<String> = order
         .iter()
-        .zip(&annotated)
+        .zip(annotated)
         .filter(|(_, a)| !**a)
         .map(|(n, _)| quote(n))
         .collect();
@@ -204,6 +267,10 @@ pub(super) fn read(
             if lonely.len() > 10 { ", ..." } else { "" }
         ));
     }
+}
+
+/// Notes how many COCO-WholeBody hands of the side not asked for were skipped.
+fn note_other_side(other_side: usize, side: Option<Side>, notes: &mut Notes) {
     if other_side > 0 {
         notes.push(format!(
             "{other_side} COCO-WholeBody hand{} of the other side skipped (only {} hands asked for)",
@@ -211,7 +278,6 @@ pub(super) fn read(
             side.map_or("", Side::name)
         ));
     }
-    Ok(hands)
 }
 
 /// Parses the whole file as JSON; syntax errors name their line and column.

@@ -57,9 +57,6 @@ pub(super) fn read(
     let mut index: HashMap<Arc<str>, usize> = HashMap::new();
     let mut seen: HashMap<(usize, Landmark), u64> = HashMap::new();
     let read = csvinput::read_table(label, input, |cells: &mut Cells<'_, '_, Column>| {
-        let line = cells.line();
-        let place =
-            |cells: &Cells<'_, '_, Column>, c: Column| Place::csv(line, cells.column(c), c.name());
         let (Some(id), Some(name), Some(x_text), Some(y_text)) = (
             cells.text(Column::Image),
             cells.text(Column::Landmark),
@@ -68,34 +65,7 @@ pub(super) fn read(
         ) else {
             return; // not UTF-8: reported by the reader
         };
-        if id.is_empty() {
-            cells.bad(
-                Column::Image,
-                "is empty; give every line the id of its image",
-            );
-            return;
-        }
-        if looks_like_formula(id) {
-            cells.bad(
-                Column::Image,
-                format!(
-                    "{} starts like a spreadsheet formula; remove the leading '{}'",
-                    quote(id),
-                    id.chars().next().unwrap_or('=')
-                ),
-            );
-            return;
-        }
-        let Some(landmark) = names::parse(name) else {
-            cells.bad(
-                Column::Landmark,
-                format!(
-                    "image {}: unknown landmark {}; use {}",
-                    quote(id),
-                    quote(name),
-                    names::ACCEPTED
-                ),
-            );
+        let Some(landmark) = checked_landmark(cells, id, name) else {
             return;
         };
         let h = match index.entry(Arc::from(id)) {
@@ -119,37 +89,10 @@ pub(super) fn read(
                 return;
             }
             Entry::Vacant(v) => {
-                v.insert(line);
+                v.insert(cells.line());
             }
         }
-        let slot = if x_text.is_empty() && y_text.is_empty() {
-            Slot::Unlabelled(place(cells, Column::Landmark))
-        } else {
-            let mut xy = [0.0; 2];
-            let mut ok = true;
-            for ((c, text), v) in [(Column::X, x_text), (Column::Y, y_text)]
-                .into_iter()
-                .zip(&mut xy)
-            {
-                match parse_coordinate(text) {
-                    Ok(value) => *v = value,
-                    Err(why) => {
-                        ok = false;
-                        cells.bad(c, format!("image {}, {landmark}: {why}", quote(id)));
-                    }
-                }
-            }
-            if ok {
-                Slot::Marked(Mark {
-                    x: xy[0],
-                    y: xy[1],
-                    place: place(cells, Column::Landmark),
-                    label: quote(name),
-                })
-            } else {
-                Slot::Invalid
-            }
-        };
+        let slot = slot(cells, id, name, landmark, x_text, y_text);
         if let Some((finger, s)) = landmark.slot() {
             *hands[h].slot_mut(finger, s) = slot;
         }
@@ -160,4 +103,84 @@ pub(super) fn read(
         problems.extend(e.problems);
     }
     Ok(hands)
+}
+
+/// Where column `c` of the current line is.
+fn place(cells: &Cells<'_, '_, Column>, c: Column) -> Place {
+    Place::csv(cells.line(), cells.column(c), c.name())
+}
+
+/// The line's landmark, after checking its image id (not empty, not a formula) and its
+/// landmark name; `None` after a problem.
+fn checked_landmark(cells: &mut Cells<'_, '_, Column>, id: &str, name: &str) -> Option<Landmark> {
+    if id.is_empty() {
+        cells.bad(
+            Column::Image,
+            "is empty; give every line the id of its image",
+        );
+        return None;
+    }
+    if looks_like_formula(id) {
+        cells.bad(
+            Column::Image,
+            format!(
+                "{} starts like a spreadsheet formula; remove the leading '{}'",
+                quote(id),
+                id.chars().next().unwrap_or('=')
+            ),
+        );
+        return None;
+    }
+    let landmark = names::parse(name);
+    if landmark.is_none() {
+        cells.bad(
+            Column::Landmark,
+            format!(
+                "image {}: unknown landmark {}; use {}",
+                quote(id),
+                quote(name),
+                names::ACCEPTED
+            ),
+        );
+    }
+    landmark
+}
+
+/// The landmark's slot: unlabelled when x and y are both empty, marked when both are
+/// coordinates, else invalid (a problem pushed for each bad one).
+fn slot(
+    cells: &mut Cells<'_, '_, Column>,
+    id: &str,
+    name: &str,
+    landmark: Landmark,
+    x_text: &str,
+    y_text: &str,
+) -> Slot {
+    if x_text.is_empty() && y_text.is_empty() {
+        return Slot::Unlabelled(place(cells, Column::Landmark));
+    }
+    let mut xy = [0.0; 2];
+    let mut ok = true;
+    for ((c, text), v) in [(Column::X, x_text), (Column::Y, y_text)]
+        .into_iter()
+        .zip(&mut xy)
+    {
+        match parse_coordinate(text) {
+            Ok(value) => *v = value,
+            Err(why) => {
+                ok = false;
+                cells.bad(c, format!("image {}, {landmark}: {why}", quote(id)));
+            }
+        }
+    }
+    if ok {
+        Slot::Marked(Mark {
+            x: xy[0],
+            y: xy[1],
+            place: place(cells, Column::Landmark),
+            label: quote(name),
+        })
+    } else {
+        Slot::Invalid
+    }
 }
