@@ -27,35 +27,10 @@
 
 use crate::dataset::Finger;
 use regex::Regex;
-use schemars::JsonSchema;
-use serde::Serialize;
 use std::sync::LazyLock;
 
-/// Which hand.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum Side {
-    Left,
-    Right,
-}
-
-impl Side {
-    pub fn name(self) -> &'static str {
-        match self {
-            Side::Left => "left",
-            Side::Right => "right",
-        }
-    }
-
-    /// Parses `left`/`right` (or `l`/`r`), case-insensitively.
-    pub fn parse(text: &str) -> Option<Side> {
-        match text.trim().to_ascii_lowercase().as_str() {
-            "left" | "l" => Some(Side::Left),
-            "right" | "r" => Some(Side::Right),
-            _ => None,
-        }
-    }
-}
+/// Which hand (the dataset's side, re-exported where rigs name it).
+pub use crate::dataset::landmarks::Side;
 
 /// A joint position along a finger, including the thumb's CMC that is not used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]

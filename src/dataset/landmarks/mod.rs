@@ -33,6 +33,7 @@ pub use output::write_csv;
 pub use super::TipKind;
 use super::csvinput::{self, quote};
 use super::{DataError, Finger, Problem};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::Path;
 use std::sync::Arc;
@@ -81,7 +82,7 @@ impl Layout {
 }
 
 /// Which hand.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Side {
     Left,
@@ -94,6 +95,15 @@ impl Side {
         match self {
             Side::Left => "left",
             Side::Right => "right",
+        }
+    }
+
+    /// Parses `left`/`right` (or `l`/`r`), case-insensitively.
+    pub fn parse(text: &str) -> Option<Side> {
+        match text.trim().to_ascii_lowercase().as_str() {
+            "left" | "l" => Some(Side::Left),
+            "right" | "r" => Some(Side::Right),
+            _ => None,
         }
     }
 }
