@@ -383,33 +383,16 @@ pub fn population(
         .col("BCa", Align::Right, Give::Keep)
         .col("prediction", Align::Right, Give::Keep)
         .col("bootstrap", Align::Right, Give::Drop(1));
-    let pooled = study.pooled();
-    for (k, &n) in study.sizes.iter().enumerate() {
-        let cell = |m: &str| {
-            pooled
-                .iter()
-                .find(|p| p.n == n && p.method == m)
-                .map_or_else(|| "n/a".to_string(), |p| percent(p.mean))
+    for r in crate::report::view::pooled_rows(study) {
+        let (n, model) = if r.normal {
+            (String::new(), "normal model")
+        } else {
+            (r.n.to_string(), "real hands (mean)")
         };
-        let plan = study
-            .normal
-            .get(k)
-            .map_or(String::new(), |c| plan_short(c.bootstrap));
-        t.row(vec![
-            n.to_string(),
-            "real hands (mean)".to_string(),
-            cell("t"),
-            cell("percentile"),
-            cell("bca"),
-            cell("prediction"),
-            plan.clone(),
-        ]);
-        if let Some(normal) = study.normal.iter().find(|c| c.n == n) {
-            let mut row = vec![String::new(), "normal model".to_string()];
-            row.extend(normal.methods.iter().map(|m| percent(m.coverage)));
-            row.push(plan);
-            t.row(row);
-        }
+        let mut row = vec![n, model.to_string()];
+        row.extend(r.cells);
+        row.push(r.bootstrap);
+        t.row(row);
     }
     out.push_str(&format!(
         "\nOver the {} quantities (their mean coverage), and the normal model:\n",
@@ -440,12 +423,4 @@ pub fn population(
     }
     hidden.append_to(&mut out, width);
     fit_text(&out, width)
-}
-
-/// "exact (126)", "random (10000)".
-fn plan_short(p: crate::stats::bootstrap::Plan) -> String {
-    match p {
-        crate::stats::bootstrap::Plan::Exact { distinct } => format!("exact ({distinct})"),
-        crate::stats::bootstrap::Plan::Random { resamples } => format!("random ({resamples})"),
-    }
 }

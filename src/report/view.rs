@@ -8,6 +8,7 @@ use crate::analysis::claims::{CheckSummary, ClaimResult, Verdict};
 use crate::analysis::coverage::{CoverageSettings, CurvePoint, MethodCoverage, holds};
 use crate::analysis::groups::Group;
 use crate::analysis::placement::FingerPlacement;
+use crate::analysis::population::PopulationStudy;
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::dataset::history::Snapshot;
@@ -911,23 +912,17 @@ fn coverage(inputs: &ReportInputs<'_>) -> CoverageView {
 /// relative values per sample size), for the coverage section, beside the simulation.
 fn real_coverage(atlas: &AtlasInputs) -> RealCoverageView {
     let p = &atlas.population;
-    let pooled = p.pooled();
-    let rows = p
-        .sizes
-        .iter()
-        .map(|&n| {
-            let cell = |m: &str| {
-                pooled
-                    .iter()
-                    .find(|x| x.n == n && x.method == m)
-                    .map_or_else(|| "n/a".to_string(), |x| percent(x.mean))
-            };
+    let rows = pooled_rows(p)
+        .into_iter()
+        .filter(|r| !r.normal)
+        .map(|r| {
+            let [t, percentile, bca, prediction] = r.cells;
             CoverageRow {
-                n: xrays(n),
-                t: cell("t"),
-                percentile: cell("percentile"),
-                bca: cell("bca"),
-                prediction: cell("prediction"),
+                n: xrays(r.n),
+                t,
+                percentile,
+                bca,
+                prediction,
                 this_data: false,
             }
         })
@@ -1256,7 +1251,7 @@ fn rigs_view(rigs: &[ReferenceAudit]) -> Option<RigsView> {
 pub struct AtlasInputs {
     pub analysis: Analysis,
     pub cohorts: crate::analysis::compare::Cohorts,
-    pub population: crate::analysis::population::PopulationStudy,
+    pub population: PopulationStudy,
 }
 
 /// The section "The paper against N atlas radiographs".
@@ -1439,10 +1434,7 @@ fn atlas_sentences(c: &crate::analysis::compare::Cohorts, confidence: f64) -> Ve
 }
 
 /// The text above the coverage on real hands: what was drawn and the Monte-Carlo SE.
-fn atlas_population_intro(
-    p: &crate::analysis::population::PopulationStudy,
-    confidence: f64,
-) -> String {
+fn atlas_population_intro(p: &PopulationStudy, confidence: f64) -> String {
     let xrays = p.quantities.first().map_or(0, |q| q.population);
     format!(
         "The atlas taken as the population of hands ({xrays} X-rays): {} samples of each size n drawn from its X-rays with replacement, every interval built as the statistics build it, and counted when it holds the atlas's mean (the prediction interval: one further atlas X-ray). Each figure is the mean over the {} relative values; beside it, the normal model's figure. Monte-Carlo SE about {} per value at {}.",
@@ -1454,49 +1446,80 @@ fn atlas_population_intro(
 }
 
 /// Per sample size, the coverage on atlas hands and, below it, the normal model's.
-fn atlas_population(p: &crate::analysis::population::PopulationStudy) -> Vec<AtlasPopulationRow> {
+fn atlas_population(p: &PopulationStudy) -> Vec<AtlasPopulationRow> {
+    pooled_rows(p)
+        .into_iter()
+        .map(|r| {
+            let [t, percentile, bca, prediction] = r.cells;
+            let (n, model) = if r.normal {
+                (String::new(), "normal model")
+            } else {
+                (r.n.to_string(), "atlas hands")
+            };
+            AtlasPopulationRow {
+                n,
+                model: model.to_string(),
+                t,
+                percentile,
+                bca,
+                prediction,
+                bootstrap: r.bootstrap,
+            }
+        })
+        .collect()
+}
+
+/// One row of a pooled coverage table: at one sample size, the coverage on the
+/// population's hands (each method's mean over the quantities), or the normal model's
+/// coverage in the row beneath it.
+pub(crate) struct PooledRow {
+    pub n: usize,
+    /// The normal model's row, beneath its size's row of real hands.
+    pub normal: bool,
+    /// t, percentile, BCa and prediction as percentages ("n/a" where none was measured).
+    pub cells: [String; 4],
+    /// The bootstrap at this size ("exact (126)", "random (10000)"; empty when unknown).
+    pub bootstrap: String,
+}
+
+/// The pooled coverage rows of a population study, per size in order: the real hands'
+/// row, then the normal model's when it was simulated at that size.
+pub(crate) fn pooled_rows(p: &PopulationStudy) -> Vec<PooledRow> {
+    const METHODS: [&str; 4] = ["t", "percentile", "bca", "prediction"];
     let pooled = p.pooled();
-    let mut population = Vec::new();
+    let mut rows = Vec::new();
     for (k, &n) in p.sizes.iter().enumerate() {
-        let cell = |m: &str| {
-            pooled
-                .iter()
-                .find(|x| x.n == n && x.method == m)
-                .map_or_else(|| "n/a".to_string(), |x| percent(x.mean))
-        };
-        let plan = p
+        let bootstrap = p
             .normal
             .get(k)
             .map_or_else(String::new, |c| plan_short(c.bootstrap));
-        population.push(AtlasPopulationRow {
-            n: n.to_string(),
-            model: "atlas hands".to_string(),
-            t: cell("t"),
-            percentile: cell("percentile"),
-            bca: cell("bca"),
-            prediction: cell("prediction"),
-            bootstrap: plan.clone(),
+        rows.push(PooledRow {
+            n,
+            normal: false,
+            cells: METHODS.map(|m| {
+                pooled
+                    .iter()
+                    .find(|x| x.n == n && x.method == m)
+                    .map_or_else(|| "n/a".to_string(), |x| percent(x.mean))
+            }),
+            bootstrap: bootstrap.clone(),
         });
         if let Some(normal) = p.normal.iter().find(|c| c.n == n) {
-            let m = |name: &str| {
-                normal
-                    .methods
-                    .iter()
-                    .find(|x| x.method == name)
-                    .map_or_else(|| "n/a".to_string(), |x| percent(x.coverage))
-            };
-            population.push(AtlasPopulationRow {
-                n: String::new(),
-                model: "normal model".to_string(),
-                t: m("t"),
-                percentile: m("percentile"),
-                bca: m("bca"),
-                prediction: m("prediction"),
-                bootstrap: plan,
+            rows.push(PooledRow {
+                n,
+                normal: true,
+                cells: METHODS.map(|m| {
+                    normal
+                        .methods
+                        .iter()
+                        .find(|x| x.method == m)
+                        .map_or_else(|| "n/a".to_string(), |x| percent(x.coverage))
+                }),
+                bootstrap,
             });
         }
     }
-    population
+    rows
 }
 
 /// Each finger's mc/J and J1/mc over the atlas's X-rays (fingers without both are left out).
@@ -1520,7 +1543,7 @@ fn atlas_proportions(analysis: &Analysis) -> Vec<AtlasProportionRow> {
     proportions
 }
 
-/// "exact (126 resamples)", "random (200 resamples)".
+/// "exact (126)", "random (200)".
 fn plan_short(p: Plan) -> String {
     match p {
         Plan::Exact { distinct } => format!("exact ({distinct})"),
