@@ -123,11 +123,7 @@ pub fn offset_translations(
         let name = json["nodes"][node]["name"]
             .as_str()
             .map_or_else(|| format!("node {node}"), super::shown);
-        let s = &json["animations"][ch.animation]["samplers"][sampler];
-        let (Some(output), cubic) = (
-            s["output"].as_u64().map(|o| o as usize),
-            s["interpolation"].as_str() == Some("CUBICSPLINE"),
-        ) else {
+        let Some((output, cubic)) = key_output(json, ch.animation, sampler) else {
             continue;
         };
         let span = match accessor::span(json, output, bin.len()) {
@@ -141,12 +137,6 @@ pub fn offset_translations(
                 continue;
             }
         };
-        // In place when no other sampler or channel uses these keys.
-        let users = all
-            .iter()
-            .filter(|c| c.animation == ch.animation && c.sampler == Some(sampler))
-            .count();
-        let exclusive = accessor::references(json).get(&output) == Some(&1) && users == 1;
         let values: Vec<usize> = (0..span.count).filter(|i| !cubic || i % 3 == 1).collect();
         let keys: Vec<DVec3> = values
             .iter()
@@ -158,20 +148,8 @@ pub fn offset_translations(
         } else {
             varying.entry(ch.animation).or_default().push(name.clone());
         }
-        let target = if exclusive {
-            (output, span)
-        } else {
-            match copy_accessor(json, bin, output, &span) {
-                Some(t) => {
-                    let mut s2 = json["animations"][ch.animation]["samplers"][sampler].clone();
-                    s2["output"] = json!(t.0);
-                    let new = push(&mut json["animations"][ch.animation]["samplers"], s2);
-                    json["animations"][ch.animation]["channels"][ch.channel]["sampler"] =
-                        json!(new);
-                    t
-                }
-                None => continue,
-            }
+        let Some(target) = own_keys(json, bin, ch, &all, (output, span)) else {
+            continue;
         };
         for (&i, k) in values.iter().zip(&keys) {
             let v = *k + d;
@@ -181,6 +159,53 @@ pub fn offset_translations(
         }
         accessor::refresh_bounds(json, target.0, &target.1, bin);
     }
+    notes.extend(offset_summary(json, constant, varying));
+    notes
+}
+
+/// The output accessor of sampler `sampler` of animation `a`, and whether it is a
+/// cubic spline (keys stored as in-tangent, value, out-tangent).
+fn key_output(json: &Value, a: usize, sampler: usize) -> Option<(usize, bool)> {
+    let s = &json["animations"][a]["samplers"][sampler];
+    let output = s["output"].as_u64().map(|o| o as usize)?;
+    Some((output, s["interpolation"].as_str() == Some("CUBICSPLINE")))
+}
+
+/// The keys of channel `ch` as an accessor that serves only it: `keys` itself when no
+/// other sampler or channel uses it, else a copy with its own sampler (the channel is
+/// pointed at it). `None` when the copy cannot be made.
+fn own_keys(
+    json: &mut Value,
+    bin: &mut Vec<u8>,
+    ch: &Channel,
+    all: &[Channel],
+    keys: (usize, Span),
+) -> Option<(usize, Span)> {
+    let (output, span) = keys;
+    let sampler = ch.sampler?;
+    let users = all
+        .iter()
+        .filter(|c| c.animation == ch.animation && c.sampler == Some(sampler))
+        .count();
+    if accessor::references(json).get(&output) == Some(&1) && users == 1 {
+        return Some((output, span));
+    }
+    let t = copy_accessor(json, bin, output, &span)?;
+    let mut s2 = json["animations"][ch.animation]["samplers"][sampler].clone();
+    s2["output"] = json!(t.0);
+    let new = push(&mut json["animations"][ch.animation]["samplers"], s2);
+    json["animations"][ch.animation]["channels"][ch.channel]["sampler"] = json!(new);
+    Some(t)
+}
+
+/// The remarks on offset keys: per animation, how many constant channels now key the
+/// new rest translation, and which joints' varying keys were offset.
+fn offset_summary(
+    json: &Value,
+    constant: BTreeMap<usize, usize>,
+    varying: BTreeMap<usize, Vec<String>>,
+) -> Vec<String> {
+    let mut notes = Vec::new();
     for (a, n) in constant {
         notes.push(format!(
             "animation {}: {n} constant translation channel{} of moved joints now key the new rest \

@@ -213,108 +213,55 @@ pub(crate) fn read_vertices(
     joints: usize,
 ) -> Result<PrimitiveData, Vec<String>> {
     let mut problems = Vec::new();
-    let reader = prim.reader(|b| data.get(b.index()).map(Vec::as_slice));
-    let Some(pos_acc) = prim.get(&gltf::Semantic::Positions) else {
-        return Err(vec![format!("{at} has no POSITION attribute")]);
-    };
-    check_accessor(&pos_acc, &format!("POSITION of {at}"), POSITION, data).map_err(|e| vec![e])?;
-    let positions: Vec<DVec3> = reader
-        .read_positions()
-        .map(|it| it.map(|p| DVec3::from_array(p.map(f64::from))).collect())
-        .unwrap_or_default();
-    if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
-        problems.push(format!(
-            "/accessors/{} (POSITION of {at}): vertex {v} is not finite",
-            pos_acc.index()
-        ));
-    }
-    let n = positions.len();
-    let mut influences: Vec<Vec<(u16, f64)>> = vec![Vec::new(); n];
+    let positions = read_positions(prim, at, data, &mut problems)?;
+    let mut influences: Vec<Vec<(u16, f64)>> = vec![Vec::new(); positions.len()];
     let mut set = 0u32;
     loop {
-        let j_acc = prim.get(&gltf::Semantic::Joints(set));
-        let w_acc = prim.get(&gltf::Semantic::Weights(set));
-        let (j_acc, w_acc) = match (j_acc, w_acc) {
-            (None, None) => break,
-            (Some(j), Some(w)) => (j, w),
-            (Some(_), None) => {
-                problems.push(format!(
-                    "{at} has JOINTS_{set} but no WEIGHTS_{set}; each joint set needs its weights"
-                ));
-                break;
-            }
-            (None, Some(_)) => {
-                problems.push(format!(
-                    "{at} has WEIGHTS_{set} but no JOINTS_{set}; each weight set needs its joints"
-                ));
+        let (j_acc, w_acc) = match weight_set(prim, at, set) {
+            Ok(Some(pair)) => pair,
+            Ok(None) => break,
+            Err(e) => {
+                problems.push(e);
                 break;
             }
         };
-        let j_what = format!("JOINTS_{set} of {at}");
-        let w_what = format!("WEIGHTS_{set} of {at}");
+        let set_at = SetAt {
+            joints: format!("JOINTS_{set} of {at}"),
+            weights: format!("WEIGHTS_{set} of {at}"),
+        };
         let checks = [
-            check_accessor(&j_acc, &j_what, JOINTS, data),
-            check_accessor(&w_acc, &w_what, WEIGHTS, data),
+            check_accessor(&j_acc, &set_at.joints, JOINTS, data),
+            check_accessor(&w_acc, &set_at.weights, WEIGHTS, data),
         ];
         let failed: Vec<String> = checks.into_iter().filter_map(Result::err).collect();
-        if !failed.is_empty() {
-            problems.extend(failed);
-            set += 1;
-            continue;
-        }
-        for (acc, what) in [(&j_acc, &j_what), (&w_acc, &w_what)] {
-            if acc.count() != n {
+        if failed.is_empty() {
+            let reader = prim.reader(|b| data.get(b.index()).map(Vec::as_slice));
+            check_set_shape(&j_acc, &w_acc, &set_at, positions.len(), &mut problems);
+            let js: Vec<[u16; 4]> = reader
+                .read_joints(set)
+                .map(|it| it.into_u16().collect())
+                .unwrap_or_default();
+            let ws: Vec<[f32; 4]> = reader
+                .read_weights(set)
+                .map(|it| it.into_f32().collect())
+                .unwrap_or_default();
+            let (bad_joint, bad_weight) = add_influences(&js, &ws, joints, &mut influences);
+            if let Some((v, j)) = bad_joint {
                 problems.push(format!(
-                    "/accessors/{} ({what}) has {} elements for {n} vertices",
-                    acc.index(),
-                    acc.count()
+                    "/accessors/{} ({}): vertex {v} names joint {j}, but the skin has {joints} joints",
+                    j_acc.index(),
+                    set_at.joints
                 ));
             }
-        }
-        if w_acc.data_type() != DataType::F32 && !w_acc.normalized() {
-            problems.push(format!(
-                "/accessors/{} ({w_what}) stores integer weights without \"normalized\": true, as glTF requires",
-                w_acc.index()
-            ));
-        }
-        let js: Vec<[u16; 4]> = reader
-            .read_joints(set)
-            .map(|it| it.into_u16().collect())
-            .unwrap_or_default();
-        let ws: Vec<[f32; 4]> = reader
-            .read_weights(set)
-            .map(|it| it.into_f32().collect())
-            .unwrap_or_default();
-        let mut bad_joint = None;
-        let mut bad_weight = None;
-        for (v, (j4, w4)) in js.iter().zip(&ws).enumerate().take(n) {
-            for (&j, &w) in j4.iter().zip(w4) {
-                let w = f64::from(w);
-                if !(w.is_finite() && w >= 0.0) {
-                    bad_weight.get_or_insert((v, w));
-                    continue;
-                }
-                if w == 0.0 {
-                    continue;
-                }
-                if usize::from(j) >= joints {
-                    bad_joint.get_or_insert((v, j));
-                    continue;
-                }
-                influences[v].push((j, w));
+            if let Some((v, w)) = bad_weight {
+                problems.push(format!(
+                    "/accessors/{} ({}): vertex {v} has weight {w}; weights must be finite and not negative",
+                    w_acc.index(),
+                    set_at.weights
+                ));
             }
-        }
-        if let Some((v, j)) = bad_joint {
-            problems.push(format!(
-                "/accessors/{} ({j_what}): vertex {v} names joint {j}, but the skin has {joints} joints",
-                j_acc.index()
-            ));
-        }
-        if let Some((v, w)) = bad_weight {
-            problems.push(format!(
-                "/accessors/{} ({w_what}): vertex {v} has weight {w}; weights must be finite and not negative",
-                w_acc.index()
-            ));
+        } else {
+            problems.extend(failed);
         }
         set += 1;
     }
@@ -328,6 +275,117 @@ pub(crate) fn read_vertices(
     } else {
         Err(problems)
     }
+}
+
+/// What one joint set's two accessors are called in messages ("JOINTS_0 of /meshes/0/...").
+struct SetAt {
+    joints: String,
+    weights: String,
+}
+
+/// The primitive's checked POSITION accessor read as vertices; a vertex that is not
+/// finite is added to `problems`, a missing or malformed accessor ends the read.
+fn read_positions(
+    prim: &gltf::Primitive<'_>,
+    at: &str,
+    data: &[Vec<u8>],
+    problems: &mut Vec<String>,
+) -> Result<Vec<DVec3>, Vec<String>> {
+    let Some(pos_acc) = prim.get(&gltf::Semantic::Positions) else {
+        return Err(vec![format!("{at} has no POSITION attribute")]);
+    };
+    check_accessor(&pos_acc, &format!("POSITION of {at}"), POSITION, data).map_err(|e| vec![e])?;
+    let reader = prim.reader(|b| data.get(b.index()).map(Vec::as_slice));
+    let positions: Vec<DVec3> = reader
+        .read_positions()
+        .map(|it| it.map(|p| DVec3::from_array(p.map(f64::from))).collect())
+        .unwrap_or_default();
+    if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+        problems.push(format!(
+            "/accessors/{} (POSITION of {at}): vertex {v} is not finite",
+            pos_acc.index()
+        ));
+    }
+    Ok(positions)
+}
+
+/// The `JOINTS_set` and `WEIGHTS_set` accessors: `None` past the last set, an error
+/// when only one of the two is there.
+fn weight_set<'a>(
+    prim: &gltf::Primitive<'a>,
+    at: &str,
+    set: u32,
+) -> Result<Option<(gltf::Accessor<'a>, gltf::Accessor<'a>)>, String> {
+    match (
+        prim.get(&gltf::Semantic::Joints(set)),
+        prim.get(&gltf::Semantic::Weights(set)),
+    ) {
+        (None, None) => Ok(None),
+        (Some(j), Some(w)) => Ok(Some((j, w))),
+        (Some(_), None) => Err(format!(
+            "{at} has JOINTS_{set} but no WEIGHTS_{set}; each joint set needs its weights"
+        )),
+        (None, Some(_)) => Err(format!(
+            "{at} has WEIGHTS_{set} but no JOINTS_{set}; each weight set needs its joints"
+        )),
+    }
+}
+
+/// Checks that a joint set has one element per vertex and that integer weights are normalised.
+fn check_set_shape(
+    j_acc: &gltf::Accessor<'_>,
+    w_acc: &gltf::Accessor<'_>,
+    set_at: &SetAt,
+    n: usize,
+    problems: &mut Vec<String>,
+) {
+    for (acc, what) in [(j_acc, &set_at.joints), (w_acc, &set_at.weights)] {
+        if acc.count() != n {
+            problems.push(format!(
+                "/accessors/{} ({what}) has {} elements for {n} vertices",
+                acc.index(),
+                acc.count()
+            ));
+        }
+    }
+    if w_acc.data_type() != DataType::F32 && !w_acc.normalized() {
+        problems.push(format!(
+            "/accessors/{} ({}) stores integer weights without \"normalized\": true, as glTF requires",
+            w_acc.index(),
+            set_at.weights
+        ));
+    }
+}
+
+/// Adds one joint set's non-zero weights to each vertex's influences; returns the first
+/// vertex naming a joint past `joints` and the first with a negative or non-finite weight.
+#[allow(clippy::type_complexity)]
+fn add_influences(
+    js: &[[u16; 4]],
+    ws: &[[f32; 4]],
+    joints: usize,
+    influences: &mut [Vec<(u16, f64)>],
+) -> (Option<(usize, u16)>, Option<(usize, f64)>) {
+    let mut bad_joint = None;
+    let mut bad_weight = None;
+    for (v, (j4, w4)) in js.iter().zip(ws).enumerate().take(influences.len()) {
+        for (&j, &w) in j4.iter().zip(w4) {
+            let w = f64::from(w);
+            if !(w.is_finite() && w >= 0.0) {
+                bad_weight.get_or_insert((v, w));
+                continue;
+            }
+            if w == 0.0 {
+                continue;
+            }
+            if usize::from(j) >= joints {
+                bad_joint.get_or_insert((v, j));
+                continue;
+            }
+            influences[v].push((j, w));
+        }
+    }
+    (bad_joint, bad_weight)
 }
 
 /// Reads one primitive's triangles (local vertex indices), or says what is wrong.
@@ -376,6 +434,53 @@ pub(crate) fn read_with(
     data: &[Vec<u8>],
     skin: usize,
 ) -> Result<SkinnedMesh, Vec<String>> {
+    let (sk, joints) = skin_joints(file, skin)?;
+    let mut problems = Vec::new();
+    let inverse_bind = checked_inverse_binds(data, &sk, joints.len(), &mut problems);
+    let meshes = skinned_meshes(file, skin, &mut problems);
+    let mut notes = Vec::new();
+    let gathered = gather_primitives(file, data, &meshes, joints.len(), &mut notes, &mut problems);
+    if problems.is_empty() && gathered.triangles.is_empty() {
+        problems.push(format!(
+            "/skins/{skin}: its meshes have no triangles to deform{}",
+            if notes.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", notes.join("; "))
+            }
+        ));
+    }
+    if !problems.is_empty() {
+        return Err(problems);
+    }
+    let Gathered {
+        positions,
+        influences,
+        triangles,
+    } = gathered;
+    let (flat, start, unweighted) = normalise_influences(influences);
+    if unweighted > 0 {
+        notes.push(format!(
+            "{unweighted} vertices of /skins/{skin}'s mesh have no weight; they stay where they are stored"
+        ));
+    }
+    let welded = weld(&positions);
+    Ok(SkinnedMesh {
+        skin,
+        positions,
+        triangles,
+        influences: flat,
+        influence_start: start,
+        joints,
+        inverse_bind,
+        welded,
+        notes,
+    })
+}
+
+/// Skin `skin` and its joints' node indices, or why it cannot be read (missing, or
+/// not 1 to 65535 joints).
+fn skin_joints(file: &GltfFile, skin: usize) -> Result<(gltf::Skin<'_>, Vec<usize>), Vec<String>> {
     let Some(sk) = file.document.skins().nth(skin) else {
         return Err(vec![format!(
             "has no skin {skin} (it has {})",
@@ -389,8 +494,18 @@ pub(crate) fn read_with(
             joints.len()
         )]);
     }
-    let mut problems = Vec::new();
-    let inverse_bind = match super::fix::inverse_binds(data, &sk, joints.len()) {
+    Ok((sk, joints))
+}
+
+/// The skin's inverse bind matrices (empty when unreadable), each one finite or a problem.
+fn checked_inverse_binds(
+    data: &[Vec<u8>],
+    sk: &gltf::Skin<'_>,
+    joints: usize,
+    problems: &mut Vec<String>,
+) -> Vec<DMat4> {
+    let skin = sk.index();
+    let inverse_bind = match super::fix::inverse_binds(data, sk, joints) {
         Ok(m) => m,
         Err(e) => {
             problems.push(format!("/skins/{skin}: {e}"));
@@ -402,6 +517,11 @@ pub(crate) fn read_with(
             "/skins/{skin}: inverse bind matrix {k} is not finite"
         ));
     }
+    inverse_bind
+}
+
+/// The meshes of the nodes bound to skin `skin`, each once, in index order; none is a problem.
+fn skinned_meshes(file: &GltfFile, skin: usize, problems: &mut Vec<String>) -> Vec<usize> {
     let mut meshes: Vec<usize> = file
         .document
         .nodes()
@@ -415,11 +535,34 @@ pub(crate) fn read_with(
             "/skins/{skin} is used by no node with a mesh, so there is no skin to deform"
         ));
     }
-    let mut notes = Vec::new();
-    let mut positions = Vec::new();
-    let mut influences: Vec<Vec<(u16, f64)>> = Vec::new();
-    let mut triangles = Vec::new();
-    for m in meshes {
+    meshes
+}
+
+/// The vertices of all triangle primitives of some meshes, as one list.
+struct Gathered {
+    positions: Vec<DVec3>,
+    /// Per vertex, its (joint slot, weight) influences, unnormalised.
+    influences: Vec<Vec<(u16, f64)>>,
+    /// Triangles as indices into `positions`.
+    triangles: Vec<[u32; 3]>,
+}
+
+/// Reads every triangle primitive of `meshes` into one vertex list; primitives drawn
+/// otherwise are left out with a note, a primitive with a problem is left out.
+fn gather_primitives(
+    file: &GltfFile,
+    data: &[Vec<u8>],
+    meshes: &[usize],
+    joints: usize,
+    notes: &mut Vec<String>,
+    problems: &mut Vec<String>,
+) -> Gathered {
+    let mut out = Gathered {
+        positions: Vec::new(),
+        influences: Vec::new(),
+        triangles: Vec::new(),
+    };
+    for &m in meshes {
         let Some(mesh) = file.document.meshes().nth(m) else {
             continue;
         };
@@ -437,43 +580,38 @@ pub(crate) fn read_with(
                     "{at} has morph targets; they are not applied (the mesh is read at its base shape)"
                 ));
             }
-            let (pos, infl) = match read_vertices(&prim, &at, data, joints.len()) {
+            let (pos, infl) = match read_vertices(&prim, &at, data, joints) {
                 Ok(v) => v,
                 Err(p) => {
                     problems.extend(p);
                     continue;
                 }
             };
-            let base = positions.len();
+            let base = out.positions.len();
             if base + pos.len() > u32::MAX as usize {
                 problems.push(format!("{at}: more than 2^32 vertices in all"));
                 continue;
             }
-            match read_triangles(&prim, &at, data, pos.len(), &mut notes) {
-                Ok(tris) => triangles.extend(tris.into_iter().map(|t| t.map(|i| i + base as u32))),
+            match read_triangles(&prim, &at, data, pos.len(), notes) {
+                Ok(tris) => out
+                    .triangles
+                    .extend(tris.into_iter().map(|t| t.map(|i| i + base as u32))),
                 Err(e) => {
                     problems.push(e);
                     continue;
                 }
             }
-            positions.extend(pos);
-            influences.extend(infl);
+            out.positions.extend(pos);
+            out.influences.extend(infl);
         }
     }
-    if problems.is_empty() && triangles.is_empty() {
-        problems.push(format!(
-            "/skins/{skin}: its meshes have no triangles to deform{}",
-            if notes.is_empty() {
-                String::new()
-            } else {
-                format!(" ({})", notes.join("; "))
-            }
-        ));
-    }
-    if !problems.is_empty() {
-        return Err(problems);
-    }
-    // Merge repeated joints, normalise, sort largest first.
+    out
+}
+
+/// Per vertex: repeated joints merged, weights normalised to sum 1, largest first (ties
+/// by slot). Returns the flat influences, each vertex's start offset (one more than
+/// there are vertices) and how many vertices have no weight (left with none).
+fn normalise_influences(influences: Vec<Vec<(u16, f64)>>) -> (Vec<(u16, f64)>, Vec<usize>, usize) {
     let mut flat = Vec::new();
     let mut start = Vec::with_capacity(influences.len() + 1);
     let mut unweighted = 0usize;
@@ -497,23 +635,7 @@ pub(crate) fn read_with(
         flat.extend(merged);
     }
     start.push(flat.len());
-    if unweighted > 0 {
-        notes.push(format!(
-            "{unweighted} vertices of /skins/{skin}'s mesh have no weight; they stay where they are stored"
-        ));
-    }
-    let welded = weld(&positions);
-    Ok(SkinnedMesh {
-        skin,
-        positions,
-        triangles,
-        influences: flat,
-        influence_start: start,
-        joints,
-        inverse_bind,
-        welded,
-        notes,
-    })
+    (flat, start, unweighted)
 }
 
 /// For each position, the lowest index of a position with the same bits. O(n).
@@ -539,22 +661,9 @@ mod tests {
     /// weights in two sets of the given component types, returned as GLB bytes.
     fn quad(joint_type: u32, weight_type: u32, extra: impl Fn(&mut serde_json::Value)) -> Vec<u8> {
         let pos: [[f32; 3]; 4] = [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]];
-        let mut bin = Vec::new();
-        let mut views = Vec::new();
-        let mut push = |bin: &mut Vec<u8>, bytes: Vec<u8>| {
-            while !bin.len().is_multiple_of(4) {
-                bin.push(0);
-            }
-            views.push(json!({"buffer": 0, "byteOffset": bin.len(), "byteLength": bytes.len()}));
-            bin.extend(bytes);
-            views.len() - 1
-        };
-        let p = push(
-            &mut bin,
-            pos.iter().flatten().flat_map(|x| x.to_le_bytes()).collect(),
-        );
-        let idx = push(
-            &mut bin,
+        let mut bin = Bin::default();
+        let p = bin.push(pos.iter().flatten().flat_map(|x| x.to_le_bytes()).collect());
+        let idx = bin.push(
             [0u16, 1, 2, 0, 2, 3]
                 .iter()
                 .flat_map(|x| x.to_le_bytes())
@@ -572,32 +681,8 @@ mod tests {
         ];
         let mut attrs = json!({"POSITION": 0});
         for (s, (j, w)) in sets.iter().enumerate() {
-            let jb: Vec<u8> = (0..4)
-                .flat_map(|_| {
-                    j.iter().flat_map(|&x| {
-                        if joint_type == 5121 {
-                            vec![x as u8]
-                        } else {
-                            x.to_le_bytes().to_vec()
-                        }
-                    })
-                })
-                .collect();
-            // Weights scaled to 1/8 of the eighths, so each set sums to 1/2 before normalising.
-            let wb: Vec<u8> = (0..4)
-                .flat_map(|_| {
-                    w.iter().flat_map(|&x| {
-                        let f = x / 8.0;
-                        match weight_type {
-                            5121 => vec![(f * 255.0).round() as u8],
-                            5123 => ((f * 65535.0).round() as u16).to_le_bytes().to_vec(),
-                            _ => f.to_le_bytes().to_vec(),
-                        }
-                    })
-                })
-                .collect();
-            let jv = push(&mut bin, jb);
-            let wv = push(&mut bin, wb);
+            let jv = bin.push(joint_bytes(j, joint_type));
+            let wv = bin.push(weight_bytes(w, weight_type));
             accessors.push(
                 json!({"bufferView": jv, "componentType": joint_type, "count": 4, "type": "VEC4"}),
             );
@@ -620,17 +705,75 @@ mod tests {
             "meshes": [{"primitives": [{"attributes": attrs, "indices": 1}]}],
             "skins": [{"joints": [0, 1, 2]}],
             "accessors": accessors,
-            "bufferViews": views,
-            "buffers": [{"byteLength": bin.len()}]
+            "bufferViews": bin.views,
+            "buffers": [{"byteLength": bin.bytes.len()}]
         });
         extra(&mut doc);
+        glb(&doc, bin.bytes)
+    }
+
+    /// A GLB's binary chunk and its buffer views, as [`quad`] writes them.
+    #[derive(Default)]
+    struct Bin {
+        bytes: Vec<u8>,
+        views: Vec<serde_json::Value>,
+    }
+
+    impl Bin {
+        /// Appends `bytes` 4-byte aligned as a buffer view; returns the view's index.
+        fn push(&mut self, bytes: Vec<u8>) -> usize {
+            while !self.bytes.len().is_multiple_of(4) {
+                self.bytes.push(0);
+            }
+            self.views.push(
+                json!({"buffer": 0, "byteOffset": self.bytes.len(), "byteLength": bytes.len()}),
+            );
+            self.bytes.extend(bytes);
+            self.views.len() - 1
+        }
+    }
+
+    /// One joint set for all four vertices of the quad, as `joint_type` (5121 bytes, else shorts).
+    fn joint_bytes(j: &[u16; 4], joint_type: u32) -> Vec<u8> {
+        (0..4)
+            .flat_map(|_| {
+                j.iter().flat_map(|&x| {
+                    if joint_type == 5121 {
+                        vec![x as u8]
+                    } else {
+                        x.to_le_bytes().to_vec()
+                    }
+                })
+            })
+            .collect()
+    }
+
+    /// One weight set for all four vertices, in eighths scaled by 1/8 (so each set sums
+    /// to 1/2 before normalising), as `weight_type` (5121, 5123 normalised, else float).
+    fn weight_bytes(w: &[f32; 4], weight_type: u32) -> Vec<u8> {
+        (0..4)
+            .flat_map(|_| {
+                w.iter().flat_map(|&x| {
+                    let f = x / 8.0;
+                    match weight_type {
+                        5121 => vec![(f * 255.0).round() as u8],
+                        5123 => ((f * 65535.0).round() as u16).to_le_bytes().to_vec(),
+                        _ => f.to_le_bytes().to_vec(),
+                    }
+                })
+            })
+            .collect()
+    }
+
+    /// `doc` and `bin` as GLB bytes.
+    fn glb(doc: &serde_json::Value, bin: Vec<u8>) -> Vec<u8> {
         gltf::binary::Glb {
             header: gltf::binary::Header {
                 magic: *b"glTF",
                 version: 2,
                 length: 0,
             },
-            json: serde_json::to_vec(&doc).unwrap().into(),
+            json: serde_json::to_vec(doc).unwrap().into(),
             bin: Some(bin.into()),
         }
         .to_vec()

@@ -317,102 +317,69 @@ impl SyntheticRig {
     /// four influences (as many sets as the most influenced vertex needs).
     /// Positions, weights and matrices are stored as f32, as glTF stores them.
     pub fn to_glb(&self) -> Result<Vec<u8>, String> {
-        let mut bin = Vec::new();
-        let mut views = Vec::new();
-        let mut accessors = Vec::new();
+        let mut out = GlbParts::default();
         let mesh = &self.mesh;
         let positions: Vec<[f32; 3]> = mesh
             .positions
             .iter()
             .map(|p| p.as_vec3().to_array())
             .collect();
-        let (lo, hi) = positions.iter().fold(
-            ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]),
-            |(lo, hi), p| {
-                (
-                    std::array::from_fn(|k| lo[k].min(p[k])),
-                    std::array::from_fn(|k| hi[k].max(p[k])),
-                )
-            },
-        );
-        let pos = glb_accessor(
-            &mut bin,
-            &mut views,
-            &mut accessors,
+        let (lo, hi) = bounds(&positions);
+        let pos = out.accessor(
             &positions.concat(),
             5126,
             "VEC3",
             Some((lo.to_vec(), hi.to_vec())),
         );
         let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
-        let idx = glb_accessor(
-            &mut bin,
-            &mut views,
-            &mut accessors,
-            &indices,
-            5125,
-            "SCALAR",
-            None,
-        );
-        let n = mesh.positions.len();
-        let most = (0..n)
-            .map(|v| mesh.influences_of(v).len())
-            .max()
-            .unwrap_or(0);
+        let idx = out.accessor(&indices, 5125, "SCALAR", None);
         let mut attributes = serde_json::Map::new();
         attributes.insert("POSITION".into(), pos.into());
-        for set in 0..most.div_ceil(4).max(1) {
-            let mut joints = vec![0u16; 4 * n];
-            let mut weights = vec![0f32; 4 * n];
-            for v in 0..n {
-                for (k, &(j, w)) in mesh
-                    .influences_of(v)
-                    .iter()
-                    .skip(4 * set)
-                    .take(4)
-                    .enumerate()
-                {
-                    joints[4 * v + k] = j;
-                    weights[4 * v + k] = w as f32;
-                }
-            }
-            let j = glb_accessor(
-                &mut bin,
-                &mut views,
-                &mut accessors,
-                &joints,
-                5123,
-                "VEC4",
-                None,
-            );
-            let w = glb_accessor(
-                &mut bin,
-                &mut views,
-                &mut accessors,
-                &weights,
-                5126,
-                "VEC4",
-                None,
-            );
-            attributes.insert(format!("JOINTS_{set}"), j.into());
-            attributes.insert(format!("WEIGHTS_{set}"), w.into());
-        }
+        out.weight_sets(mesh, &mut attributes);
         let ibm: Vec<f32> = mesh
             .inverse_bind
             .iter()
             .flat_map(|m| m.as_mat4().to_cols_array())
             .collect();
-        let ibm = glb_accessor(
-            &mut bin,
-            &mut views,
-            &mut accessors,
-            &ibm,
-            5126,
-            "MAT4",
-            None,
-        );
+        let ibm = out.accessor(&ibm, 5126, "MAT4", None);
+        let mut nodes = self.nodes_json();
+        let mesh_node = nodes.len();
+        nodes.push(serde_json::json!({"name": "hand-mesh", "mesh": 0, "skin": 0}));
         let sk = &self.skeleton;
-        let mut nodes: Vec<serde_json::Value> = (0..sk.world.len())
+        let roots: Vec<usize> = (0..sk.parent.len())
+            .filter(|&i| sk.parent[i].is_none())
+            .chain([mesh_node])
+            .collect();
+        let json = serde_json::json!({
+            "asset": {"version": "2.0", "generator": "phalanx synthetic tube hand"},
+            "scene": 0,
+            "scenes": [{"nodes": roots}],
+            "nodes": nodes,
+            "skins": [{"joints": mesh.joints, "inverseBindMatrices": ibm}],
+            "meshes": [{"primitives": [{"attributes": attributes, "indices": idx, "mode": 4}]}],
+            "accessors": out.accessors,
+            "bufferViews": out.views,
+            "buffers": [{"byteLength": out.bin.len()}],
+        });
+        let text = serde_json::to_vec(&json).map_err(|e| e.to_string())?;
+        gltf::binary::Glb {
+            header: gltf::binary::Header {
+                magic: *b"glTF",
+                version: 2,
+                length: 0,
+            },
+            json: text.into(),
+            bin: Some(out.bin.into()),
+        }
+        .to_vec()
+        .map_err(|e| format!("cannot be written as GLB ({e})"))
+    }
+
+    /// The skeleton's nodes as glTF JSON: name, local translation and rotation (from the
+    /// world matrices), children.
+    fn nodes_json(&self) -> Vec<serde_json::Value> {
+        let sk = &self.skeleton;
+        (0..sk.world.len())
             .map(|i| {
                 let up = sk.parent[i].map_or(DMat4::IDENTITY, |p| sk.world[p]);
                 let (_, r, t) = (up.inverse() * sk.world[i]).to_scale_rotation_translation();
@@ -429,81 +396,108 @@ impl SyntheticRig {
                 }
                 node
             })
-            .collect();
-        let mesh_node = nodes.len();
-        nodes.push(serde_json::json!({"name": "hand-mesh", "mesh": 0, "skin": 0}));
-        let roots: Vec<usize> = (0..sk.parent.len())
-            .filter(|&i| sk.parent[i].is_none())
-            .chain([mesh_node])
-            .collect();
-        let json = serde_json::json!({
-            "asset": {"version": "2.0", "generator": "phalanx synthetic tube hand"},
-            "scene": 0,
-            "scenes": [{"nodes": roots}],
-            "nodes": nodes,
-            "skins": [{"joints": mesh.joints, "inverseBindMatrices": ibm}],
-            "meshes": [{"primitives": [{"attributes": attributes, "indices": idx, "mode": 4}]}],
-            "accessors": accessors,
-            "bufferViews": views,
-            "buffers": [{"byteLength": bin.len()}],
-        });
-        let text = serde_json::to_vec(&json).map_err(|e| e.to_string())?;
-        gltf::binary::Glb {
-            header: gltf::binary::Header {
-                magic: *b"glTF",
-                version: 2,
-                length: 0,
-            },
-            json: text.into(),
-            bin: Some(bin.into()),
-        }
-        .to_vec()
-        .map_err(|e| format!("cannot be written as GLB ({e})"))
+            .collect()
     }
 }
 
-/// Appends `data` (little-endian, 4-byte aligned) to `bin` as a buffer view and
-/// an accessor of `component` type and `shape`; returns the accessor's index.
-fn glb_accessor<T: LeBytes>(
-    bin: &mut Vec<u8>,
-    views: &mut Vec<serde_json::Value>,
-    accessors: &mut Vec<serde_json::Value>,
-    data: &[T],
-    component: u32,
-    shape: &str,
-    bounds: Option<(Vec<f32>, Vec<f32>)>,
-) -> usize {
-    let per = match shape {
-        "SCALAR" => 1,
-        "VEC3" => 3,
-        "VEC4" => 4,
-        _ => 16,
-    };
-    let offset = bin.len();
-    for x in data {
-        x.put(bin);
+/// The per-axis minimum and maximum of `points` (infinite when there are none).
+fn bounds(points: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
+    points.iter().fold(
+        ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]),
+        |(lo, hi), p| {
+            (
+                std::array::from_fn(|k| lo[k].min(p[k])),
+                std::array::from_fn(|k| hi[k].max(p[k])),
+            )
+        },
+    )
+}
+
+/// The binary chunk of a GLB being written, with its buffer views and accessors.
+#[derive(Default)]
+struct GlbParts {
+    bin: Vec<u8>,
+    views: Vec<serde_json::Value>,
+    accessors: Vec<serde_json::Value>,
+}
+
+impl GlbParts {
+    /// Appends `data` (little-endian, 4-byte aligned) to the binary chunk as a buffer
+    /// view and an accessor of `component` type and `shape`; returns the accessor's index.
+    fn accessor<T: LeBytes>(
+        &mut self,
+        data: &[T],
+        component: u32,
+        shape: &str,
+        bounds: Option<(Vec<f32>, Vec<f32>)>,
+    ) -> usize {
+        let per = match shape {
+            "SCALAR" => 1,
+            "VEC3" => 3,
+            "VEC4" => 4,
+            _ => 16,
+        };
+        let bin = &mut self.bin;
+        let offset = bin.len();
+        for x in data {
+            x.put(bin);
+        }
+        let length = bin.len() - offset;
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        self.views.push(serde_json::json!({
+            "buffer": 0,
+            "byteOffset": offset,
+            "byteLength": length,
+        }));
+        let mut acc = serde_json::json!({
+            "bufferView": self.views.len() - 1,
+            "componentType": component,
+            "count": data.len() / per,
+            "type": shape,
+        });
+        if let Some((lo, hi)) = bounds {
+            acc["min"] = lo.into();
+            acc["max"] = hi.into();
+        }
+        self.accessors.push(acc);
+        self.accessors.len() - 1
     }
-    let length = bin.len() - offset;
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
+
+    /// The mesh's influences as `JOINTS_n`/`WEIGHTS_n` sets of four (as many sets as the
+    /// most influenced vertex needs, at least one), added to `attributes`.
+    fn weight_sets(
+        &mut self,
+        mesh: &SkinnedMesh,
+        attributes: &mut serde_json::Map<String, serde_json::Value>,
+    ) {
+        let n = mesh.positions.len();
+        let most = (0..n)
+            .map(|v| mesh.influences_of(v).len())
+            .max()
+            .unwrap_or(0);
+        for set in 0..most.div_ceil(4).max(1) {
+            let mut joints = vec![0u16; 4 * n];
+            let mut weights = vec![0f32; 4 * n];
+            for v in 0..n {
+                for (k, &(j, w)) in mesh
+                    .influences_of(v)
+                    .iter()
+                    .skip(4 * set)
+                    .take(4)
+                    .enumerate()
+                {
+                    joints[4 * v + k] = j;
+                    weights[4 * v + k] = w as f32;
+                }
+            }
+            let j = self.accessor(&joints, 5123, "VEC4", None);
+            let w = self.accessor(&weights, 5126, "VEC4", None);
+            attributes.insert(format!("JOINTS_{set}"), j.into());
+            attributes.insert(format!("WEIGHTS_{set}"), w.into());
+        }
     }
-    views.push(serde_json::json!({
-        "buffer": 0,
-        "byteOffset": offset,
-        "byteLength": length,
-    }));
-    let mut acc = serde_json::json!({
-        "bufferView": views.len() - 1,
-        "componentType": component,
-        "count": data.len() / per,
-        "type": shape,
-    });
-    if let Some((lo, hi)) = bounds {
-        acc["min"] = lo.into();
-        acc["max"] = hi.into();
-    }
-    accessors.push(acc);
-    accessors.len() - 1
 }
 
 /// A number glTF stores little-endian.
