@@ -83,18 +83,7 @@ pub fn simulate_all(
     if group >= 32 || columns.iter().any(|c| c.len() != first.len()) {
         return None;
     }
-    let mut moments = Vec::with_capacity(columns.len());
-    for c in columns {
-        if c.iter().any(|x| !x.is_finite()) {
-            return None;
-        }
-        let mean = describe::mean(c)?;
-        let var = c.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / f64::from(size);
-        if var.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-            return None;
-        }
-        moments.push((mean, var.sqrt()));
-    }
+    let moments = column_moments(columns, size)?;
     let truths: Vec<f64> = moments.iter().map(|m| m.0).collect();
     let plan = Plan::choose(n, s.resamples);
     let enumeration = match plan {
@@ -113,16 +102,7 @@ pub fn simulate_all(
             || (vec![vec![0.0f64; n]; q], vec![0.0f64; q]),
             |(xs, further), sim| {
                 let mut r = rng::stream(s.seed, key(SAMPLE_TAG, n, group), sim);
-                for i in 0..n {
-                    let row = rng::index(&mut r, size) as usize;
-                    for (x, c) in xs.iter_mut().zip(columns) {
-                        x[i] = c[row];
-                    }
-                }
-                let row = rng::index(&mut r, size) as usize;
-                for (f, c) in further.iter_mut().zip(columns) {
-                    *f = c[row];
-                }
+                draw_sample(&mut r, columns, size, xs, further);
                 let cols: Vec<&[f64]> = xs.iter().map(Vec::as_slice).collect();
                 let boot_key = key(boot_tag, n, sim);
                 samples_cover(&cols, further, &truths, s, boot_key, enumeration.as_ref())
@@ -153,6 +133,46 @@ pub fn simulate_all(
             })
             .collect(),
     )
+}
+
+/// Each column's mean and population SD (divisor `size`); `None` when a value is not
+/// finite or a column has no spread.
+fn column_moments(columns: &[&[f64]], size: u32) -> Option<Vec<(f64, f64)>> {
+    let mut moments = Vec::with_capacity(columns.len());
+    for c in columns {
+        if c.iter().any(|x| !x.is_finite()) {
+            return None;
+        }
+        let mean = describe::mean(c)?;
+        let var = c.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / f64::from(size);
+        if var.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            return None;
+        }
+        moments.push((mean, var.sqrt()));
+    }
+    Some(moments)
+}
+
+/// Draws one sample of `xs[0].len()` X-rays (every column's values at the same rows) into
+/// `xs`, then one further X-ray into `further`, each row uniform over the `size` rows.
+fn draw_sample(
+    r: &mut rand_chacha::ChaCha8Rng,
+    columns: &[&[f64]],
+    size: u32,
+    xs: &mut [Vec<f64>],
+    further: &mut [f64],
+) {
+    let n = xs.first().map_or(0, Vec::len);
+    for i in 0..n {
+        let row = rng::index(r, size) as usize;
+        for (x, c) in xs.iter_mut().zip(columns) {
+            x[i] = c[row];
+        }
+    }
+    let row = rng::index(r, size) as usize;
+    for (f, c) in further.iter_mut().zip(columns) {
+        *f = c[row];
+    }
 }
 
 /// The coverage of one quantity of one finger at each sample size.
@@ -236,67 +256,16 @@ pub fn of_dataset(
     keep: impl Fn(Quantity) -> bool,
 ) -> PopulationStudy {
     let mut notes = Vec::new();
-    let sizes: Vec<usize> = sizes
-        .iter()
-        .copied()
-        .filter(|&n| {
-            let ok = (2..=MAX_N).contains(&n);
-            if !ok {
-                notes.push(format!("n = {n}: samples need 2 to {MAX_N} X-rays"));
-            }
-            ok
-        })
-        .collect();
+    let sizes = valid_sizes(sizes, &mut notes);
     let blocks = blocks(data);
     let groups = group_by(&blocks, |a, b| same_xrays(&a.xrays, &b.xrays));
     let mut quantities = Vec::new();
     for (g, group) in groups.iter().enumerate() {
-        // (finger, quantity, values) of the group's kept quantities with spread.
-        let mut cols: Vec<(Finger, Quantity, Vec<f64>)> = Vec::new();
-        for &i in group {
-            let b = &blocks[i];
-            for (&q, col) in b.quantities.iter().zip(b.columns()) {
-                if !keep(q) {
-                    continue;
-                }
-                match describe::min_max(&col) {
-                    Some((lo, hi)) if col.len() >= 2 && hi > lo => cols.push((b.finger, q, col)),
-                    _ => notes.push(format!(
-                        "{} {}: fewer than 2 X-rays or no spread, not simulated",
-                        b.finger.name(),
-                        q.name()
-                    )),
-                }
-            }
-        }
+        let cols = group_columns(&blocks, group, &keep, &mut notes);
         if cols.is_empty() {
             continue;
         }
-        let slices: Vec<&[f64]> = cols.iter().map(|c| c.2.as_slice()).collect();
-        let mut by_n: Vec<Vec<Coverage>> = vec![Vec::new(); cols.len()];
-        let mut moments: Vec<(f64, f64)> = vec![(0.0, 0.0); cols.len()];
-        for &n in &sizes {
-            let Some(all) = simulate_all(&slices, n, s, g as u64) else {
-                notes.push(format!("group {g} at n = {n} could not be simulated"));
-                continue;
-            };
-            for (k, p) in all.into_iter().enumerate() {
-                moments[k] = (p.mean, p.sd);
-                by_n[k].push(p.coverage);
-            }
-        }
-        for ((finger, quantity, col), (by_n, (mean, sd))) in
-            cols.into_iter().zip(by_n.into_iter().zip(moments))
-        {
-            quantities.push(QuantityPopulation {
-                finger,
-                quantity,
-                population: col.len(),
-                mean,
-                sd,
-                by_n,
-            });
-        }
+        quantities.extend(simulate_group(cols, &sizes, s, g, &mut notes));
     }
     quantities.sort_by_key(|q| (q.finger, q.quantity));
     let normal = sizes
@@ -310,6 +279,86 @@ pub fn of_dataset(
         normal,
         notes,
     }
+}
+
+/// The sizes from 2 to [`MAX_N`], in order; each other one is left out with a note.
+fn valid_sizes(sizes: &[usize], notes: &mut Vec<String>) -> Vec<usize> {
+    sizes
+        .iter()
+        .copied()
+        .filter(|&n| {
+            let ok = (2..=MAX_N).contains(&n);
+            if !ok {
+                notes.push(format!("n = {n}: samples need 2 to {MAX_N} X-rays"));
+            }
+            ok
+        })
+        .collect()
+}
+
+/// (finger, quantity, values) of a group's kept quantities with spread; those with
+/// fewer than 2 X-rays or no spread are left out with a note.
+fn group_columns(
+    blocks: &[super::Block],
+    group: &[usize],
+    keep: &impl Fn(Quantity) -> bool,
+    notes: &mut Vec<String>,
+) -> Vec<(Finger, Quantity, Vec<f64>)> {
+    let mut cols = Vec::new();
+    for &i in group {
+        let b = &blocks[i];
+        for (&q, col) in b.quantities.iter().zip(b.columns()) {
+            if !keep(q) {
+                continue;
+            }
+            match describe::min_max(&col) {
+                Some((lo, hi)) if col.len() >= 2 && hi > lo => cols.push((b.finger, q, col)),
+                _ => notes.push(format!(
+                    "{} {}: fewer than 2 X-rays or no spread, not simulated",
+                    b.finger.name(),
+                    q.name()
+                )),
+            }
+        }
+    }
+    cols
+}
+
+/// The coverage of group `g`'s columns at each size ([`simulate_all`]: they share
+/// samples and bootstraps); a size that cannot be simulated is left out with a note.
+fn simulate_group(
+    cols: Vec<(Finger, Quantity, Vec<f64>)>,
+    sizes: &[usize],
+    s: &CoverageSettings,
+    g: usize,
+    notes: &mut Vec<String>,
+) -> Vec<QuantityPopulation> {
+    let slices: Vec<&[f64]> = cols.iter().map(|c| c.2.as_slice()).collect();
+    let mut by_n: Vec<Vec<Coverage>> = vec![Vec::new(); cols.len()];
+    let mut moments: Vec<(f64, f64)> = vec![(0.0, 0.0); cols.len()];
+    for &n in sizes {
+        let Some(all) = simulate_all(&slices, n, s, g as u64) else {
+            notes.push(format!("group {g} at n = {n} could not be simulated"));
+            continue;
+        };
+        for (k, p) in all.into_iter().enumerate() {
+            moments[k] = (p.mean, p.sd);
+            by_n[k].push(p.coverage);
+        }
+    }
+    cols.into_iter()
+        .zip(by_n.into_iter().zip(moments))
+        .map(
+            |((finger, quantity, col), (by_n, (mean, sd)))| QuantityPopulation {
+                finger,
+                quantity,
+                population: col.len(),
+                mean,
+                sd,
+                by_n,
+            },
+        )
+        .collect()
 }
 
 #[cfg(test)]

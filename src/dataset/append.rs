@@ -211,54 +211,60 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
             ));
         }
         if let Some(old) = by_xray.get(&*r.xray) {
-            for (name, ours, theirs) in [
-                ("sex", field_of(r, "sex"), field_of(old, "sex")),
-                ("age", field_of(r, "age"), field_of(old, "age")),
-                ("side", field_of(r, "side"), field_of(old, "side")),
-                ("unit", field_of(r, "unit"), field_of(old, "unit")),
-                ("tip", field_of(r, "tip"), field_of(old, "tip")),
-            ] {
-                // An empty field takes the X-ray's value (see append_rows).
-                if !ours.is_empty() && ours != theirs {
-                    let theirs = if theirs.is_empty() {
-                        "empty".into()
-                    } else {
-                        quote(&theirs)
-                    };
-                    problems.push(Problem::line(
-                        r.line,
-                        format!(
-                            "{name} is {} but {} line {} gives {theirs} for the same X-ray {}; one hand has one value. \
-                             Leave {name} out (omit --{name}, or leave the field empty) and the row takes {theirs}, \
-                             or, if {theirs} is wrong, edit line {} of {} first",
-                            quote(&ours),
-                            current.path,
-                            old.line,
-                            quote(&r.xray),
-                            old.line,
-                            current.path,
-                        ),
-                    ));
-                }
-            }
+            metadata_conflicts(r, old, &current.path, &mut problems);
         }
-        for col in Column::ALL
-            .iter()
-            .filter(|c| !c.required())
-            .map(|c| c.name())
-        {
-            if !current.columns.iter().any(|c| c == col) && !field_of(r, col).is_empty() {
-                problems.push(Problem::line(
-                    r.line,
-                    format!(
-                        "gives a {col}, but {} has no '{col}' column; add the column to its header first or leave {col} empty",
-                        current.path
-                    ),
-                ));
-            }
-        }
+        missing_columns(r, current, &mut problems);
     }
     problems
+}
+
+/// A new row's metadata (sex, age, side, unit, tip) that differs from the same X-ray's
+/// existing row `old` (in file `path`): one hand has one value.
+fn metadata_conflicts(r: &Row, old: &Row, path: &str, problems: &mut Vec<Problem>) {
+    for name in ["sex", "age", "side", "unit", "tip"] {
+        let (ours, theirs) = (field_of(r, name), field_of(old, name));
+        // An empty field takes the X-ray's value (see append_rows).
+        if !ours.is_empty() && ours != theirs {
+            let theirs = if theirs.is_empty() {
+                "empty".into()
+            } else {
+                quote(&theirs)
+            };
+            problems.push(Problem::line(
+                r.line,
+                format!(
+                    "{name} is {} but {} line {} gives {theirs} for the same X-ray {}; one hand has one value. \
+                     Leave {name} out (omit --{name}, or leave the field empty) and the row takes {theirs}, \
+                     or, if {theirs} is wrong, edit line {} of {} first",
+                    quote(&ours),
+                    path,
+                    old.line,
+                    quote(&r.xray),
+                    old.line,
+                    path,
+                ),
+            ));
+        }
+    }
+}
+
+/// An optional field the new row gives that the current dataset has no column for.
+fn missing_columns(r: &Row, current: &Dataset, problems: &mut Vec<Problem>) {
+    for col in Column::ALL
+        .iter()
+        .filter(|c| !c.required())
+        .map(|c| c.name())
+    {
+        if !current.columns.iter().any(|c| c == col) && !field_of(r, col).is_empty() {
+            problems.push(Problem::line(
+                r.line,
+                format!(
+                    "gives a {col}, but {} has no '{col}' column; add the column to its header first or leave {col} empty",
+                    current.path
+                ),
+            ));
+        }
+    }
 }
 
 /// The current bytes with the new rows written after them, in the file's own

@@ -191,6 +191,18 @@ impl<R: std::io::Read> CsvScan<R> {
         Ok((hex, source.content))
     }
 
+    /// [`CsvScan::finish`]'s SHA-256, or an empty string and a problem saying the
+    /// file could not be read to the end.
+    fn finish_sha(self, problems: &mut Vec<Problem>) -> String {
+        match self.finish() {
+            Ok((sha, _)) => sha,
+            Err(e) => {
+                problems.push(Problem::file(format!("could not be read to the end ({e})")));
+                String::new()
+            }
+        }
+    }
+
     /// Line on which the record just read starts. The reader's position points
     /// at the line end or blank lines before the record; skip them, then count
     /// the line ends since the last record: LF, CRLF (counted at its LF), or a
@@ -572,13 +584,7 @@ pub fn read_headerless(
         records += 1;
         row(&Fields { record: &record }, problems);
     }
-    let sha256 = match scan.finish() {
-        Ok((sha, _)) => sha,
-        Err(e) => {
-            problems.push(Problem::file(format!("could not be read to the end ({e})")));
-            String::new()
-        }
-    };
+    let sha256 = scan.finish_sha(problems);
     Ok((sha256, records))
 }
 
@@ -601,29 +607,14 @@ pub(crate) fn read_table<C: Columns>(
     let Some(record) = scan.next_record(&mut problems) else {
         let content = scan.finish().map(|(_, c)| c).unwrap_or(true);
         if problems.is_empty() {
-            problems.push(Problem::file(match (content, C::NO_HEADER) {
-                (false, _) => C::EMPTY.to_string(),
-                (true, Some(message)) => message.to_string(),
-                (true, None) => format!(
-                    "has no header line; start it with {}",
-                    required_names::<C>()
-                ),
-            }));
+            problems.push(no_header_problem::<C>(content));
         }
         return Err(DataError {
             file: label.to_string(),
             problems,
         });
     };
-    let before_header = problems.len();
-    let header = Header::<C>::parse(&record, &mut problems);
-    if problems.len() > before_header
-        && let Some(shape) = sniff::<C>(&record)
-    {
-        // One message saying what the file is, instead of one per header column.
-        problems.truncate(before_header);
-        problems.push(shape);
-    }
+    let header = read_header::<C>(&record, &mut problems);
     let header_ok = problems.is_empty();
     let width = header.names.len();
     let mut records = 0usize;
@@ -650,21 +641,8 @@ pub(crate) fn read_table<C: Columns>(
     {
         problems.push(Problem::file(message));
     }
-    // Byte-level problems (non-UTF-8, NUL) know their column; name its field.
-    for p in &mut problems {
-        if let (None, Some(c), Some(l)) = (&p.field, p.column, p.line)
-            && l > header.line
-        {
-            p.field = header.names.get(c - 1).filter(|n| !n.is_empty()).cloned();
-        }
-    }
-    let sha256 = match scan.finish() {
-        Ok((sha, _)) => sha,
-        Err(e) => {
-            problems.push(Problem::file(format!("could not be read to the end ({e})")));
-            String::new()
-        }
-    };
+    name_fields(&mut problems, &header);
+    let sha256 = scan.finish_sha(&mut problems);
     if problems.is_empty() {
         Ok((header, sha256))
     } else {
@@ -673,5 +651,43 @@ pub(crate) fn read_table<C: Columns>(
             file: label.to_string(),
             problems,
         })
+    }
+}
+
+/// The problem of a file without a header record: empty (`content` false, only white
+/// space), or the table's own message, or which columns to start it with.
+fn no_header_problem<C: Columns>(content: bool) -> Problem {
+    Problem::file(match (content, C::NO_HEADER) {
+        (false, _) => C::EMPTY.to_string(),
+        (true, Some(message)) => message.to_string(),
+        (true, None) => format!(
+            "has no header line; start it with {}",
+            required_names::<C>()
+        ),
+    })
+}
+
+/// The header of `record`; when it has problems and the record shows what kind of file
+/// this is ([`sniff`]), one message saying so replaces one per header column.
+fn read_header<C: Columns>(record: &Record<'_>, problems: &mut Vec<Problem>) -> Header<C> {
+    let before_header = problems.len();
+    let header = Header::<C>::parse(record, problems);
+    if problems.len() > before_header
+        && let Some(shape) = sniff::<C>(record)
+    {
+        problems.truncate(before_header);
+        problems.push(shape);
+    }
+    header
+}
+
+/// Byte-level problems (non-UTF-8, NUL) after the header know their column; names its field.
+fn name_fields<C: Columns>(problems: &mut [Problem], header: &Header<C>) {
+    for p in problems {
+        if let (None, Some(c), Some(l)) = (&p.field, p.column, p.line)
+            && l > header.line
+        {
+            p.field = header.names.get(c - 1).filter(|n| !n.is_empty()).cloned();
+        }
     }
 }
