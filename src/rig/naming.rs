@@ -150,8 +150,9 @@ const NOT_JOINTS: [&str; 12] = [
 /// Names longer than this are never joint names (and are not run through the pattern).
 const MAX_NAME: usize = 256;
 
-/// Reads a node name; `None` when it names no finger joint.
-pub(crate) fn parse(name: &str) -> Option<Parsed> {
+/// The name as compared ([`compact_with_origin`]); `None` for a name too long to be a
+/// joint's or with a word of a control or helper ([`NOT_JOINTS`]).
+fn compared(name: &str) -> Option<(String, Vec<Option<char>>)> {
     if name.len() > MAX_NAME {
         return None;
     }
@@ -162,17 +163,32 @@ pub(crate) fn parse(name: &str) -> Option<Parsed> {
     {
         return None;
     }
-    let (c, before) = compact_with_origin(name);
+    Some(compact_with_origin(name))
+}
+
+/// `pattern`'s match of the compared name `c`; when its side `s1` is one letter that
+/// does not start a word of `name` (the `r` of `finger`), `words`' match (sides spelt out).
+fn sided_captures<'c>(
+    name: &str,
+    c: &'c str,
+    before: &[Option<char>],
+    pattern: &Regex,
+    words: &Regex,
+) -> Option<regex::Captures<'c>> {
+    let m = pattern.captures(c)?;
+    match m.name("s1") {
+        Some(s1) if s1.len() == 1 && !starts_word(name, before, s1.start()) => words.captures(c),
+        _ => Some(m),
+    }
+}
+
+/// Reads a node name; `None` when it names no finger joint.
+pub(crate) fn parse(name: &str) -> Option<Parsed> {
+    let (c, before) = compared(name)?;
     if let Some(p) = parse_palm(&c) {
         return Some(p);
     }
-    let mut m = PATTERN.captures(&c)?;
-    if let Some(s1) = m.name("s1")
-        && s1.len() == 1
-        && !starts_word(name, &before, s1.start())
-    {
-        m = PATTERN_WORDS.captures(&c)?;
-    }
+    let m = sided_captures(name, &c, &before, &PATTERN, &PATTERN_WORDS)?;
     let side = one_side(&[m.name("s1"), m.name("s2"), m.name("s3")])?;
     let finger = match &m["finger"] {
         "mid" => Finger::Middle,
@@ -248,24 +264,8 @@ pub struct HandBone {
 /// The same rules as [`parse`]: namespace dropped, controls and helpers
 /// refused, a one-letter side only at the start of a word.
 pub fn parse_hand(name: &str) -> Option<HandBone> {
-    if name.len() > MAX_NAME {
-        return None;
-    }
-    let base = name.rsplit([':', '|']).next().unwrap_or(name);
-    if base
-        .split(|c: char| !c.is_ascii_alphanumeric())
-        .any(|w| NOT_JOINTS.contains(&w.to_ascii_lowercase().as_str()))
-    {
-        return None;
-    }
-    let (c, before) = compact_with_origin(name);
-    let mut m = HAND.captures(&c)?;
-    if let Some(s1) = m.name("s1")
-        && s1.len() == 1
-        && !starts_word(name, &before, s1.start())
-    {
-        m = HAND_WORDS.captures(&c)?;
-    }
+    let (c, before) = compared(name)?;
+    let m = sided_captures(name, &c, &before, &HAND, &HAND_WORDS)?;
     let prefix = m.name("prefix").map_or("", |p| p.as_str());
     // A prefix that ends in a finger's name is no hand (`RightIndexHand`?):
     // only plain prefixes (namespaces, `def`, `jbip`, `ccbase`) are read.
