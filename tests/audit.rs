@@ -37,6 +37,37 @@ fn finger_of<'a>(doc: &'a Value, name: &str) -> &'a Value {
         .unwrap_or_else(|| panic!("no {name} in {doc}"))
 }
 
+/// Writes `names.csv`, a --map naming the anonymous rig's right index: bones
+/// `Bone.003` to `Bone.006` (serials: thumb 0-2, index 3-6) as MCP, PIP, DIP, tip.
+fn write_index_map(wd: &Workdir) {
+    let mut map = String::from("node,side,finger,joint\n");
+    for (k, j) in ["MCP", "PIP", "DIP", "tip"].iter().enumerate() {
+        map.push_str(&format!("Bone.{:03},right,index,{j}\n", 3 + k));
+    }
+    wd.write("names.csv", &map);
+}
+
+/// The JSON audit of `file` with the map of [`write_index_map`].
+fn audit_json_mapped(wd: &Workdir, file: &str) -> Value {
+    write_index_map(wd);
+    wd.run(&["audit", file, "--map", "names.csv", "--format", "json"])
+        .ok()
+        .json()
+}
+
+/// A second fix of `fixed.glb` (with the `extra` options before `--fix`) moves no
+/// joint and writes the same bytes.
+fn assert_second_fix_changes_nothing(wd: &Workdir, extra: &[&str]) {
+    let mut args = vec!["audit", "fixed.glb"];
+    args.extend_from_slice(extra);
+    args.extend(["--fix", "again.glb"]);
+    wd.run(&args).ok().stderr_has("0 joints moved");
+    assert!(
+        wd.read("again.glb") == wd.read("fixed.glb"),
+        "a second fix changed the file"
+    );
+}
+
 /// X-ray 1b's relative values, by hand from Table 1 (data/measurements.csv).
 fn rel_1b(finger: &str) -> Vec<f64> {
     let segs = XRAY_1B.iter().find(|(f, _)| *f == finger).unwrap().1;
@@ -46,8 +77,7 @@ fn rel_1b(finger: &str) -> Vec<f64> {
 
 #[test]
 fn a_mixamo_hand_with_tips_is_read_and_lies_inside_the_xray_range() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     wd.write("hand.glb", build(&HandSpec::new(Naming::Mixamo)));
     let run = wd.run(&["audit", "hand.glb", "--wide"]);
     run.ok()
@@ -100,8 +130,7 @@ fn a_mixamo_hand_with_tips_is_read_and_lies_inside_the_xray_range() {
 
 #[test]
 fn a_vrm_hand_without_tips_is_judged_on_ratios_and_says_so() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     for (file, naming) in [("avatar.glb", Naming::Vrm), ("table.vrm", Naming::VrmTable)] {
         wd.write(file, build(&HandSpec::new(naming)));
         wd.run(&["audit", file])
@@ -135,8 +164,7 @@ fn a_vrm_hand_without_tips_is_judged_on_ratios_and_says_so() {
 
 #[test]
 fn a_far_off_joint_is_flagged_with_its_direction_and_distance() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     // Index PIP 1 cm towards the tip; ring DIP 0.8 cm towards the root.
     let spec = HandSpec::new(Naming::Mixamo)
         .moved("index", 1, 1.0)
@@ -178,8 +206,7 @@ fn node_position(doc: &Value, name: &str) -> [f64; 3] {
 
 #[test]
 fn fix_writes_a_copy_that_reaudits_clean_with_the_mesh_unchanged() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let spec = HandSpec::new(Naming::Mixamo)
         .moved("index", 1, 1.0)
         .moved("ring", 2, -0.8)
@@ -268,8 +295,7 @@ fn fix_writes_a_copy_that_reaudits_clean_with_the_mesh_unchanged() {
 
 #[test]
 fn fix_can_write_gltf_and_fixes_ratio_only_rigs() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     wd.write(
         "vrm.glb",
         build(&HandSpec::new(Naming::Vrm).moved("middle", 1, 1.2)),
@@ -288,8 +314,7 @@ fn fix_can_write_gltf_and_fixes_ratio_only_rigs() {
 
 #[test]
 fn rigify_deform_bones_win_over_their_control_twins() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     wd.write("rigify.glb", build(&HandSpec::new(Naming::Rigify)));
     let doc = audit_json(&wd, "rigify.glb");
     let idx = finger_of(&doc, "index");
@@ -321,8 +346,7 @@ fn rigify_deform_bones_win_over_their_control_twins() {
 
 #[test]
 fn an_unrecognisable_file_lists_the_names_it_saw_and_a_map_reads_it() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     wd.write("bones.glb", build(&HandSpec::new(Naming::Anonymous)));
     wd.run(&["audit", "bones.glb"])
         .data_error()
@@ -330,22 +354,7 @@ fn an_unrecognisable_file_lists_the_names_it_saw_and_a_map_reads_it() {
         .stderr_has("'Hips', 'Spine', 'Bone.000'")
         .stderr_has("--map");
     // Bone serials: thumb 0-2, index 3-6, middle 7-10, ring 11-14, little 15-18.
-    let mut map = String::from("node,side,finger,joint\n");
-    for (k, j) in ["MCP", "PIP", "DIP", "tip"].iter().enumerate() {
-        map.push_str(&format!("Bone.{:03},right,index,{j}\n", 3 + k));
-    }
-    wd.write("names.csv", &map);
-    let doc = wd
-        .run(&[
-            "audit",
-            "bones.glb",
-            "--map",
-            "names.csv",
-            "--format",
-            "json",
-        ])
-        .ok()
-        .json();
+    let doc = audit_json_mapped(&wd, "bones.glb");
     assert_eq!(fingers(&doc).len(), 1);
     let idx = finger_of(&doc, "index");
     assert_eq!(idx["joints"][3]["name"], "Bone.006");
@@ -377,8 +386,7 @@ fn an_unrecognisable_file_lists_the_names_it_saw_and_a_map_reads_it() {
 
 #[test]
 fn fix_never_overwrites_the_input_and_bad_files_are_clear_errors() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let input = build(&HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0));
     wd.write("hand.glb", &input);
     wd.run(&["audit", "hand.glb", "--fix", "./hand.glb"])
@@ -439,8 +447,7 @@ fn worst_vertex_move(a: &[u8], b: &[u8]) -> f64 {
 
 #[test]
 fn both_hands_matrix_nodes_and_gltf_output_keep_the_mesh() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let mut spec = HandSpec::new(Naming::Mixamo).moved("middle", 1, -0.9);
     spec.left_too = true;
     spec.matrices = true;
@@ -479,8 +486,7 @@ fn both_hands_matrix_nodes_and_gltf_output_keep_the_mesh() {
 
 #[test]
 fn unreal_webxr_and_vrm0_names_are_read() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     wd.write("ue.glb", build(&HandSpec::new(Naming::Unreal)));
     let doc = audit_json(&wd, "ue.glb");
     let idx = finger_of(&doc, "index");
@@ -518,15 +524,10 @@ fn unreal_webxr_and_vrm0_names_are_read() {
 
 #[test]
 fn a_map_file_also_drives_fix() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let input = build(&HandSpec::new(Naming::Anonymous).moved("index", 1, 1.0));
     wd.write("bones.glb", &input);
-    let mut map = String::from("node,side,finger,joint\n");
-    for (k, j) in ["MCP", "PIP", "DIP", "tip"].iter().enumerate() {
-        map.push_str(&format!("Bone.{:03},right,index,{j}\n", 3 + k));
-    }
-    wd.write("names.csv", &map);
+    write_index_map(&wd);
     wd.run(&["audit", "bones.glb", "--map", "names.csv", "--strict"])
         .expect_code(1);
     wd.run(&[
@@ -551,8 +552,7 @@ fn edit(bytes: &[u8], f: impl FnOnce(&mut Value)) -> Vec<u8> {
 
 #[test]
 fn hostile_rigs_get_clear_errors_and_never_a_panic() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let good = build(&HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0));
     let node = |json: &Value, name: &str| {
         json["nodes"]
@@ -684,8 +684,7 @@ fn the_readme_fix_example_is_current() {
         .find(|b| b.contains("$ phalanx audit docs/examples/hand.glb --fix hand-fixed.glb"))
         .expect("README has the --fix example")
         .to_string();
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     wd.write(
         "docs/examples/hand.glb",
         std::fs::read(manifest_dir().join("docs/examples/hand.glb")).unwrap(),

@@ -5,15 +5,10 @@
 use crate::common;
 
 use common::*;
-use phalanx::rig::deform::synthetic::{HandSpec, tube_hand};
+use phalanx::rig::deform::synthetic::HandSpec;
 use phalanx::rig::naming::Side;
 use serde_json::Value;
 use std::path::PathBuf;
-
-/// Writes a tube hand built from `spec` to `name`.
-fn write_hand(wd: &Workdir, name: &str, spec: &HandSpec) -> PathBuf {
-    wd.write(name, tube_hand(spec).to_glb().expect("a GLB"))
-}
 
 /// The measures of `finger` `joint` of the first hand of `rig` ("rig" or "against").
 fn joint<'a>(doc: &'a Value, rig: &str, finger: &str, joint: &str) -> &'a Value {

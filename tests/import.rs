@@ -10,14 +10,8 @@ use std::path::PathBuf;
 /// The atlas's landmarks, or `None` (with the reason printed) when they are absent (a
 /// package of the crate leaves the GPL-3.0 data out).
 fn atlas() -> Option<String> {
-    let path = common::manifest_dir().join("data/atlas/landmarks.csv");
-    match std::fs::read_to_string(&path) {
-        Ok(t) => Some(t),
-        Err(e) => {
-            println!("skipped: {} could not be read ({e})", path.display());
-            None
-        }
-    }
+    common::vendored("data/atlas/landmarks.csv")
+        .map(|bytes| String::from_utf8(bytes).expect("the atlas is UTF-8"))
 }
 
 /// The atlas's landmark numbers of each finger: CMC, MCP, PIP (thumb IP), DIP, tip
@@ -367,8 +361,7 @@ fn bad_cases() -> Vec<(
 
 #[test]
 fn every_bad_annotation_exits_2_with_its_place_and_writes_nothing() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let dataset = wd.read("data/measurements.csv");
     for (what, name, layout, contents, needles) in bad_cases() {
         wd.write(name, &contents);
@@ -428,41 +421,26 @@ fn import_into_a_dataset_goes_through_add() {
     wd.write("lab.csv", format!("{header}{base}"));
     let hand = format!("image,landmark,x,y\n{}", long_hand("new", &INDEX));
     wd.write("marks.csv", &hand);
+    let import = |extra: &[&str]| {
+        let mut args = vec![
+            "import",
+            "marks.csv",
+            "--layout",
+            "long",
+            "--into",
+            "lab.csv",
+        ];
+        args.extend_from_slice(extra);
+        args.extend(["--side", "right", "--tip", "skin", "--source", "lab"]);
+        wd.run(&args)
+    };
     // The lab's rows are in px: lengths in mm are refused.
     let before = wd.read("lab.csv");
-    wd.run(&[
-        "import",
-        "marks.csv",
-        "--layout",
-        "long",
-        "--into",
-        "lab.csv",
-        "--unit",
-        "mm",
-        "--side",
-        "right",
-        "--tip",
-        "skin",
-        "--source",
-        "lab",
-    ])
-    .data_error()
-    .stderr_has("unit is 'mm' but the rows of lab.csv are in 'px' (line 2)");
+    import(&["--unit", "mm"])
+        .data_error()
+        .stderr_has("unit is 'mm' but the rows of lab.csv are in 'px' (line 2)");
     assert_eq!(wd.read("lab.csv"), before);
-    let run = wd.run(&[
-        "import",
-        "marks.csv",
-        "--layout",
-        "long",
-        "--into",
-        "lab.csv",
-        "--side",
-        "right",
-        "--tip",
-        "skin",
-        "--source",
-        "lab",
-    ]);
+    let run = import(&[]);
     run.ok()
         .stdout_has("imported 2 rows from 1 hand in marks.csv into lab.csv: 6 -> 7 X-rays");
     let text = String::from_utf8(wd.read("lab.csv")).unwrap();
@@ -475,22 +453,9 @@ fn import_into_a_dataset_goes_through_add() {
     assert!(wd.path().join("history.jsonl").exists());
     // Importing it again repeats its rows: refused, nothing changes.
     let after = wd.read("lab.csv");
-    wd.run(&[
-        "import",
-        "marks.csv",
-        "--layout",
-        "long",
-        "--into",
-        "lab.csv",
-        "--side",
-        "right",
-        "--tip",
-        "skin",
-        "--source",
-        "lab",
-    ])
-    .data_error()
-    .stderr_has("X-ray 'new' already has an index row in lab.csv");
+    import(&[])
+        .data_error()
+        .stderr_has("X-ray 'new' already has an index row in lab.csv");
     assert_eq!(wd.read("lab.csv"), after);
 }
 

@@ -4,13 +4,12 @@
 //! web, and a rig in centimetres.
 
 use super::hand::{HandSpec, Naming, build};
-use super::{audit_json, finger_of, fingers, joint_of, worst_vertex_move};
+use super::{audit_json, audit_json_mapped, finger_of, fingers, joint_of, worst_vertex_move};
 use crate::common::*;
 
 #[test]
 fn a_ue5_hand_with_leaf_tips_is_judged_on_relative_values() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let mut spec = HandSpec::new(Naming::Unreal5);
     spec.metacarpals = true;
     spec.left_too = true;
@@ -43,8 +42,7 @@ fn a_ue5_hand_with_leaf_tips_is_judged_on_relative_values() {
 
 #[test]
 fn rigify_uses_the_weighted_def_bone_over_its_unweighted_org_twin_and_says_so() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let mut spec = HandSpec::new(Naming::Rigify);
     spec.org_twins = true;
     spec.metacarpals = true;
@@ -75,8 +73,7 @@ fn rigify_uses_the_weighted_def_bone_over_its_unweighted_org_twin_and_says_so() 
 
 #[test]
 fn sibling_joints_are_read_by_name_and_through_a_map() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let mut spec = HandSpec::new(Naming::WebXr).moved("index", 1, 1.0);
     spec.siblings = true;
     spec.metacarpals = true;
@@ -100,23 +97,7 @@ fn sibling_joints_are_read_by_name_and_through_a_map() {
     spec.siblings = true;
     let input = build(&spec);
     wd.write("bones.glb", &input);
-    // Bone serials: thumb 0-2, index 3-6.
-    let mut map = String::from("node,side,finger,joint\n");
-    for (k, j) in ["MCP", "PIP", "DIP", "tip"].iter().enumerate() {
-        map.push_str(&format!("Bone.{:03},right,index,{j}\n", 3 + k));
-    }
-    wd.write("names.csv", &map);
-    let doc = wd
-        .run(&[
-            "audit",
-            "bones.glb",
-            "--map",
-            "names.csv",
-            "--format",
-            "json",
-        ])
-        .ok()
-        .json();
+    let doc = audit_json_mapped(&wd, "bones.glb");
     let idx = finger_of(&doc, "index");
     assert_eq!(idx["hierarchy"], false);
     assert_eq!(joint_of(idx, "PIP")["standing"], "above");
@@ -135,8 +116,7 @@ fn sibling_joints_are_read_by_name_and_through_a_map() {
 
 #[test]
 fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     // The index MCP 1 cm towards the tip (at the web); PIP, DIP and the
     // skin tip where X-ray 1b has them.
     let input = build(&HandSpec::new(Naming::Mixamo).moved("index", 0, 1.0));
@@ -179,8 +159,7 @@ fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
 
 #[test]
 fn a_rig_in_centimetres_gets_a_warning_naming_the_unit() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let mut spec = HandSpec::new(Naming::Mixamo);
     spec.armature_scale = 1.0;
     wd.write("cm.glb", build(&spec));

@@ -3,7 +3,7 @@
 //! own output (a second fix changes nothing).
 
 use super::hand::{HandSpec, Naming, build, posed, read_glb, skinned_vertices, world_of};
-use super::{finger_of, worst_vertex_move};
+use super::{assert_second_fix_changes_nothing, finger_of, worst_vertex_move};
 use crate::common::*;
 use glam::DVec3;
 use serde_json::Value;
@@ -141,8 +141,7 @@ fn mixamo_chain(finger: &str) -> Vec<String> {
 
 #[test]
 fn moved_joints_keep_their_bends_close() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     // Index PIP 5 mm and ring DIP 4 mm off, middle MCP at the web; the skin
     // bends 1.5 mm distal of the index PIP, 2 mm distal of the ring DIP and
     // 2 mm distal of the middle MCP.
@@ -222,8 +221,7 @@ fn keyframes_agree(a: &[u8], b: &[u8], keys: usize) -> f64 {
 
 #[test]
 fn constant_translation_keys_follow_the_moved_joints() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     // Every finger joint keyed at rest, as Mixamo and Blender export: a
     // constant translation key equal to its rest translation, and its rest
     // rotation. Skin with smooth weights (which the fix moves too).
@@ -267,20 +265,12 @@ fn constant_translation_keys_follow_the_moved_joints() {
         let x = keyed["nodes"][mcp]["translation"][c].as_f64().unwrap();
         assert!((x - rest[c]).abs() < 1e-6, "{x} vs {}", rest[c]);
     }
-    // A second fix changes nothing.
-    wd.run(&["audit", "fixed.glb", "--fix", "again.glb"])
-        .ok()
-        .stderr_has("0 joints moved");
-    assert!(
-        wd.read("again.glb") == fixed,
-        "a second fix changed the file"
-    );
+    assert_second_fix_changes_nothing(&wd, &[]);
 }
 
 #[test]
 fn varying_translation_keys_move_the_joints_as_before() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     // The index PIP's second key moves it 3 mm: off the rest pose, so the
     // skin (whose weights the fix moves) may differ; the skeleton may not.
     let mut spec = HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0);
@@ -337,8 +327,7 @@ fn edit(bytes: &[u8], f: impl FnOnce(&mut Value)) -> Vec<u8> {
 
 #[test]
 fn channels_with_unknown_paths_are_reported_and_left_alone() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let mut spec = HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0);
     spec.animate = true;
     let input = edit(&build(&spec), |j| {
@@ -368,8 +357,7 @@ fn channels_with_unknown_paths_are_reported_and_left_alone() {
 
 #[test]
 fn only_outside_moves_only_joints_outside_their_interval() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     // Ring PIP 2.5 mm towards the root, DIP 3 mm towards the tip: the finger
     // is outside, the PIP alone explains it, yet the PIP itself stands inside
     // its prediction interval.

@@ -80,8 +80,7 @@ fn a_fix_adds_no_validator_issue() {
             return;
         }
     };
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let mut animated = HandSpec::new(Naming::Mixamo)
         .moved("index", 1, 1.0)
         .moved("middle", 0, 1.0)

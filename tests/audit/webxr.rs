@@ -2,30 +2,21 @@
 //! 25 joints are siblings, read by name, judged, and fixed.
 
 use super::hand::read_glb;
-use super::{audit_json, finger_of, fingers, worst_vertex_move};
+use super::{assert_second_fix_changes_nothing, audit_json, finger_of, fingers, worst_vertex_move};
 use crate::common::*;
 use serde_json::Value;
 
 /// Copies a vendored hand into the work directory; `None` (with the reason
 /// printed) when the repository lacks it.
 fn hand(wd: &Workdir, side: &str) -> Option<Vec<u8>> {
-    let path = manifest_dir().join(format!("data/rigs/webxr-generic-hand/{side}.glb"));
-    match std::fs::read(&path) {
-        Ok(bytes) => {
-            wd.write(&format!("{side}.glb"), &bytes);
-            Some(bytes)
-        }
-        Err(e) => {
-            eprintln!("skipped: {} is not readable ({e})", path.display());
-            None
-        }
-    }
+    let bytes = vendored(&format!("data/rigs/webxr-generic-hand/{side}.glb"))?;
+    wd.write(&format!("{side}.glb"), &bytes);
+    Some(bytes)
 }
 
 #[test]
 fn both_hands_have_every_finger_found_and_judged_by_name() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     for side in ["left", "right"] {
         let Some(_) = hand(&wd, side) else { return };
         let file = format!("{side}.glb");
@@ -111,8 +102,7 @@ fn both_hands_have_every_finger_found_and_judged_by_name() {
 
 #[test]
 fn a_fix_moves_sibling_joints_alone_and_keeps_the_mesh() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let Some(input) = hand(&wd, "right") else {
         return;
     };
@@ -145,14 +135,7 @@ fn a_fix_moves_sibling_joints_alone_and_keeps_the_mesh() {
             }
         }
     }
-    // A second fix changes nothing.
-    wd.run(&["audit", "fixed.glb", "--tip", "skin", "--fix", "again.glb"])
-        .ok()
-        .stderr_has("0 joints moved");
-    assert!(
-        wd.read("again.glb") == fixed,
-        "a second fix changed the file"
-    );
+    assert_second_fix_changes_nothing(&wd, &["--tip", "skin"]);
 }
 
 /// The WebXR hands have `*-metacarpal` joints: with the atlas at its default
@@ -160,8 +143,7 @@ fn a_fix_moves_sibling_joints_alone_and_keeps_the_mesh() {
 /// between the two nodes and mc/J over the finger's length as judged.
 #[test]
 fn every_webxr_finger_gets_a_metacarpal_judgement_from_the_atlas() {
-    let wd = Workdir::new();
-    wd.copy_paper_data();
+    let wd = Workdir::with_paper_data();
     let Some(_) = hand(&wd, "right") else { return };
     let no_atlas = wd.run(&["audit", "right.glb"]).ok().stdout.clone();
     assert!(!no_atlas.contains("Metacarpal ("), "{no_atlas}");
@@ -175,9 +157,7 @@ fn every_webxr_finger_gets_a_metacarpal_judgement_from_the_atlas() {
         no_atlas.contains("--metacarpals DATASET"),
         "a note says why: {no_atlas}"
     );
-    let atlas = manifest_dir().join("data/atlas/measurements.csv");
-    let Ok(bytes) = std::fs::read(&atlas) else {
-        eprintln!("skipped: {} is not readable", atlas.display());
+    let Some(bytes) = vendored("data/atlas/measurements.csv") else {
         return;
     };
     wd.write("data/atlas/measurements.csv", &bytes);

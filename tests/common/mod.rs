@@ -11,6 +11,31 @@ use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+/// Writes a synthetic tube hand built from `spec` (joints and weights known exactly)
+/// to `name` in `wd`.
+pub fn write_hand(
+    wd: &Workdir,
+    name: &str,
+    spec: &phalanx::rig::deform::synthetic::HandSpec,
+) -> PathBuf {
+    let hand = phalanx::rig::deform::synthetic::tube_hand(spec);
+    wd.write(name, hand.to_glb().expect("a GLB"))
+}
+
+/// The bytes of `path` (relative to the crate's root), or `None` with the reason
+/// printed: a package of the crate may leave vendored data (the GPL-3.0 atlas, the
+/// rigs) out, and a test needing it then skips.
+pub fn vendored(path: &str) -> Option<Vec<u8>> {
+    let path = manifest_dir().join(path);
+    match std::fs::read(&path) {
+        Ok(bytes) => Some(bytes),
+        Err(e) => {
+            eprintln!("skipped: {} could not be read ({e})", path.display());
+            None
+        }
+    }
+}
+
 /// The crate's root, where `data/` lives.
 pub fn manifest_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -129,6 +154,13 @@ impl Workdir {
     pub fn copy_paper_data(&self) {
         self.write("data/measurements.csv", paper_data());
         self.write("data/paper_claims.csv", paper_claims());
+    }
+
+    /// A fresh directory holding the paper's data ([`Workdir::copy_paper_data`]).
+    pub fn with_paper_data() -> Workdir {
+        let wd = Workdir::new();
+        wd.copy_paper_data();
+        wd
     }
 
     /// A `phalanx` command with this directory as its current directory.
