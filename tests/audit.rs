@@ -3,6 +3,7 @@
 mod conventions;
 mod fixing;
 pub(crate) mod hand;
+mod ray;
 mod validator;
 mod webxr;
 

@@ -22,6 +22,15 @@ pub enum Tip {
     Bone,
 }
 
+/// Where `--fix` puts an MCP.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FixMcp {
+    /// Where the finger's proportions put it (when the explanation moves it)
+    Finger,
+    /// Where the metacarpals' dataset puts it from the CMC or the wrist (when outside)
+    Atlas,
+}
+
 /// Judge a rigged hand (glTF 2.0) against the X-ray statistics; --fix writes a corrected copy
 #[derive(clap::Args, Debug)]
 #[command(
@@ -37,7 +46,9 @@ pub enum Tip {
                   for each joint, and a joint further than --bend-tolerance from its bend is flagged.\n\n\
                   --fix OUT.glb writes a copy with the explanation's joints moved along each finger, the skin weights \
                   moved with them, translation keys offset, and the inverse bind matrices updated so the mesh's rest \
-                  shape is unchanged; the input is never modified.\n\n\
+                  shape is unchanged; the input is never modified. --fix-mcp atlas places each MCP where the \
+                  metacarpals' dataset puts it from its CMC (or the wrist, for a rig with a hand bone and no \
+                  metacarpals) when it lies outside that interval.\n\n\
                   --map FILE: CSV with the header node,side,finger,joint (joint MCP, PIP, DIP, IP or tip).\n\n\
                   Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv"
 )]
@@ -71,9 +82,16 @@ pub(crate) struct Args {
     /// [default: data/atlas/measurements.csv, when it exists]
     #[arg(long, value_name = "DATASET")]
     metacarpals: Option<PathBuf>,
-    /// Exit with status 1 when a finger is outside the prediction interval
+    /// Exit with status 1 when a finger, or an MCP judged from its CMC or wrist, is outside the
+    /// prediction interval
     #[arg(long)]
     strict: bool,
+    /// With --fix: where an MCP goes. `finger`: where the finger's own proportions put it,
+    /// when it is part of the explanation. `atlas`: where the metacarpals' dataset puts it
+    /// from its CMC (or the wrist), when it lies outside that prediction interval; the MCP is
+    /// then held and only PIP and DIP move to fit the proportions
+    #[arg(long, value_enum, default_value_t = FixMcp::Finger, requires = "fix")]
+    fix_mcp: FixMcp,
     /// Output format
     #[arg(long, value_enum, default_value_t = TextFormat::Table)]
     format: TextFormat,
@@ -96,6 +114,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         options: options(args)?,
         only_outside: args.only_outside,
         metacarpals: metacarpals.as_deref(),
+        mcp_from_atlas: args.fix_mcp == FixMcp::Atlas,
     })?;
     if metacarpals.is_none()
         && audit
@@ -121,11 +140,13 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
             eprintln!("warning: {w}");
         }
     }
-    Ok(if args.strict && audit.rig.outside() > 0 {
-        EXIT_FAILURE
-    } else {
-        0
-    })
+    Ok(
+        if args.strict && audit.rig.outside() + audit.rig.metacarpals_outside() > 0 {
+            EXIT_FAILURE
+        } else {
+            0
+        },
+    )
 }
 
 /// The tip and bend options, in metres; lengths must be finite, not negative
@@ -198,11 +219,24 @@ fn json(audit: &Audit) -> Result<Vec<u8>, Error> {
 
 /// The line on standard error saying what the fix wrote.
 fn fix_summary(fix: &FixOutcome) -> String {
-    format!(
+    let mut line = format!(
         "wrote {}: {} joints moved; re-audited, {} of {} fingers outside the prediction interval",
         fix.output.display(),
         fix.moved.iter().filter(|(_, d)| *d > 0.0).count(),
         fix.reaudit.outside(),
         fix.reaudit.fingers.len()
-    )
+    );
+    let rays = fix
+        .reaudit
+        .fingers
+        .iter()
+        .filter(|f| f.metacarpal_check.is_some())
+        .count();
+    if rays > 0 {
+        line.push_str(&format!(
+            ", {} of {rays} MCPs outside it from their CMC or wrist",
+            fix.reaudit.metacarpals_outside()
+        ));
+    }
+    line
 }

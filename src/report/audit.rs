@@ -7,7 +7,9 @@ use crate::analysis::placement::Joint;
 use crate::analysis::{Interval, Quantity};
 use crate::format::{level, num};
 use crate::rig::bend::Bend;
-use crate::rig::judge::{Basis, FingerAudit, JudgeOptions, MetacarpalCheck, Standing, TipKind};
+use crate::rig::judge::{
+    Basis, FingerAudit, JudgeOptions, MetacarpalCheck, RayBase, Standing, TipKind,
+};
 use crate::rig::{AuditedFinger, AuditedRig};
 
 /// Millimetres per rig unit (glTF units are metres).
@@ -282,29 +284,51 @@ pub(crate) fn metacarpal_words(m: &MetacarpalCheck, c: &str) -> String {
             )
         })
         .collect();
-    format!(
-        "Metacarpal ({}): mc {} mm, J {} mm; {}. MCP from the CMC: {}; the atlas puts it {} mm \
-         from the CMC ({c} prediction {}; CMC and tip held), at ({}, {}, {}) m.",
-        m.node,
-        mm(m.mc),
-        mm(m.length),
-        values.join("; "),
-        joint_standing(m.standing, MM),
-        mm(m.expected),
-        m.pi.map_or("n/a".into(), |p| format!(
-            "[{}, {}] mm",
-            mm(p.low),
-            mm(p.high)
-        )),
+    let pi = m.pi.map_or("n/a".into(), |p| {
+        format!("[{}, {}] mm", mm(p.low), mm(p.high))
+    });
+    let at = format!(
+        "({}, {}, {}) m",
         num(m.suggested[0], 5),
         num(m.suggested[1], 5),
         num(m.suggested[2], 5)
-    )
+    );
+    match m.base {
+        RayBase::Cmc => format!(
+            "Metacarpal ({}): mc {} mm, J {} mm; {}. MCP from the CMC: {}; the atlas puts it {} mm \
+             from the CMC ({c} prediction {pi}; CMC and tip held), at {at}.",
+            m.node,
+            mm(m.mc),
+            mm(m.length),
+            values.join("; "),
+            joint_standing(m.standing, MM),
+            mm(m.expected),
+        ),
+        RayBase::Wrist => format!(
+            "Wrist ({}; no metacarpal): wrist to MCP {} mm, read as {} mc (the atlas's mean), so \
+             mc {} mm, J {} mm; {}. MCP from the wrist: {}; the atlas puts it {} mm from the wrist \
+             ({c} prediction {pi}; wrist and tip held), at {at}.",
+            m.node,
+            mm(m.to_mcp),
+            num(m.base_over_mc, 4),
+            mm(m.mc),
+            mm(m.length),
+            values.join("; "),
+            joint_standing(m.standing, MM),
+            mm(m.expected),
+        ),
+    }
 }
 
 /// The table of one finger: each joint (mm from the rig's MCP) and each value,
 /// fitted to `width` (the X-ray range goes first, then the standings wrap).
-fn finger_table(a: &FingerAudit, c: &str, width: Width, hidden: &mut Hidden) -> String {
+fn finger_table(
+    a: &FingerAudit,
+    ray: Option<&MetacarpalCheck>,
+    c: &str,
+    width: Width,
+    hidden: &mut Hidden,
+) -> String {
     let mm = |x: f64| num(x * MM, 2);
     let interval =
         |i: Interval, f: &dyn Fn(f64) -> String| format!("[{}, {}]", f(i.low), f(i.high));
@@ -323,6 +347,21 @@ fn finger_table(a: &FingerAudit, c: &str, width: Width, hidden: &mut Hidden) -> 
             interval(j.range, &mm),
             j.pi.map_or("n/a".into(), |p| interval(p, &mm)),
             joint_standing(j.standing, MM),
+        ]);
+    }
+    if let Some(m) = ray {
+        // The MCP from its ray's base, against the atlas (mm from the base).
+        let from = match m.base {
+            RayBase::Cmc => "CMC",
+            RayBase::Wrist => "wrist",
+        };
+        t.row(vec![
+            format!("MCP from {from} (mm)"),
+            mm(m.to_mcp),
+            mm(m.expected),
+            interval(m.range, &mm),
+            m.pi.map_or("n/a".into(), |p| interval(p, &mm)),
+            joint_standing(m.standing, MM),
         ]);
     }
     let v4 = |x: f64| num(x, 4);
@@ -373,7 +412,13 @@ pub(crate) fn text(
         if a.joints.is_empty() {
             continue;
         }
-        out.push_str(&finger_table(a, &c, width, &mut hidden));
+        out.push_str(&finger_table(
+            a,
+            f.metacarpal_check.as_ref(),
+            &c,
+            width,
+            &mut hidden,
+        ));
         out.push_str(&para(&explanation_words(a), "  "));
         for j in a.joints.iter().filter(|j| j.moves) {
             out.push_str(&para(&suggestion(j), "  "));
@@ -402,6 +447,12 @@ pub(crate) fn text(
         rig.outside(),
         judged
     );
+    if rig.fingers.iter().any(|f| f.metacarpal_check.is_some()) {
+        summary.push_str(&format!(
+            " {} MCPs lie outside the atlas's {c} prediction interval from their CMC or wrist.",
+            rig.metacarpals_outside()
+        ));
+    }
     if rig.fingers.iter().any(|f| !f.bends.is_empty()) {
         summary.push_str(&format!(
             " {} inner joints lie more than {} mm from where their skin bends.",

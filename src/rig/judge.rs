@@ -387,9 +387,24 @@ pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
 /// or a last segment no longer than the tip correction. Cost: O(1) for the
 /// standings, a few thousand evaluations of the proportions for the explanation.
 pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Option<FingerAudit> {
-    let finger = chain.finger;
-    let fa = a.finger(finger)?;
-    if chain.points.len() != ChainInput::expected_points(finger, chain.has_tip)
+    judge_finger(a, chain, opts, false)
+}
+
+/// Judges one rig finger as [`audit_with`] with its MCP held where it is: the
+/// explanation moves only the inner joints (for an MCP placed from its ray's
+/// base, [`metacarpal`] or [`wrist`]).
+pub fn audit_holding_mcp(
+    a: &Analysis,
+    chain: &ChainInput,
+    opts: &JudgeOptions,
+) -> Option<FingerAudit> {
+    judge_finger(a, chain, opts, true)
+}
+
+/// The segments c_k of a chain, the tip correction and the compared segments;
+/// `None` for a chain [`audit_with`] refuses.
+fn compared_segments(chain: &ChainInput, opts: &JudgeOptions) -> Option<(Vec<f64>, f64, Vec<f64>)> {
+    if chain.points.len() != ChainInput::expected_points(chain.finger, chain.has_tip)
         || chain.points.iter().any(|p| !p.is_finite())
     {
         return None;
@@ -414,6 +429,18 @@ pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Opti
     if compared.iter().any(|&c| !(c.is_finite() && c > 0.0)) {
         return None;
     }
+    Some((segments, tip_correction, compared))
+}
+
+fn judge_finger(
+    a: &Analysis,
+    chain: &ChainInput,
+    opts: &JudgeOptions,
+    hold_mcp: bool,
+) -> Option<FingerAudit> {
+    let finger = chain.finger;
+    let fa = a.finger(finger)?;
+    let (segments, tip_correction, compared) = compared_segments(chain, opts)?;
     let quantities = judged_quantities(a, chain)?;
     let basis = match (chain.has_tip, finger) {
         (true, _) => Basis::Relative,
@@ -435,13 +462,52 @@ pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Opti
         Basis::None => Vec::new(),
     };
     let axis = Axis::new(chain, &compared, tip_correction);
-    let explanation = explain(&axis, &quantities, basis);
-    let kinds = chain_kinds(finger, chain.has_tip);
+    let solved = explain(&axis, &quantities, basis, hold_mcp);
+    let joints = joint_checks(chain, &axis, &solved, standings)?;
+    let explanation = Explanation {
+        moved: solved.moved,
+        consistent: solved.consistent,
+        score: solved.score.is_finite().then_some(solved.score),
+        values: solved
+            .segments
+            .map(|s| {
+                quantities
+                    .iter()
+                    .map(|&(q, st)| value_check(q, value_of(q, &s), st))
+                    .collect()
+            })
+            .unwrap_or_default(),
+        also: solved.also,
+    };
+    Some(FingerAudit {
+        finger,
+        has_tip: chain.has_tip,
+        basis,
+        n: fa.n,
+        length: (basis == Basis::Relative).then(|| compared.iter().sum()),
+        segments,
+        tip_correction,
+        compared,
+        values,
+        joints,
+        unjudged,
+        explanation,
+    })
+}
+
+/// Each judged joint's check, with where the explanation puts it.
+fn joint_checks(
+    chain: &ChainInput,
+    axis: &Axis,
+    solved: &Solved,
+    standings: Vec<StandingInput>,
+) -> Option<Vec<JointCheck>> {
+    let kinds = chain_kinds(chain.finger, chain.has_tip);
     let mut joints = Vec::new();
     for (joint, measured, expected, range, pi) in standings {
         let k = kinds.iter().position(|&j| j == joint)?;
-        let moves = explanation.moved.contains(&joint);
-        let (suggested, shift_along) = match (&explanation.arcs, moves) {
+        let moves = solved.moved.contains(&joint);
+        let (suggested, shift_along) = match (&solved.arcs, moves) {
             (Some(arcs), true) => (
                 point_at(&axis.points, arcs[k]),
                 arcs[k] - axis.joint_arcs[k],
@@ -461,60 +527,83 @@ pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Opti
             shift_along,
         });
     }
-    let explanation = Explanation {
-        moved: explanation.moved,
-        consistent: explanation.consistent,
-        score: explanation.score.is_finite().then_some(explanation.score),
-        values: explanation
-            .segments
-            .map(|s| {
-                quantities
-                    .iter()
-                    .map(|&(q, st)| value_check(q, value_of(q, &s), st))
-                    .collect()
-            })
-            .unwrap_or_default(),
-        also: explanation.also,
-    };
-    Some(FingerAudit {
-        finger,
-        has_tip: chain.has_tip,
-        basis,
-        n: fa.n,
-        length: (basis == Basis::Relative).then(|| compared.iter().sum()),
-        segments,
-        tip_correction,
-        compared,
-        values,
-        joints,
-        unjudged,
-        explanation,
-    })
+    Some(joints)
 }
 
-/// The MCP judged from the CMC against a dataset's metacarpals (the Digital
-/// Hand Atlas's by default): a guide beside the finger's own judgement, which
-/// it does not change.
+/// What a ray's MCP is judged from: the base held while the MCP moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum RayBase {
+    /// The origin of the finger's metacarpal node: the CMC joint, where the
+    /// atlas's metacarpal starts.
+    Cmc,
+    /// The origin of the hand's wrist (hand) bone, for a rig without
+    /// metacarpals: see [`WRIST_DEFINITION`].
+    Wrist,
+}
+
+/// How the wrist is defined when a ray is judged from it (also in the JSON).
+pub const WRIST_DEFINITION: &str = "the origin of the rig's hand (wrist) bone, read as the \
+     wrist's centre of rotation, which lies in the head of the capitate; in the atlas, landmark \
+     10, the one carpal landmark on the middle finger's ray (0.37 metacarpal lengths proximal of \
+     its CMC, 0.01 off its axis); the atlas does not name landmarks 0-12, so this reading is \
+     inferred from where they lie";
+
+/// The distance from the wrist (atlas landmark 10, [`WRIST_DEFINITION`]) to
+/// each finger's MCP over its metacarpal (CMC to MCP): means over the 910
+/// X-rays of `data/atlas/landmarks.csv` (SD 0.027, 0.025, 0.034, 0.040),
+/// recomputed from that file by the test `wrist_ratios_are_the_atlas_means`.
+/// The thumb has none: its metacarpal swings about the CMC, far off the
+/// wrist, so its wrist-to-MCP distance depends on the thumb's pose.
+pub const WRIST_TO_MCP_OVER_MC: [(Finger, f64); 4] = [
+    (Finger::Index, 1.3707),
+    (Finger::Middle, 1.3682),
+    (Finger::Ring, 1.4309),
+    (Finger::Little, 1.4914),
+];
+
+/// The atlas's wrist-to-MCP over metacarpal for `finger` (`None` for the thumb).
+pub fn wrist_to_mcp_over_mc(finger: Finger) -> Option<f64> {
+    WRIST_TO_MCP_OVER_MC
+        .iter()
+        .find(|(f, _)| *f == finger)
+        .map(|(_, r)| *r)
+}
+
+/// The MCP judged from its ray's base (the CMC, or the wrist where the rig
+/// has no metacarpals) against a dataset's metacarpals (the Digital Hand
+/// Atlas's by default): a guide beside the finger's own judgement, which it
+/// does not change.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct MetacarpalCheck {
-    /// The metacarpal node; its origin is the CMC.
+    /// The node the base is read from: the metacarpal (its origin is the
+    /// CMC) or the hand bone (its origin is the wrist).
     pub node: String,
-    /// The rig's metacarpal mc: CMC to MCP, in rig units.
+    /// Which base the MCP is judged from.
+    pub base: RayBase,
+    /// What the base is, in words (the wrist's definition for a wrist base).
+    pub base_definition: String,
+    /// For a wrist base: the dataset's wrist-to-MCP over metacarpal used
+    /// ([`WRIST_TO_MCP_OVER_MC`]); 1 for a CMC base.
+    pub base_over_mc: f64,
+    /// Distance from the base to the MCP, in rig units.
+    pub to_mcp: f64,
+    /// The rig's metacarpal mc: CMC to MCP, in rig units; from a wrist,
+    /// estimated as `to_mcp / base_over_mc`.
     pub mc: f64,
     /// The finger's length J as compared (MCP to tip, the tip's soft tissue taken off).
     pub length: f64,
     /// mc/J and J1/mc against the dataset.
     pub values: Vec<ValueCheck>,
-    /// Where the dataset puts the MCP, in rig units from the CMC along the
-    /// CMC-MCP line, the CMC and the tip held: mc/J x J with J the finger's
-    /// length when the MCP is there.
+    /// Where the dataset puts the MCP, in rig units from the base along the
+    /// base-MCP line, the base and the tip held: see [`metacarpal`].
     pub expected: f64,
     pub range: Interval,
     pub pi: Option<Interval>,
-    /// The rig's MCP (at `mc` from the CMC) against `expected`: above = too distal.
+    /// The rig's MCP (at `to_mcp` from the base) against `expected`: above = too distal.
     #[serde(flatten)]
     pub standing: Standing,
-    /// The MCP where the dataset puts it (at `expected` from the CMC).
+    /// The MCP where the dataset puts it (at `expected` from the base).
     #[schemars(with = "[f64; 3]")]
     pub suggested: DVec3,
 }
@@ -537,11 +626,51 @@ pub fn metacarpal(
     cmc: DVec3,
     mcp: DVec3,
 ) -> Option<MetacarpalCheck> {
+    ray_check(a, audit, (RayBase::Cmc, node), cmc, mcp)
+}
+
+/// Judges a finger's MCP from the wrist (`wrist`, the hand bone's origin; see
+/// [`WRIST_DEFINITION`]) where the rig has no metacarpal.
+///
+/// The wrist-to-MCP distance w is read as rho mc, rho the atlas's mean
+/// wrist-to-MCP over metacarpal ([`WRIST_TO_MCP_OVER_MC`]), so w/J = rho x with
+/// x = mc/J; with S = w + J held, the MCP belongs at S rho x / (1 + rho x)
+/// from the wrist. The interval carries the spread of x only, not that of
+/// rho (SD 2-3 % of it). `None` for the thumb and as [`metacarpal`]. O(1).
+pub fn wrist(
+    a: &Analysis,
+    audit: &FingerAudit,
+    node: &str,
+    wrist: DVec3,
+    mcp: DVec3,
+) -> Option<MetacarpalCheck> {
+    ray_check(a, audit, (RayBase::Wrist, node), wrist, mcp)
+}
+
+/// The MCP judged from `origin`, the base of its ray (see [`metacarpal`], [`wrist`]).
+fn ray_check(
+    a: &Analysis,
+    audit: &FingerAudit,
+    (base, node): (RayBase, &str),
+    origin: DVec3,
+    mcp: DVec3,
+) -> Option<MetacarpalCheck> {
+    let (rho, base_definition) = match base {
+        RayBase::Cmc => (
+            1.0,
+            "the origin of the finger's metacarpal node: the CMC joint".to_string(),
+        ),
+        RayBase::Wrist => (
+            wrist_to_mcp_over_mc(audit.finger)?,
+            WRIST_DEFINITION.to_string(),
+        ),
+    };
     let length = audit.length?;
-    let mc = cmc.distance(mcp);
-    if !(cmc.is_finite() && mcp.is_finite() && mc > 0.0 && length > 0.0) {
+    let to_mcp = origin.distance(mcp);
+    if !(origin.is_finite() && mcp.is_finite() && to_mcp > 0.0 && length > 0.0) {
         return None;
     }
+    let mc = to_mcp / rho;
     let rel = stats(a, audit.finger, Quantity::RatioMcJ)?;
     let values: Vec<ValueCheck> = [
         (Quantity::RatioMcJ, mc / length),
@@ -550,8 +679,11 @@ pub fn metacarpal(
     .into_iter()
     .filter_map(|(q, x)| stats(a, audit.finger, q).map(|s| value_check(q, x, s)))
     .collect();
-    let span = mc + length;
-    let at = |x: f64| span * x.max(0.0) / (1.0 + x.max(0.0));
+    let span = to_mcp + length;
+    let at = |x: f64| {
+        let y = rho * x.max(0.0);
+        span * y / (1.0 + y)
+    };
     let expected = at(rel.mean);
     let range = Interval::new(at(rel.min), at(rel.max));
     let pi = rel
@@ -560,14 +692,18 @@ pub fn metacarpal(
         .map(|i| Interval::new(at(i.low), at(i.high)));
     Some(MetacarpalCheck {
         node: node.to_string(),
+        base,
+        base_definition,
+        base_over_mc: rho,
+        to_mcp,
         mc,
         length,
         values,
         expected,
         range,
         pi,
-        standing: Standing::of(mc, range, pi),
-        suggested: cmc + (mcp - cmc).normalize_or_zero() * expected,
+        standing: Standing::of(to_mcp, range, pi),
+        suggested: origin + (mcp - origin).normalize_or_zero() * expected,
     })
 }
 
@@ -744,18 +880,16 @@ fn fit(quantities: &[(Quantity, &QuantityStats)], segments: &[f64]) -> (f64, boo
     (worst, inside)
 }
 
-/// The explanation with the fewest moved joints (see the module notes).
-fn explain(axis: &Axis, quantities: &[(Quantity, &QuantityStats)], basis: Basis) -> Solved {
-    let none = Solved {
-        moved: Vec::new(),
-        consistent: false,
-        score: f64::INFINITY,
-        arcs: None,
-        segments: None,
-        also: Vec::new(),
-    };
+/// The explanation with the fewest moved joints (see the module notes); with
+/// `hold_mcp`, among moves of the inner joints only.
+fn explain(
+    axis: &Axis,
+    quantities: &[(Quantity, &QuantityStats)],
+    basis: Basis,
+    hold_mcp: bool,
+) -> Solved {
     if basis == Basis::None || quantities.is_empty() {
-        return none;
+        return none_like();
     }
     let u0 = axis.joint_arcs.clone();
     let n = u0.len();
@@ -767,48 +901,47 @@ fn explain(axis: &Axis, quantities: &[(Quantity, &QuantityStats)], basis: Basis)
             _ => vec![Joint::Pip, Joint::Dip],
         })
         .collect();
-    let mut tried: Vec<Vec<Solved>> = vec![Vec::new(), Vec::new(), Vec::new()];
-    let (score, inside) = fit(quantities, &axis.segments(&u0));
-    tried[0].push(Solved {
-        consistent: inside,
-        score,
-        arcs: Some(u0.clone()),
-        segments: Some(axis.segments(&u0)),
-        ..none_like()
-    });
-    for (k, &kind) in kinds.iter().enumerate() {
-        if let Some(u) = solve_one(axis, quantities, &u0, k) {
-            let s = axis.segments(&u);
-            let (score, inside) = fit(quantities, &s);
-            tried[1].push(Solved {
-                moved: vec![kind],
-                consistent: inside,
-                score,
-                arcs: Some(u),
-                segments: Some(s),
-                ..none_like()
-            });
+    let first = usize::from(hold_mcp);
+    let solved = |moved: Vec<Joint>, u: Vec<f64>| {
+        let s = axis.segments(&u);
+        let (score, inside) = fit(quantities, &s);
+        Solved {
+            moved,
+            consistent: inside,
+            score,
+            arcs: Some(u),
+            segments: Some(s),
+            also: Vec::new(),
         }
-    }
+    };
+    let mut tried: Vec<Vec<Solved>> = vec![vec![solved(Vec::new(), u0.clone())]];
+    tried.push(
+        (first..kinds.len())
+            .filter_map(|k| solve_one(axis, quantities, &u0, k).map(|u| solved(vec![kinds[k]], u)))
+            .collect(),
+    );
     if n == 4 {
-        for pair in [[1, 2], [0, 1], [0, 2]] {
-            if let Some(u) = solve_pair(axis, quantities, &u0, pair) {
-                let s = axis.segments(&u);
-                let (score, inside) = fit(quantities, &s);
-                tried[2].push(Solved {
-                    moved: pair.iter().map(|&k| kinds[k]).collect(),
-                    consistent: inside,
-                    score,
-                    arcs: Some(u),
-                    segments: Some(s),
-                    ..none_like()
-                });
-            }
-        }
+        tried.push(
+            [[1, 2], [0, 1], [0, 2]]
+                .into_iter()
+                .filter(|pair| pair[0] >= first)
+                .filter_map(|pair| {
+                    solve_pair(axis, quantities, &u0, pair)
+                        .map(|u| solved(pair.iter().map(|&k| kinds[k]).collect(), u))
+                })
+                .collect(),
+        );
     }
+    choose(tried, &u0)
+}
+
+/// The first size at which an explanation fits, its best (the better fit,
+/// then the smaller total move), with the others of that size as `also`;
+/// when none fits, the best fit of all, fewer joints first on a tie.
+fn choose(mut tried: Vec<Vec<Solved>>, u0: &[f64]) -> Solved {
     let movement = |s: &Solved| -> f64 {
         s.arcs.as_ref().map_or(f64::INFINITY, |a| {
-            a.iter().zip(&u0).map(|(x, y)| (x - y).abs()).sum()
+            a.iter().zip(u0).map(|(x, y)| (x - y).abs()).sum()
         })
     };
     let better = |a: &Solved, b: &Solved| -> bool {
@@ -833,14 +966,13 @@ fn explain(axis: &Axis, quantities: &[(Quantity, &QuantityStats)], basis: Basis)
         chosen.also = fits.into_iter().map(|s| s.moved).collect();
         return chosen;
     }
-    // Nothing fits: the best fit of all, fewer joints first on a tie.
     let mut best: Option<Solved> = None;
     for s in tried.into_iter().flatten() {
         if best.as_ref().is_none_or(|b| s.score < b.score - 1e-6) {
             best = Some(s);
         }
     }
-    best.unwrap_or(none)
+    best.unwrap_or_else(none_like)
 }
 
 fn none_like() -> Solved {
@@ -1083,6 +1215,43 @@ mod tests {
             s => panic!("expected too distal, got {s:?}"),
         }
         assert!(matches!(moved.values[0].standing, Standing::Above { .. }));
+    }
+
+    /// [`WRIST_TO_MCP_OVER_MC`] recomputed from the atlas's landmarks: per
+    /// X-ray, |landmark 10 - MCP| / |CMC - MCP| (the landmark numbers of
+    /// data/atlas/README.md), averaged over the 910 X-rays.
+    #[test]
+    fn wrist_ratios_are_the_atlas_means() {
+        let Ok(text) = std::fs::read_to_string("data/atlas/landmarks.csv") else {
+            eprintln!("skipped: data/atlas/landmarks.csv is not readable");
+            return;
+        };
+        let rays = [
+            (Finger::Index, 16, 21),
+            (Finger::Middle, 15, 25),
+            (Finger::Ring, 14, 29),
+            (Finger::Little, 13, 33),
+        ];
+        let mut sums = [0.0; 4];
+        let mut n = 0;
+        for line in text.lines().filter(|l| !l.trim().is_empty()) {
+            let v: Vec<f64> = line.split(',').map(|x| x.trim().parse().unwrap()).collect();
+            let p = |i: usize| DVec3::new(v[1 + 2 * i], v[2 + 2 * i], 0.0);
+            for (k, &(_, cmc, mcp)) in rays.iter().enumerate() {
+                sums[k] += p(10).distance(p(mcp)) / p(cmc).distance(p(mcp));
+            }
+            n += 1;
+        }
+        assert_eq!(n, 910);
+        for (k, &(finger, _, _)) in rays.iter().enumerate() {
+            let mean = sums[k] / n as f64;
+            let constant = wrist_to_mcp_over_mc(finger).unwrap();
+            assert!(
+                (mean - constant).abs() < 5e-5,
+                "{finger:?}: {mean} vs {constant}"
+            );
+        }
+        assert!(wrist_to_mcp_over_mc(Finger::Thumb).is_none());
     }
 
     #[test]

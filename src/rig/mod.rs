@@ -19,6 +19,7 @@ pub mod fix;
 pub mod judge;
 pub mod map;
 pub mod naming;
+pub mod ray;
 pub mod reference;
 pub(crate) mod remap;
 pub mod session;
@@ -1114,6 +1115,40 @@ fn scale_warning(lengths: &[f64]) -> Option<String> {
     })
 }
 
+/// The note saying how the MCPs were judged from their rays' bases.
+fn metacarpal_note(
+    atlas: &crate::analysis::Analysis,
+    from_cmc: usize,
+    from_wrist: usize,
+) -> String {
+    let n = atlas
+        .fingers
+        .iter()
+        .filter_map(|fa| fa.quantity(crate::dataset::Quantity::RatioMcJ))
+        .map(|s| s.n)
+        .max()
+        .unwrap_or(0);
+    let mut out = format!(
+        "Metacarpals: {} MCPs are also judged from their CMC and {} from the wrist against {} \
+         ({} with the metacarpal measured), with the same settings. The Digital Hand Atlas (the \
+         default) is children's left hands with landmarks at bone ends, not joint centres: read \
+         this as a guide.",
+        from_cmc,
+        from_wrist,
+        atlas.dataset.path,
+        crate::format::xrays(n)
+    );
+    if from_wrist > 0 {
+        out.push_str(&format!(
+            " The wrist is {}; the rig's wrist-to-MCP distance is read as the atlas's mean \
+             multiple of the metacarpal, whose own spread (SD 2-3 %) the interval leaves out. The \
+             thumb is not judged from the wrist: its distance depends on the thumb's pose.",
+            judge::WRIST_DEFINITION
+        ));
+    }
+    out
+}
+
 impl AuditedRig {
     /// Judges `chains` against the analysis with the default options and no
     /// skin; fingers the data lacks become notes.
@@ -1206,50 +1241,54 @@ impl AuditedRig {
             .count()
     }
 
-    /// Judges the MCP of every finger with a metacarpal node from its CMC
-    /// against `atlas`'s metacarpal statistics ([`judge::metacarpal`]); the
-    /// fingers' own standings are unchanged. A finger that has a metacarpal
-    /// but cannot be judged (no tip, no mc/J in `atlas`) gets a note.
+    /// Judges the MCP of every finger from the base of its ray against
+    /// `atlas`'s metacarpal statistics: from its CMC where the finger has a
+    /// metacarpal node ([`judge::metacarpal`]), else from the wrist where the
+    /// hand has a wrist bone ([`judge::wrist`]; not the thumb). The fingers'
+    /// own standings are unchanged. A finger with a metacarpal that cannot be
+    /// judged (no tip, no mc/J in `atlas`) gets a note.
     pub fn judge_metacarpals(&mut self, atlas: &crate::analysis::Analysis) {
-        let mut judged = 0;
+        let (mut from_cmc, mut from_wrist) = (0, 0);
         for f in &mut self.fingers {
-            let (Some(node), Some(mcp)) = (&f.chain.metacarpal, f.chain.joints.first()) else {
+            let Some(mcp) = f.chain.joints.first() else {
                 continue;
             };
-            f.metacarpal_check =
-                judge::metacarpal(atlas, &f.audit, &node.name, node.position, mcp.position);
-            match f.metacarpal_check {
-                Some(_) => judged += 1,
-                None => self.notes.push(format!(
-                    "{}: its MCP is not judged from the metacarpal {} ({})",
-                    f.chain.label(),
-                    node.name,
-                    if f.audit.length.is_none() {
-                        "the rig has no tip, so the finger's length is unknown".to_string()
-                    } else {
-                        format!("{} has no mc/J for this finger", atlas.dataset.path)
-                    }
-                )),
+            if let Some(node) = &f.chain.metacarpal {
+                f.metacarpal_check =
+                    judge::metacarpal(atlas, &f.audit, &node.name, node.position, mcp.position);
+                match f.metacarpal_check {
+                    Some(_) => from_cmc += 1,
+                    None => self.notes.push(format!(
+                        "{}: its MCP is not judged from the metacarpal {} ({})",
+                        f.chain.label(),
+                        node.name,
+                        if f.audit.length.is_none() {
+                            "the rig has no tip, so the finger's length is unknown".to_string()
+                        } else {
+                            format!("{} has no mc/J for this finger", atlas.dataset.path)
+                        }
+                    )),
+                }
+            } else if let Some(node) = &f.chain.wrist {
+                f.metacarpal_check =
+                    judge::wrist(atlas, &f.audit, &node.name, node.position, mcp.position);
+                from_wrist += usize::from(f.metacarpal_check.is_some());
             }
         }
-        if judged > 0 {
-            self.notes.push(format!(
-                "Metacarpals: each MCP is also judged from its CMC against {} ({} with the \
-                 metacarpal measured), with the same settings. The Digital Hand Atlas (the \
-                 default) is children's left hands with landmarks at bone ends, not joint \
-                 centres: read this as a guide.",
-                atlas.dataset.path,
-                crate::format::xrays(
-                    atlas
-                        .fingers
-                        .iter()
-                        .filter_map(|fa| fa.quantity(crate::dataset::Quantity::RatioMcJ))
-                        .map(|s| s.n)
-                        .max()
-                        .unwrap_or(0)
-                )
-            ));
+        if from_cmc + from_wrist > 0 {
+            self.notes
+                .push(metacarpal_note(atlas, from_cmc, from_wrist));
         }
+    }
+
+    /// Fingers whose MCP lies outside the prediction interval from its ray's
+    /// base (the CMC or the wrist).
+    pub fn metacarpals_outside(&self) -> usize {
+        self.fingers
+            .iter()
+            .filter_map(|f| f.metacarpal_check.as_ref())
+            .filter(|m| !m.standing.is_consistent())
+            .count()
     }
 
     /// Joints further from their bend than the tolerance.

@@ -29,6 +29,10 @@ pub struct AuditRequest<'a> {
     /// The dataset with metacarpals (an `mc` column) each MCP is also judged
     /// against from its CMC, analysed with `settings`; `None`: not judged.
     pub metacarpals: Option<&'a Path>,
+    /// `--fix-mcp atlas`: the fix places each MCP outside the prediction
+    /// interval from its CMC (or wrist) where `metacarpals` puts it, and holds
+    /// the other MCPs ([`super::ray`]); needs `metacarpals`.
+    pub mcp_from_atlas: bool,
 }
 
 /// A finished audit.
@@ -67,6 +71,13 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     analysis::budget::check_bootstrap(dataset.xray_count(), req.settings.resamples)
         .map_err(Error::Usage)?;
     let analysis = analysis::analyse(&dataset, &req.settings);
+    if req.mcp_from_atlas && req.metacarpals.is_none() {
+        return Err(Error::Usage(
+            "--fix-mcp atlas needs the metacarpals' dataset: give --metacarpals DATASET (the \
+             default data/atlas/measurements.csv was not found)"
+                .into(),
+        ));
+    }
     let atlas = match req.metacarpals {
         Some(path) => {
             let atlas = Dataset::load(path)?;
@@ -93,15 +104,18 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
             let opts = fix::FixOptions {
                 only_outside: req.only_outside,
             };
-            let fixed = fix::fix_with(
-                &rig.file,
-                &audited.fingers,
-                rig.weights.as_ref(),
-                dir,
-                glb,
-                &opts,
-            )?;
-            let reaudit = write_checked(&rig, &fixed, out, map.as_ref(), &analysis, &req.options)?;
+            let placed = match &atlas {
+                Some(_) if req.mcp_from_atlas => {
+                    super::ray::mcp_from_base(&audited, &analysis, &req.options.judge)
+                }
+                _ => audited.fingers.clone(),
+            };
+            let fixed = fix::fix_with(&rig.file, &placed, rig.weights.as_ref(), dir, glb, &opts)?;
+            let mut reaudit =
+                write_checked(&rig, &fixed, out, map.as_ref(), &analysis, &req.options)?;
+            if let Some(atlas) = &atlas {
+                reaudit.judge_metacarpals(atlas);
+            }
             Some(FixOutcome {
                 output: out.to_path_buf(),
                 moved: fixed.moved,

@@ -80,6 +80,9 @@ pub struct HandSpec {
     pub animate: bool,
     /// Finger joints (finger, joint) whose second translation key moves 3 mm along y.
     pub varying: Vec<(&'static str, usize)>,
+    /// Scales the MCPs' positions in the hand's frame (1: as built): the
+    /// wrist-to-MCP distances grow, the fingers stay as they are.
+    pub palm: f64,
 }
 
 impl HandSpec {
@@ -98,6 +101,7 @@ impl HandSpec {
             smooth: None,
             animate: false,
             varying: Vec::new(),
+            palm: 1.0,
         }
     }
 
@@ -315,7 +319,7 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
             let count = segs.len() + 1;
             let mut parent = hand;
             let r = roots[fi];
-            let root = DVec3::new(mirror * r.0, r.1, r.2);
+            let root = spec.palm * DVec3::new(mirror * r.0, r.1, r.2);
             // A metacarpal node 35% of the way from the hand to the MCP.
             let mc_share = match metacarpal_name(spec.naming, left, finger) {
                 Some(name) if spec.metacarpals => {

@@ -1,0 +1,56 @@
+//! The MCP placed from its ray's base: what `audit --fix --fix-mcp atlas` moves.
+//!
+//! The finger's own statistics say where the MCP lies relative to PIP, DIP
+//! and tip; the metacarpal check ([`judge::metacarpal`], [`judge::wrist`])
+//! says where it lies along the ray, from the CMC (or the wrist) with the tip
+//! held. With the atlas chosen, the MCP is the atlas's: a finger whose MCP is
+//! outside the prediction interval from its base gets its MCP at the atlas's
+//! mean position on the base-MCP line, and the finger is judged again with
+//! that MCP held, so only PIP and DIP may move to fit the X-rays' proportions.
+//! A finger whose MCP is inside is judged again with its MCP held where it is.
+//! A finger without a check keeps its own explanation. A fixed rig's MCP lies
+//! at the mean, inside the interval, so a second fix holds it and, when the
+//! first fit the proportions, moves nothing.
+
+use super::judge::{self, JudgeOptions};
+use super::{AuditedFinger, AuditedRig};
+use crate::analysis::Analysis;
+use crate::analysis::placement::Joint;
+
+/// The fingers of `rig` with the explanation a fix applies when the MCP is
+/// placed from its ray's base (see the module notes); `a` the statistics the
+/// fingers were judged against, `opts` as they were judged. O(fingers) audits.
+pub fn mcp_from_base(rig: &AuditedRig, a: &Analysis, opts: &JudgeOptions) -> Vec<AuditedFinger> {
+    rig.fingers
+        .iter()
+        .map(|f| placed(f, a, opts).unwrap_or_else(|| f.clone()))
+        .collect()
+}
+
+/// One finger with its MCP from its base and the inner joints re-explained;
+/// `None` when it has no check or cannot be judged again.
+fn placed(f: &AuditedFinger, a: &Analysis, opts: &JudgeOptions) -> Option<AuditedFinger> {
+    let m = f.metacarpal_check.as_ref()?;
+    let mut input = f.chain.input();
+    if let (Some(t), Some(last)) = (&f.skin_tip, input.points.last_mut()) {
+        *last = t.position;
+    }
+    let original = *input.points.first()?;
+    let outside = !m.standing.is_consistent();
+    if outside {
+        input.points[0] = m.suggested;
+    }
+    let mut audit = judge::audit_holding_mcp(a, &input, opts)?;
+    if outside {
+        let mcp = audit.joints.iter_mut().find(|j| j.joint == Joint::Mcp)?;
+        mcp.moves = true;
+        mcp.suggested = m.suggested;
+        mcp.shift = original.distance(m.suggested);
+        // + towards the tip: the MCP moves away from its base.
+        mcp.shift_along = m.expected - m.to_mcp;
+        if !audit.explanation.moved.contains(&Joint::Mcp) {
+            audit.explanation.moved.insert(0, Joint::Mcp);
+        }
+    }
+    Some(AuditedFinger { audit, ..f.clone() })
+}

@@ -1,0 +1,194 @@
+//! The MCP judged along its ray from the wrist (a hand bone, no metacarpals),
+//! `--strict` counting it, and `--fix-mcp atlas` moving it.
+
+use super::hand::{HandSpec, Naming, build};
+use super::{audit_json, finger_of, fingers, worst_vertex_move};
+use crate::common::*;
+use serde_json::Value;
+
+/// A workdir with the paper's data and the atlas at its default path; `None`
+/// (skipped, with the reason printed) when the atlas is not readable.
+fn with_atlas() -> Option<Workdir> {
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    let atlas = manifest_dir().join("data/atlas/measurements.csv");
+    let Ok(bytes) = std::fs::read(&atlas) else {
+        eprintln!("skipped: {} is not readable", atlas.display());
+        return None;
+    };
+    wd.write("data/atlas/measurements.csv", &bytes);
+    Some(wd)
+}
+
+fn point(v: &Value) -> [f64; 3] {
+    [num(&v[0]), num(&v[1]), num(&v[2])]
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The Mixamo fixture has `mixamorig:RightHand` and no metacarpals: each
+/// finger but the thumb is judged from the wrist, the hand bone's origin,
+/// with the wrist-to-MCP distance w read as rho mc; the MCP belongs at
+/// S rho x / (1 + rho x) from the wrist, S = w + J, x the atlas's mean mc/J.
+#[test]
+fn a_hand_bone_without_metacarpals_judges_the_mcp_from_the_wrist() {
+    let Some(wd) = with_atlas() else { return };
+    // MCPs 7 % further from the wrist than the builder's default palm.
+    let spec = HandSpec {
+        palm: 1.07,
+        ..HandSpec::new(Naming::Mixamo)
+    };
+    wd.write("hand.glb", build(&spec));
+    let doc = audit_json(&wd, "hand.glb");
+    for f in fingers(&doc) {
+        let name = f["finger"].as_str().unwrap();
+        let m = &f["metacarpal_check"];
+        if name == "thumb" {
+            assert!(m.is_null(), "the thumb is not judged from the wrist: {m}");
+            continue;
+        }
+        assert_eq!(m["base"], "wrist", "{name}");
+        assert_eq!(m["node"], "mixamorig:RightHand", "{name}");
+        assert!(m["base_definition"].as_str().unwrap().contains("capitate"));
+        let w = dist(
+            point(&f["wrist"]["position"]),
+            point(&f["joints"][0]["position"]),
+        );
+        assert_close(num(&m["to_mcp"]), w, 1e-9, name);
+        let rho = num(&m["base_over_mc"]);
+        assert!((1.3..1.6).contains(&rho), "{name}: {rho}");
+        assert_close(num(&m["mc"]), w / rho, 1e-9, name);
+        let j = num(&f["audit"]["length"]);
+        let x = num(&m["values"][0]["mean"]);
+        let expected = (w + j) * rho * x / (1.0 + rho * x);
+        assert_close(num(&m["expected"]), expected, 1e-9, name);
+        // The fixture's palm is a plausible adult's: inside the interval.
+        assert!(
+            ["in_range", "in_prediction"].contains(&m["standing"].as_str().unwrap()),
+            "{name}: {m}"
+        );
+    }
+    let run = wd.run(&["audit", "hand.glb"]);
+    let words = run
+        .ok()
+        .stdout
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    run.stdout_has("| MCP from wrist (mm)");
+    for needle in [
+        "Wrist (mixamorig:RightHand; no metacarpal): wrist to MCP ",
+        "0 MCPs lie outside the atlas's 95% prediction interval",
+    ] {
+        assert!(words.contains(needle), "{needle}\n{words}");
+    }
+    // The index MCP 1 cm towards the tip: too distal from the wrist too.
+    wd.write("web.glb", build(&spec.moved("index", 0, 1.0)));
+    let doc = audit_json(&wd, "web.glb");
+    assert_eq!(
+        finger_of(&doc, "index")["metacarpal_check"]["standing"],
+        "above"
+    );
+}
+
+/// A palm 40 % longer, the fingers as they are: every finger fits the
+/// paper's proportions, but its MCP is too far from the wrist. `--strict`
+/// counts that, and only with the atlas.
+#[test]
+fn strict_counts_an_mcp_outside_from_its_base() {
+    let Some(wd) = with_atlas() else { return };
+    let long = HandSpec {
+        palm: 1.4,
+        ..HandSpec::new(Naming::Mixamo)
+    };
+    wd.write("long.glb", build(&long));
+    let doc = audit_json(&wd, "long.glb");
+    assert!(
+        fingers(&doc)
+            .iter()
+            .all(|f| f["audit"]["explanation"]["moved"] == serde_json::json!([]))
+    );
+    let outside = fingers(&doc)
+        .iter()
+        .filter(|f| f["metacarpal_check"]["standing"] == "above")
+        .count();
+    assert_eq!(outside, 4, "{doc}");
+    wd.run(&["audit", "long.glb"]).ok();
+    let words = |run: &Run| run.stdout.split_whitespace().collect::<Vec<_>>().join(" ");
+    let strict = wd.run(&["audit", "long.glb", "--strict"]);
+    strict.expect_code(1);
+    assert!(
+        words(&strict).contains("4 MCPs lie outside"),
+        "{}",
+        strict.stdout
+    );
+    // Without the atlas nothing is outside.
+    std::fs::remove_file(wd.path().join("data/atlas/measurements.csv")).unwrap();
+    wd.run(&["audit", "long.glb", "--strict"]).ok();
+    wd.write("hand.glb", build(&HandSpec::new(Naming::Mixamo)));
+    wd.run(&["audit", "hand.glb", "--fix", "x.glb", "--fix-mcp", "atlas"])
+        .expect_code(2)
+        .stderr_has("--fix-mcp atlas needs the metacarpals' dataset");
+}
+
+/// `--fix-mcp atlas` moves each MCP outside from its wrist to the atlas's
+/// mean, moves the skin with it, and a second fix changes nothing.
+#[test]
+fn fix_mcp_atlas_places_the_mcp_from_its_base_and_keeps_the_mesh() {
+    let Some(wd) = with_atlas() else { return };
+    let spec = HandSpec {
+        palm: 1.4,
+        smooth: Some(Vec::new()),
+        ..HandSpec::new(Naming::Mixamo)
+    };
+    let input = build(&spec);
+    wd.write("long.glb", &input);
+    let before = audit_json(&wd, "long.glb");
+    wd.run(&[
+        "audit",
+        "long.glb",
+        "--fix",
+        "fixed.glb",
+        "--fix-mcp",
+        "atlas",
+    ])
+    .ok()
+    .stderr_has("0 of 5 fingers outside the prediction interval, 0 of 4 MCPs outside");
+    let fixed = wd.read("fixed.glb");
+    assert!(worst_vertex_move(&input, &fixed) < 1e-5);
+    let after = audit_json(&wd, "fixed.glb");
+    for f in fingers(&after) {
+        let name = f["finger"].as_str().unwrap();
+        if name == "thumb" {
+            continue;
+        }
+        let m = &f["metacarpal_check"];
+        assert_eq!(m["standing"], "in_range", "{name}: {m}");
+        // At the atlas's mean, where the input's check put it.
+        let old = &finger_of(&before, name)["metacarpal_check"];
+        let mcp = point(&f["joints"][0]["position"]);
+        assert!(dist(mcp, point(&old["suggested"])) < 1e-6, "{name}");
+        // (Not exactly at the new mean: PIP and DIP then moved on the bent
+        // chain, which changes J and so the expected position, < 1 mm here.)
+    }
+    // Without --fix-mcp the fix leaves these MCPs alone (the fingers fit).
+    wd.run(&["audit", "long.glb", "--fix", "plain.glb"])
+        .ok()
+        .stderr_has("0 joints moved");
+    wd.run(&[
+        "audit",
+        "fixed.glb",
+        "--fix",
+        "again.glb",
+        "--fix-mcp",
+        "atlas",
+    ])
+    .ok()
+    .stderr_has("0 joints moved");
+    assert!(
+        wd.read("again.glb") == fixed,
+        "a second fix changed the file"
+    );
+}
