@@ -488,12 +488,12 @@ fn angles_beyond_the_normal_range_are_noted_not_refused() {
     write_hand(&wd, "right.glb", &HandSpec::default());
     // AAOS normal active ranges: finger MCP -45 (hyperextension) to 90, PIP 0 to
     // 100; thumb MCP 0 to 50, IP -20 to 80. The thumb takes half the MCP and PIP
-    // angles: -20 and 85 here, both beyond; the fingers' MCP -40 is not.
-    let args = ["deform", "right.glb", "--angles", "-40,170,60"];
+    // angles: -12.5 and 85 here, both beyond; the fingers' MCP -25 is not.
+    let args = ["deform", "right.glb", "--angles", "-25,170,60"];
     wd.run(&args)
         .ok()
         .stdout_has("note: the fingers' PIP at 170 degrees")
-        .stdout_has("note: the thumb's MCP at -20 degrees")
+        .stdout_has("note: the thumb's MCP at -12.5 degrees")
         .stdout_has("note: the thumb's IP at 85 degrees");
     let doc = wd
         .run(&[&args[..], &["--format", "json"]].concat())
@@ -519,7 +519,7 @@ fn angles_beyond_the_normal_range_are_noted_not_refused() {
     // The edges of the ranges and the named poses are anatomical: no note.
     for extra in [
         &["--angles", "90,100,90"][..],
-        &["--angles", "-45,0,-10"],
+        &["--angles", "0,0,-10"],
         &["--pose", "grip"],
         &[],
     ] {
