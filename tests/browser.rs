@@ -14,6 +14,8 @@
 //! * every `figure svg` visible, at least 200 px wide and with a `<title>`,
 //!   and at least one visible plot of each kind (`plot-finger-*`,
 //!   `plot-hand`, `plot-forest`);
+//! * every `figure img` (the deformation figure, a PNG data URI) decoded,
+//!   visible, at least 200 px wide and with alt text, and one `plot-deform-*`;
 //! * a visible `<h1>`;
 //! * no horizontal scrolling of the page at 1366 px
 //!   (`document.body.scrollWidth` and the root's `scrollWidth` are at most
@@ -45,6 +47,8 @@ const WINDOW_HEIGHT: f64 = 900.0;
 const MIN_TABLES: usize = 15;
 /// The kinds of plot, by the start of their figure id.
 const PLOT_KINDS: [&str; 3] = ["plot-finger-", "plot-hand", "plot-forest"];
+/// The WebXR hand's deformation figure (a PNG data URI), by the start of its id.
+const DEFORM_FIGURE: &str = "plot-deform-";
 /// The id of the `<pre>` the probe writes its JSON into.
 const RESULT_ID: &str = "phalanx-test-result";
 /// A plot narrower than this (CSS pixels) is unreadable.
@@ -104,6 +108,15 @@ window.addEventListener('load', function () {
       b.figure = f ? f.id : '';
       var t = s.querySelector('title');
       b.title = t ? t.textContent.trim() : null;
+      return b;
+    });
+    out.imgs = all('figure img').map(function (i) {
+      var b = box(i);
+      var f = i.closest('figure');
+      b.figure = f ? f.id : '';
+      b.alt = i.getAttribute('alt') || '';
+      b.naturalWidth = i.naturalWidth;
+      b.complete = i.complete;
       return b;
     });
   } catch (e) {
@@ -412,6 +425,34 @@ fn problems(page: &Value) -> Vec<String> {
         if let Some(why) = outside(s, page, true) {
             bad.push(format!("{name} {why}"));
         }
+    }
+    let imgs = list(page, "imgs");
+    for i in imgs {
+        let name = format!("the image in figure #{}", text(i, "figure"));
+        if text(i, "alt").is_empty() {
+            bad.push(format!("{name} has no alt text"));
+        }
+        // A data URI that does not decode leaves naturalWidth at 0.
+        if num(i, "naturalWidth") <= 0.0 {
+            bad.push(format!("{name} did not decode (naturalWidth 0)"));
+        }
+        if let Some(why) = invisibility(i) {
+            bad.push(format!("{name} {why}"));
+        } else if num(i, "width") < MIN_PLOT_WIDTH {
+            bad.push(format!(
+                "{name} is only {} px wide, less than {MIN_PLOT_WIDTH}",
+                num(i, "width")
+            ));
+        }
+        if let Some(why) = outside(i, page, true) {
+            bad.push(format!("{name} {why}"));
+        }
+    }
+    if !imgs
+        .iter()
+        .any(|i| text(i, "figure").starts_with(DEFORM_FIGURE) && invisibility(i).is_none())
+    {
+        bad.push(format!("no visible image in a figure #{DEFORM_FIGURE}*"));
     }
     for kind in PLOT_KINDS {
         let visible = svgs

@@ -477,6 +477,55 @@ fn bad_input_is_refused_naming_the_file_and_nothing_is_written() {
     wd.run(&["deform", "hand.glb", "--side", "right"]).ok();
 }
 
+#[test]
+fn angles_beyond_the_normal_range_are_noted_not_refused() {
+    let wd = Workdir::new();
+    write_hand(&wd, "right.glb", &HandSpec::default());
+    // AAOS normal active ranges: finger MCP -45 (hyperextension) to 90, PIP 0 to
+    // 100; thumb MCP 0 to 50, IP -20 to 80. The thumb takes half the MCP and PIP
+    // angles: -12.5 and 85 here, both beyond; the fingers' MCP -25 is not.
+    let args = ["deform", "right.glb", "--angles", "-25,170,60"];
+    wd.run(&args)
+        .ok()
+        .stdout_has("note: the fingers' PIP at 170 degrees")
+        .stdout_has("note: the thumb's MCP at -12.5 degrees")
+        .stdout_has("note: the thumb's IP at 85 degrees");
+    let doc = wd
+        .run(&[&args[..], &["--format", "json"]].concat())
+        .ok()
+        .json();
+    let notes: Vec<&str> = doc["notes"]
+        .as_array()
+        .expect("notes")
+        .iter()
+        .map(|n| n.as_str().unwrap())
+        .collect();
+    assert_eq!(notes.len(), 3, "{notes:?}");
+    assert!(
+        notes.iter().any(|n| n.starts_with(
+            "the fingers' PIP at 170 degrees is beyond its normal active range (0 to 100 degrees"
+        )),
+        "{notes:?}"
+    );
+    assert!(
+        notes.iter().all(|n| n.contains("not one a hand makes")),
+        "{notes:?}"
+    );
+    // The edges of the ranges and the named poses are anatomical: no note.
+    for extra in [
+        &["--angles", "90,100,90"][..],
+        &["--angles", "0,0,-10"],
+        &["--pose", "grip"],
+        &[],
+    ] {
+        let doc = wd
+            .run(&[&["deform", "right.glb", "--format", "json"][..], extra].concat())
+            .ok()
+            .json();
+        assert_eq!(doc["notes"], serde_json::json!([]), "{extra:?}");
+    }
+}
+
 /// The WebXR generic hands: vendored, or beside the repository.
 fn webxr_dir() -> Option<PathBuf> {
     let root = manifest_dir();

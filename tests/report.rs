@@ -62,6 +62,7 @@ fn render_with(
         rigs: &rigs,
         paper_xrays: claims.named_in(dataset),
         atlas: None,
+        deform: None,
     };
     let files = report::render(&inputs, Formats::ALL, &Templates::builtin().unwrap()).unwrap();
     let plots = plots::all(&a, &places).unwrap();
@@ -288,6 +289,12 @@ fn a_failed_run_leaves_the_previous_report_untouched_and_reruns_are_identical() 
     let first = snapshot_dir(&out);
     assert!(first.iter().any(|(n, _)| n == "/index.html"));
     assert!(first.iter().filter(|(n, _)| n.ends_with(".svg")).count() >= 7);
+    // The WebXR hand's deformation figure: the rerun below compares its bytes too.
+    let png = first
+        .iter()
+        .find(|(n, _)| n == "plots/deform-webxr-generic-hand-right.png")
+        .expect("the report draws the WebXR hand's deformation");
+    assert!(png.1.starts_with(b"\x89PNG\r\n\x1a\n"), "not a PNG");
 
     let again = run("data/measurements.csv");
     assert!(again.status.success());

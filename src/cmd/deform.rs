@@ -4,17 +4,18 @@
 use super::args::{BootArgs, DataArgs, TextFormat};
 use super::out;
 use crate::error::Error;
-use crate::report::deform::{self as view, DeformDocument, HandVerdicts, RigView};
+use crate::report::deform::{self as view, DeformDocument, HandVerdicts, RenderView, RigView};
 use crate::report::json::{MovedView, SCHEMA_VERSION};
 use crate::report::layout::Width;
-use crate::report::writer;
+use crate::report::writer::{self, OutputFile};
 use crate::rig::GltfFile;
 use crate::rig::deform::file::{self, DeformRequest, FileDeformation};
 use crate::rig::deform::hand::side_from_label;
+use crate::rig::deform::verdict::JointVerdict;
 use crate::rig::deform::{Pose, Skinning};
 use crate::rig::map::NameMap;
 use crate::rig::naming::Side;
-use crate::rig::session;
+use crate::rig::session::{self, FixedInMemory};
 use clap::ValueEnum;
 use std::path::{Path, PathBuf};
 
@@ -152,6 +153,95 @@ fn deform_parsed(
     Ok(file::deform_file(file, dir, req)?)
 }
 
+/// The verdicts of one hand per side both rigs have.
+pub(super) type Verdicts = Vec<(Side, Vec<JointVerdict>)>;
+
+/// Deforms the rig as given (A) and as `audit --fix` would write it (B) alike
+/// and compares them per joint: what `phalanx deform RIG --fix` shows.
+pub(super) fn compare_fixed(
+    fixed: &FixedInMemory,
+    rig: &Path,
+    req: &DeformRequest<'_>,
+) -> Result<(FileDeformation, FileDeformation, Verdicts), Error> {
+    let a = deform_parsed(&fixed.original, rig, req)?;
+    let b = deform_parsed(&fixed.fixed, rig, req)?;
+    let verdicts = compare(&a, &b)?;
+    Ok((a, b, verdicts))
+}
+
+/// The verdicts of A against B; refused when they share no hand.
+fn compare(a: &FileDeformation, b: &FileDeformation) -> Result<Verdicts, Error> {
+    let verdicts = file::compare_files(a, b);
+    if verdicts.is_empty() {
+        return Err(Error::Usage(format!(
+            "{} and {} have no hand in common (by side), so there is nothing to compare",
+            a.label, b.label
+        )));
+    }
+    Ok(verdicts)
+}
+
+/// The figure of each hand of `a`, beside the same side of `b`: the PNG files
+/// (`deform-<side>.png`) and where they draw the fingertips.
+pub(super) fn figures(
+    a: &FileDeformation,
+    b: Option<&FileDeformation>,
+) -> Result<(Vec<OutputFile>, Vec<RenderView>), Error> {
+    let mut files = Vec::new();
+    let mut renders = Vec::new();
+    for ha in &a.hands {
+        let hb = b.and_then(|b| b.hands.iter().find(|h| h.chains.side == ha.chains.side));
+        let (f, r) = view::figure(ha, hb)?;
+        files.push(f);
+        renders.push(r);
+    }
+    Ok((files, renders))
+}
+
+/// The default request of a rig file: no map, the side its name says.
+pub(super) fn request<'a>(rig: &Path, pose: &'a Pose, method: Skinning) -> DeformRequest<'a> {
+    DeformRequest {
+        map: None,
+        side: side_from_label(&rig.display().to_string()),
+        pose,
+        method,
+    }
+}
+
+/// The rig (A), what it is compared with (B), the verdicts and, with --fix,
+/// the joints the fix moves.
+type Deformed = (
+    FileDeformation,
+    Option<FileDeformation>,
+    Verdicts,
+    Option<Vec<(String, f64)>>,
+);
+
+fn deform_rigs(args: &Args, req: &DeformRequest<'_>) -> Result<Deformed, Error> {
+    Ok(if args.fix {
+        let fixed = session::fix_in_memory(
+            &args.rig,
+            args.map.as_deref(),
+            &args.data.data,
+            args.boot.settings()?,
+        )?;
+        let (a, b, verdicts) = compare_fixed(&fixed, &args.rig, req)?;
+        (a, Some(b), verdicts, Some(fixed.moved))
+    } else {
+        let a = deform_path(&args.rig, req)?;
+        let b = args
+            .against
+            .as_deref()
+            .map(|p| deform_path(p, req))
+            .transpose()?;
+        let verdicts = match &b {
+            Some(b) => compare(&a, b)?,
+            None => Vec::new(),
+        };
+        (a, b, verdicts, None)
+    })
+}
+
 pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     let pose = args.pose()?;
     let map = args.map.as_deref().map(NameMap::load).transpose()?;
@@ -167,54 +257,17 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     let req = DeformRequest {
         map: map.as_ref(),
         side,
-        pose: &pose,
-        method,
+        ..request(&args.rig, &pose, method)
     };
-    let (a, b, moved) = if args.fix {
-        let fixed = session::fix_in_memory(
-            &args.rig,
-            args.map.as_deref(),
-            &args.data.data,
-            args.boot.settings()?,
-        )?;
-        let a = deform_parsed(&fixed.original, &args.rig, &req)?;
-        let b = deform_parsed(&fixed.fixed, &args.rig, &req)?;
-        (a, Some(b), Some(fixed.moved))
-    } else {
-        let a = deform_path(&args.rig, &req)?;
-        let b = args
-            .against
-            .as_deref()
-            .map(|p| deform_path(p, &req))
-            .transpose()?;
-        (a, b, None)
-    };
-    let verdicts = b
-        .as_ref()
-        .map(|b| file::compare_files(&a, b))
-        .unwrap_or_default();
-    if let Some(b) = &b
-        && verdicts.is_empty()
-    {
-        return Err(Error::Usage(format!(
-            "{} and {} have no hand in common (by side), so there is nothing to compare",
-            a.label, b.label
-        )));
-    }
+    let (a, b, verdicts, moved) = deform_rigs(args, &req)?;
     // The figures first: nothing is printed when they cannot be written.
     let mut renders = Vec::new();
     if let Some(dir) = &args.out {
-        let mut files = Vec::new();
-        for ha in &a.hands {
-            let hb = b
-                .as_ref()
-                .and_then(|b| b.hands.iter().find(|h| h.chains.side == ha.chains.side));
-            let (f, r) = view::figure(ha, hb)?;
-            files.push(f);
-            renders.push(r);
-        }
+        let (files, r) = figures(&a, b.as_ref())?;
         writer::write_all(dir, &files)?;
+        renders = r;
     }
+    let notes = pose.anatomy_notes();
     let bytes = match args.format {
         TextFormat::Table => match &b {
             Some(b) => view::text_two(&a, b, &verdicts, &pose, method, width),
@@ -226,6 +279,7 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
             units: "m",
             pose: &pose,
             skinning: method,
+            notes,
             rig: RigView::of(&a),
             against: b.as_ref().map(RigView::of),
             moved: moved.as_ref().map(|m| {

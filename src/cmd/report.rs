@@ -9,12 +9,15 @@ use crate::analysis::{Analysis, placement};
 use crate::dataset::Dataset;
 use crate::dataset::claims::Claims;
 use crate::error::Error;
+use crate::report::deform as deform_view;
 use crate::report::render::Templates;
-use crate::report::view::{AtlasInputs, ReferenceAudit, ReportInputs};
+use crate::report::view::{AtlasInputs, DeformSection, ReferenceAudit, ReportInputs};
 use crate::report::writer::OutputFile;
 use crate::report::{self, Formats};
 use crate::rig::AuditedRig;
+use crate::rig::deform::{Pose, Skinning};
 use crate::rig::reference::{self, ReferenceRig};
+use crate::rig::session;
 use clap::ValueEnum;
 use std::path::{Path, PathBuf};
 
@@ -22,6 +25,8 @@ use std::path::{Path, PathBuf};
 const DEFAULT_RIGS: &str = "data/rigs";
 /// The atlas of the section "The paper against N atlas radiographs".
 const DEFAULT_ATLAS: &str = "data/atlas/measurements.csv";
+/// The real rig whose audit and deformation the report shows (MIT, vendored).
+const DEFAULT_DEFORM_RIG: &str = "data/rigs/webxr-generic-hand/right.glb";
 /// Sample sizes of the coverage measured on the atlas's hands.
 const ATLAS_SIZES: [usize; 5] = [3, 5, 10, 20, 50];
 /// Samples per size of that coverage, and the resamples of its random bootstraps (n of 8
@@ -73,6 +78,9 @@ pub(crate) struct Args {
     /// Measurements of an atlas for "The paper against N atlas radiographs"; absent = no section
     #[arg(long, value_name = "PATH", default_value = DEFAULT_ATLAS)]
     atlas: PathBuf,
+    /// A rigged hand (glTF) audited and deformed as it is and as `audit --fix` writes it, in "Popular rigs"; absent = no such part
+    #[arg(long, value_name = "PATH", default_value = DEFAULT_DEFORM_RIG)]
+    deform_rig: PathBuf,
     /// Target half-width of the confidence interval of a relative mean, for "X-rays needed": greater than 0, at most 1
     #[arg(long, value_name = "W", default_value_t = 0.005, value_parser = parse_target, allow_negative_numbers = true)]
     target: f64,
@@ -156,6 +164,7 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         }
     });
     drop(paper_data);
+    let deform = deform_section(&args.deform_rig, &a, atlas.as_ref().map(|x| &x.analysis))?;
     let timestamp = args
         .timestamp
         .then(|| humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string());
@@ -176,6 +185,7 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         rigs: &rigs,
         paper_xrays,
         atlas: atlas.as_ref(),
+        deform: deform.as_ref(),
     };
     let files = report::render(&inputs, formats, &templates)?;
     write(&args.out, &files)?;
@@ -255,6 +265,56 @@ fn audit_references(references: Vec<ReferenceRig>, a: &Analysis) -> Vec<Referenc
             ReferenceAudit { rig, audit }
         })
         .collect()
+}
+
+/// The part on a real rig: its audit (each MCP judged from its metacarpal
+/// against the atlas, when there is one) and its skin in the fist (linear
+/// blend), as it is and as `audit --fix` writes it, compared as
+/// `phalanx deform RIG --fix --out DIR` does. `None` when the file is absent.
+fn deform_section(
+    rig: &Path,
+    a: &Analysis,
+    atlas: Option<&Analysis>,
+) -> Result<Option<DeformSection>, Error> {
+    if !rig.exists() {
+        return Ok(None);
+    }
+    let pose = Pose::fist();
+    let req = super::deform::request(rig, &pose, Skinning::Lbs);
+    let mut fixed = session::fix_in_memory_with(rig, None, a)?;
+    if let Some(atlas) = atlas {
+        fixed.audited.judge_metacarpals(atlas);
+    }
+    let (da, db, verdicts) = super::deform::compare_fixed(&fixed, rig, &req)?;
+    let (files, renders) = super::deform::figures(&da, Some(&db))?;
+    let slug: String = rig
+        .parent()
+        .and_then(|p| p.file_name())
+        .or_else(|| rig.file_stem())
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default()
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '-'
+            }
+        })
+        .collect();
+    Ok(Some(deform_view::section(deform_view::SectionInputs {
+        a: &da,
+        b: &db,
+        verdicts: &verdicts,
+        pose: &pose,
+        method: Skinning::Lbs,
+        moved: &fixed.moved,
+        audit: &fixed.audited,
+        atlas: atlas.is_some(),
+        confidence: a.settings.confidence,
+        figures: files.into_iter().zip(renders).collect(),
+        stem: &format!("deform-{slug}"),
+    })))
 }
 
 /// The report files asked for with --format.

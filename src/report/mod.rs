@@ -88,6 +88,9 @@ pub fn render(
                 p.svg.clone().into_bytes(),
             ));
         }
+        if let Some(d) = inputs.deform {
+            files.extend(d.figures.iter().cloned());
+        }
     }
     if formats.json {
         files.push(OutputFile::new(

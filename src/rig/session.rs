@@ -133,11 +133,14 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
 }
 
 /// A rig as `audit --fix` would write it, in memory: the parsed rig and its
-/// fixed copy (a GLB, read back), with the moved joints (name, distance).
+/// fixed copy (a GLB, read back), with the moved joints (name, distance) and
+/// the audit of the rig as given that the fix followed.
 pub struct FixedInMemory {
     pub original: GltfFile,
     pub fixed: GltfFile,
     pub moved: Vec<(String, f64)>,
+    /// The rig as given, judged with `audit`'s default options.
+    pub audited: AuditedRig,
 }
 
 /// Judges `rig` against the statistics of `data` and fixes it as
@@ -155,13 +158,28 @@ pub fn fix_in_memory(
     analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)
         .map_err(Error::Usage)?;
     let analysis = analysis::analyse(&dataset, &settings);
+    fix_loaded(rig, loaded, &analysis)
+}
+
+/// [`fix_in_memory`] against statistics already computed (the report's).
+pub fn fix_in_memory_with(
+    rig: &Path,
+    map: Option<&Path>,
+    analysis: &Analysis,
+) -> Result<FixedInMemory, Error> {
+    let map = map.map(NameMap::load).transpose()?;
+    let loaded = Rig::load(rig, map.as_ref())?;
+    fix_loaded(rig, loaded, analysis)
+}
+
+fn fix_loaded(rig: &Path, loaded: Rig, analysis: &Analysis) -> Result<FixedInMemory, Error> {
     // `audit --fix OUT.glb` with its default options: the same judgement
     // (skin tips, bends from the skin weights) and the same fix.
     let audited = AuditedRig::with(
         &loaded.file.label,
         &loaded.chains,
         &loaded.notes,
-        &analysis,
+        analysis,
         &AuditOptions::default(),
         loaded.weights.as_ref(),
     );
@@ -185,6 +203,7 @@ pub fn fix_in_memory(
         original: loaded.file,
         fixed,
         moved: out.moved,
+        audited,
     })
 }
 

@@ -53,6 +53,19 @@ pub struct Angles {
     pub dip: f64,
 }
 
+/// Normal active range of motion of each joint, in degrees (negative:
+/// hyperextension), from the American Academy of Orthopaedic Surgeons'
+/// average values (AAOS, *Joint Motion: Method of Measuring and Recording*,
+/// 1965; the same table in Greene & Heckman, *The Clinical Measurement of
+/// Joint Motion*, AAOS 1994): finger MCP flexion 90 and hyperextension 45,
+/// PIP flexion 100 and extension 0, DIP flexion 90 and hyperextension 10;
+/// thumb MCP flexion 50 and extension 0, IP flexion 80 and hyperextension 20.
+/// Rows: thumb, then the other fingers; columns MCP, PIP (the thumb's IP), DIP.
+pub const NORMAL_RANGE: [[(f64, f64); 3]; 2] = [
+    [(0.0, 50.0), (-20.0, 80.0), (0.0, 0.0)],
+    [(-45.0, 90.0), (0.0, 100.0), (-10.0, 90.0)],
+];
+
 /// A named set of flexion angles for the five fingers.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct Pose {
@@ -92,6 +105,55 @@ impl Pose {
             name: name.to_string(),
             fingers: [thumb, f, f, f, f],
         })
+    }
+
+    /// One note per joint angle beyond its normal active range
+    /// ([`NORMAL_RANGE`]): such a pose can test a rig (a fold onto itself)
+    /// but is not one a hand makes. Fingers bent alike share a note.
+    pub fn anatomy_notes(&self) -> Vec<String> {
+        // (joint name, angle, range) -> the fingers so bent, in order.
+        let mut beyond: Vec<((&str, f64, (f64, f64)), Vec<Finger>)> = Vec::new();
+        for (i, a) in self.fingers.iter().enumerate() {
+            let finger = Finger::ALL[i];
+            let thumb = finger == Finger::Thumb;
+            let range = &NORMAL_RANGE[usize::from(!thumb)];
+            let names = if thumb {
+                ["MCP", "IP", ""]
+            } else {
+                ["MCP", "PIP", "DIP"]
+            };
+            for (k, angle) in [a.mcp, a.pip, a.dip].into_iter().enumerate() {
+                if names[k].is_empty() || (range[k].0..=range[k].1).contains(&angle) {
+                    continue;
+                }
+                let key = (names[k], angle, range[k]);
+                match beyond.iter_mut().find(|(b, _)| *b == key) {
+                    Some((_, fingers)) => fingers.push(finger),
+                    None => beyond.push((key, vec![finger])),
+                }
+            }
+        }
+        let t = |x: f64| crate::format::trimmed(x, 1);
+        beyond
+            .into_iter()
+            .map(|((joint, angle, (low, high)), fingers)| {
+                let names: Vec<&str> = fingers.iter().map(|f| f.name()).collect();
+                let who = match names[..] {
+                    ["thumb"] => "the thumb's".to_string(),
+                    [one] => format!("the {one} finger's"),
+                    _ if names.len() == 4 => "the fingers'".to_string(),
+                    _ => format!("the {} fingers'", names.join(" and ")),
+                };
+                format!(
+                    "{who} {joint} at {} degrees is beyond its normal active range \
+                     ({} to {} degrees, AAOS; negative: hyperextension): \
+                     the pose is not one a hand makes",
+                    t(angle),
+                    t(low),
+                    t(high)
+                )
+            })
+            .collect()
     }
 
     /// The relaxed fist: MCP 60, PIP 90, DIP 60 degrees (about two thirds of
@@ -535,6 +597,37 @@ fn pose_finger(
 mod tests {
     use super::*;
     use crate::rig::deform::synthetic::{HandSpec, tube_hand};
+
+    #[test]
+    fn angles_beyond_the_aaos_ranges_are_noted_once_per_joint() {
+        // AAOS: finger MCP -45 to 90, PIP 0 to 100, DIP -10 to 90; thumb MCP 0 to 50, IP -20 to 80.
+        assert!(Pose::fist().anatomy_notes().is_empty());
+        assert!(
+            Pose::from_angles("edge", 90.0, 100.0, 90.0)
+                .unwrap()
+                .anatomy_notes()
+                .is_empty()
+        );
+        let p = Pose::from_angles("fold", 0.0, 101.0, -11.0).unwrap();
+        let notes = p.anatomy_notes();
+        assert_eq!(notes.len(), 2, "{notes:?}");
+        assert!(
+            notes[0].starts_with("the fingers' PIP at 101 degrees"),
+            "{notes:?}"
+        );
+        assert!(
+            notes[1].starts_with("the fingers' DIP at -11 degrees"),
+            "{notes:?}"
+        );
+        let mut one = Pose::fist();
+        one.fingers[2].mcp = 95.0;
+        assert_eq!(
+            one.anatomy_notes(),
+            vec!["the middle finger's MCP at 95 degrees is beyond its normal active range (-45 to 90 \
+                  degrees, AAOS; negative: hyperextension): the pose is not one a hand makes"
+                .to_string()]
+        );
+    }
 
     #[test]
     fn jacobi_finds_the_plane_of_points() {
