@@ -21,7 +21,7 @@ use crate::rig::deform::file::{FileDeformation, HandDeformation};
 use crate::rig::deform::measures::{HandMeasures, JointMeasures};
 use crate::rig::deform::verdict::{Better, JointVerdict, Measure};
 use crate::rig::deform::{Pose, Skinning};
-use crate::rig::judge::MetacarpalCheck;
+use crate::rig::judge::{MetacarpalCheck, RayBase};
 use crate::rig::naming::Side;
 use schemars::JsonSchema;
 use serde::Serialize;
@@ -688,9 +688,13 @@ fn metacarpal_view(m: &MetacarpalCheck, c: &str) -> MetacarpalView {
         lengths: format!("mc {} mm, J {} mm", mm2(m.mc), mm2(m.length)),
         values,
         mcp: format!(
-            "{}; the atlas puts it {} mm from the CMC ({c} prediction {})",
+            "{}; the atlas puts it {} mm from the {} ({c} prediction {})",
             joint_standing(m.standing, MM),
             mm2(m.expected),
+            match m.base {
+                RayBase::Cmc => "CMC",
+                RayBase::Wrist => "wrist",
+            },
             m.pi.map_or("n/a".into(), |p| format!(
                 "[{}, {}] mm",
                 mm2(p.low),

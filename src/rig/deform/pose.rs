@@ -112,7 +112,8 @@ impl Pose {
     /// but is not one a hand makes. Fingers bent alike share a note.
     pub fn anatomy_notes(&self) -> Vec<String> {
         // (joint name, angle, range) -> the fingers so bent, in order.
-        let mut beyond: Vec<((&str, f64, (f64, f64)), Vec<Finger>)> = Vec::new();
+        type Key = (&'static str, f64, (f64, f64));
+        let mut beyond: Vec<(Key, Vec<Finger>)> = Vec::new();
         for (i, a) in self.fingers.iter().enumerate() {
             let finger = Finger::ALL[i];
             let thumb = finger == Finger::Thumb;
