@@ -1128,13 +1128,22 @@ fn metacarpal_note(
         .map(|s| s.n)
         .max()
         .unwrap_or(0);
+    let mcps = |k: usize| match k {
+        1 => "1 MCP is".to_string(),
+        k => format!("{k} MCPs are"),
+    };
+    let judged = match (from_cmc, from_wrist) {
+        (c, 0) => format!("{} also judged from their CMC", mcps(c)),
+        (0, w) => format!("{} also judged from the wrist", mcps(w)),
+        (c, w) => format!(
+            "{} also judged from their CMC and {w} from the wrist",
+            mcps(c)
+        ),
+    };
     let mut out = format!(
-        "Metacarpals: {} MCPs are also judged from their CMC and {} from the wrist against {} \
-         ({} with the metacarpal measured), with the same settings. The Digital Hand Atlas (the \
-         default) is children's left hands with landmarks at bone ends, not joint centres: read \
-         this as a guide.",
-        from_cmc,
-        from_wrist,
+        "Metacarpals: {judged} against {} ({} with the metacarpal measured), with the same \
+         settings. The Digital Hand Atlas (the default) is children's left hands with landmarks \
+         at bone ends, not joint centres: read this as a guide.",
         atlas.dataset.path,
         crate::format::xrays(n)
     );
