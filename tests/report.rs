@@ -314,9 +314,14 @@ fn a_failed_run_leaves_the_previous_report_untouched_and_reruns_are_identical() 
 #[test]
 fn options_choose_formats_templates_and_timestamp() {
     let tmp = tempfile::tempdir().unwrap();
+    // Without the atlas section (an atlas path that does not exist): these runs are about
+    // formats, templates and the timestamp; the_report_compares_the_paper_with_the_atlas
+    // and the rerun test above cover the atlas.
+    let no_atlas = tmp.path().join("no-atlas.csv");
     let run = |args: &[&str]| {
         phalanx()
-            .args(["report", "--sims", "100"])
+            .args(["report", "--sims", "100", "--atlas"])
+            .arg(&no_atlas)
             .args(args)
             .output()
             .unwrap()

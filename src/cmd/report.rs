@@ -140,29 +140,38 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     super::warn_implausible(&a);
     let paper_data = dataset;
     let rigs = audit_references(references, &a);
-    let cov = if show_coverage {
-        coverage::curve(&coverage::data_sizes(&a, &cov_settings), &cov_settings)
-    } else {
-        Vec::new()
-    };
+    // The coverage curve and the atlas section are independent (their random streams are
+    // keyed by seed, size and simulation, not by thread), so they run side by side: the
+    // same numbers, with the serial parts of one overlapping the other.
+    let (cov, atlas) = rayon::join(
+        || {
+            if show_coverage {
+                coverage::curve(&coverage::data_sizes(&a, &cov_settings), &cov_settings)
+            } else {
+                Vec::new()
+            }
+        },
+        || {
+            atlas_data.map(|atlas| {
+                let pop = CoverageSettings {
+                    sims: ATLAS_SIMS,
+                    resamples: ATLAS_RESAMPLES,
+                    ..cov_settings
+                };
+                AtlasInputs {
+                    analysis: crate::analysis::analyse(&atlas, &settings),
+                    cohorts: crate::analysis::compare::cohorts(&paper_data, &atlas, &settings),
+                    population: crate::analysis::population::of_dataset(
+                        &atlas,
+                        &ATLAS_SIZES,
+                        &CoverageSettings { max_n: None, ..pop },
+                        crate::analysis::Quantity::is_relative,
+                    ),
+                }
+            })
+        },
+    );
     let placements = placement::place_all(&a, args.model_length);
-    let atlas = atlas_data.map(|atlas| {
-        let pop = CoverageSettings {
-            sims: ATLAS_SIMS,
-            resamples: ATLAS_RESAMPLES,
-            ..cov_settings
-        };
-        AtlasInputs {
-            analysis: crate::analysis::analyse(&atlas, &settings),
-            cohorts: crate::analysis::compare::cohorts(&paper_data, &atlas, &settings),
-            population: crate::analysis::population::of_dataset(
-                &atlas,
-                &ATLAS_SIZES,
-                &CoverageSettings { max_n: None, ..pop },
-                crate::analysis::Quantity::is_relative,
-            ),
-        }
-    });
     drop(paper_data);
     let deform = deform_section(&args.deform_rig, &a, atlas.as_ref().map(|x| &x.analysis))?;
     let timestamp = args

@@ -56,6 +56,31 @@ pub(crate) fn t_quantile(confidence: f64, df: usize) -> Option<f64> {
     if df == 0 {
         return None;
     }
+    // The coverage simulations ask for the same few (confidence, df) pairs millions of
+    // times, and statrs's inverse (an iterative inverse of the regularised incomplete
+    // beta) costs about as much as the rest of a simulated sample. The answer depends
+    // on the pair alone, so each thread remembers the last few: the same bits as
+    // computing it afresh.
+    const REMEMBERED: usize = 8;
+    type Memo = [(u64, usize, Option<f64>); REMEMBERED];
+    thread_local! {
+        static MEMO: std::cell::Cell<(Memo, usize)> =
+            const { std::cell::Cell::new(([(0, 0, None); REMEMBERED], 0)) };
+    }
+    let bits = confidence.to_bits();
+    let (memo, next) = MEMO.get();
+    if let Some(&(_, _, q)) = memo.iter().find(|m| m.0 == bits && m.1 == df) {
+        return q;
+    }
+    let q = t_quantile_uncached(confidence, df);
+    let mut memo = memo;
+    memo[next] = (bits, df, q);
+    MEMO.set((memo, (next + 1) % REMEMBERED));
+    q
+}
+
+/// [`t_quantile`] computed afresh (`df` >= 1).
+fn t_quantile_uncached(confidence: f64, df: usize) -> Option<f64> {
     let p = 1.0 - (1.0 - confidence) / 2.0;
     if df > T_EXPANSION_DF {
         return Some(t_expansion(p, df as f64));
