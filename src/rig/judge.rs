@@ -550,24 +550,63 @@ pub const WRIST_DEFINITION: &str = "the origin of the rig's hand (wrist) bone, r
      inferred from where they lie";
 
 /// The distance from the wrist (atlas landmark 10, [`WRIST_DEFINITION`]) to
-/// each finger's MCP over its metacarpal (CMC to MCP): means over the 910
-/// X-rays of `data/atlas/landmarks.csv` (SD 0.027, 0.025, 0.034, 0.040),
-/// recomputed from that file by the test `wrist_ratios_are_the_atlas_means`.
-/// The thumb has none: its metacarpal swings about the CMC, far off the
-/// wrist, so its wrist-to-MCP distance depends on the thumb's pose.
-pub const WRIST_TO_MCP_OVER_MC: [(Finger, f64); 4] = [
-    (Finger::Index, 1.3707),
-    (Finger::Middle, 1.3682),
-    (Finger::Ring, 1.4309),
-    (Finger::Little, 1.4914),
-];
+/// each finger's MCP over its metacarpal (CMC to MCP), rho: mean and SD over
+/// the X-rays of the atlas's landmark file, read at run time
+/// ([`WristRatios::load`]). The thumb has none: its metacarpal swings about
+/// the CMC, far off the wrist, so its wrist-to-MCP distance depends on the
+/// thumb's pose.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WristRatios {
+    /// The landmark file the ratios were computed from, as given.
+    pub source: String,
+    /// Per finger: mean, SD and count of rho over the X-rays.
+    pub ratios: Vec<WristRatio>,
+}
 
-/// The atlas's wrist-to-MCP over metacarpal for `finger` (`None` for the thumb).
-pub fn wrist_to_mcp_over_mc(finger: Finger) -> Option<f64> {
-    WRIST_TO_MCP_OVER_MC
-        .iter()
-        .find(|(f, _)| *f == finger)
-        .map(|(_, r)| *r)
+/// One finger's wrist-to-MCP over metacarpal (see [`WristRatios`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristRatio {
+    pub finger: Finger,
+    pub mean: f64,
+    pub sd: f64,
+    pub n: usize,
+}
+
+impl WristRatios {
+    /// Reads an atlas37 landmark file (e.g. `data/atlas/landmarks.csv`) and
+    /// averages each finger's rho = |wrist - MCP| / |CMC - MCP| over its
+    /// images. Errors with every problem of the file. O(bytes).
+    pub fn load(path: &std::path::Path) -> Result<WristRatios, crate::dataset::DataError> {
+        let per_image = crate::dataset::landmarks::wrist_over_mc_file(path)?;
+        Ok(WristRatios::from_samples(
+            &path.display().to_string(),
+            &per_image,
+        ))
+    }
+
+    /// Mean and SD of each finger's per-image rho; a finger without any is left out.
+    pub fn from_samples(source: &str, per_image: &[(Finger, Vec<f64>)]) -> WristRatios {
+        let ratios = per_image
+            .iter()
+            .filter_map(|(finger, xs)| {
+                Some(WristRatio {
+                    finger: *finger,
+                    mean: crate::stats::describe::mean(xs)?,
+                    sd: crate::stats::describe::sd(xs).unwrap_or(0.0),
+                    n: xs.len(),
+                })
+            })
+            .collect();
+        WristRatios {
+            source: source.to_string(),
+            ratios,
+        }
+    }
+
+    /// rho of `finger` (`None` for the thumb or a finger the file lacks).
+    pub fn of(&self, finger: Finger) -> Option<&WristRatio> {
+        self.ratios.iter().find(|r| r.finger == finger)
+    }
 }
 
 /// The MCP judged from its ray's base (the CMC, or the wrist where the rig
@@ -583,8 +622,8 @@ pub struct MetacarpalCheck {
     pub base: RayBase,
     /// What the base is, in words (the wrist's definition for a wrist base).
     pub base_definition: String,
-    /// For a wrist base: the dataset's wrist-to-MCP over metacarpal used
-    /// ([`WRIST_TO_MCP_OVER_MC`]); 1 for a CMC base.
+    /// For a wrist base: the atlas's mean wrist-to-MCP over metacarpal used
+    /// ([`WristRatios`], read from its landmark file); 1 for a CMC base.
     pub base_over_mc: f64,
     /// Distance from the base to the MCP, in rig units.
     pub to_mcp: f64,
@@ -626,44 +665,41 @@ pub fn metacarpal(
     cmc: DVec3,
     mcp: DVec3,
 ) -> Option<MetacarpalCheck> {
-    ray_check(a, audit, (RayBase::Cmc, node), cmc, mcp)
+    ray_check(a, audit, (RayBase::Cmc, node, 1.0), cmc, mcp)
 }
 
 /// Judges a finger's MCP from the wrist (`wrist`, the hand bone's origin; see
 /// [`WRIST_DEFINITION`]) where the rig has no metacarpal.
 ///
 /// The wrist-to-MCP distance w is read as rho mc, rho the atlas's mean
-/// wrist-to-MCP over metacarpal ([`WRIST_TO_MCP_OVER_MC`]), so w/J = rho x with
+/// wrist-to-MCP over metacarpal (`rho`, [`WristRatios`]), so w/J = rho x with
 /// x = mc/J; with S = w + J held, the MCP belongs at S rho x / (1 + rho x)
 /// from the wrist. The interval carries the spread of x only, not that of
-/// rho (SD 2-3 % of it). `None` for the thumb and as [`metacarpal`]. O(1).
+/// rho (SD 2-3 % of it). `None` for the thumb, for a finger `rho` lacks, and
+/// as [`metacarpal`]. O(1).
 pub fn wrist(
     a: &Analysis,
+    rho: &WristRatios,
     audit: &FingerAudit,
     node: &str,
     wrist: DVec3,
     mcp: DVec3,
 ) -> Option<MetacarpalCheck> {
-    ray_check(a, audit, (RayBase::Wrist, node), wrist, mcp)
+    let rho = rho.of(audit.finger)?.mean;
+    ray_check(a, audit, (RayBase::Wrist, node, rho), wrist, mcp)
 }
 
 /// The MCP judged from `origin`, the base of its ray (see [`metacarpal`], [`wrist`]).
 fn ray_check(
     a: &Analysis,
     audit: &FingerAudit,
-    (base, node): (RayBase, &str),
+    (base, node, rho): (RayBase, &str, f64),
     origin: DVec3,
     mcp: DVec3,
 ) -> Option<MetacarpalCheck> {
-    let (rho, base_definition) = match base {
-        RayBase::Cmc => (
-            1.0,
-            "the origin of the finger's metacarpal node: the CMC joint".to_string(),
-        ),
-        RayBase::Wrist => (
-            wrist_to_mcp_over_mc(audit.finger)?,
-            WRIST_DEFINITION.to_string(),
-        ),
+    let base_definition = match base {
+        RayBase::Cmc => "the origin of the finger's metacarpal node: the CMC joint".to_string(),
+        RayBase::Wrist => WRIST_DEFINITION.to_string(),
     };
     let length = audit.length?;
     let to_mcp = origin.distance(mcp);
@@ -1217,41 +1253,53 @@ mod tests {
         assert!(matches!(moved.values[0].standing, Standing::Above { .. }));
     }
 
-    /// [`WRIST_TO_MCP_OVER_MC`] recomputed from the atlas's landmarks: per
-    /// X-ray, |landmark 10 - MCP| / |CMC - MCP| (the landmark numbers of
-    /// data/atlas/README.md), averaged over the 910 X-rays.
+    /// [`WristRatios::load`] against an independent reading of the atlas's
+    /// landmarks: per X-ray, |landmark 10 - MCP| / |CMC - MCP| (the landmark
+    /// numbers of data/atlas/README.md) split by hand from each line, then the
+    /// mean and the SD (n - 1) over the 910 X-rays; the means are also the
+    /// values first published with the wrist judgement (1.3707, 1.3682, 1.4309,
+    /// 1.4914; SD 0.027, 0.025, 0.034, 0.040).
     #[test]
     fn wrist_ratios_are_the_atlas_means() {
-        let Ok(text) = std::fs::read_to_string("data/atlas/landmarks.csv") else {
+        let path = std::path::Path::new("data/atlas/landmarks.csv");
+        let Ok(text) = std::fs::read_to_string(path) else {
             eprintln!("skipped: data/atlas/landmarks.csv is not readable");
             return;
         };
         let rays = [
-            (Finger::Index, 16, 21),
-            (Finger::Middle, 15, 25),
-            (Finger::Ring, 14, 29),
-            (Finger::Little, 13, 33),
+            (Finger::Index, 16, 21, 1.3707, 0.027),
+            (Finger::Middle, 15, 25, 1.3682, 0.025),
+            (Finger::Ring, 14, 29, 1.4309, 0.034),
+            (Finger::Little, 13, 33, 1.4914, 0.040),
         ];
-        let mut sums = [0.0; 4];
-        let mut n = 0;
+        let mut samples: [Vec<f64>; 4] = Default::default();
         for line in text.lines().filter(|l| !l.trim().is_empty()) {
             let v: Vec<f64> = line.split(',').map(|x| x.trim().parse().unwrap()).collect();
             let p = |i: usize| DVec3::new(v[1 + 2 * i], v[2 + 2 * i], 0.0);
-            for (k, &(_, cmc, mcp)) in rays.iter().enumerate() {
-                sums[k] += p(10).distance(p(mcp)) / p(cmc).distance(p(mcp));
+            for (k, &(_, cmc, mcp, ..)) in rays.iter().enumerate() {
+                samples[k].push(p(10).distance(p(mcp)) / p(cmc).distance(p(mcp)));
             }
-            n += 1;
         }
-        assert_eq!(n, 910);
-        for (k, &(finger, _, _)) in rays.iter().enumerate() {
-            let mean = sums[k] / n as f64;
-            let constant = wrist_to_mcp_over_mc(finger).unwrap();
+        let read = WristRatios::load(path).unwrap();
+        assert_eq!(read.ratios.len(), 4);
+        for (k, &(finger, _, _, published, published_sd)) in rays.iter().enumerate() {
+            let xs = &samples[k];
+            let n = xs.len() as f64;
+            assert_eq!(xs.len(), 910);
+            let mean = xs.iter().sum::<f64>() / n;
+            let sd = (xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+            let r = read.of(finger).unwrap();
+            assert_eq!(r.n, 910);
             assert!(
-                (mean - constant).abs() < 5e-5,
-                "{finger:?}: {mean} vs {constant}"
+                (r.mean - mean).abs() < 1e-12,
+                "{finger:?}: {} vs {mean}",
+                r.mean
             );
+            assert!((r.sd - sd).abs() < 1e-12, "{finger:?}: {} vs {sd}", r.sd);
+            assert!((mean - published).abs() < 5e-5, "{finger:?}: {mean}");
+            assert!((sd - published_sd).abs() < 5e-4, "{finger:?}: {sd}");
         }
-        assert!(wrist_to_mcp_over_mc(Finger::Thumb).is_none());
+        assert!(read.of(Finger::Thumb).is_none());
     }
 
     #[test]

@@ -1118,6 +1118,7 @@ fn scale_warning(lengths: &[f64]) -> Option<String> {
 /// The note saying how the MCPs were judged from their rays' bases.
 fn metacarpal_note(
     atlas: &crate::analysis::Analysis,
+    wrist: Option<&judge::WristRatios>,
     from_cmc: usize,
     from_wrist: usize,
 ) -> String {
@@ -1150,9 +1151,11 @@ fn metacarpal_note(
     if from_wrist > 0 {
         out.push_str(&format!(
             " The wrist is {}; the rig's wrist-to-MCP distance is read as the atlas's mean \
-             multiple of the metacarpal, whose own spread (SD 2-3 %) the interval leaves out. The \
-             thumb is not judged from the wrist: its distance depends on the thumb's pose.",
-            judge::WRIST_DEFINITION
+             multiple of the metacarpal (from {}), whose own spread (SD 2-3 %) the interval \
+             leaves out. The thumb is not judged from the wrist: its distance depends on the \
+             thumb's pose.",
+            judge::WRIST_DEFINITION,
+            wrist.map_or("the atlas's landmarks", |w| w.source.as_str())
         ));
     }
     out
@@ -1255,9 +1258,15 @@ impl AuditedRig {
     /// metacarpal node ([`judge::metacarpal`]), else from the wrist where the
     /// hand has a wrist bone ([`judge::wrist`]; not the thumb). The fingers'
     /// own standings are unchanged. A finger with a metacarpal that cannot be
-    /// judged (no tip, no mc/J in `atlas`) gets a note.
-    pub fn judge_metacarpals(&mut self, atlas: &crate::analysis::Analysis) {
-        let (mut from_cmc, mut from_wrist) = (0, 0);
+    /// judged (no tip, no mc/J in `atlas`) gets a note; without `wrist` (the
+    /// atlas's wrist-to-MCP ratios, read from its landmark file) no MCP is
+    /// judged from the wrist, and a rig that has one gets a note.
+    pub fn judge_metacarpals(
+        &mut self,
+        atlas: &crate::analysis::Analysis,
+        wrist: Option<&judge::WristRatios>,
+    ) {
+        let (mut from_cmc, mut from_wrist, mut wrist_skipped) = (0, 0, 0);
         for f in &mut self.fingers {
             let Some(mcp) = f.chain.joints.first() else {
                 continue;
@@ -1279,14 +1288,33 @@ impl AuditedRig {
                     )),
                 }
             } else if let Some(node) = &f.chain.wrist {
-                f.metacarpal_check =
-                    judge::wrist(atlas, &f.audit, &node.name, node.position, mcp.position);
-                from_wrist += usize::from(f.metacarpal_check.is_some());
+                match wrist {
+                    Some(rho) => {
+                        f.metacarpal_check = judge::wrist(
+                            atlas,
+                            rho,
+                            &f.audit,
+                            &node.name,
+                            node.position,
+                            mcp.position,
+                        );
+                        from_wrist += usize::from(f.metacarpal_check.is_some());
+                    }
+                    None => wrist_skipped += usize::from(f.audit.finger != Finger::Thumb),
+                }
             }
         }
         if from_cmc + from_wrist > 0 {
             self.notes
-                .push(metacarpal_note(atlas, from_cmc, from_wrist));
+                .push(metacarpal_note(atlas, wrist, from_cmc, from_wrist));
+        }
+        if wrist_skipped > 0 {
+            self.notes.push(format!(
+                "Metacarpals: {wrist_skipped} MCPs are not judged from the wrist: the rig has no \
+                 metacarpals, and the atlas's landmark file (landmarks.csv beside {}, which gives \
+                 the wrist-to-MCP distance over the metacarpal) was not found",
+                atlas.dataset.path
+            ));
         }
     }
 

@@ -3,6 +3,7 @@
 //! the caller's business.
 
 use super::fix::{self, Fixed};
+use super::judge;
 use super::map::NameMap;
 use super::{AuditOptions, AuditedRig, GltfFile, Rig};
 use crate::analysis::{self, Analysis, Settings};
@@ -57,6 +58,9 @@ pub struct FixOutcome {
     pub reaudit: AuditedRig,
 }
 
+/// The atlas's landmark file, looked for beside the metacarpals' dataset.
+pub const WRIST_LANDMARKS: &str = "landmarks.csv";
+
 /// Audits a rig against the statistics, and with `fix` writes a corrected copy.
 ///
 /// The fix is refused before any work when it would overwrite the input or its
@@ -87,6 +91,19 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         }
         None => None,
     };
+    // The atlas's landmarks beside its measurements give the wrist-to-MCP
+    // ratios of the wrist judgement; without them it is skipped with a note.
+    let wrist = match req.metacarpals {
+        Some(path) if atlas.is_some() => {
+            let landmarks = path.with_file_name(WRIST_LANDMARKS);
+            if landmarks.is_file() {
+                Some(judge::WristRatios::load(&landmarks)?)
+            } else {
+                None
+            }
+        }
+        _ => None,
+    };
     let mut audited = AuditedRig::with(
         &rig.file.label,
         &rig.chains,
@@ -96,7 +113,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         rig.weights.as_ref(),
     );
     if let Some(atlas) = &atlas {
-        audited.judge_metacarpals(atlas);
+        audited.judge_metacarpals(atlas, wrist.as_ref());
     }
     let fix = match (req.fix, fix_glb) {
         (Some(out), Some(glb)) => {
@@ -114,7 +131,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
             let mut reaudit =
                 write_checked(&rig, &fixed, out, map.as_ref(), &analysis, &req.options)?;
             if let Some(atlas) = &atlas {
-                reaudit.judge_metacarpals(atlas);
+                reaudit.judge_metacarpals(atlas, wrist.as_ref());
             }
             Some(FixOutcome {
                 output: out.to_path_buf(),

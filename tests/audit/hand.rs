@@ -501,7 +501,9 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
         }
     } else {
         // Two vertices per weighted joint, 3 mm off its centre, weighted 0.6 to
-        // the joint and 0.4 to its parent joint (or the first hand).
+        // the joint and 0.4 to its parent joint (or the first hand); wholly to
+        // the joint when that is itself, as glTF forbids a joint named twice
+        // for one vertex with non-zero weights.
         for (ji, &node) in joints.iter().enumerate() {
             if !weighted[ji] {
                 continue;
@@ -510,12 +512,17 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
                 .and_then(|p| joints.iter().position(|&j| j == p))
                 .filter(|&p| weighted[p])
                 .unwrap_or(0);
+            let (ids, ws) = if parent_ji == ji {
+                ([ji as u16, 0, 0, 0], [1.0, 0.0, 0.0, 0.0])
+            } else {
+                ([ji as u16, parent_ji as u16, 0, 0], [0.6, 0.4, 0.0, 0.0])
+            };
             let c = world[node].w_axis.truncate();
             for off in [DVec3::new(0.003, 0.0, 0.0), DVec3::new(0.0, 0.0, -0.003)] {
                 let p = c + off;
                 positions.push([p.x as f32, p.y as f32, p.z as f32]);
-                joint_ids.push([ji as u16, parent_ji as u16, 0, 0]);
-                weights.push([0.6, 0.4, 0.0, 0.0]);
+                joint_ids.push(ids);
+                weights.push(ws);
             }
         }
     }
@@ -696,12 +703,16 @@ fn tube(
             let ang = i as f64 * std::f64::consts::TAU / 8.0;
             let p = c + 0.006 * (ang.cos() * side + ang.sin() * up);
             positions.push([p.x as f32, p.y as f32, p.z as f32]);
+            // Distinct joints (the owners are), unused slots joint 0 with weight 0,
+            // and the heaviest takes what the f32 rounding of the others leaves,
+            // so the stored weights sum to 1 as glTF asks.
             let mut ids = [0u16; 4];
             let mut ws = [0f32; 4];
             for (k, &(j, x)) in w.iter().enumerate() {
                 ids[k] = j;
                 ws[k] = (x / sum) as f32;
             }
+            ws[0] = 1.0 - ws[1..].iter().sum::<f32>();
             joint_ids.push(ids);
             weights.push(ws);
         }

@@ -6,17 +6,20 @@ use super::{audit_json, finger_of, fingers, worst_vertex_move};
 use crate::common::*;
 use serde_json::Value;
 
-/// A workdir with the paper's data and the atlas at its default path; `None`
+/// A workdir with the paper's data and the atlas (its measurements and its
+/// landmarks, which give the wrist-to-MCP ratios) at its default path; `None`
 /// (skipped, with the reason printed) when the atlas is not readable.
 fn with_atlas() -> Option<Workdir> {
     let wd = Workdir::new();
     wd.copy_paper_data();
-    let atlas = manifest_dir().join("data/atlas/measurements.csv");
-    let Ok(bytes) = std::fs::read(&atlas) else {
-        eprintln!("skipped: {} is not readable", atlas.display());
-        return None;
-    };
-    wd.write("data/atlas/measurements.csv", &bytes);
+    for file in ["data/atlas/measurements.csv", "data/atlas/landmarks.csv"] {
+        let path = manifest_dir().join(file);
+        let Ok(bytes) = std::fs::read(&path) else {
+            eprintln!("skipped: {} is not readable", path.display());
+            return None;
+        };
+        wd.write(file, &bytes);
+    }
     Some(wd)
 }
 
@@ -91,6 +94,29 @@ fn a_hand_bone_without_metacarpals_judges_the_mcp_from_the_wrist() {
         finger_of(&doc, "index")["metacarpal_check"]["standing"],
         "above"
     );
+    // Without the atlas's landmarks beside its measurements the ratios are
+    // unknown: no MCP is judged from the wrist, and a note says why.
+    std::fs::remove_file(wd.path().join("data/atlas/landmarks.csv")).unwrap();
+    let doc = audit_json(&wd, "hand.glb");
+    assert!(
+        fingers(&doc)
+            .iter()
+            .all(|f| f["metacarpal_check"].is_null())
+    );
+    let out = wd.run(&["audit", "hand.glb"]).ok().stdout.clone();
+    let words = out.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(
+        words.contains("4 MCPs are not judged from the wrist")
+            && words.contains("landmarks.csv beside data/atlas/measurements.csv"),
+        "{words}"
+    );
+    // A landmark file with a bad line is an error naming its line and column.
+    let mut bad = std::fs::read_to_string(manifest_dir().join("data/atlas/landmarks.csv")).unwrap();
+    bad = bad.replacen(",297,", ",x,", 1);
+    wd.write("data/atlas/landmarks.csv", bad.as_bytes());
+    wd.run(&["audit", "hand.glb"])
+        .data_error()
+        .stderr_has("data/atlas/landmarks.csv:1:2: x0: image '3142', landmark 0");
 }
 
 /// A palm 40 % longer, the fingers as they are: every finger fits the

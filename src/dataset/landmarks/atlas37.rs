@@ -80,6 +80,76 @@ pub(super) fn read(
     Ok(hands)
 }
 
+/// The atlas's landmark read as the wrist's centre: 10, the one carpal landmark on the
+/// middle finger's ray (the head of the capitate; see `judge::WRIST_DEFINITION`).
+pub const WRIST: usize = 10;
+
+/// Per image, each finger's wrist-to-MCP over its metacarpal: |landmark [`WRIST`] - MCP| /
+/// |CMC - MCP|, for the index, middle, ring and little finger (the thumb's metacarpal swings
+/// far off the wrist, so it has none). Every line is checked as [`read`] checks it; a CMC on
+/// its MCP is a problem of the line. Cost: O(bytes).
+pub(super) fn wrist_over_mc(
+    label: &str,
+    input: &[u8],
+    problems: &mut Vec<Problem>,
+) -> Result<Vec<(Finger, Vec<f64>)>, DataError> {
+    let fingers: Vec<(Finger, usize, usize)> = CHAINS
+        .iter()
+        .filter(|(f, _)| *f != Finger::Thumb)
+        .map(|&(f, marks)| (f, marks[0], marks[1]))
+        .collect();
+    let mut ratios: Vec<(Finger, Vec<f64>)> =
+        fingers.iter().map(|&(f, ..)| (f, Vec::new())).collect();
+    let mut first_line: HashMap<Arc<str>, u64> = HashMap::new();
+    let slot_of = slots();
+    csvinput::read_headerless(label, input, problems, |rec: &Fields<'_, '_>, problems| {
+        if rec.len() != FIELDS {
+            problems.push(Problem::line(
+                rec.line(),
+                format!(
+                    "has {} fields; the atlas37 layout has {FIELDS} on every line: an image id, then x and y of each of the {LANDMARKS} landmarks",
+                    rec.len()
+                ),
+            ));
+            return;
+        }
+        let Some(image) = image_id(rec, &mut first_line, problems) else {
+            return;
+        };
+        let marks: Vec<Option<[f64; 2]>> = (0..LANDMARKS)
+            .map(|k| landmark(rec, k, slot_of[k], &image, problems))
+            .collect();
+        let Some(marks) = marks.into_iter().collect::<Option<Vec<[f64; 2]>>>() else {
+            return;
+        };
+        let dist =
+            |a: usize, b: usize| (marks[a][0] - marks[b][0]).hypot(marks[a][1] - marks[b][1]);
+        for (k, &(finger, cmc, mcp)) in fingers.iter().enumerate() {
+            let mc = dist(cmc, mcp);
+            if mc > 0.0 {
+                ratios[k].1.push(dist(WRIST, mcp) / mc);
+            } else {
+                problems.push(Problem::field(
+                    rec.line(),
+                    x_column(cmc),
+                    &format!("x{cmc}"),
+                    format!(
+                        "image {}: the {} finger's CMC (landmark {cmc}) lies on its MCP (landmark {mcp}); correct one of them",
+                        quote(&image),
+                        finger.name()
+                    ),
+                ));
+            }
+        }
+    })?;
+    if ratios.iter().all(|(_, r)| r.is_empty()) && problems.is_empty() {
+        problems.push(Problem::file(
+            "is empty; the atlas37 layout has one line per image: an image id, then x and y of 37 landmarks",
+        ));
+    }
+    Ok(ratios)
+}
+
 /// Which chain slot (finger, index along [`CHAINS`]) each landmark fills, if any.
 fn slots() -> [Option<(Finger, usize)>; LANDMARKS] {
     let mut slot_of: [Option<(Finger, usize)>; LANDMARKS] = [None; LANDMARKS];

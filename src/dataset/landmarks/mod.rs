@@ -276,6 +276,25 @@ pub fn import_file(
     import(layout, &path.display().to_string(), &bytes, options)
 }
 
+/// Per image of an atlas37 landmark file on disk, each finger's wrist-to-MCP over its
+/// metacarpal (index, middle, ring, little; see `atlas37::wrist_over_mc`). Errors with every
+/// problem of the file. Cost: O(bytes).
+pub fn wrist_over_mc_file(path: &Path) -> Result<Vec<(Finger, Vec<f64>)>, DataError> {
+    let bytes = csvinput::read_input(path)?;
+    let label = path.display().to_string();
+    let mut problems = Vec::new();
+    let ratios = atlas37::wrist_over_mc(&label, &bytes, &mut problems)?;
+    if problems.is_empty() {
+        Ok(ratios)
+    } else {
+        problems.sort_by_key(|p| (p.line.unwrap_or(0), p.column.unwrap_or(0)));
+        Err(DataError {
+            file: label,
+            problems,
+        })
+    }
+}
+
 /// Where something sits in the input file: a CSV line and column with the column's name,
 /// or a JSON path (in `field`, with no line).
 #[derive(Debug, Clone, PartialEq)]
