@@ -16,6 +16,7 @@ use crate::report::writer::OutputFile;
 use crate::report::{self, Formats};
 use crate::rig::AuditedRig;
 use crate::rig::deform::{Pose, Skinning};
+use crate::rig::judge::WristRatios;
 use crate::rig::reference::{self, ReferenceRig};
 use crate::rig::session;
 use clap::ValueEnum;
@@ -173,7 +174,15 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     );
     let placements = placement::place_all(&a, args.model_length);
     drop(paper_data);
-    let deform = deform_section(&args.deform_rig, &a, atlas.as_ref().map(|x| &x.analysis))?;
+    let wrist = match &atlas {
+        Some(_) => session::wrist_ratios_beside(&args.atlas)?,
+        None => None,
+    };
+    let deform = deform_section(
+        &args.deform_rig,
+        &a,
+        atlas.as_ref().map(|x| (&x.analysis, wrist.as_ref())),
+    )?;
     let timestamp = args
         .timestamp
         .then(|| humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string());
@@ -283,7 +292,7 @@ fn audit_references(references: Vec<ReferenceRig>, a: &Analysis) -> Vec<Referenc
 fn deform_section(
     rig: &Path,
     a: &Analysis,
-    atlas: Option<&Analysis>,
+    atlas: Option<(&Analysis, Option<&WristRatios>)>,
 ) -> Result<Option<DeformSection>, Error> {
     if !rig.exists() {
         return Ok(None);
@@ -291,8 +300,8 @@ fn deform_section(
     let pose = Pose::fist();
     let req = super::deform::request(rig, &pose, Skinning::Lbs);
     let mut fixed = session::fix_in_memory_with(rig, None, a)?;
-    if let Some(atlas) = atlas {
-        fixed.audited.judge_metacarpals(atlas);
+    if let Some((atlas, wrist)) = atlas {
+        fixed.audited.judge_metacarpals(atlas, wrist);
     }
     let (da, db, verdicts) = super::deform::compare_fixed(&fixed, rig, &req)?;
     let (files, renders) = super::deform::figures(&da, Some(&db))?;

@@ -94,14 +94,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     // The atlas's landmarks beside its measurements give the wrist-to-MCP
     // ratios of the wrist judgement; without them it is skipped with a note.
     let wrist = match req.metacarpals {
-        Some(path) if atlas.is_some() => {
-            let landmarks = path.with_file_name(WRIST_LANDMARKS);
-            if landmarks.is_file() {
-                Some(judge::WristRatios::load(&landmarks)?)
-            } else {
-                None
-            }
-        }
+        Some(path) if atlas.is_some() => wrist_ratios_beside(path)?,
         _ => None,
     };
     let mut audited = AuditedRig::with(
@@ -295,4 +288,15 @@ fn same_file(a: &Path, b: &Path) -> bool {
             .map(|d| d.join(p.file_name().unwrap_or_default()))
     };
     canon(a).is_some() && canon(a) == canon(b)
+}
+
+/// The wrist-to-MCP ratios from the atlas's landmarks ([`WRIST_LANDMARKS`])
+/// beside the metacarpals' dataset `measurements`; `None` when that file is absent.
+pub fn wrist_ratios_beside(measurements: &Path) -> Result<Option<judge::WristRatios>, Error> {
+    let landmarks = measurements.with_file_name(WRIST_LANDMARKS);
+    if landmarks.is_file() {
+        Ok(Some(judge::WristRatios::load(&landmarks)?))
+    } else {
+        Ok(None)
+    }
 }
