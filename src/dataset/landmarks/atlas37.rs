@@ -31,20 +31,21 @@ fn x_column(k: usize) -> usize {
     2 + 2 * k
 }
 
-/// Reads every line into a hand; pushes the problems of each line.
-pub(super) fn read(
+/// Reads every line of the atlas37 layout: checks its field count, its image id (unique)
+/// and each landmark's x and y (`None` where invalid, the problem pushed), then hands the
+/// line, the image and the landmarks in order to `on_line`. Cost: O(bytes).
+fn each_line(
     label: &str,
     input: &[u8],
     problems: &mut Vec<Problem>,
-) -> Result<Vec<Hand>, DataError> {
-    let mut hands = Vec::new();
+    mut on_line: impl FnMut(&Fields<'_, '_>, Arc<str>, Vec<Option<[f64; 2]>>, &mut Vec<Problem>),
+) -> Result<(String, usize), DataError> {
     let mut first_line: HashMap<Arc<str>, u64> = HashMap::new();
     let slot_of = slots();
     csvinput::read_headerless(label, input, problems, |rec: &Fields<'_, '_>, problems| {
-        let line = rec.line();
         if rec.len() != FIELDS {
             problems.push(Problem::line(
-                line,
+                rec.line(),
                 format!(
                     "has {} fields; the atlas37 layout has {FIELDS} on every line: an image id, then x and y of each of the {LANDMARKS} landmarks",
                     rec.len()
@@ -55,9 +56,25 @@ pub(super) fn read(
         let Some(image) = image_id(rec, &mut first_line, problems) else {
             return;
         };
+        let marks: Vec<Option<[f64; 2]>> = (0..LANDMARKS)
+            .map(|k| landmark(rec, k, slot_of[k], &image, problems))
+            .collect();
+        on_line(rec, image, marks, problems);
+    })
+}
+
+/// Reads every line into a hand; pushes the problems of each line.
+pub(super) fn read(
+    label: &str,
+    input: &[u8],
+    problems: &mut Vec<Problem>,
+) -> Result<Vec<Hand>, DataError> {
+    let mut hands = Vec::new();
+    let slot_of = slots();
+    each_line(label, input, problems, |rec, image, marks, _| {
+        let line = rec.line();
         let mut hand = Hand::new(image, None, Place::csv(line, 1, "image_id"));
-        for (k, slot) in slot_of.iter().enumerate() {
-            let xy = landmark(rec, k, *slot, &hand.image, problems);
+        for (k, (slot, xy)) in slot_of.iter().zip(marks).enumerate() {
             if let Some((finger, s)) = *slot {
                 *hand.slot_mut(finger, s) = match xy {
                     Some([x, y]) => Slot::Marked(Mark {
@@ -100,25 +117,7 @@ pub(super) fn wrist_over_mc(
         .collect();
     let mut ratios: Vec<(Finger, Vec<f64>)> =
         fingers.iter().map(|&(f, ..)| (f, Vec::new())).collect();
-    let mut first_line: HashMap<Arc<str>, u64> = HashMap::new();
-    let slot_of = slots();
-    csvinput::read_headerless(label, input, problems, |rec: &Fields<'_, '_>, problems| {
-        if rec.len() != FIELDS {
-            problems.push(Problem::line(
-                rec.line(),
-                format!(
-                    "has {} fields; the atlas37 layout has {FIELDS} on every line: an image id, then x and y of each of the {LANDMARKS} landmarks",
-                    rec.len()
-                ),
-            ));
-            return;
-        }
-        let Some(image) = image_id(rec, &mut first_line, problems) else {
-            return;
-        };
-        let marks: Vec<Option<[f64; 2]>> = (0..LANDMARKS)
-            .map(|k| landmark(rec, k, slot_of[k], &image, problems))
-            .collect();
+    each_line(label, input, problems, |rec, image, marks, problems| {
         let Some(marks) = marks.into_iter().collect::<Option<Vec<[f64; 2]>>>() else {
             return;
         };
