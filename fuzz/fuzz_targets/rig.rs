@@ -1,11 +1,14 @@
 //! Fuzzes the glTF rig reader, the audit of whatever it accepts (bends from
-//! its skin weights included), and `--fix` in memory (weights and keys moved).
+//! its skin weights included; each MCP judged from its CMC or the wrist against
+//! the atlas in data/atlas, read at start-up), and `--fix` in memory (weights
+//! and keys moved).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use phalanx::analysis::{Settings, analyse};
 use phalanx::dataset::Dataset;
-use phalanx::rig::{AuditOptions, AuditedRig, GltfFile, Rig};
+use phalanx::rig::judge::WristRatios;
+use phalanx::rig::{AuditOptions, AuditedRig, GltfFile, Rig, session};
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -17,13 +20,21 @@ fuzz_target!(|data: &[u8]| {
         let d = Dataset::from_bytes("measurements.csv", PAPER).expect("the paper's data loads");
         analyse(&d, &Settings { resamples: 200, ..Settings::default() })
     });
+    static ATLAS: OnceLock<Option<(phalanx::analysis::Analysis, Option<WristRatios>)>> =
+        OnceLock::new();
+    let atlas = ATLAS.get_or_init(|| {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/atlas/measurements.csv");
+        let d = Dataset::load(&path).ok()?;
+        let a = analyse(&d, &Settings { resamples: 200, ..Settings::default() });
+        Some((a, session::wrist_ratios_beside(&path).ok().flatten()))
+    });
     let Ok(file) = GltfFile::from_bytes("fuzz.glb", data) else {
         return;
     };
     let Ok(rig) = Rig::from_file(file, None) else {
         return;
     };
-    let audited = AuditedRig::with(
+    let mut audited = AuditedRig::with(
         "fuzz.glb",
         &rig.chains,
         &rig.notes,
@@ -31,9 +42,15 @@ fuzz_target!(|data: &[u8]| {
         &AuditOptions::default(),
         rig.weights.as_ref(),
     );
+    if let Some((atlas, wrist)) = atlas {
+        audited.judge_metacarpals(atlas, wrist.as_ref());
+    }
     for f in &audited.fingers {
         for j in &f.audit.joints {
             assert!(j.suggested.is_finite());
+        }
+        if let Some(m) = &f.metacarpal_check {
+            assert!(m.suggested.is_finite() && m.expected.is_finite());
         }
     }
     // External buffers resolve in a folder that does not exist: never read.
