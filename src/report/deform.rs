@@ -14,6 +14,7 @@ use super::view::{
     MetacarpalView,
 };
 use super::writer::OutputFile;
+use crate::analysis::Interval;
 use crate::error::Error;
 use crate::format::{num, percent, signed, trimmed};
 use crate::rig::AuditedRig;
@@ -21,7 +22,6 @@ use crate::rig::deform::file::{FileDeformation, HandDeformation};
 use crate::rig::deform::measures::{HandMeasures, JointMeasures};
 use crate::rig::deform::verdict::{Better, JointVerdict, Measure};
 use crate::rig::deform::{Pose, Skinning};
-use crate::analysis::Interval;
 use crate::rig::judge::{MetacarpalCheck, RayBase};
 use crate::rig::naming::Side;
 use schemars::JsonSchema;

@@ -715,11 +715,7 @@ pub fn metacarpal(
         mc: Some(mc),
         values,
         wrist_over_length: None,
-        ..ray_check(
-            (RayBase::Cmc, node),
-            (cmc, mcp, length),
-            share,
-        )
+        ..ray_check((RayBase::Cmc, node), (cmc, mcp, length), share)
     })
 }
 
@@ -1337,10 +1333,34 @@ mod tests {
         };
         // (finger, MCP, PIP, DIP, tip, Python's mean, SD, 95 % prediction interval)
         let rays = [
-            (Finger::Index, [21, 22, 23, 24], 1.16467, 0.04963, [1.0672, 1.2621]),
-            (Finger::Middle, [25, 26, 27, 28], 0.98944, 0.04095, [0.9090, 1.0698]),
-            (Finger::Ring, [29, 30, 31, 32], 0.96133, 0.03966, [0.8835, 1.0392]),
-            (Finger::Little, [33, 34, 35, 36], 1.18625, 0.05998, [1.0685, 1.3040]),
+            (
+                Finger::Index,
+                [21, 22, 23, 24],
+                1.16467,
+                0.04963,
+                [1.0672, 1.2621],
+            ),
+            (
+                Finger::Middle,
+                [25, 26, 27, 28],
+                0.98944,
+                0.04095,
+                [0.9090, 1.0698],
+            ),
+            (
+                Finger::Ring,
+                [29, 30, 31, 32],
+                0.96133,
+                0.03966,
+                [0.8835, 1.0392],
+            ),
+            (
+                Finger::Little,
+                [33, 34, 35, 36],
+                1.18625,
+                0.05998,
+                [1.0685, 1.3040],
+            ),
         ];
         let mut samples: [Vec<f64>; 4] = Default::default();
         for line in text.lines().filter(|l| !l.trim().is_empty()) {

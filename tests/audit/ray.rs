@@ -61,7 +61,10 @@ fn a_hand_bone_without_metacarpals_judges_the_mcp_from_the_wrist() {
             point(&f["joints"][0]["position"]),
         );
         assert_close(num(&m["to_mcp"]), w, 1e-9, name);
-        assert!(m["mc"].is_null() && m["values"] == serde_json::json!([]), "{m}");
+        assert!(
+            m["mc"].is_null() && m["values"] == serde_json::json!([]),
+            "{m}"
+        );
         let j = num(&f["audit"]["length"]);
         let y = &m["wrist_over_length"];
         assert_close(num(&y["measured"]), w / j, 1e-9, name);
