@@ -629,9 +629,11 @@ impl WristRatios {
 pub struct WristValue {
     /// The rig's y: `to_mcp / length`.
     pub measured: f64,
-    /// The atlas's mean, SD and number of X-rays of y.
+    /// The atlas's mean of y.
     pub mean: f64,
+    /// The atlas's sample SD of y (n - 1).
     pub sd: f64,
+    /// The number of the atlas's X-rays y is measured on.
     pub n: usize,
     /// The atlas's observed range of y.
     pub range: Interval,
