@@ -266,23 +266,28 @@ pub(crate) fn bend_words(bends: &[Bend], tolerance: f64) -> String {
 /// The MCP judged from the CMC against the atlas's metacarpals, in words.
 pub(crate) fn metacarpal_words(m: &MetacarpalCheck, c: &str) -> String {
     let mm = |x: f64| num(x * MM, 2);
+    let value = |symbol: &str, measured: f64, mean: f64, pi: Option<Interval>, standing| {
+        format!(
+            "{symbol} {} (atlas mean {}, {c} prediction {}: {})",
+            num(measured, 4),
+            num(mean, 4),
+            pi.map_or("n/a".into(), |p| format!(
+                "[{}, {}]",
+                num(p.low, 4),
+                num(p.high, 4)
+            )),
+            value_standing(standing)
+        )
+    };
     let values: Vec<String> = m
         .values
         .iter()
-        .map(|v| {
-            format!(
-                "{} {} (atlas mean {}, {c} prediction {}: {})",
-                v.quantity.symbol(),
-                num(v.measured, 4),
-                num(v.mean, 4),
-                v.pi.map_or("n/a".into(), |p| format!(
-                    "[{}, {}]",
-                    num(p.low, 4),
-                    num(p.high, 4)
-                )),
-                value_standing(v.standing)
-            )
-        })
+        .map(|v| value(v.quantity.symbol(), v.measured, v.mean, v.pi, v.standing))
+        .chain(
+            m.wrist_over_length
+                .iter()
+                .map(|y| value("w/J", y.measured, y.mean, y.pi, y.standing)),
+        )
         .collect();
     let pi = m.pi.map_or("n/a".into(), |p| {
         format!("[{}, {}] mm", mm(p.low), mm(p.high))
@@ -298,20 +303,18 @@ pub(crate) fn metacarpal_words(m: &MetacarpalCheck, c: &str) -> String {
             "Metacarpal ({}): mc {} mm, J {} mm; {}. MCP from the CMC: {}; the atlas puts it {} mm \
              from the CMC ({c} prediction {pi}; CMC and tip held), at {at}.",
             m.node,
-            mm(m.mc),
+            m.mc.map_or("n/a".into(), mm),
             mm(m.length),
             values.join("; "),
             joint_standing(m.standing, MM),
             mm(m.expected),
         ),
         RayBase::Wrist => format!(
-            "Wrist ({}; no metacarpal): wrist to MCP {} mm, read as {} mc (the atlas's mean), so \
-             mc {} mm, J {} mm; {}. MCP from the wrist: {}; the atlas puts it {} mm from the wrist \
-             ({c} prediction {pi}; wrist and tip held), at {at}.",
+            "Wrist ({}; no metacarpal): wrist to MCP w {} mm, J {} mm; {}. MCP from the wrist: {}; \
+             the atlas puts it {} mm from the wrist ({c} prediction {pi}; wrist and tip held), at \
+             {at}.",
             m.node,
             mm(m.to_mcp),
-            num(m.base_over_mc, 4),
-            mm(m.mc),
             mm(m.length),
             values.join("; "),
             joint_standing(m.standing, MM),

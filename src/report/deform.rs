@@ -14,6 +14,7 @@ use super::view::{
     MetacarpalView,
 };
 use super::writer::OutputFile;
+use crate::analysis::Interval;
 use crate::error::Error;
 use crate::format::{num, percent, signed, trimmed};
 use crate::rig::AuditedRig;
@@ -668,24 +669,32 @@ fn unjudged(why: &str) -> MetacarpalView {
 fn metacarpal_view(m: &MetacarpalCheck, c: &str) -> MetacarpalView {
     use super::audit::{joint_standing, value_standing};
     let v4 = |x: f64| num(x, 4);
+    let value = |symbol: &str, measured: f64, mean: f64, pi: Option<Interval>, standing| {
+        format!(
+            "{symbol} {} (atlas {}, {c} prediction {}): {}",
+            v4(measured),
+            v4(mean),
+            pi.map_or("n/a".into(), |p| format!("[{}, {}]", v4(p.low), v4(p.high))),
+            value_standing(standing)
+        )
+    };
     let values: Vec<String> = m
         .values
         .iter()
-        .map(|v| {
-            format!(
-                "{} {} (atlas {}, {c} prediction {}): {}",
-                v.quantity.symbol(),
-                v4(v.measured),
-                v4(v.mean),
-                v.pi.map_or("n/a".into(), |p| format!("[{}, {}]", v4(p.low), v4(p.high))),
-                value_standing(v.standing)
-            )
-        })
+        .map(|v| value(v.quantity.symbol(), v.measured, v.mean, v.pi, v.standing))
+        .chain(
+            m.wrist_over_length
+                .iter()
+                .map(|y| value("w/J", y.measured, y.mean, y.pi, y.standing)),
+        )
         .collect();
     let mm2 = |x: f64| num(x * MM, 2);
     MetacarpalView {
         node: m.node.clone(),
-        lengths: format!("mc {} mm, J {} mm", mm2(m.mc), mm2(m.length)),
+        lengths: match m.mc {
+            Some(mc) => format!("mc {} mm, J {} mm", mm2(mc), mm2(m.length)),
+            None => format!("wrist to MCP {} mm, J {} mm", mm2(m.to_mcp), mm2(m.length)),
+        },
         values,
         mcp: format!(
             "{}; the atlas puts it {} mm from the {} ({c} prediction {})",

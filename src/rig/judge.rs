@@ -550,50 +550,64 @@ pub const WRIST_DEFINITION: &str = "the origin of the rig's hand (wrist) bone, r
      inferred from where they lie";
 
 /// The distance from the wrist (atlas landmark 10, [`WRIST_DEFINITION`]) to
-/// each finger's MCP over its metacarpal (CMC to MCP), rho: mean and SD over
-/// the X-rays of the atlas's landmark file, read at run time
-/// ([`WristRatios::load`]). The thumb has none: its metacarpal swings about
-/// the CMC, far off the wrist, so its wrist-to-MCP distance depends on the
-/// thumb's pose.
+/// each finger's MCP over the finger's length, y = w/J with J = J1 + J2 + J3
+/// (MCP to bone tip), per X-ray of the atlas's landmark file, read at run time
+/// ([`WristRatios::load`]): mean, SD, count and range of y. The thumb has
+/// none: its metacarpal swings about the CMC, far off the wrist, so its
+/// wrist-to-MCP distance depends on the thumb's pose.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WristRatios {
     /// The landmark file the ratios were computed from, as given.
     pub source: String,
-    /// Per finger: mean, SD and count of rho over the X-rays.
+    /// Per finger: mean, SD, count and range of y over the X-rays.
     pub ratios: Vec<WristRatio>,
 }
 
-/// One finger's wrist-to-MCP over metacarpal (see [`WristRatios`]).
+/// One finger's wrist-to-MCP over its length y = w/J (see [`WristRatios`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WristRatio {
     pub finger: Finger,
     pub mean: f64,
+    /// Sample SD (n - 1); 0 for a single X-ray.
     pub sd: f64,
     pub n: usize,
+    /// The observed range [min, max] of y.
+    pub range: Interval,
+}
+
+impl WristRatio {
+    /// The Student-t prediction interval of y for one new hand at `confidence`
+    /// (mean +/- t sd sqrt(1 + 1/n), the analysis's `pi`); `None` for n < 2. O(1).
+    pub fn pi(&self, confidence: f64) -> Option<Interval> {
+        crate::stats::describe::prediction_interval(self.mean, self.sd, self.n, confidence)
+    }
 }
 
 impl WristRatios {
     /// Reads an atlas37 landmark file (e.g. `data/atlas/landmarks.csv`) and
-    /// averages each finger's rho = |wrist - MCP| / |CMC - MCP| over its
+    /// describes each finger's y = |wrist - MCP| / (J1 + J2 + J3) over its
     /// images. Errors with every problem of the file. O(bytes).
     pub fn load(path: &std::path::Path) -> Result<WristRatios, crate::dataset::DataError> {
-        let per_image = crate::dataset::landmarks::wrist_over_mc_file(path)?;
+        let per_image = crate::dataset::landmarks::wrist_over_length_file(path)?;
         Ok(WristRatios::from_samples(
             &path.display().to_string(),
             &per_image,
         ))
     }
 
-    /// Mean and SD of each finger's per-image rho; a finger without any is left out.
+    /// Mean, SD and range of each finger's per-image y; a finger without any is left out.
     pub fn from_samples(source: &str, per_image: &[(Finger, Vec<f64>)]) -> WristRatios {
+        use crate::stats::describe;
         let ratios = per_image
             .iter()
-            .filter_map(|(finger, xs)| {
+            .filter_map(|(finger, ys)| {
+                let (min, max) = describe::min_max(ys)?;
                 Some(WristRatio {
                     finger: *finger,
-                    mean: crate::stats::describe::mean(xs)?,
-                    sd: crate::stats::describe::sd(xs).unwrap_or(0.0),
-                    n: xs.len(),
+                    mean: describe::mean(ys)?,
+                    sd: describe::sd(ys).unwrap_or(0.0),
+                    n: ys.len(),
+                    range: Interval::new(min, max),
                 })
             })
             .collect();
@@ -603,10 +617,30 @@ impl WristRatios {
         }
     }
 
-    /// rho of `finger` (`None` for the thumb or a finger the file lacks).
+    /// y of `finger` (`None` for the thumb or a finger the file lacks).
     pub fn of(&self, finger: Finger) -> Option<&WristRatio> {
         self.ratios.iter().find(|r| r.finger == finger)
     }
+}
+
+/// The rig's wrist-to-MCP distance over its finger's length, y = w/J,
+/// against the atlas's (see [`WristRatios`]).
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct WristValue {
+    /// The rig's y: `to_mcp / length`.
+    pub measured: f64,
+    /// The atlas's mean of y.
+    pub mean: f64,
+    /// The atlas's sample SD of y (n - 1).
+    pub sd: f64,
+    /// The number of the atlas's X-rays y is measured on.
+    pub n: usize,
+    /// The atlas's observed range of y.
+    pub range: Interval,
+    /// The t prediction interval of y for one new hand, at the audit's confidence.
+    pub pi: Option<Interval>,
+    #[serde(flatten)]
+    pub standing: Standing,
 }
 
 /// The MCP judged from its ray's base (the CMC, or the wrist where the rig
@@ -622,22 +656,26 @@ pub struct MetacarpalCheck {
     pub base: RayBase,
     /// What the base is, in words (the wrist's definition for a wrist base).
     pub base_definition: String,
-    /// For a wrist base: the atlas's mean wrist-to-MCP over metacarpal used
-    /// ([`WristRatios`], read from its landmark file); 1 for a CMC base.
-    pub base_over_mc: f64,
-    /// Distance from the base to the MCP, in rig units.
+    /// Distance from the base to the MCP, in rig units (mc from a CMC, w from
+    /// the wrist).
     pub to_mcp: f64,
-    /// The rig's metacarpal mc: CMC to MCP, in rig units; from a wrist,
-    /// estimated as `to_mcp / base_over_mc`.
-    pub mc: f64,
+    /// The rig's metacarpal mc: CMC to MCP, in rig units; null from the
+    /// wrist (the rig has no metacarpal, and none is estimated).
+    pub mc: Option<f64>,
     /// The finger's length J as compared (MCP to tip, the tip's soft tissue taken off).
     pub length: f64,
-    /// mc/J and J1/mc against the dataset.
+    /// From a CMC: mc/J and J1/mc against the dataset; empty from the wrist.
     pub values: Vec<ValueCheck>,
+    /// From the wrist: y = w/J against the atlas's landmarks, the quantity
+    /// the MCP is judged on; null from a CMC.
+    pub wrist_over_length: Option<WristValue>,
     /// Where the dataset puts the MCP, in rig units from the base along the
-    /// base-MCP line, the base and the tip held: see [`metacarpal`].
+    /// base-MCP line, the base and the tip held: see [`metacarpal`] and [`wrist`].
     pub expected: f64,
+    /// The observed range of x = mc/J (from a CMC) or y = w/J (from the wrist)
+    /// mapped onto positions from the base.
     pub range: Interval,
+    /// Their prediction interval for one new hand mapped the same way.
     pub pi: Option<Interval>,
     /// The rig's MCP (at `to_mcp` from the base) against `expected`: above = too distal.
     #[serde(flatten)]
@@ -665,82 +703,111 @@ pub fn metacarpal(
     cmc: DVec3,
     mcp: DVec3,
 ) -> Option<MetacarpalCheck> {
-    ray_check(a, audit, (RayBase::Cmc, node, 1.0), cmc, mcp)
-}
-
-/// Judges a finger's MCP from the wrist (`wrist`, the hand bone's origin; see
-/// [`WRIST_DEFINITION`]) where the rig has no metacarpal.
-///
-/// The wrist-to-MCP distance w is read as rho mc, rho the atlas's mean
-/// wrist-to-MCP over metacarpal (`rho`, [`WristRatios`]), so w/J = rho x with
-/// x = mc/J; with S = w + J held, the MCP belongs at S rho x / (1 + rho x)
-/// from the wrist. The interval carries the spread of x only, not that of
-/// rho (SD 2-3 % of it). `None` for the thumb, for a finger `rho` lacks, and
-/// as [`metacarpal`]. O(1).
-pub fn wrist(
-    a: &Analysis,
-    rho: &WristRatios,
-    audit: &FingerAudit,
-    node: &str,
-    wrist: DVec3,
-    mcp: DVec3,
-) -> Option<MetacarpalCheck> {
-    let rho = rho.of(audit.finger)?.mean;
-    ray_check(a, audit, (RayBase::Wrist, node, rho), wrist, mcp)
-}
-
-/// The MCP judged from `origin`, the base of its ray (see [`metacarpal`], [`wrist`]).
-fn ray_check(
-    a: &Analysis,
-    audit: &FingerAudit,
-    (base, node, rho): (RayBase, &str, f64),
-    origin: DVec3,
-    mcp: DVec3,
-) -> Option<MetacarpalCheck> {
-    let base_definition = match base {
-        RayBase::Cmc => "the origin of the finger's metacarpal node: the CMC joint".to_string(),
-        RayBase::Wrist => WRIST_DEFINITION.to_string(),
-    };
-    let length = audit.length?;
-    let to_mcp = origin.distance(mcp);
-    if !(origin.is_finite() && mcp.is_finite() && to_mcp > 0.0 && length > 0.0) {
-        return None;
-    }
-    let mc = to_mcp / rho;
-    let rel = stats(a, audit.finger, Quantity::RatioMcJ)?;
+    let (length, mc) = ray_lengths(audit, cmc, mcp)?;
+    let x = stats(a, audit.finger, Quantity::RatioMcJ)?;
     let values: Vec<ValueCheck> = [
         (Quantity::RatioMcJ, mc / length),
         (Quantity::RatioJ1Mc, audit.compared.first()? / mc),
     ]
     .into_iter()
-    .filter_map(|(q, x)| stats(a, audit.finger, q).map(|s| value_check(q, x, s)))
+    .filter_map(|(q, v)| stats(a, audit.finger, q).map(|s| value_check(q, v, s)))
     .collect();
-    let span = to_mcp + length;
-    let at = |x: f64| {
-        let y = rho * x.max(0.0);
-        span * y / (1.0 + y)
-    };
-    let expected = at(rel.mean);
-    let range = Interval::new(at(rel.min), at(rel.max));
-    let pi = rel
-        .intervals
-        .pi
-        .map(|i| Interval::new(at(i.low), at(i.high)));
+    let share = (x.mean, Interval::new(x.min, x.max), x.intervals.pi);
     Some(MetacarpalCheck {
+        mc: Some(mc),
+        values,
+        wrist_over_length: None,
+        ..ray_check((RayBase::Cmc, node), (cmc, mcp, length), share)
+    })
+}
+
+/// Judges a finger's MCP from the wrist (`wrist`, the hand bone's origin; see
+/// [`WRIST_DEFINITION`]) where the rig has no metacarpal.
+///
+/// With w the wrist-to-MCP distance, J the compared length and y = w/J, the
+/// MCP belongs at S y / (1 + y) from the wrist, S = w + J held (wrist and
+/// compared tip fixed), as [`metacarpal`] with x = mc/J. The atlas's y is
+/// measured per X-ray (`ratios`, [`WristRatios`]): its mean, range and t
+/// prediction interval at the audit's confidence map onto positions end to end.
+/// `None` for the thumb, for a finger `ratios` lacks, and as [`metacarpal`]. O(1).
+pub fn wrist(
+    a: &Analysis,
+    ratios: &WristRatios,
+    audit: &FingerAudit,
+    node: &str,
+    wrist: DVec3,
+    mcp: DVec3,
+) -> Option<MetacarpalCheck> {
+    let y = ratios.of(audit.finger)?;
+    let (length, w) = ray_lengths(audit, wrist, mcp)?;
+    let pi = y.pi(a.settings.confidence);
+    let measured = w / length;
+    Some(MetacarpalCheck {
+        mc: None,
+        values: Vec::new(),
+        wrist_over_length: Some(WristValue {
+            measured,
+            mean: y.mean,
+            sd: y.sd,
+            n: y.n,
+            range: y.range,
+            pi,
+            standing: Standing::of(measured, y.range, pi),
+        }),
+        ..ray_check(
+            (RayBase::Wrist, node),
+            (wrist, mcp, length),
+            (y.mean, y.range, pi),
+        )
+    })
+}
+
+/// The compared length J of a judged finger and the distance from `origin` to
+/// `mcp`; `None` without a tip or for an origin on the MCP.
+fn ray_lengths(audit: &FingerAudit, origin: DVec3, mcp: DVec3) -> Option<(f64, f64)> {
+    let length = audit.length?;
+    let to_mcp = origin.distance(mcp);
+    (origin.is_finite() && mcp.is_finite() && to_mcp > 0.0 && length > 0.0)
+        .then_some((length, to_mcp))
+}
+
+/// The MCP judged from `origin`, the base of its ray, on a share q of the
+/// base-to-MCP distance over J (x = mc/J or y = w/J: `(mean, range, pi)`):
+/// it belongs at S q / (1 + q), S = to_mcp + J. O(1).
+fn ray_check(
+    (base, node): (RayBase, &str),
+    (origin, mcp, length): (DVec3, DVec3, f64),
+    (mean, q_range, q_pi): (f64, Interval, Option<Interval>),
+) -> MetacarpalCheck {
+    let base_definition = match base {
+        RayBase::Cmc => "the origin of the finger's metacarpal node: the CMC joint".to_string(),
+        RayBase::Wrist => WRIST_DEFINITION.to_string(),
+    };
+    let to_mcp = origin.distance(mcp);
+    let span = to_mcp + length;
+    // Increasing in q: intervals map end to end; a share is never negative.
+    let at = |q: f64| {
+        let q = q.max(0.0);
+        span * q / (1.0 + q)
+    };
+    let expected = at(mean);
+    let range = Interval::new(at(q_range.low), at(q_range.high));
+    let pi = q_pi.map(|i| Interval::new(at(i.low), at(i.high)));
+    MetacarpalCheck {
         node: node.to_string(),
         base,
         base_definition,
-        base_over_mc: rho,
         to_mcp,
-        mc,
+        mc: None,
         length,
-        values,
+        values: Vec::new(),
+        wrist_over_length: None,
         expected,
         range,
         pi,
         standing: Standing::of(to_mcp, range, pi),
         suggested: origin + (mcp - origin).normalize_or_zero() * expected,
-    })
+    }
 }
 
 /// A joint's standing inputs: (joint, measured, expected, range, prediction interval).
@@ -1254,11 +1321,11 @@ mod tests {
     }
 
     /// [`WristRatios::load`] against an independent reading of the atlas's
-    /// landmarks: per X-ray, |landmark 10 - MCP| / |CMC - MCP| (the landmark
-    /// numbers of data/atlas/README.md) split by hand from each line, then the
-    /// mean and the SD (n - 1) over the 910 X-rays; the means are also the
-    /// values first published with the wrist judgement (1.3707, 1.3682, 1.4309,
-    /// 1.4914; SD 0.027, 0.025, 0.034, 0.040).
+    /// landmarks (split by hand here, not by the dataset reader): y = |landmark
+    /// 10 - MCP| / (J1 + J2 + J3) per X-ray, J along MCP, PIP, DIP, tip
+    /// (data/atlas/README.md). The published values were computed from the same
+    /// file with Python (statistics.mean / stdev, math.dist; scipy.stats.t.ppf
+    /// for the 95 % prediction interval, mean -/+ t sd sqrt(1 + 1/n)).
     #[test]
     fn wrist_ratios_are_the_atlas_means() {
         let path = std::path::Path::new("data/atlas/landmarks.csv");
@@ -1266,28 +1333,58 @@ mod tests {
             eprintln!("skipped: data/atlas/landmarks.csv is not readable");
             return;
         };
+        // (finger, MCP, PIP, DIP, tip, Python's mean, SD, 95 % prediction interval)
         let rays = [
-            (Finger::Index, 16, 21, 1.3707, 0.027),
-            (Finger::Middle, 15, 25, 1.3682, 0.025),
-            (Finger::Ring, 14, 29, 1.4309, 0.034),
-            (Finger::Little, 13, 33, 1.4914, 0.040),
+            (
+                Finger::Index,
+                [21, 22, 23, 24],
+                1.16467,
+                0.04963,
+                [1.0672, 1.2621],
+            ),
+            (
+                Finger::Middle,
+                [25, 26, 27, 28],
+                0.98944,
+                0.04095,
+                [0.9090, 1.0698],
+            ),
+            (
+                Finger::Ring,
+                [29, 30, 31, 32],
+                0.96133,
+                0.03966,
+                [0.8835, 1.0392],
+            ),
+            (
+                Finger::Little,
+                [33, 34, 35, 36],
+                1.18625,
+                0.05998,
+                [1.0685, 1.3040],
+            ),
         ];
         let mut samples: [Vec<f64>; 4] = Default::default();
         for line in text.lines().filter(|l| !l.trim().is_empty()) {
             let v: Vec<f64> = line.split(',').map(|x| x.trim().parse().unwrap()).collect();
             let p = |i: usize| DVec3::new(v[1 + 2 * i], v[2 + 2 * i], 0.0);
-            for (k, &(_, cmc, mcp, ..)) in rays.iter().enumerate() {
-                samples[k].push(p(10).distance(p(mcp)) / p(cmc).distance(p(mcp)));
+            for (k, &(_, m, ..)) in rays.iter().enumerate() {
+                let j = p(m[0]).distance(p(m[1]))
+                    + p(m[1]).distance(p(m[2]))
+                    + p(m[2]).distance(p(m[3]));
+                samples[k].push(p(10).distance(p(m[0])) / j);
             }
         }
         let read = WristRatios::load(path).unwrap();
         assert_eq!(read.ratios.len(), 4);
-        for (k, &(finger, _, _, published, published_sd)) in rays.iter().enumerate() {
-            let xs = &samples[k];
-            let n = xs.len() as f64;
-            assert_eq!(xs.len(), 910);
-            let mean = xs.iter().sum::<f64>() / n;
-            let sd = (xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        for (k, &(finger, _, published, published_sd, published_pi)) in rays.iter().enumerate() {
+            let ys = &samples[k];
+            let n = ys.len() as f64;
+            assert_eq!(ys.len(), 910);
+            let mean = ys.iter().sum::<f64>() / n;
+            let sd = (ys.iter().map(|y| (y - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+            let lo = ys.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = ys.iter().copied().fold(f64::NEG_INFINITY, f64::max);
             let r = read.of(finger).unwrap();
             assert_eq!(r.n, 910);
             assert!(
@@ -1296,8 +1393,14 @@ mod tests {
                 r.mean
             );
             assert!((r.sd - sd).abs() < 1e-12, "{finger:?}: {} vs {sd}", r.sd);
-            assert!((mean - published).abs() < 5e-5, "{finger:?}: {mean}");
-            assert!((sd - published_sd).abs() < 5e-4, "{finger:?}: {sd}");
+            assert_eq!((r.range.low, r.range.high), (lo, hi), "{finger:?}");
+            assert!((mean - published).abs() < 5e-6, "{finger:?}: {mean}");
+            assert!((sd - published_sd).abs() < 5e-6, "{finger:?}: {sd}");
+            let pi = r.pi(0.95).unwrap();
+            assert!(
+                (pi.low - published_pi[0]).abs() < 5e-5 && (pi.high - published_pi[1]).abs() < 5e-5,
+                "{finger:?}: {pi:?}"
+            );
         }
         assert!(read.of(Finger::Thumb).is_none());
     }

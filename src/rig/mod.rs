@@ -1150,9 +1150,9 @@ fn metacarpal_note(
     );
     if from_wrist > 0 {
         out.push_str(&format!(
-            " The wrist is {}; the rig's wrist-to-MCP distance is read as the atlas's mean \
-             multiple of the metacarpal (from {}), whose own spread (SD 2-3 %) the interval \
-             leaves out. The thumb is not judged from the wrist: its distance depends on the \
+            " The wrist is {}; the rig's wrist-to-MCP distance over the finger's length (w/J) \
+             is judged against the same ratio measured on each X-ray of the atlas's landmarks \
+             (from {}). The thumb is not judged from the wrist: its distance depends on the \
              thumb's pose.",
             judge::WRIST_DEFINITION,
             wrist.map_or("the atlas's landmarks", |w| w.source.as_str())
@@ -1259,7 +1259,7 @@ impl AuditedRig {
     /// hand has a wrist bone ([`judge::wrist`]; not the thumb). The fingers'
     /// own standings are unchanged. A finger with a metacarpal that cannot be
     /// judged (no tip, no mc/J in `atlas`) gets a note; without `wrist` (the
-    /// atlas's wrist-to-MCP ratios, read from its landmark file) no MCP is
+    /// atlas's wrist-to-MCP over finger length, read from its landmark file) no MCP is
     /// judged from the wrist, and a rig that has one gets a note.
     pub fn judge_metacarpals(
         &mut self,
@@ -1312,7 +1312,7 @@ impl AuditedRig {
             self.notes.push(format!(
                 "Metacarpals: {wrist_skipped} MCPs are not judged from the wrist: the rig has no \
                  metacarpals, and the atlas's landmark file (landmarks.csv beside {}, which gives \
-                 the wrist-to-MCP distance over the metacarpal) was not found",
+                 the wrist-to-MCP distance over the finger's length) was not found",
                 atlas.dataset.path
             ));
         }

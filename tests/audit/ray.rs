@@ -7,7 +7,7 @@ use crate::common::*;
 use serde_json::Value;
 
 /// A workdir with the paper's data and the atlas (its measurements and its
-/// landmarks, which give the wrist-to-MCP ratios) at its default path; `None`
+/// landmarks, which give the wrist-to-MCP distance over the finger's length) at its default path; `None`
 /// (skipped, with the reason printed) when the atlas is not readable.
 fn with_atlas() -> Option<Workdir> {
     let wd = Workdir::new();
@@ -32,9 +32,10 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 /// The Mixamo fixture has `mixamorig:RightHand` and no metacarpals: each
-/// finger but the thumb is judged from the wrist, the hand bone's origin,
-/// with the wrist-to-MCP distance w read as rho mc; the MCP belongs at
-/// S rho x / (1 + rho x) from the wrist, S = w + J, x the atlas's mean mc/J.
+/// finger but the thumb is judged from the wrist, the hand bone's origin, on
+/// y = w/J (w the wrist-to-MCP distance, J the compared length); the MCP
+/// belongs at S y / (1 + y) from the wrist, S = w + J, y the atlas's mean w/J,
+/// and the range and prediction interval of y map the same way.
 #[test]
 fn a_hand_bone_without_metacarpals_judges_the_mcp_from_the_wrist() {
     let Some(wd) = with_atlas() else { return };
@@ -60,13 +61,34 @@ fn a_hand_bone_without_metacarpals_judges_the_mcp_from_the_wrist() {
             point(&f["joints"][0]["position"]),
         );
         assert_close(num(&m["to_mcp"]), w, 1e-9, name);
-        let rho = num(&m["base_over_mc"]);
-        assert!((1.3..1.6).contains(&rho), "{name}: {rho}");
-        assert_close(num(&m["mc"]), w / rho, 1e-9, name);
+        assert!(
+            m["mc"].is_null() && m["values"] == serde_json::json!([]),
+            "{m}"
+        );
         let j = num(&f["audit"]["length"]);
-        let x = num(&m["values"][0]["mean"]);
-        let expected = (w + j) * rho * x / (1.0 + rho * x);
-        assert_close(num(&m["expected"]), expected, 1e-9, name);
+        let y = &m["wrist_over_length"];
+        assert_close(num(&y["measured"]), w / j, 1e-9, name);
+        assert_eq!(y["n"], 910, "{name}");
+        let mean = num(&y["mean"]);
+        // The atlas's mean w/J (0.96 ring to 1.19 little; see judge's unit test).
+        assert!((0.9..1.25).contains(&mean), "{name}: {mean}");
+        let at = |y: f64| (w + j) * y / (1.0 + y);
+        assert_close(num(&m["expected"]), at(mean), 1e-9, name);
+        for key in ["range", "pi"] {
+            for end in 0..2 {
+                assert_close(num(&m[key][end]), at(num(&y[key][end])), 1e-9, name);
+            }
+        }
+        // The 95 % t prediction interval of y: mean -/+ t sd sqrt(1 + 1/n),
+        // t_{0.975, 909} = 1.9625772 (scipy.stats.t.ppf).
+        let half = 1.9625772 * num(&y["sd"]) * (1.0 + 1.0 / 910.0f64).sqrt();
+        assert_close(num(&y["pi"][0]), mean - half, 1e-6, name);
+        assert_close(num(&y["pi"][1]), mean + half, 1e-6, name);
+        eprintln!(
+            "{name}: w {w:.5}, J {j:.5}; MCP from wrist, 95% prediction [{:.5}, {:.5}]",
+            num(&m["pi"][0]),
+            num(&m["pi"][1])
+        );
         // The fixture's palm is a plausible adult's: inside the interval.
         assert!(
             ["in_range", "in_prediction"].contains(&m["standing"].as_str().unwrap()),

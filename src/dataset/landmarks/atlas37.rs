@@ -101,41 +101,44 @@ pub(super) fn read(
 /// middle finger's ray (the head of the capitate; see `judge::WRIST_DEFINITION`).
 pub const WRIST: usize = 10;
 
-/// Per image, each finger's wrist-to-MCP over its metacarpal: |landmark [`WRIST`] - MCP| /
-/// |CMC - MCP|, for the index, middle, ring and little finger (the thumb's metacarpal swings
-/// far off the wrist, so it has none). Every line is checked as [`read`] checks it; a CMC on
-/// its MCP is a problem of the line. Cost: O(bytes).
-pub(super) fn wrist_over_mc(
+/// Per image, each finger's wrist-to-MCP distance over its length: y = |landmark [`WRIST`] -
+/// MCP| / (J1 + J2 + J3), J the MCP-PIP, PIP-DIP and DIP-tip distances of the same image
+/// (the tip is the bone tip), for the index, middle, ring and little finger (the thumb's
+/// metacarpal swings far off the wrist, so it has none). Every line is checked as [`read`]
+/// checks it; a finger of length 0 is a problem of the line. Cost: O(bytes).
+pub(super) fn wrist_over_length(
     label: &str,
     input: &[u8],
     problems: &mut Vec<Problem>,
 ) -> Result<Vec<(Finger, Vec<f64>)>, DataError> {
-    let fingers: Vec<(Finger, usize, usize)> = CHAINS
+    let fingers: Vec<(Finger, &[usize])> = CHAINS
         .iter()
         .filter(|(f, _)| *f != Finger::Thumb)
-        .map(|&(f, marks)| (f, marks[0], marks[1]))
+        .map(|&(f, marks)| (f, &marks[1..]))
         .collect();
     let mut ratios: Vec<(Finger, Vec<f64>)> =
-        fingers.iter().map(|&(f, ..)| (f, Vec::new())).collect();
+        fingers.iter().map(|&(f, _)| (f, Vec::new())).collect();
     each_line(label, input, problems, |rec, image, marks, problems| {
         let Some(marks) = marks.into_iter().collect::<Option<Vec<[f64; 2]>>>() else {
             return;
         };
         let dist =
             |a: usize, b: usize| (marks[a][0] - marks[b][0]).hypot(marks[a][1] - marks[b][1]);
-        for (k, &(finger, cmc, mcp)) in fingers.iter().enumerate() {
-            let mc = dist(cmc, mcp);
-            if mc > 0.0 {
-                ratios[k].1.push(dist(WRIST, mcp) / mc);
+        for (k, &(finger, chain)) in fingers.iter().enumerate() {
+            let mcp = chain[0];
+            let length: f64 = chain.windows(2).map(|w| dist(w[0], w[1])).sum();
+            if length > 0.0 {
+                ratios[k].1.push(dist(WRIST, mcp) / length);
             } else {
                 problems.push(Problem::field(
                     rec.line(),
-                    x_column(cmc),
-                    &format!("x{cmc}"),
+                    x_column(mcp),
+                    &format!("x{mcp}"),
                     format!(
-                        "image {}: the {} finger's CMC (landmark {cmc}) lies on its MCP (landmark {mcp}); correct one of them",
+                        "image {}: the {} finger's MCP, PIP, DIP and tip (landmarks {mcp}-{}) all lie on one point; correct them",
                         quote(&image),
-                        finger.name()
+                        finger.name(),
+                        chain[chain.len() - 1]
                     ),
                 ));
             }

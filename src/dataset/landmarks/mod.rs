@@ -276,14 +276,14 @@ pub fn import_file(
     import(layout, &path.display().to_string(), &bytes, options)
 }
 
-/// Per image of an atlas37 landmark file on disk, each finger's wrist-to-MCP over its
-/// metacarpal (index, middle, ring, little; see `atlas37::wrist_over_mc`). Errors with every
-/// problem of the file. Cost: O(bytes).
-pub fn wrist_over_mc_file(path: &Path) -> Result<Vec<(Finger, Vec<f64>)>, DataError> {
+/// Per image of an atlas37 landmark file on disk, each finger's wrist-to-MCP distance over
+/// its length J1 + J2 + J3 (index, middle, ring, little; see `atlas37::wrist_over_length`).
+/// Errors with every problem of the file. Cost: O(bytes).
+pub fn wrist_over_length_file(path: &Path) -> Result<Vec<(Finger, Vec<f64>)>, DataError> {
     let bytes = csvinput::read_input(path)?;
     let label = path.display().to_string();
     let mut problems = Vec::new();
-    let ratios = atlas37::wrist_over_mc(&label, &bytes, &mut problems)?;
+    let ratios = atlas37::wrist_over_length(&label, &bytes, &mut problems)?;
     if problems.is_empty() {
         Ok(ratios)
     } else {
