@@ -84,11 +84,6 @@ fn a_hand_bone_without_metacarpals_judges_the_mcp_from_the_wrist() {
         let half = 1.9625772 * num(&y["sd"]) * (1.0 + 1.0 / 910.0f64).sqrt();
         assert_close(num(&y["pi"][0]), mean - half, 1e-6, name);
         assert_close(num(&y["pi"][1]), mean + half, 1e-6, name);
-        eprintln!(
-            "{name}: w {w:.5}, J {j:.5}; MCP from wrist, 95% prediction [{:.5}, {:.5}]",
-            num(&m["pi"][0]),
-            num(&m["pi"][1])
-        );
         // The fixture's palm is a plausible adult's: inside the interval.
         assert!(
             ["in_range", "in_prediction"].contains(&m["standing"].as_str().unwrap()),
