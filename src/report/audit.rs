@@ -263,9 +263,10 @@ pub(crate) fn bend_words(bends: &[Bend], tolerance: f64) -> String {
     format!("Skin bends (from each joint): {}.", parts.join(", "))
 }
 
-/// The MCP judged from the CMC against the atlas's metacarpals, in words.
-pub(crate) fn metacarpal_words(m: &MetacarpalCheck, c: &str) -> String {
-    let mm = |x: f64| num(x * MM, 2);
+/// Each ratio of the ray against the atlas (mc/J and J1/mc from a CMC, w/J from the
+/// wrist), in words: the measured value, the atlas's mean and prediction interval, the
+/// standing.
+pub(crate) fn metacarpal_values(m: &MetacarpalCheck, c: &str) -> Vec<String> {
     let value = |symbol: &str, measured: f64, mean: f64, pi: Option<Interval>, standing| {
         format!(
             "{symbol} {} (atlas mean {}, {c} prediction {}: {})",
@@ -279,8 +280,7 @@ pub(crate) fn metacarpal_words(m: &MetacarpalCheck, c: &str) -> String {
             value_standing(standing)
         )
     };
-    let values: Vec<String> = m
-        .values
+    m.values
         .iter()
         .map(|v| value(v.quantity.symbol(), v.measured, v.mean, v.pi, v.standing))
         .chain(
@@ -288,7 +288,13 @@ pub(crate) fn metacarpal_words(m: &MetacarpalCheck, c: &str) -> String {
                 .iter()
                 .map(|y| value("w/J", y.measured, y.mean, y.pi, y.standing)),
         )
-        .collect();
+        .collect()
+}
+
+/// The MCP judged from the CMC against the atlas's metacarpals, in words.
+pub(crate) fn metacarpal_words(m: &MetacarpalCheck, c: &str) -> String {
+    let mm = |x: f64| num(x * MM, 2);
+    let values = metacarpal_values(m, c);
     let pi = m.pi.map_or("n/a".into(), |p| {
         format!("[{}, {}] mm", mm(p.low), mm(p.high))
     });

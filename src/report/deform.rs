@@ -14,7 +14,6 @@ use super::view::{
     MetacarpalView,
 };
 use super::writer::OutputFile;
-use crate::analysis::Interval;
 use crate::error::Error;
 use crate::format::{num, percent, signed, trimmed};
 use crate::rig::AuditedRig;
@@ -667,27 +666,8 @@ fn unjudged(why: &str) -> MetacarpalView {
 
 /// What a [`MetacarpalCheck`] holds, as strings (lengths in mm).
 fn metacarpal_view(m: &MetacarpalCheck, c: &str) -> MetacarpalView {
-    use super::audit::{joint_standing, value_standing};
-    let v4 = |x: f64| num(x, 4);
-    let value = |symbol: &str, measured: f64, mean: f64, pi: Option<Interval>, standing| {
-        format!(
-            "{symbol} {} (atlas {}, {c} prediction {}): {}",
-            v4(measured),
-            v4(mean),
-            pi.map_or("n/a".into(), |p| format!("[{}, {}]", v4(p.low), v4(p.high))),
-            value_standing(standing)
-        )
-    };
-    let values: Vec<String> = m
-        .values
-        .iter()
-        .map(|v| value(v.quantity.symbol(), v.measured, v.mean, v.pi, v.standing))
-        .chain(
-            m.wrist_over_length
-                .iter()
-                .map(|y| value("w/J", y.measured, y.mean, y.pi, y.standing)),
-        )
-        .collect();
+    use super::audit::{joint_standing, metacarpal_values};
+    let values = metacarpal_values(m, c);
     let mm2 = |x: f64| num(x * MM, 2);
     MetacarpalView {
         node: m.node.clone(),
