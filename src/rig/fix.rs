@@ -537,26 +537,12 @@ fn other_warnings(file: &GltfFile) -> Vec<String> {
 
 /// The output file: the JSON alone (`.gltf`, buffer embedded), or a GLB with the bytes.
 fn container(file: &GltfFile, json: &Value, bin: Vec<u8>, glb: bool) -> Result<Vec<u8>, DataError> {
-    let text =
-        serde_json::to_vec(json).map_err(|e| DataError::whole_file(&file.label, e.to_string()))?;
     let bytes = if glb {
-        gltf::binary::Glb {
-            header: gltf::binary::Header {
-                magic: *b"glTF",
-                version: 2,
-                length: 0,
-            },
-            json: text.into(),
-            bin: (!bin.is_empty()).then_some(bin.into()),
-        }
-        .to_vec()
-        .map_err(|e| {
-            DataError::whole_file(&file.label, format!("cannot be written as GLB ({e})"))
-        })?
+        super::accessor::glb(json, bin)
     } else {
-        text
+        serde_json::to_vec(json).map_err(|e| e.to_string())
     };
-    Ok(bytes)
+    bytes.map_err(|e| DataError::whole_file(&file.label, e))
 }
 
 /// Appends `value` to the array `json[key]` (created when absent); returns its index.

@@ -767,17 +767,7 @@ mod tests {
 
     /// `doc` and `bin` as GLB bytes.
     fn glb(doc: &serde_json::Value, bin: Vec<u8>) -> Vec<u8> {
-        gltf::binary::Glb {
-            header: gltf::binary::Header {
-                magic: *b"glTF",
-                version: 2,
-                length: 0,
-            },
-            json: serde_json::to_vec(doc).unwrap().into(),
-            bin: Some(bin.into()),
-        }
-        .to_vec()
-        .unwrap()
+        crate::rig::accessor::glb(doc, bin).unwrap()
     }
 
     fn read(bytes: &[u8]) -> Result<SkinnedMesh, DataError> {

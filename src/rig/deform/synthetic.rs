@@ -361,18 +361,7 @@ impl SyntheticRig {
             "bufferViews": out.views,
             "buffers": [{"byteLength": out.bin.len()}],
         });
-        let text = serde_json::to_vec(&json).map_err(|e| e.to_string())?;
-        gltf::binary::Glb {
-            header: gltf::binary::Header {
-                magic: *b"glTF",
-                version: 2,
-                length: 0,
-            },
-            json: text.into(),
-            bin: Some(out.bin.into()),
-        }
-        .to_vec()
-        .map_err(|e| format!("cannot be written as GLB ({e})"))
+        crate::rig::accessor::glb(&json, out.bin)
     }
 
     /// The skeleton's nodes as glTF JSON: name, local translation and rotation (from the
