@@ -44,10 +44,16 @@ fn measure_call<'a>(v: &'a Value, measure: &str) -> &'a Value {
         .unwrap()
 }
 
-#[test]
-fn the_table_fits_and_the_closed_forms_hold_for_lbs_and_dqs() {
+/// A work directory holding the default tube hand as `right.glb`.
+fn default_hand() -> Workdir {
     let wd = Workdir::new();
     write_hand(&wd, "right.glb", &HandSpec::default());
+    wd
+}
+
+#[test]
+fn the_table_fits_and_the_closed_forms_hold_for_lbs_and_dqs() {
+    let wd = default_hand();
     let run = wd.run(&["deform", "right.glb"]);
     run.ok().stdout_has("right hand").stdout_has("| index ");
     for line in run.stdout.lines() {
@@ -83,8 +89,7 @@ fn the_table_fits_and_the_closed_forms_hold_for_lbs_and_dqs() {
 
 #[test]
 fn dqs_loses_less_volume_than_lbs_at_90_degrees() {
-    let wd = Workdir::new();
-    write_hand(&wd, "right.glb", &HandSpec::default());
+    let wd = default_hand();
     let at = |method: &str| {
         let doc = wd
             .run(&[
@@ -170,8 +175,7 @@ fn weights_centred_on_the_joint_beat_weights_5mm_off() {
 
 #[test]
 fn a_fold_onto_itself_crosses_the_skin() {
-    let wd = Workdir::new();
-    write_hand(&wd, "right.glb", &HandSpec::default());
+    let wd = default_hand();
     let folded = wd
         .run(&[
             "deform",
@@ -211,8 +215,7 @@ fn a_fold_onto_itself_crosses_the_skin() {
 
 #[test]
 fn a_left_hand_deforms_as_the_mirror_image_of_the_right() {
-    let wd = Workdir::new();
-    write_hand(&wd, "right.glb", &HandSpec::default());
+    let wd = default_hand();
     write_hand(
         &wd,
         "left.glb",
@@ -273,8 +276,7 @@ fn pixel(img: &tiny_skia::Pixmap, x: f64, y: f64) -> [u8; 3] {
 
 #[test]
 fn the_figure_draws_the_mesh_where_it_projects() {
-    let wd = Workdir::new();
-    write_hand(&wd, "right.glb", &HandSpec::default());
+    let wd = default_hand();
     let doc = wd
         .run(&[
             "deform",
@@ -400,8 +402,7 @@ fn fix_compares_with_what_audit_fix_writes_without_writing_it() {
 
 #[test]
 fn bad_input_is_refused_naming_the_file_and_nothing_is_written() {
-    let wd = Workdir::new();
-    write_hand(&wd, "right.glb", &HandSpec::default());
+    let wd = default_hand();
     wd.write("junk.glb", b"glTF not really");
     // A skeleton without a skin.
     wd.write(
@@ -479,8 +480,7 @@ fn bad_input_is_refused_naming_the_file_and_nothing_is_written() {
 
 #[test]
 fn angles_beyond_the_normal_range_are_noted_not_refused() {
-    let wd = Workdir::new();
-    write_hand(&wd, "right.glb", &HandSpec::default());
+    let wd = default_hand();
     // AAOS normal active ranges: finger MCP -45 (hyperextension) to 90, PIP 0 to
     // 100; thumb MCP 0 to 50, IP -20 to 80. The thumb takes half the MCP and PIP
     // angles: -12.5 and 85 here, both beyond; the fingers' MCP -25 is not.
