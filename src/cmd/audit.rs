@@ -4,7 +4,7 @@ use super::args::{BootArgs, DataArgs, TextFormat};
 use super::out;
 use crate::error::{EXIT_FAILURE, Error};
 use crate::report;
-use crate::report::layout::Width;
+use crate::report::layout::{Width, fit_text};
 use crate::rig::AuditOptions;
 use crate::rig::bend::BEND_TOLERANCE_MM;
 use crate::rig::judge::{DEFAULT_SOFT_TISSUE_MM, JudgeOptions, TipKind};
@@ -135,7 +135,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
     };
     out::print(&bytes)?;
     if !quiet && let Some(fix) = &audit.fix {
-        eprintln!("{}", fix_summary(fix));
+        eprintln!("{}", fit_text(&fix_summary(fix), width));
         for w in &fix.warnings {
             eprintln!("warning: {w}");
         }

@@ -189,16 +189,28 @@ fn fix_mcp_atlas_places_the_mcp_from_its_base_and_keeps_the_mesh() {
     let input = build(&spec);
     wd.write("long.glb", &input);
     let before = audit_json(&wd, "long.glb");
-    wd.run(&[
+    let run = wd.run(&[
         "audit",
         "long.glb",
         "--fix",
         "fixed.glb",
         "--fix-mcp",
         "atlas",
-    ])
-    .ok()
-    .stderr_has("0 of 5 fingers outside the prediction interval, 0 of 4 MCPs outside");
+    ]);
+    run.ok();
+    // Read as words, across the wrap.
+    let words = run.stderr.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(
+        words.contains("0 of 5 fingers outside the prediction interval, 0 of 4 MCPs outside"),
+        "{}",
+        run.stderr
+    );
+    // The summary is wrapped to the 100 columns of a pipe, like the table.
+    assert!(
+        run.stderr.lines().all(|l| l.chars().count() <= 100),
+        "{}",
+        run.stderr
+    );
     let fixed = wd.read("fixed.glb");
     assert!(worst_vertex_move(&input, &fixed) < 1e-5);
     let after = audit_json(&wd, "fixed.glb");
