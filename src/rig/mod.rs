@@ -28,6 +28,7 @@ pub mod weights;
 
 use crate::analysis::placement::Joint;
 use crate::dataset::{DataError, Finger, Problem};
+use base64::Engine;
 use glam::{DMat4, DQuat, DVec3};
 use judge::ChainInput;
 use map::NameMap;
@@ -163,7 +164,7 @@ impl GltfFile {
             (None, false) => PathBuf::from("."),
             (None, true) => return None,
         };
-        fix::buffers(self, &dir).ok()
+        buffers(self, &dir).ok()
     }
 
     /// Parses the bytes of a glTF file; `label` names it in errors.
@@ -257,6 +258,153 @@ impl GltfFile {
             })
             .collect()
     }
+}
+
+/// Decodes `%xx` escapes of a URI path; `None` on a bad escape or non-UTF-8 result.
+fn percent_decode(uri: &str) -> Option<String> {
+    let b = uri.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        if b[i] == b'%' {
+            let hex = std::str::from_utf8(b.get(i + 1..i + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(b[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
+}
+
+/// Reads the data of every buffer: the GLB chunk (buffer 0 only, as the
+/// specification says), data URIs, or files beside the input. A file URI must
+/// be a relative path that stays beside the input (no `..`, no scheme), and
+/// only the declared byte length is read.
+pub(crate) fn buffers(file: &GltfFile, dir: &Path) -> Result<Vec<Vec<u8>>, DataError> {
+    let fail = |m: String| DataError::whole_file(&file.label, m);
+    file.document
+        .buffers()
+        .map(|b| {
+            let i = b.index();
+            let mut data = match b.source() {
+                gltf::buffer::Source::Bin if i == 0 => file
+                    .blob
+                    .clone()
+                    .ok_or_else(|| fail("refers to a GLB binary chunk it does not have".into()))?,
+                gltf::buffer::Source::Bin => {
+                    return Err(fail(format!(
+                        "buffer {i} has no data of its own (a compression fallback buffer?); --fix cannot copy it"
+                    )));
+                }
+                gltf::buffer::Source::Uri(uri) => {
+                    if let Some(rest) = uri.strip_prefix("data:") {
+                        let payload = rest
+                            .split_once(";base64,")
+                            .map(|(_, p)| p)
+                            .ok_or_else(|| fail(format!("buffer {i} has a data URI that is not base64")))?;
+                        base64::engine::general_purpose::STANDARD
+                            .decode(payload)
+                            .map_err(|e| fail(format!("buffer {i} has bad base64 ({e})")))?
+                    } else {
+                        let rel = percent_decode(uri)
+                            .filter(|r| {
+                                let p = Path::new(r);
+                                !r.contains(':')
+                                    && p.is_relative()
+                                    && p.components().all(|c| matches!(c, std::path::Component::Normal(_)))
+                            })
+                            .ok_or_else(|| {
+                                fail(format!(
+                                    "buffer {i} refers to '{uri}', which is not a plain relative path beside the file; \
+                                     --fix reads only files next to the input"
+                                ))
+                            })?;
+                        let p = dir.join(rel);
+                        let read = || -> std::io::Result<Vec<u8>> {
+                            let mut data = Vec::new();
+                            std::io::Read::read_to_end(
+                                &mut std::io::Read::take(std::fs::File::open(&p)?, (b.length() as u64).saturating_add(1)),
+                                &mut data,
+                            )?;
+                            Ok(data)
+                        };
+                        read().map_err(|e| {
+                            fail(format!(
+                                "buffer {i} refers to {} which cannot be read ({e}); keep it beside the .gltf",
+                                p.display()
+                            ))
+                        })?
+                    }
+                }
+            };
+            if data.len() < b.length() {
+                return Err(fail(format!(
+                    "buffer {i} holds {} bytes but declares {}",
+                    data.len(),
+                    b.length()
+                )));
+            }
+            data.truncate(b.length());
+            Ok(data)
+        })
+        .collect()
+}
+
+/// The inverse bind matrices of a skin, read with every offset checked
+/// (identity matrices when the skin has none).
+pub(crate) fn inverse_binds(
+    data: &[Vec<u8>],
+    skin: &gltf::Skin<'_>,
+    joints: usize,
+) -> Result<Vec<DMat4>, String> {
+    let Some(acc) = skin.inverse_bind_matrices() else {
+        return Ok(vec![DMat4::IDENTITY; joints]);
+    };
+    let what = format!(
+        "skin {}'s inverse bind matrices (accessor {})",
+        skin.index(),
+        acc.index()
+    );
+    if acc.data_type() != gltf::accessor::DataType::F32
+        || acc.dimensions() != gltf::accessor::Dimensions::Mat4
+        || acc.sparse().is_some()
+        || acc.count() != joints
+    {
+        return Err(format!(
+            "{what} are not {joints} plain float MAT4 values, as glTF requires"
+        ));
+    }
+    let view = acc
+        .view()
+        .ok_or_else(|| format!("{what} have no buffer view"))?;
+    let stride = view.stride().unwrap_or(64);
+    let buf = data
+        .get(view.buffer().index())
+        .ok_or_else(|| format!("{what} name a missing buffer"))?;
+    let start = view.offset().checked_add(acc.offset());
+    let need = stride
+        .checked_mul(joints.saturating_sub(1))
+        .and_then(|x| x.checked_add(64));
+    let in_view = need.and_then(|n| acc.offset().checked_add(n));
+    let view_end = view.offset().checked_add(view.length());
+    let (Some(start), Some(in_view), Some(view_end)) = (start, in_view, view_end) else {
+        return Err(format!("{what} have impossible offsets"));
+    };
+    if stride < 64 || in_view > view.length() || view_end > buf.len() {
+        return Err(format!("{what} do not fit their buffer view"));
+    }
+    Ok((0..joints)
+        .map(|k| {
+            let at = start + k * stride;
+            let cols: Vec<f64> = buf[at..at + 64]
+                .chunks_exact(4)
+                .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+                .collect();
+            DMat4::from_cols_slice(&cols)
+        })
+        .collect())
 }
 
 /// The JSON and binary chunks of a GLB file, with every length checked.

@@ -90,7 +90,7 @@ impl SkinnedMesh {
     /// Reads skin `skin` of `file`; `dir` resolves external buffers (files
     /// beside the input). Every problem found is reported together.
     pub fn read(file: &GltfFile, dir: &Path, skin: usize) -> Result<SkinnedMesh, DataError> {
-        let data = super::fix::buffers(file, dir)?;
+        let data = super::buffers(file, dir)?;
         read_with(file, &data, skin).map_err(|problems| DataError {
             file: file.label.clone(),
             problems: problems.into_iter().map(Problem::file).collect(),
@@ -505,7 +505,7 @@ fn checked_inverse_binds(
     problems: &mut Vec<String>,
 ) -> Vec<DMat4> {
     let skin = sk.index();
-    let inverse_bind = match super::fix::inverse_binds(data, sk, joints) {
+    let inverse_bind = match super::inverse_binds(data, sk, joints) {
         Ok(m) => m,
         Err(e) => {
             problems.push(format!("/skins/{skin}: {e}"));

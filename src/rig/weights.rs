@@ -52,7 +52,7 @@ impl SkinWeights {
             if joints.is_empty() || joints.len() > usize::from(u16::MAX) {
                 continue;
             }
-            let ibm = match super::fix::inverse_binds(data, &skin, joints.len()) {
+            let ibm = match super::inverse_binds(data, &skin, joints.len()) {
                 Ok(m) => m,
                 Err(e) => {
                     out.notes
