@@ -28,8 +28,9 @@
 //! is kept. The output is one .glb (or a .gltf with its buffer embedded),
 //! every buffer merged into one.
 
-use super::weights::SkinWeights;
-use super::{AuditedFinger, GltfFile, buffers, inverse_binds, world_matrices};
+use super::AuditedFinger;
+use super::read::gltf::{GltfFile, buffers, inverse_binds, local_matrix, world_matrices};
+use super::read::weights::SkinWeights;
 use crate::dataset::DataError;
 use base64::Engine;
 use glam::{DMat4, DVec3};
@@ -93,7 +94,7 @@ pub fn fix_with(
     let mut touched: BTreeMap<usize, (DVec3, DVec3)> = BTreeMap::new();
     for &(node, _) in &plan.targets {
         let old =
-            super::local_matrix(&file.document.nodes().nth(node).ok_or_else(|| {
+            local_matrix(&file.document.nodes().nth(node).ok_or_else(|| {
                 DataError::whole_file(&file.label, format!("has no node {node}"))
             })?)
             .w_axis
@@ -168,7 +169,7 @@ fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
     };
     for (i, f) in fingers.iter().enumerate() {
         let (chain, audit) = (&f.chain, &f.audit);
-        let moves = |rj: &super::RigJoint| {
+        let moves = |rj: &super::read::RigJoint| {
             audit.joint(rj.joint).filter(|j| {
                 j.moves && j.shift > 0.0 && !(only_outside && j.standing.is_consistent())
             })
@@ -202,11 +203,7 @@ fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
 /// its local translation only; returns the new local and world matrices.
 /// Fails when the transform above a node is singular.
 fn move_nodes(file: &GltfFile, targets: &[Target]) -> Result<(Vec<DMat4>, Vec<DMat4>), DataError> {
-    let mut locals: Vec<DMat4> = file
-        .document
-        .nodes()
-        .map(|nd| super::local_matrix(&nd))
-        .collect();
+    let mut locals: Vec<DMat4> = file.document.nodes().map(|nd| local_matrix(&nd)).collect();
     let depth = |mut i: usize| {
         let mut d = 0;
         while let Some(p) = file.parent[i] {
@@ -377,7 +374,7 @@ fn rebind_skins(
 /// Remarks on what the fix leaves alone: animation channels with paths glTF
 /// does not define, and images left as external files.
 fn other_warnings(file: &GltfFile) -> Vec<String> {
-    let mut warnings = super::anim::unknown_paths(&file.json);
+    let mut warnings = super::read::anim::unknown_paths(&file.json);
     if file.document.images().any(
         |i| matches!(i.source(), gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:")),
     ) {
@@ -391,7 +388,7 @@ fn other_warnings(file: &GltfFile) -> Vec<String> {
 /// The output file: the JSON alone (`.gltf`, buffer embedded), or a GLB with the bytes.
 fn container(file: &GltfFile, json: &Value, bin: Vec<u8>, glb: bool) -> Result<Vec<u8>, DataError> {
     let bytes = if glb {
-        super::accessor::glb(json, bin)
+        super::read::gltf::glb(json, bin)
     } else {
         serde_json::to_vec(json).map_err(|e| e.to_string())
     };

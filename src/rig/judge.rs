@@ -47,6 +47,7 @@
 //! segment back, half a segment forward). See `rig::chain`. No files, no glTF.
 
 use super::chain::{arc_positions, backward_at, on_chain, point_at};
+use super::read::FingerChain;
 use crate::analysis::placement::{Joint, Placed};
 use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
 use crate::dataset::Finger;
@@ -121,6 +122,17 @@ impl ChainInput {
     /// Number of points a complete chain of `finger` has.
     pub fn expected_points(finger: Finger, has_tip: bool) -> usize {
         1 + Joint::inner(finger).len() + usize::from(has_tip)
+    }
+}
+
+impl FingerChain {
+    /// The chain's geometry, for the analysis.
+    pub fn input(&self) -> ChainInput {
+        ChainInput {
+            finger: self.finger,
+            points: self.joints.iter().map(|j| j.position).collect(),
+            has_tip: self.has_tip,
+        }
     }
 }
 

@@ -361,7 +361,7 @@ impl SyntheticRig {
             "bufferViews": out.views,
             "buffers": [{"byteLength": out.bin.len()}],
         });
-        crate::rig::accessor::glb(&json, out.bin)
+        crate::rig::read::gltf::glb(&json, out.bin)
     }
 
     /// The skeleton's nodes as glTF JSON: name, local translation and rotation (from the

@@ -11,7 +11,7 @@
 //! A vertex v with influences (node j, weight w) rests at sum_j w_j M_j v,
 //! M_j = W_j B_j (world matrix times inverse bind matrix, see [`super::skin`]).
 
-use super::GltfFile;
+use super::gltf::{GltfFile, inverse_binds};
 use glam::{DMat4, DVec3};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -52,7 +52,7 @@ impl SkinWeights {
             if joints.is_empty() || joints.len() > usize::from(u16::MAX) {
                 continue;
             }
-            let ibm = match super::inverse_binds(data, &skin, joints.len()) {
+            let ibm = match inverse_binds(data, &skin, joints.len()) {
                 Ok(m) => m,
                 Err(e) => {
                     out.notes
