@@ -2,13 +2,10 @@
 //! them against the X-ray statistics ([`judge`], on the chain geometry of
 //! `chain`) and writing a fixed copy ([`fix`]).
 
-pub(crate) mod accessor;
-pub(crate) mod anim;
 pub mod deform;
 pub mod fix;
 pub mod judge;
 pub mod read;
-pub(crate) mod remap;
 pub mod session;
 
 pub use judge::{AuditOptions, AuditedFinger, AuditedRig, SkinTip, TIP_INSIDE, bend, ray};

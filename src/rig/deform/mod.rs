@@ -32,7 +32,7 @@ mod webxr_tests;
 
 use crate::analysis::placement::Joint;
 use crate::dataset::Finger;
-use crate::rig::naming::Side;
+use crate::rig::read::naming::Side;
 use glam::{DMat4, DVec3};
 use serde::Serialize;
 
@@ -131,7 +131,7 @@ pub struct Skeleton {
 
 impl Skeleton {
     /// The skeleton of a parsed glTF file.
-    pub fn of(file: &crate::rig::GltfFile) -> Skeleton {
+    pub fn of(file: &crate::rig::read::GltfFile) -> Skeleton {
         Skeleton {
             parent: file.parent.clone(),
             world: file.world.clone(),
@@ -168,7 +168,7 @@ pub struct Deformation {
 /// Skins `mesh` at rest and in `posed`, and measures every finger. Cost: the
 /// skinning O(vertices x influences), then [`measures::measure`].
 pub fn deform(
-    mesh: &crate::rig::skin::SkinnedMesh,
+    mesh: &crate::rig::read::skin::SkinnedMesh,
     skeleton: &Skeleton,
     posed: &PosedHand,
     method: Skinning,

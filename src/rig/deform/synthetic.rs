@@ -15,8 +15,8 @@
 
 use super::{FingerNodes, HandChains, Skeleton};
 use crate::dataset::Finger;
-use crate::rig::naming::Side;
-use crate::rig::skin::{SkinnedMesh, weld};
+use crate::rig::read::naming::Side;
+use crate::rig::read::skin::{SkinnedMesh, weld};
 use glam::{DMat4, DQuat, DVec3};
 
 /// What to build.

@@ -28,10 +28,15 @@
 //! is kept. The output is one .glb (or a .gltf with its buffer embedded),
 //! every buffer merged into one.
 
-use super::AuditedFinger;
-use super::read::gltf::{GltfFile, buffers, inverse_binds, local_matrix, world_matrices};
-use super::read::weights::SkinWeights;
+pub(crate) mod accessor;
+pub(crate) mod anim;
+pub(crate) mod remap;
+
 use crate::dataset::DataError;
+use crate::rig::judge::AuditedFinger;
+use crate::rig::read::gltf::{GltfFile, buffers, inverse_binds, local_matrix, world_matrices};
+use crate::rig::read::weights::SkinWeights;
+use crate::rig::read::{RigJoint, anim as channels};
 use base64::Engine;
 use glam::{DMat4, DVec3};
 use serde_json::{Value, json};
@@ -110,19 +115,19 @@ pub fn fix_with(
         .filter(|(_, (old, new))| old != new)
         .map(|(&n, &(old, new))| (n, (old, new - old)))
         .collect();
-    let mut warnings = super::anim::offset_translations(&mut json, &mut bin, &delta);
+    let mut warnings = anim::offset_translations(&mut json, &mut bin, &delta);
     if let Some(w) = weights {
-        let moves: Vec<super::remap::FingerMove<'_>> = plan
+        let moves: Vec<remap::FingerMove<'_>> = plan
             .fingers
             .iter()
-            .map(|(i, new_positions)| super::remap::FingerMove {
+            .map(|(i, new_positions)| remap::FingerMove {
                 chain: &fingers[*i].chain,
                 new_positions: new_positions.clone(),
             })
             .collect();
-        let (remapped, notes) = super::remap::remap(w, &moves);
+        let (remapped, notes) = remap::remap(w, &moves);
         warnings.extend(notes);
-        warnings.extend(super::remap::write(&mut json, &mut bin, w, &remapped));
+        warnings.extend(remap::write(&mut json, &mut bin, w, &remapped));
     }
     let mut buffer = json!({"byteLength": bin.len()});
     if !glb {
@@ -169,7 +174,7 @@ fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
     };
     for (i, f) in fingers.iter().enumerate() {
         let (chain, audit) = (&f.chain, &f.audit);
-        let moves = |rj: &super::read::RigJoint| {
+        let moves = |rj: &RigJoint| {
             audit.joint(rj.joint).filter(|j| {
                 j.moves && j.shift > 0.0 && !(only_outside && j.standing.is_consistent())
             })
@@ -337,14 +342,14 @@ fn rebind_skins(
         let own = skin
             .inverse_bind_matrices()
             .map(|a| a.index())
-            .filter(|&a| super::accessor::references(json).get(&a) == Some(&1));
-        let span = own.and_then(|a| super::accessor::span(json, a, bin.len()).map(|s| (a, s)));
+            .filter(|&a| accessor::references(json).get(&a) == Some(&1));
+        let span = own.and_then(|a| accessor::span(json, a, bin.len()).map(|s| (a, s)));
         match span {
             Some((a, span)) if span.component == 5126 && span.components == 16 => {
                 for (k, m) in new.iter().enumerate() {
                     span.write_f32(bin, k, m);
                 }
-                super::accessor::refresh_bounds(json, a, &span, bin);
+                accessor::refresh_bounds(json, a, &span, bin);
             }
             _ => {
                 pad4(bin);
@@ -374,7 +379,7 @@ fn rebind_skins(
 /// Remarks on what the fix leaves alone: animation channels with paths glTF
 /// does not define, and images left as external files.
 fn other_warnings(file: &GltfFile) -> Vec<String> {
-    let mut warnings = super::read::anim::unknown_paths(&file.json);
+    let mut warnings = channels::unknown_paths(&file.json);
     if file.document.images().any(
         |i| matches!(i.source(), gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:")),
     ) {
@@ -388,7 +393,7 @@ fn other_warnings(file: &GltfFile) -> Vec<String> {
 /// The output file: the JSON alone (`.gltf`, buffer embedded), or a GLB with the bytes.
 fn container(file: &GltfFile, json: &Value, bin: Vec<u8>, glb: bool) -> Result<Vec<u8>, DataError> {
     let bytes = if glb {
-        super::read::gltf::glb(json, bin)
+        crate::rig::read::gltf::glb(json, bin)
     } else {
         serde_json::to_vec(json).map_err(|e| e.to_string())
     };
