@@ -7,8 +7,10 @@
 
 use super::measures::HandMeasures;
 use super::*;
+use crate::dataset::Finger;
 use crate::report::render3d::{Figure, MeshView, View};
 use crate::rig::read::GltfFile;
+use crate::rig::read::naming::Side;
 use crate::rig::read::skin::{SkinnedMesh, pick_skin};
 use std::path::{Path, PathBuf};
 
