@@ -7,7 +7,7 @@
 //! bent joint, new self-intersections, edge strain and crease offset. Two rigs
 //! (as they are, and fixed) are compared joint by joint in [`verdict`].
 //!
-//! No file is read or written here: the mesh comes from [`super::skin`], the
+//! No file is read or written here: the mesh comes from [`super::read::skin`], the
 //! finger chains from the caller (a list of joint nodes per finger, so rigs
 //! whose joints are siblings, such as WebXR's, are posed as well as
 //! parent-child chains).

@@ -1,5 +1,5 @@
 //! Accessor elements read and written in place in the merged buffer of a
-//! fixed copy (see [`super::fix`]): after the merge every buffer view points
+//! fixed copy (see [`super`]): after the merge every buffer view points
 //! into buffer 0, so an accessor's elements lie at
 //! view.byteOffset + accessor.byteOffset + i x stride.
 //!

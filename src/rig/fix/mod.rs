@@ -1,5 +1,5 @@
 //! `audit --fix`: a copy of a rig with the joints the audit's explanation
-//! moves (see [`super::judge`]) where it puts them, the skin weights moved
+//! moves (see [`crate::rig::judge`]) where it puts them, the skin weights moved
 //! with them, and everything else kept.
 //!
 //! For each finger the explanation's joints (MCP, PIP, DIP: the fewest that
@@ -17,8 +17,8 @@
 //! W to W' gets the inverse bind matrix B' = W'^-1 W B, so W' B' = W B and every
 //! skinned vertex is where it was (up to the f32 the file stores). The skin
 //! weights of each moved finger are moved with its joints so its skin bends
-//! where the joints now are ([`super::remap`]). Translation keys of moved
-//! nodes are offset by their rest translation's change ([`super::anim`]);
+//! where the joints now are (`remap`). Translation keys of moved
+//! nodes are offset by their rest translation's change (`anim`);
 //! channels with paths glTF does not define are reported and left alone.
 //!
 //! Inverse bind matrices, weights and keys are rewritten in place in their

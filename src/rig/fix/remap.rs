@@ -1,5 +1,5 @@
 //! Moving a finger's skin weights with its joints in `--fix`, so the skin
-//! bends where the moved joint now is (see [`super::bend`] for the bend).
+//! bends where the moved joint now is (see [`crate::rig::judge::bend`] for the bend).
 //!
 //! **Method.** Each finger vertex has an arc position u along the finger's
 //! axis (the old joints' polyline, extended before the MCP; the moved joints

@@ -9,7 +9,7 @@
 //! finger, while an X-ray's J3 ends at the bone tip (the distal phalanx's
 //! tuft). So, with a skin tip and bone-tip data, the last segment is
 //! compared as c_last - s, s the soft tissue beyond the bone tip
-//! ([`DEFAULT_SOFT_TISSUE_MM`], `--tip-soft-tissue`); with `--tip bone` it is
+//! ([`DEFAULT_SOFT_TISSUE_MM`](super::DEFAULT_SOFT_TISSUE_MM), `--tip-soft-tissue`); with `--tip bone` it is
 //! compared as it is. In general the correction is s x ([rig tip is skin] -
 //! [data tip is skin]); the compared segments s_k are the chords with that
 //! correction on the last one, L = sum s_k and J~k = s_k / L (eq. 2).
@@ -93,7 +93,7 @@ pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Opti
 
 /// Judges one rig finger as [`audit_with`] with its MCP held where it is: the
 /// explanation moves only the inner joints (for an MCP placed from its ray's
-/// base, [`metacarpal`] or [`wrist`]).
+/// base, [`super::ray_base::metacarpal`] or [`super::ray_base::wrist`]).
 pub fn audit_holding_mcp(
     a: &Analysis,
     chain: &ChainInput,

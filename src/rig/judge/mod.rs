@@ -1,7 +1,7 @@
 //! Judging a rig: each finger against the X-ray statistics ([`finger`]: the
 //! joints' standings, `expected`, and the explanation that moves the fewest
 //! joints, `explain`, in the terms of [`standing`], on the chain geometry of
-//! [`chain`]); its MCP from its ray's base, the CMC or the wrist
+//! `chain`); its MCP from its ray's base, the CMC or the wrist
 //! ([`ray_base`]); where its skin bends ([`bend`]); a whole rig at once
 //! ([`audited`]); and `--fix-mcp atlas`, the MCP placed from its ray's base
 //! ([`ray`]).

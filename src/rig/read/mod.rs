@@ -10,10 +10,10 @@
 //!
 //! What is glTF's own lives in [`gltf`] (the file, its node transforms and
 //! buffers, the GLB container), [`skin`] and [`weights`] (the skinned mesh and
-//! its weights, read from glTF accessors) and [`anim`] (animation channels).
+//! its weights, read from glTF accessors) and `anim` (animation channels).
 //! The types here, [`RigJoint`], [`RigNode`], [`FingerChain`] and [`Rig`], are
 //! what the rest of `rig` reads: positions and node indices, no format.
-//! [`reference`] reads another format into the same chains: the reference
+//! [`reference`](mod@reference) reads another format into the same chains: the reference
 //! rigs of `data/rigs`. Nothing here judges or writes.
 
 pub(crate) mod anim;

@@ -3,9 +3,9 @@
 //! its rest position in world space.
 //!
 //! Read for three uses: which nodes carry skin weight (a bone with weight is
-//! preferred over an unweighted namesake, see [`super`]), where each finger's
-//! skin bends ([`super::bend`]), and moving the weights with the joints in
-//! `--fix` ([`super::remap`]). Accessors are checked as [`super::skin`] checks
+//! preferred over an unweighted namesake, see [`super::recognise`]), where each finger's
+//! skin bends ([`crate::rig::judge::bend`]), and moving the weights with the joints in
+//! `--fix` (`rig::fix::remap`). Accessors are checked as [`super::skin`] checks
 //! them; a primitive whose weights cannot be read is left out with a note.
 //!
 //! A vertex v with influences (node j, weight w) rests at sum_j w_j M_j v,
