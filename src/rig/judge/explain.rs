@@ -80,7 +80,7 @@ fn fit(quantities: &[(Quantity, &QuantityStats)], segments: &[f64]) -> (f64, boo
     (worst, inside)
 }
 
-/// The explanation with the fewest moved joints (see the module notes); with
+/// The explanation with the fewest moved joints (see [`super::finger`]'s notes); with
 /// `hold_mcp`, among moves of the inner joints only.
 pub(super) fn explain(
     axis: &Axis,

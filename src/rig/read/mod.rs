@@ -14,7 +14,8 @@
 //! The types here, [`RigJoint`], [`RigNode`], [`FingerChain`] and [`Rig`], are
 //! what the rest of `rig` reads: positions and node indices, no format.
 //! [`reference`](mod@reference) reads another format into the same chains: the reference
-//! rigs of `data/rigs`. Nothing here judges or writes.
+//! rigs of `data/rigs`. Nothing here judges, and nothing writes but
+//! [`gltf`]'s GLB container, shared by the fix and the synthetic hands.
 
 pub(crate) mod anim;
 pub mod gltf;
