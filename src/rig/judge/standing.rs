@@ -1,4 +1,5 @@
-//! The terms of a finger's judgement ([`super::finger`]): the options, a
+//! The terms of a finger's judgement ([`super::finger`], whose module notes
+//! the docs here refer to): the options, a
 //! chain's points, and where its values and joints stand against the X-ray
 //! statistics (range, prediction interval), with the small arithmetic they share.
 
@@ -166,7 +167,7 @@ pub struct ValueCheck {
 }
 
 /// One joint of a rig finger against the X-rays, in the rig's units, given
-/// the rest of the finger as the rig has it (see [`super::finger`]).
+/// the rest of the finger as the rig has it (see the module notes).
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct JointCheck {
     pub joint: Joint,
@@ -218,7 +219,7 @@ pub struct FingerAudit {
     pub n: usize,
     /// The rig's segment lengths c_k (J1, J2[, J3]; without a tip one fewer).
     pub segments: Vec<f64>,
-    /// Taken off the last segment to compare the rig's tip with the data's (see [`super::finger`]).
+    /// Taken off the last segment to compare the rig's tip with the data's (see the module notes).
     pub tip_correction: f64,
     /// The segments compared with the X-rays: `segments` with the last one corrected.
     pub compared: Vec<f64>,
