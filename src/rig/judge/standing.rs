@@ -1,7 +1,7 @@
 //! The terms of a finger's judgement ([`super::finger`], whose module notes
-//! the docs here refer to): the options, a
-//! chain's points, and where its values and joints stand against the X-ray
-//! statistics (range, prediction interval), with the small arithmetic they share.
+//! the docs here refer to): the options, a chain's points, and where its
+//! values and joints stand against the X-ray statistics (range, prediction
+//! interval), with the small arithmetic they share.
 
 use crate::analysis::placement::Joint;
 use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
