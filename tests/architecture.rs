@@ -552,33 +552,24 @@ fn against(
     table: &[(&str, &[&str])],
     rig: bool,
 ) -> BTreeMap<String, BTreeSet<String>> {
-    let mut wrong: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-    for file in files {
-        let (room, sub) = room_of(file);
-        let mine = if rig {
-            if room.as_deref() != Some("rig") {
-                continue;
-            }
-            sub
+    // A file's room, or with `rig` its sub-room (`None` outside rig/ and for rig/mod.rs).
+    let level = |f: &Path| -> Option<String> {
+        let (room, sub) = room_of(f);
+        if rig {
+            (room.as_deref() == Some("rig")).then_some(sub).flatten()
         } else {
             room
-        };
-        let Some(mine) = mine else { continue };
+        }
+    };
+    let mut wrong: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for file in files {
+        let Some(mine) = level(file) else { continue };
         let Some((_, allowed)) = table.iter().find(|(r, _)| *r == mine) else {
             continue;
         };
         for chain in krate.named(file) {
             for target in chain {
-                let (troom, tsub) = room_of(&target);
-                let used = if rig {
-                    if troom.as_deref() != Some("rig") {
-                        continue;
-                    }
-                    tsub
-                } else {
-                    troom
-                };
-                let Some(used) = used else { continue };
+                let Some(used) = level(&target) else { continue };
                 let known = table.iter().any(|(r, _)| *r == used);
                 if known && used != mine && !allowed.contains(&used.as_str()) {
                     wrong
@@ -697,24 +688,26 @@ fn rig_mod_rs_only_declares_and_re_exports() {
     assert!(named.is_empty(), "rig/mod.rs names {named:?}");
 }
 
-#[test]
-fn every_room_of_src_is_in_the_map() {
-    let rooms: BTreeSet<&str> = ALLOWED.iter().map(|(r, _)| *r).collect();
+/// The files and folders of `dir` (by stem, but `skip`) missing from `table`.
+fn missing_from(dir: &Path, table: &[(&str, &[&str])], skip: &[&str]) -> Vec<String> {
     let mut missing = Vec::new();
-    for e in std::fs::read_dir(src()).expect("read src") {
+    for e in std::fs::read_dir(dir).expect("read a src dir") {
         let p = e.expect("dir entry").path();
         let name = p
             .file_stem()
             .and_then(|s| s.to_str())
             .unwrap_or_default()
             .to_string();
-        if ["lib", "main"].contains(&name.as_str()) {
-            continue;
-        }
-        if !rooms.contains(name.as_str()) {
+        if !skip.contains(&name.as_str()) && !table.iter().any(|(r, _)| *r == name) {
             missing.push(name);
         }
     }
+    missing
+}
+
+#[test]
+fn every_room_of_src_is_in_the_map() {
+    let missing = missing_from(&src(), ALLOWED, &["lib", "main"]);
     assert!(
         missing.is_empty(),
         "rooms of src/ missing from ARCHITECTURE.md and tests/architecture.rs: {missing:?}"
@@ -723,19 +716,7 @@ fn every_room_of_src_is_in_the_map() {
 
 #[test]
 fn every_sub_room_of_rig_is_in_the_map() {
-    let subs: BTreeSet<&str> = RIG_ALLOWED.iter().map(|(r, _)| *r).collect();
-    let mut missing = Vec::new();
-    for e in std::fs::read_dir(src().join("rig")).expect("read src/rig") {
-        let p = e.expect("dir entry").path();
-        let name = p
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or_default()
-            .to_string();
-        if name != "mod" && !subs.contains(name.as_str()) {
-            missing.push(name);
-        }
-    }
+    let missing = missing_from(&src().join("rig"), RIG_ALLOWED, &["mod"]);
     assert!(
         missing.is_empty(),
         "sub-rooms of src/rig/ missing from ARCHITECTURE.md and tests/architecture.rs: {missing:?}"
