@@ -36,7 +36,8 @@ pub enum FixMcp {
 #[command(
     after_help = "Finds the finger chains of either hand by their names (Mixamo mixamorig:RightHandIndex1..4, \
                   Rigify f_index.01.R / DEF-f_index.01.R / thumb.01.R, VRM rightIndexProximal or its humanoid table, \
-                  Unreal index_01_r, WebXR index-finger-phalanx-proximal; case and separators ignored; --map for others) \
+                  Unreal index_01_r, WebXR index-finger-phalanx-proximal, Blender Index.R, Index.R.001; case and separators \
+                  ignored; --map for others) \
                   and measures joint-to-joint distances in the node (bind) pose; the joints need not be parent and \
                   child when the names say which finger they belong to (WebXR). Every joint (MCP, PIP, DIP, tip) is \
                   reported inside the X-ray range, inside the prediction interval, or outside by how many mm and in \
