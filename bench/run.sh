@@ -47,15 +47,15 @@ echo
 echo "| workload | target | wall time | peak memory |"
 echo "|---|---|---|---|"
 measure "paper data, full report with the atlas section (all formats and plots)" "300 ms / 60 MB" -- "$bin" report --out "$work/r0"
-measure "import the atlas (910 radiographs, atlas37)" "import + compare 100 ms" -- "$bin" import data/atlas/landmarks.csv --layout atlas37 --source "Digital Hand Atlas" --out "$work/atlas.csv"
+measure "import the atlas (910 radiographs, atlas37)" "import + compare 100 ms" -- "$bin" import data/atlas/landmarks.csv --layout atlas37 --source "Digital Hand Atlas" --out "$work/atlas.csv" --force
 measure "compare the paper with the atlas" "import + compare 100 ms" -- "$bin" compare data/measurements.csv data/atlas/measurements.csv
 measure "10,000 X-rays, stats --format json" "1 s / 100 MB" -- "$bin" stats --data "$work/x10k.csv" --format json
 measure "100,000 X-rays, stats --format json" "10 s / 300 MB" -- "$bin" stats --data "$work/x100k.csv" --format json
 measure "100,000 X-rays, full report" "15 s / 400 MB" -- "$bin" report --data "$work/x100k.csv" --out "$work/r1"
 measure "rig audit (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb
-measure "rig audit --fix (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb --fix "$work/fixed.glb"
+measure "rig audit --fix (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb --fix "$work/fixed.glb" --force
 measure "deform, 30,000-triangle hand, fist, LBS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb"
-measure "deform --fix --out, 30,000 triangles, DQS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb" --fix --skinning dqs --out "$work/d30k"
+measure "deform --fix --out, 30,000 triangles, DQS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb" --fix --skinning dqs --out "$work/d30k" --force
 echo
 echo "Growth with X-rays (stats --format json, 10,000 resamples):"
 echo

@@ -407,6 +407,27 @@ fn fix_never_overwrites_the_input_and_bad_files_are_clear_errors() {
     assert!(!wd.path().join("hand.fbx").exists());
 }
 
+/// An existing output is replaced only with --force, and refused before any work.
+#[test]
+fn fix_and_deform_outputs_that_exist_need_force() {
+    let wd = Workdir::with_paper_data();
+    let input = build(&HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0));
+    wd.write("hand.glb", &input);
+    wd.write("taken.glb", b"an artist's file");
+    wd.run(&["audit", "hand.glb", "--fix", "taken.glb"])
+        .data_error()
+        .stderr_has("--fix taken.glb: the file exists; give --force to replace it");
+    assert_eq!(wd.read("taken.glb"), b"an artist's file");
+    wd.run(&["audit", "hand.glb", "--fix", "taken.glb", "--force"])
+        .ok();
+    assert_ne!(wd.read("taken.glb"), b"an artist's file");
+    // deform --out names a directory; a file there is refused before the deformation.
+    wd.write("renders", b"not a directory");
+    wd.run(&["deform", "hand.glb", "--side", "right", "--out", "renders"])
+        .data_error()
+        .stderr_has("--out renders: this is a file, not a directory");
+}
+
 /// The example rigs of the README (docs/examples) are what the builder makes;
 /// `PHALANX_WRITE_EXAMPLES=1 cargo test --test integration audit::the_committed_example_rigs`
 /// renews them.
