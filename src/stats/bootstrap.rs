@@ -238,13 +238,27 @@ fn compositions(n: usize, r: &mut [u32], mut visit: impl FnMut(&[u32])) {
     }
 }
 
-/// X-rays per matrix product: a chunk's counts are turned into floating point
-/// [`CHUNK`] x `XRAYS` at a time (512 kB), so the kernel needs O(CHUNK n) bytes of
-/// counts and this block, whatever n. A multiple of matrixmultiply's depth panel (256).
-const XRAYS: usize = 1024;
+/// Most chunks drawn by one task before one matrix product sums them all: the product
+/// reads (packs) the value matrix once per task, so the more resamples per product, the
+/// less that costs (a quarter of the time at 64). Fewer where a task's counts would pass
+/// [`TASK_BYTES`]. The tasks are fixed by n and the chunk numbers, not by the threads, and
+/// each resample's sum does not depend on how many rows the product has, so the result is
+/// the same at any thread count and task size.
+const CHUNKS_PER_TASK: usize = 4;
 
-/// Draws the `len` resamples of one chunk from its stream `rng` and writes their means,
-/// resample by resample, to `out` (`len * q` values).
+/// Most bytes of counts one task holds (one per X-ray per resample): at 100,000 X-rays a
+/// task is one chunk (6.4 MB), so the workers' counts stay small beside the data.
+const TASK_BYTES: usize = 8 << 20;
+
+/// X-rays per block of the product: a task's counts are turned into floating point
+/// resamples-per-task x `XRAYS` at a time (at most 1 MB), so the kernel needs O(resamples
+/// per task x n) bytes of counts and this block, whatever n. A multiple of matrixmultiply's
+/// depth panel (256 X-rays).
+const XRAYS: usize = 512;
+
+/// Draws the resamples of one task's chunks, each chunk from its own stream of `streams`
+/// (chunk k holds resamples 64k .. 64k+63 and draws from stream k), and writes their
+/// means, resample by resample, to `out` (`len * q` values for `len` resamples in all).
 ///
 /// The draws: resample j draws n X-ray indices one after another (the crate's unbiased
 /// index draw), counted in a byte per X-ray; a count past 255 spills into `overflow`, so
@@ -260,13 +274,12 @@ const XRAYS: usize = 1024;
 /// `sum_i c_i x_i / n`, and on a processor without FMA from one with it; the resamples
 /// (the counts) are the same everywhere. Cost: n `len` draws and n `len` q multiply-adds,
 /// O(`len` n) bytes.
-fn random_chunk(
+fn random_task(
     rows: &[f64],
     q: usize,
     n: usize,
-    len: usize,
-    rng: &mut rand_chacha::ChaCha8Rng,
-    work: &mut ChunkWork,
+    streams: &mut [(rand_chacha::ChaCha8Rng, usize)],
+    work: &mut TaskWork,
     out: &mut [f64],
 ) {
     if n == 0 || q == 0 {
@@ -274,16 +287,20 @@ fn random_chunk(
         out.iter_mut().for_each(|s| *s = f64::NAN);
         return;
     }
+    let len: usize = streams.iter().map(|s| s.1).sum();
     let n32 = u32::try_from(n).unwrap_or(u32::MAX);
     let counts = &mut work.counts[..len * n];
     counts.iter_mut().for_each(|c| *c = 0);
     work.overflow.iter_mut().for_each(Vec::clear);
-    for (r, counts) in counts.chunks_exact_mut(n).enumerate() {
-        for _ in 0..n {
-            let i = rng::index(rng, n32) as usize;
-            match counts[i].checked_add(1) {
-                Some(c) => counts[i] = c,
-                None => work.overflow[r].push(i),
+    let mut rows_of_counts = counts.chunks_exact_mut(n).enumerate();
+    for (rng, chunk_len) in streams.iter_mut() {
+        for (r, counts) in rows_of_counts.by_ref().take(*chunk_len) {
+            for _ in 0..n {
+                let i = rng::index(rng, n32) as usize;
+                match counts[i].checked_add(1) {
+                    Some(c) => counts[i] = c,
+                    None => work.overflow[r].push(i),
+                }
             }
         }
     }
@@ -293,11 +310,7 @@ fn random_chunk(
         let i1 = (i0 + XRAYS).min(n);
         let k = i1 - i0;
         let block = &mut work.block[..len * k];
-        for (b, c) in block.chunks_exact_mut(k).zip(counts.chunks_exact(n)) {
-            for (x, &c) in b.iter_mut().zip(&c[i0..i1]) {
-                *x = f64::from(c);
-            }
-        }
+        to_float(counts, n, i0, i1, block);
         let values = &rows[i0 * q..i1 * q];
         let beta = if i0 == 0 { 0.0 } else { 1.0 };
         // SAFETY: `block` is `len` x k row-major (row stride k), `values` k x q row-major
@@ -334,12 +347,42 @@ fn random_chunk(
     }
 }
 
-/// Per-worker buffers of [`random_chunk`], reused across chunks.
-struct ChunkWork {
-    /// [`CHUNK`] x n counts, one byte each.
+/// Copies X-rays `i0..i1` of every row of `counts` (rows of n) into `block` as floating
+/// point, the left factor of the product. AVX2 where the processor has it (detected at run
+/// time): the same values either way, a quarter of the instructions.
+fn to_float(counts: &[u8], n: usize, i0: usize, i1: usize, block: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2, checked just above.
+            unsafe { to_float_avx2(counts, n, i0, i1, block) };
+            return;
+        }
+    }
+    to_float_body(counts, n, i0, i1, block);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn to_float_avx2(counts: &[u8], n: usize, i0: usize, i1: usize, block: &mut [f64]) {
+    to_float_body(counts, n, i0, i1, block);
+}
+
+#[inline(always)]
+fn to_float_body(counts: &[u8], n: usize, i0: usize, i1: usize, block: &mut [f64]) {
+    for (b, c) in block.chunks_exact_mut(i1 - i0).zip(counts.chunks_exact(n)) {
+        for (x, &c) in b.iter_mut().zip(&c[i0..i1]) {
+            *x = f64::from(c);
+        }
+    }
+}
+
+/// Per-worker buffers of [`random_task`], reused across tasks.
+struct TaskWork {
+    /// Resamples per task x n counts, one byte each.
     counts: Vec<u8>,
     overflow: Vec<Vec<usize>>,
-    /// [`CHUNK`] x [`XRAYS`] counts as floating point, the left factor of the product.
+    /// Resamples per task x [`XRAYS`] counts as floating point, the left factor.
     block: Vec<f64>,
 }
 
@@ -353,6 +396,9 @@ fn random(
 ) -> Distribution {
     let q = columns.len();
     let chunks = resamples.div_ceil(CHUNK);
+    let chunks_per_task = (TASK_BYTES / (CHUNK * n.max(1))).clamp(1, CHUNKS_PER_TASK);
+    let tasks = chunks.div_ceil(chunks_per_task);
+    let per_task = chunks_per_task * CHUNK;
     // Row-major copy, the right factor of the product: one X-ray's quantities side by side.
     let mut rows = vec![0.0f64; n * q];
     for (k, col) in columns.iter().enumerate() {
@@ -360,27 +406,37 @@ fn random(
             rows[i * q + k] = x;
         }
     }
-    let per_chunk: Vec<Vec<f64>> = (0..chunks)
+    let per_task_means: Vec<Vec<f64>> = (0..tasks)
         .into_par_iter()
         .map_init(
-            || ChunkWork {
-                counts: vec![0u8; CHUNK * n],
-                overflow: vec![Vec::new(); CHUNK],
-                block: vec![0.0; CHUNK * XRAYS.min(n)],
+            || {
+                let most = per_task.min(resamples);
+                TaskWork {
+                    counts: vec![0u8; most * n],
+                    overflow: vec![Vec::new(); most],
+                    block: vec![0.0; most * XRAYS.min(n)],
+                }
             },
-            |work, k| {
-                let mut rng = rng::stream(seed, key, k as u64);
-                let len = CHUNK.min(resamples - k * CHUNK);
+            |work, t| {
+                let first = t * chunks_per_task;
+                let mut streams: Vec<(rand_chacha::ChaCha8Rng, usize)> = (first
+                    ..(first + chunks_per_task).min(chunks))
+                    .map(|k| {
+                        let len = CHUNK.min(resamples - k * CHUNK);
+                        (rng::stream(seed, key, k as u64), len)
+                    })
+                    .collect();
+                let len: usize = streams.iter().map(|s| s.1).sum();
                 let mut out = vec![0.0; len * q];
-                random_chunk(&rows, q, n, len, &mut rng, work, &mut out);
+                random_task(&rows, q, n, &mut streams, work, &mut out);
                 progress.advance(len as u64);
                 out
             },
         )
         .collect();
     let mut means = vec![Vec::with_capacity(resamples); q];
-    for chunk in &per_chunk {
-        for row in chunk.chunks_exact(q.max(1)) {
+    for task in &per_task_means {
+        for row in task.chunks_exact(q.max(1)) {
             for (m, v) in means.iter_mut().zip(row) {
                 m.push(*v);
             }
@@ -626,14 +682,15 @@ mod tests {
         // Integer values: every product and partial sum is exact whatever the order, so the
         // kernel (matrix product in panels, FMA or not) must equal the plain definition bit
         // for bit: the same draws from the same streams give the same resamples. n = 2100
-        // spans three blocks of X-rays (the last partial); 150 resamples, 3 chunks.
+        // spans five blocks of X-rays (the last partial); 300 resamples are 5 chunks, in a
+        // task of 4 chunks and one of 1.
         let n = 2100;
         let cols: Vec<Vec<f64>> = (0..5)
             .map(|q| (0..n).map(|i| ((i * 37 + q * 11) % 97) as f64).collect())
             .collect();
         let refs: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
-        let d = resample_means(&refs, 150, 42, 9);
-        assert_eq!(d.means, plain_means(&cols, 150, 42, 9));
+        let d = resample_means(&refs, 300, 42, 9);
+        assert_eq!(d.means, plain_means(&cols, 300, 42, 9));
     }
 
     #[test]
