@@ -71,7 +71,9 @@ fn floor(c: &mut Criterion) {
     });
     let a: Vec<f64> = (0..64 * n).map(|i| (i % 3) as f64).collect();
     let cols = columns(n);
-    let v: Vec<f64> = (0..n).flat_map(|i| cols.iter().map(move |c| c[i])).collect();
+    let v: Vec<f64> = (0..n)
+        .flat_map(|i| cols.iter().map(move |c| c[i]))
+        .collect();
     let mut out = vec![0.0; 64 * 28];
     // Elements: multiply-adds.
     g.throughput(Throughput::Elements((64 * n * 28) as u64));
