@@ -456,6 +456,9 @@ pub struct SideInfo {
     pub unit: Option<String>,
     /// Where the data's rows record their tips (data only).
     pub tips: Option<crate::dataset::TipCounts>,
+    /// The sides and the age range the data's rows record (data only).
+    pub sides: Vec<String>,
+    pub ages: Option<(f64, f64)>,
     /// Where the table's last segments end in the comparison (table only).
     pub table_tip: Option<TipKind>,
     /// The cohort's description beside its file, set by the caller.
@@ -520,16 +523,21 @@ fn table_tip(table: &SummaryTable, other: &Side<'_>) -> TipKind {
 
 fn side_info(side: &Side<'_>, tip: Option<TipKind>) -> SideInfo {
     match side {
-        Side::Data(d) => SideInfo {
-            path: d.path.clone(),
-            sha256: d.sha256.clone(),
-            kind: "data",
-            n: Some(d.xray_count()),
-            unit: d.unit().map(str::to_string),
-            tips: Some(d.tips()),
-            table_tip: None,
-            about: None,
-        },
+        Side::Data(d) => {
+            let info = super::compare::CohortInfo::of(d);
+            SideInfo {
+                path: info.path,
+                sha256: info.sha256,
+                kind: "data",
+                n: Some(info.xrays),
+                unit: info.unit,
+                tips: Some(info.tips),
+                sides: info.sides,
+                ages: info.ages,
+                table_tip: None,
+                about: None,
+            }
+        }
         Side::Table(t) => SideInfo {
             path: t.path.clone(),
             sha256: t.sha256.clone(),
@@ -537,6 +545,8 @@ fn side_info(side: &Side<'_>, tip: Option<TipKind>) -> SideInfo {
             n: t.n().map(|n| n as usize),
             unit: Some(t.unit.clone()),
             tips: None,
+            sides: Vec::new(),
+            ages: None,
             table_tip: tip,
             about: None,
         },
