@@ -67,7 +67,10 @@ fn refuse_mixed_tips(current: &Dataset, new: &Dataset, allowed: bool) -> Result<
     if allowed {
         return Ok(());
     }
-    let files = [(current.path.as_str(), &current.rows[..]), (new.path.as_str(), &new.rows[..])];
+    let files = [
+        (current.path.as_str(), &current.rows[..]),
+        (new.path.as_str(), &new.rows[..]),
+    ];
     match crate::dataset::tip::pooling_problem(&files, "--mixed-tips") {
         Some(m) => Err(Error::Usage(format!("nothing added: {m}"))),
         None => Ok(()),

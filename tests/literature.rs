@@ -24,6 +24,9 @@ fn workdir() -> Option<Workdir> {
     Some(wd)
 }
 
+/// At one correlation: (rho, bone SE, skin SE, bone diff interval, skin diff interval).
+type AtRho = (f64, f64, f64, (f64, f64), (f64, f64));
+
 /// One finger's line of the committed reference output, as numbers after each key.
 struct Reference {
     finger: String,
@@ -33,11 +36,12 @@ struct Reference {
     skin: f64,
     /// Per correlation (0, the atlas's, 0.9): (rho, bone SE, skin SE, bone diff interval,
     /// skin diff interval).
-    at: Vec<(f64, f64, f64, (f64, f64), (f64, f64))>,
+    at: Vec<AtRho>,
 }
 
 fn references() -> Vec<Reference> {
-    let text = String::from_utf8(vendored("tests/independent/literature_reference.txt").unwrap()).unwrap();
+    let text =
+        String::from_utf8(vendored("tests/independent/literature_reference.txt").unwrap()).unwrap();
     text.lines()
         .filter(|l| !l.starts_with('#'))
         .map(|l| {
@@ -53,7 +57,13 @@ fn references() -> Vec<Reference> {
                 let i = i + from;
                 let g = |k: &str| after(k, i);
                 let (b, s) = (g("bone_diff"), g("skin_diff"));
-                at.push((g("rho")[0], g("bone_se")[0], g("skin_se")[0], (b[0], b[1]), (s[0], s[1])));
+                at.push((
+                    g("rho")[0],
+                    g("bone_se")[0],
+                    g("skin_se")[0],
+                    (b[0], b[1]),
+                    (s[0], s[1]),
+                ));
                 from = i + 1;
             }
             Reference {
@@ -75,7 +85,11 @@ fn references() -> Vec<Reference> {
 #[test]
 fn compare_with_bk_reproduces_the_fingertip_table_against_scipy() {
     let Some(wd) = workdir() else { return };
-    let text = wd.run(&["compare", "data/measurements.csv", TABLE]).ok().stdout.clone();
+    let text = wd
+        .run(&["compare", "data/measurements.csv", TABLE])
+        .ok()
+        .stdout
+        .clone();
     for row in [
         "| thumb J~2  | 0.4686 [0.4513, 0.4858] | 0.4070 ",
         "| index J~3  | 0.2428 [0.2242, 0.2614] | 0.2029 ",
@@ -92,15 +106,33 @@ fn compare_with_bk_reproduces_the_fingertip_table_against_scipy() {
         ("ring J~3", "0.2407"),
         ("little J~3", "0.2791"),
     ] {
-        let line = text.lines().find(|l| l.contains(&format!("| {finger} "))).unwrap();
-        assert!(line.contains(&format!("| {skin} [")) && line.ends_with("| skin |"), "{line}");
+        let line = text
+            .lines()
+            .find(|l| l.contains(&format!("| {finger} ")))
+            .unwrap();
+        assert!(
+            line.contains(&format!("| {skin} [")) && line.ends_with("| skin |"),
+            "{line}"
+        );
     }
     // Sentences wrap at 100 columns, continued with two spaces.
     let flat = text.replace("\n  ", " ");
     assert!(flat.contains("A's fingertips are at the skin's outline (its rows record the tips at the skin, which this confirms)"), "{text}");
-    assert!(flat.contains("thumb 0.82, index 0.85, middle 0.87, ring 0.87, little 0.78"), "{text}");
+    assert!(
+        flat.contains("thumb 0.82, index 0.85, middle 0.87, ring 0.87, little 0.78"),
+        "{text}"
+    );
 
-    let doc = wd.run(&["compare", "data/measurements.csv", TABLE, "--format", "json"]).ok().json();
+    let doc = wd
+        .run(&[
+            "compare",
+            "data/measurements.csv",
+            TABLE,
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
     let refs = references();
     assert_eq!(refs.len(), 5);
     for r in &refs {
@@ -111,7 +143,12 @@ fn compare_with_bk_reproduces_the_fingertip_table_against_scipy() {
             .find(|t| t["finger"] == r.finger.as_str())
             .unwrap();
         let what = |w: &str| format!("{} {w}", r.finger);
-        assert_close(num(&t["data"]["mean"]), r.paper[0], 1e-9, &what("paper mean"));
+        assert_close(
+            num(&t["data"]["mean"]),
+            r.paper[0],
+            1e-9,
+            &what("paper mean"),
+        );
         let (lo, hi) = interval(&t["data"]["ci"]);
         assert_close(lo, r.paper[1], 1e-9, &what("t low"));
         assert_close(hi, r.paper[2], 1e-9, &what("t high"));
@@ -124,7 +161,10 @@ fn compare_with_bk_reproduces_the_fingertip_table_against_scipy() {
             .find(|c| c["finger"] == r.finger.as_str())
             .unwrap();
         assert_close(num(&rho["rho"]), r.rho_atlas, 1e-9, &what("rho"));
-        let atlas = r.at.iter().find(|a| (a.0 - r.rho_atlas).abs() < 1e-9).unwrap();
+        let atlas =
+            r.at.iter()
+                .find(|a| (a.0 - r.rho_atlas).abs() < 1e-9)
+                .unwrap();
         // SciPy's SE comes from a numerical gradient: agreement to 1e-8 relative.
         assert_rel(num(&t["bone"]["se"]), atlas.1, 1e-7, &what("bone se"));
         assert_rel(num(&t["skin"]["se"]), atlas.2, 1e-7, &what("skin se"));
@@ -145,7 +185,15 @@ fn compare_with_bk_reproduces_the_fingertip_table_against_scipy() {
 fn the_verdict_at_correlations_0_and_0_9() {
     let Some(wd) = workdir() else { return };
     let csv = wd
-        .run(&["compare", "data/measurements.csv", TABLE, "--correlation", "0.9", "--format", "csv"])
+        .run(&[
+            "compare",
+            "data/measurements.csv",
+            TABLE,
+            "--correlation",
+            "0.9",
+            "--format",
+            "csv",
+        ])
         .ok()
         .stdout
         .clone();
@@ -157,7 +205,10 @@ fn the_verdict_at_correlations_0_and_0_9() {
         .unwrap()
         .split(',')
         .collect::<Vec<_>>();
-    let r = references().into_iter().find(|r| r.finger == "ring").unwrap();
+    let r = references()
+        .into_iter()
+        .find(|r| r.finger == "ring")
+        .unwrap();
     let at09 = r.at.iter().find(|a| (a.0 - 0.9).abs() < 1e-12).unwrap();
     // With the paper's rows at the skin, the table's J~3 is taken to the skin too.
     let low: f64 = ring[col("low")].parse().unwrap();
@@ -166,8 +217,22 @@ fn the_verdict_at_correlations_0_and_0_9() {
     assert_close(high, at09.4.1, 1e-8, "ring skin high at 0.9");
     assert_eq!(ring[col("agrees")], "true");
     assert_eq!(ring[col("agrees_at_0")], "true");
-    let text = wd.run(&["compare", "data/measurements.csv", TABLE, "--correlation", "0.9"]).ok().stdout.clone();
-    assert!(text.replace("\n  ", " ").contains("Assumed (given with --correlation): 0.9 for every finger"), "{text}");
+    let text = wd
+        .run(&[
+            "compare",
+            "data/measurements.csv",
+            TABLE,
+            "--correlation",
+            "0.9",
+        ])
+        .ok()
+        .stdout
+        .clone();
+    assert!(
+        text.replace("\n  ", " ")
+            .contains("Assumed (given with --correlation): 0.9 for every finger"),
+        "{text}"
+    );
 }
 
 /// A bad table: every problem with its line and column, exit 2, nothing on standard output.
@@ -178,7 +243,13 @@ fn a_bad_table_gets_every_problem_with_its_line_and_column() {
         "bad.csv",
         "finger,segment,mean,sd,n,unit\ntoe,distal,1,1,5,mm\nthumb,middle,20,1,5,mm\nindex,distal,0,1,5,mm\nring,distal,17,-2,5,mm\nring,middle,25,2,5,mm\nring,middle,25,2,5,mm\nring,proximal,40,2,5,cm\nindex,nail,1,1,5,mm\n",
     );
-    let run = wd.run(&["compare", "data/measurements.csv", "bad.csv", "--correlation", "0.5"]);
+    let run = wd.run(&[
+        "compare",
+        "data/measurements.csv",
+        "bad.csv",
+        "--correlation",
+        "0.5",
+    ]);
     run.data_error();
     assert!(run.stdout.is_empty());
     for place in [
@@ -199,22 +270,63 @@ fn a_bad_table_gets_every_problem_with_its_line_and_column() {
 #[test]
 fn place_from_a_table_states_its_correlation() {
     let Some(wd) = workdir() else { return };
-    let run = wd.run(&["place", "--finger", "index", "--length", "81.82", "--reference", TABLE]);
+    let run = wd.run(&[
+        "place",
+        "--finger",
+        "index",
+        "--length",
+        "81.82",
+        "--reference",
+        TABLE,
+    ]);
     // PIP at 39.78 of 81.82, DIP at 62.16 (tip at the skin: the soft tissue 3.84 included).
     run.ok()
         .stdout_has("| PIP joint        |         39.780 |")
         .stdout_has("| DIP joint        |         62.160 |")
-        .stdout_has("The intervals rest on an assumed correlation of 0.85 between the table's segments")
+        .stdout_has(
+            "The intervals rest on an assumed correlation of 0.85 between the table's segments",
+        )
         .stdout_has("the tip at the skin: the table's soft tissue included");
     let doc = wd
-        .run(&["place", "--hand", "thumb=5,index=8", "--reference", TABLE, "--correlation", "0", "--format", "json"])
+        .run(&[
+            "place",
+            "--hand",
+            "thumb=5,index=8",
+            "--reference",
+            TABLE,
+            "--correlation",
+            "0",
+            "--format",
+            "json",
+        ])
         .ok()
         .json();
     assert_eq!(doc["placements"].as_array().unwrap().len(), 2);
-    assert!(doc["correlation_assumption"].as_str().unwrap().contains("given with --correlation"));
+    assert!(
+        doc["correlation_assumption"]
+            .as_str()
+            .unwrap()
+            .contains("given with --correlation")
+    );
     // The atlas as a reference is a dataset: the same output as --data.
-    let a = wd.run(&["place", "--finger", "ring", "--length", "10", "--reference", "data/atlas/measurements.csv"]);
-    let b = wd.run(&["place", "--finger", "ring", "--length", "10", "--data", "data/atlas/measurements.csv"]);
+    let a = wd.run(&[
+        "place",
+        "--finger",
+        "ring",
+        "--length",
+        "10",
+        "--reference",
+        "data/atlas/measurements.csv",
+    ]);
+    let b = wd.run(&[
+        "place",
+        "--finger",
+        "ring",
+        "--length",
+        "10",
+        "--data",
+        "data/atlas/measurements.csv",
+    ]);
     assert_eq!(a.ok().stdout, b.ok().stdout);
 }
 
@@ -225,10 +337,18 @@ fn without_the_atlas_the_correlation_must_be_given() {
     wd.write(TABLE, vendored(TABLE).unwrap());
     wd.run(&["compare", "data/measurements.csv", TABLE])
         .expect_code(2)
-        .stderr_has("give --correlation-from PATH (a dataset with per-hand values) or --correlation R");
-    wd.run(&["compare", "data/measurements.csv", TABLE, "--correlation", "1.5"])
-        .expect_code(2)
-        .stderr_has("not a correlation from 0 to 1");
+        .stderr_has(
+            "give --correlation-from PATH (a dataset with per-hand values) or --correlation R",
+        );
+    wd.run(&[
+        "compare",
+        "data/measurements.csv",
+        TABLE,
+        "--correlation",
+        "1.5",
+    ])
+    .expect_code(2)
+    .stderr_has("not a correlation from 0 to 1");
 }
 
 /// A lab adding X-rays measured to the bone to the paper's skin tips is refused, with the

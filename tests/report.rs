@@ -62,6 +62,7 @@ fn render_with(
         rigs: &rigs,
         paper_xrays: claims.named_in(dataset),
         atlas: None,
+        literature: None,
         deform: None,
     };
     let files = report::render(&inputs, Formats::ALL, &Templates::builtin().unwrap()).unwrap();
@@ -205,7 +206,7 @@ fn paper_numbers_appear_in_the_report() {
 fn data_derived_strings_are_escaped() {
     let mut data = paper_bytes();
     data.extend_from_slice(
-        b"\"<script>alert(1)</script>\",index,300,200,180,,,right,\"HYPERLINK(\"\"http://x\"\")|a\nb\",image units\n",
+        b"\"<script>alert(1)</script>\",index,300,200,180,,,right,\"HYPERLINK(\"\"http://x\"\")|a\nb\",image units,\n",
     );
     let (files, _) = render_bytes(&data);
     let html = file(&files, "index.html");

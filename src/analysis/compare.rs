@@ -394,13 +394,13 @@ impl CohortInfo {
             .collect();
         sides.sort();
         sides.dedup();
-        let ages = data
-            .rows
-            .iter()
-            .filter_map(|r| r.meta.age)
-            .fold(None, |acc: Option<(f64, f64)>, a| {
-                Some(acc.map_or((a, a), |(lo, hi)| (lo.min(a), hi.max(a))))
-            });
+        let ages =
+            data.rows
+                .iter()
+                .filter_map(|r| r.meta.age)
+                .fold(None, |acc: Option<(f64, f64)>, a| {
+                    Some(acc.map_or((a, a), |(lo, hi)| (lo.min(a), hi.max(a))))
+                });
         CohortInfo {
             path: data.path.clone(),
             sha256: data.sha256.clone(),

@@ -215,9 +215,9 @@ fn table_parts(
     used.dedup();
     used.into_iter()
         .map(|s| {
-            let row = table.get(finger, s).ok_or_else(|| {
-                format!("the table gives no {} {}", finger.name(), s.name())
-            })?;
+            let row = table
+                .get(finger, s)
+                .ok_or_else(|| format!("the table gives no {} {}", finger.name(), s.name()))?;
             Ok((
                 s,
                 Part {
@@ -246,8 +246,13 @@ pub fn table_estimate(
 ) -> Result<Estimate, String> {
     let parts = table_parts(table, finger, q, tip)?;
     let plain: Vec<Part> = parts.iter().map(|(_, p)| *p).collect();
-    let r = delta::ratio_of_sums(&plain, rho)
-        .ok_or_else(|| format!("the table's {} {} cannot be formed", finger.name(), q.symbol()))?;
+    let r = delta::ratio_of_sums(&plain, rho).ok_or_else(|| {
+        format!(
+            "the table's {} {} cannot be formed",
+            finger.name(),
+            q.symbol()
+        )
+    })?;
     let n = parts
         .iter()
         .map(|(_, p)| p.n)
@@ -364,7 +369,9 @@ pub struct TableQuantity {
 impl TableQuantity {
     /// True when the verdict (agrees or not) is the same at every correlation of the sweep.
     pub fn verdict_holds(&self) -> bool {
-        self.sweep.iter().all(|d| d.agrees == self.difference.agrees)
+        self.sweep
+            .iter()
+            .all(|d| d.agrees == self.difference.agrees)
     }
 }
 
@@ -490,9 +497,12 @@ pub struct TableCohorts {
     pub notes: Vec<String>,
 }
 
+/// A finger and, per quantity, its value on each X-ray.
+type FingerValues = (Finger, Vec<(Quantity, Vec<f64>)>);
+
 /// Each finger's values of quantity q on a dataset (from its main block).
-fn data_values(data: &Dataset) -> Vec<(Finger, Vec<(Quantity, Vec<f64>)>)> {
-    let mut out: Vec<(Finger, Vec<(Quantity, Vec<f64>)>)> = Vec::new();
+fn data_values(data: &Dataset) -> Vec<FingerValues> {
+    let mut out: Vec<FingerValues> = Vec::new();
     for b in blocks(data) {
         let values: Vec<(Quantity, Vec<f64>)> = b
             .quantities
@@ -556,7 +566,7 @@ fn side_info(side: &Side<'_>, tip: Option<TipKind>) -> SideInfo {
 /// The quantities and estimates one side gives for a finger, at correlation `rho`.
 fn estimates(
     side: &Side<'_>,
-    values: &[(Finger, Vec<(Quantity, Vec<f64>)>)],
+    values: &[FingerValues],
     finger: Finger,
     tip: TipKind,
     rho: f64,
@@ -590,7 +600,12 @@ fn estimates(
 /// when one side is data and the other a table with the fingertip's soft tissue, where the
 /// data's fingertips are ([`TipFinding`]). Total lengths are compared only in one unit that
 /// is not per-image pixels.
-pub fn tables(a: Side<'_>, b: Side<'_>, correlation: &Correlation, confidence: f64) -> TableCohorts {
+pub fn tables(
+    a: Side<'_>,
+    b: Side<'_>,
+    correlation: &Correlation,
+    confidence: f64,
+) -> TableCohorts {
     let tip_a = match a {
         Side::Table(t) => table_tip(t, &b),
         Side::Data(_) => TipKind::Bone,
@@ -683,7 +698,9 @@ pub fn tables(a: Side<'_>, b: Side<'_>, correlation: &Correlation, confidence: f
         }
     }
     for l in lacking {
-        notes.push(format!("{l}, so the quantities that need it are not compared"));
+        notes.push(format!(
+            "{l}, so the quantities that need it are not compared"
+        ));
     }
     let tips = match (a, b) {
         (Side::Data(d), Side::Table(t)) => tip_verdict(d, &va, t, "a", correlation, confidence),
@@ -705,7 +722,7 @@ pub fn tables(a: Side<'_>, b: Side<'_>, correlation: &Correlation, confidence: f
 /// both give; `None` when the table gives no soft tissue.
 fn tip_verdict(
     data: &Dataset,
-    values: &[(Finger, Vec<(Quantity, Vec<f64>)>)],
+    values: &[FingerValues],
     table: &SummaryTable,
     side: &'static str,
     correlation: &Correlation,
@@ -794,24 +811,43 @@ mod tests {
         assert!((e(TipKind::Bone).mean - 15.82 / 77.98).abs() < 1e-15);
         assert!((e(TipKind::Skin).mean - 19.66 / 81.82).abs() < 1e-15);
         // thumb J~2: 21.67 / 53.24 and 27.34 / 58.91; J2/J1 and mc/J.
-        let th = |q, tip| table_estimate(&t, Finger::Thumb, q, tip, 0.0, 0.95).unwrap().mean;
+        let th = |q, tip| {
+            table_estimate(&t, Finger::Thumb, q, tip, 0.0, 0.95)
+                .unwrap()
+                .mean
+        };
         assert!((th(Quantity::RelJ2, TipKind::Bone) - 21.67 / 53.24).abs() < 1e-15);
         assert!((th(Quantity::RelJ2, TipKind::Skin) - 27.34 / 58.91).abs() < 1e-15);
         assert!((th(Quantity::RatioJ2J1, TipKind::Bone) - 21.67 / 31.57).abs() < 1e-15);
         assert!((th(Quantity::RatioMcJ, TipKind::Bone) - 46.22 / 53.24).abs() < 1e-15);
-        assert!(table_estimate(&t, Finger::Thumb, Quantity::RelJ3, TipKind::Bone, 0.0, 0.95).is_err());
+        assert!(
+            table_estimate(&t, Finger::Thumb, Quantity::RelJ3, TipKind::Bone, 0.0, 0.95).is_err()
+        );
     }
 
     #[test]
     fn a_table_without_spread_has_no_interval_and_says_why() {
         let text = "finger,segment,mean,sd,n,unit\nindex,proximal,39.78,,,mm\nindex,middle,22.38,2.51,66,mm\nindex,distal,15.82,2.26,66,mm\n";
         let t = SummaryTable::from_bytes("t.csv", text.as_bytes()).unwrap();
-        let e = table_estimate(&t, Finger::Index, Quantity::RelJ3, TipKind::Bone, 0.5, 0.95).unwrap();
+        let e =
+            table_estimate(&t, Finger::Index, Quantity::RelJ3, TipKind::Bone, 0.5, 0.95).unwrap();
         assert!((e.mean - 15.82 / 77.98).abs() < 1e-15);
         assert_eq!((e.se, e.ci), (None, None));
-        assert!(e.why.unwrap().contains("no SD or no n for the index proximal"));
+        assert!(
+            e.why
+                .unwrap()
+                .contains("no SD or no n for the index proximal")
+        );
         // J3/J2 does not need the proximal phalanx, so it has its interval.
-        let r = table_estimate(&t, Finger::Index, Quantity::RatioJ3J2, TipKind::Bone, 0.5, 0.95).unwrap();
+        let r = table_estimate(
+            &t,
+            Finger::Index,
+            Quantity::RatioJ3J2,
+            TipKind::Bone,
+            0.5,
+            0.95,
+        )
+        .unwrap();
         assert!(r.ci.is_some() && r.why.is_none());
     }
 
@@ -819,10 +855,17 @@ mod tests {
     fn higher_correlation_narrows_a_share_of_the_finger() {
         let t = bk();
         let se = |rho| {
-            table_estimate(&t, Finger::Middle, Quantity::RelJ3, TipKind::Bone, rho, 0.95)
-                .unwrap()
-                .se
-                .unwrap()
+            table_estimate(
+                &t,
+                Finger::Middle,
+                Quantity::RelJ3,
+                TipKind::Bone,
+                rho,
+                0.95,
+            )
+            .unwrap()
+            .se
+            .unwrap()
         };
         assert!(se(0.9) < se(0.5) && se(0.5) < se(0.0));
     }
@@ -851,7 +894,12 @@ mod tests {
     fn the_papers_tips_are_at_the_skin_and_the_data_says_so() {
         let paper = Dataset::load(Path::new("data/measurements.csv")).unwrap();
         let t = bk();
-        let c = tables(Side::Data(&paper), Side::Table(&t), &Correlation::given(0.5), 0.95);
+        let c = tables(
+            Side::Data(&paper),
+            Side::Table(&t),
+            &Correlation::given(0.5),
+            0.95,
+        );
         let v = c.tips.expect("B&K gives the soft tissue");
         assert_eq!(v.fingers.len(), 5);
         for f in &v.fingers {

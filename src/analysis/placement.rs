@@ -366,8 +366,10 @@ mod table_tests {
 
     #[test]
     fn placed_from_bk_by_hand() {
-        let t = SummaryTable::load(std::path::Path::new("data/literature/buryanov-kotiuk-2010.csv"))
-            .unwrap();
+        let t = SummaryTable::load(std::path::Path::new(
+            "data/literature/buryanov-kotiuk-2010.csv",
+        ))
+        .unwrap();
         let p = place_from_table(&t, Finger::Index, 100.0, 0.5, 0.95).unwrap();
         // Tip at the skin: finger 39.78 + 22.38 + 15.82 + 3.84 = 81.82; PIP at 39.78 / 81.82,
         // DIP at (39.78 + 22.38) / 81.82 of the length.

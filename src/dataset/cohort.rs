@@ -54,7 +54,8 @@ impl CohortNotes {
         let mut notes = CohortNotes::default();
         let mut seen: Vec<(String, u64)> = Vec::new();
         csvinput::read_table(label, bytes, |cells| {
-            let (Some(key), Some(value)) = (cells.text(NoteColumn::Key), cells.text(NoteColumn::Value))
+            let (Some(key), Some(value)) =
+                (cells.text(NoteColumn::Key), cells.text(NoteColumn::Value))
             else {
                 return;
             };
@@ -62,7 +63,10 @@ impl CohortNotes {
             if let Some((_, first)) = seen.iter().find(|(k, _)| *k == key) {
                 cells.bad(
                     NoteColumn::Key,
-                    format!("{} is already given on line {first}; keep one of them", quote(&key)),
+                    format!(
+                        "{} is already given on line {first}; keep one of them",
+                        quote(&key)
+                    ),
                 );
                 return;
             }
@@ -149,8 +153,9 @@ mod tests {
 
     #[test]
     fn bad_notes_name_their_lines() {
-        let e = CohortNotes::from_bytes("n.csv", b"key,value\nage,1\nage,2\ncolour,red\ntip,nail\n")
-            .unwrap_err();
+        let e =
+            CohortNotes::from_bytes("n.csv", b"key,value\nage,1\nage,2\ncolour,red\ntip,nail\n")
+                .unwrap_err();
         let places: Vec<_> = e.problems.iter().map(|p| (p.line, p.column)).collect();
         assert_eq!(
             places,

@@ -22,9 +22,7 @@ use std::collections::HashMap;
 use std::path::Path;
 
 /// A segment of a finger as a summary table names it.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, JsonSchema,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Segment {
     /// The proximal phalanx (J1).
@@ -256,19 +254,17 @@ fn parse_row(cells: &mut Cells<'_, '_, TableColumn>) -> Option<(TableRow, String
             "the thumb has no middle phalanx (its phalanges are proximal and distal); correct the finger or the segment",
         );
     }
-    let mean = cells.parse(TableColumn::Mean, |t| {
-        match t.parse::<f64>() {
-            Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-            Ok(v) if v.is_finite() => Err(format!(
-                "{} is not positive; a mean length must be greater than 0",
-                quote(t)
-            )),
-            _ if t.is_empty() => Err("is empty; enter the mean length".into()),
-            _ => Err(format!(
-                "{} is not a finite number; write the mean length as a decimal number such as 15.82",
-                quote(t)
-            )),
-        }
+    let mean = cells.parse(TableColumn::Mean, |t| match t.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        Ok(v) if v.is_finite() => Err(format!(
+            "{} is not positive; a mean length must be greater than 0",
+            quote(t)
+        )),
+        _ if t.is_empty() => Err("is empty; enter the mean length".into()),
+        _ => Err(format!(
+            "{} is not a finite number; write the mean length as a decimal number such as 15.82",
+            quote(t)
+        )),
     });
     let sd = cells
         .parse(TableColumn::Sd, |t| {
@@ -424,7 +420,10 @@ mod tests {
         assert_eq!(e.problems.len(), 8, "{e}");
         let shown = e.to_string();
         assert!(shown.starts_with("8 problems in bad.csv:"), "{shown}");
-        assert!(shown.contains("bad.csv:2:1: finger: unknown finger"), "{shown}");
+        assert!(
+            shown.contains("bad.csv:2:1: finger: unknown finger"),
+            "{shown}"
+        );
     }
 
     #[test]
@@ -432,7 +431,10 @@ mod tests {
         let text = format!("{HEADER}index,distal,15,1,5,mm\nindex,distal,16,1,5,mm\n");
         let e = SummaryTable::from_bytes("d.csv", text.as_bytes()).unwrap_err();
         assert_eq!(e.problems.len(), 1);
-        assert_eq!((e.problems[0].line, e.problems[0].column), (Some(3), Some(2)));
+        assert_eq!(
+            (e.problems[0].line, e.problems[0].column),
+            (Some(3), Some(2))
+        );
         assert!(e.problems[0].message.contains("already given on line 2"));
     }
 

@@ -22,8 +22,8 @@ pub mod literature;
 pub(crate) mod quantity;
 pub mod tip;
 
-pub use error::{DataError, Problem};
 pub use cohort::CohortNotes;
+pub use error::{DataError, Problem};
 pub use finger::Finger;
 pub use literature::{Segment, Source, SummaryTable, TableRow};
 pub use quantity::Quantity;

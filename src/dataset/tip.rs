@@ -112,7 +112,13 @@ fn line_runs(lines: &[u64], max: usize) -> String {
     let shown: Vec<String> = runs
         .iter()
         .take(max)
-        .map(|&(a, b)| if a == b { a.to_string() } else { format!("{a}-{b}") })
+        .map(|&(a, b)| {
+            if a == b {
+                a.to_string()
+            } else {
+                format!("{a}-{b}")
+            }
+        })
         .collect();
     let more = runs.len().saturating_sub(max);
     if more > 0 {
@@ -180,12 +186,25 @@ mod tests {
             b"xray,finger,j1,j2,j3,tip\nd,index,4,2,2,bone\ne,index,4,2,2,bone\nf,index,4,2,2,bone\ng,index,4,2,2,skin\n",
         )
         .unwrap();
-        let m = pooling_problem(&[("data.csv", &skin.rows), ("new.csv", &bone.rows)], "--mixed-tips").unwrap();
-        assert!(m.contains("3 rows of new.csv (lines 2-4) at the end of the bone"), "{m}");
-        assert!(m.contains("2 rows of data.csv (lines 2-3) and 1 row of new.csv (line 5) at the skin"), "{m}");
+        let m = pooling_problem(
+            &[("data.csv", &skin.rows), ("new.csv", &bone.rows)],
+            "--mixed-tips",
+        )
+        .unwrap();
+        assert!(
+            m.contains("3 rows of new.csv (lines 2-4) at the end of the bone"),
+            "{m}"
+        );
+        assert!(
+            m.contains("2 rows of data.csv (lines 2-3) and 1 row of new.csv (line 5) at the skin"),
+            "{m}"
+        );
         assert!(m.contains("give --mixed-tips"), "{m}");
         // Unrecorded tips pool with either; one kind alone is fine.
-        assert_eq!(pooling_problem(&[("data.csv", &skin.rows)], "--mixed-tips"), None);
+        assert_eq!(
+            pooling_problem(&[("data.csv", &skin.rows)], "--mixed-tips"),
+            None
+        );
         assert_eq!(line_runs(&[1, 2, 3, 5, 7, 8], 2), "1-3, 5 and 1 more");
     }
 }

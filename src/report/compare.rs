@@ -215,7 +215,11 @@ pub fn overall_sentence(c: &Cohorts, names: Names<'_>) -> String {
     let all: Vec<(Finger, Quantity, &Comparison)> = c
         .fingers
         .iter()
-        .flat_map(|f| f.quantities.iter().map(move |q| (f.finger, q.quantity, &q.comparison)))
+        .flat_map(|f| {
+            f.quantities
+                .iter()
+                .map(move |q| (f.finger, q.quantity, &q.comparison))
+        })
         .collect();
     let clear: Vec<&(Finger, Quantity, &Comparison)> = all
         .iter()
@@ -238,13 +242,24 @@ pub fn overall_sentence(c: &Cohorts, names: Names<'_>) -> String {
             x.hedges_g.map_or("n/a".to_string(), |g| signed(g.g, 2))
         ));
     }
-    let lasts: Vec<&LastSegment> = c.fingers.iter().filter_map(|f| f.last_segment.as_ref()).collect();
+    let lasts: Vec<&LastSegment> = c
+        .fingers
+        .iter()
+        .filter_map(|f| f.last_segment.as_ref())
+        .collect();
     if !lasts.is_empty() && lasts.len() == c.fingers.len() {
         let shorter_b = lasts.iter().all(|l| l.difference < 0.0);
         let shorter_a = lasts.iter().all(|l| l.difference > 0.0);
         if shorter_a || shorter_b {
-            let (short, long) = if shorter_b { (names.b, names.a) } else { (names.a, names.b) };
-            let lo = lasts.iter().map(|l| l.difference.abs()).fold(f64::INFINITY, f64::min);
+            let (short, long) = if shorter_b {
+                (names.b, names.a)
+            } else {
+                (names.a, names.b)
+            };
+            let lo = lasts
+                .iter()
+                .map(|l| l.difference.abs())
+                .fold(f64::INFINITY, f64::min);
             let hi = lasts.iter().map(|l| l.difference.abs()).fold(0.0, f64::max);
             s.push_str(&format!(
                 ". On every finger {short}'s last segment is the shorter (by {} to {} of the finger): fingertips at the bone in {short} and at the skin in {long} would explain it",
@@ -271,7 +286,10 @@ pub fn text(c: &Cohorts, width: Width) -> String {
     out.push_str(&overall_sentence(c, Names::AB));
     out.push('\n');
     for f in &c.fingers {
-        out.push_str(&format!("- {}", finger_sentence(f, Names::AB, c.settings.confidence)));
+        out.push_str(&format!(
+            "- {}",
+            finger_sentence(f, Names::AB, c.settings.confidence)
+        ));
         if let Some(last) = &f.last_segment {
             out.push(' ');
             out.push_str(&tip_sentence(last, c, Names::AB));

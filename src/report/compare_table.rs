@@ -77,7 +77,9 @@ impl Profile {
     pub fn of_side(s: &SideInfo) -> Profile {
         let about = s.about.as_ref();
         let tip = match s.table_tip {
-            Some(TipKind::Skin) => "last phalanx plus the fingertip's soft tissue (tip at the skin)".to_string(),
+            Some(TipKind::Skin) => {
+                "last phalanx plus the fingertip's soft tissue (tip at the skin)".to_string()
+            }
             Some(TipKind::Bone) => tip_of(None, about),
             None => tip_of(s.tips.as_ref(), about),
         };
@@ -176,6 +178,17 @@ pub fn sweep_cell(sweep: &[Difference]) -> String {
         .join("; ")
 }
 
+/// "agrees" or "differs" when the verdict is the same at every correlation of the sweep,
+/// else each correlation's ([`sweep_cell`]).
+pub fn verdict_cell(sweep: &[Difference]) -> String {
+    match sweep.first() {
+        Some(first) if sweep.iter().all(|d| d.agrees == first.agrees) => {
+            verdict(first.agrees).to_string()
+        }
+        _ => sweep_cell(sweep),
+    }
+}
+
 /// A correlation with 2 decimals, trailing zeros dropped: 0 -> "0", 0.9 -> "0.9", 0.853 -> "0.85".
 pub fn trim_rho(r: f64) -> String {
     crate::format::trimmed(r, 2)
@@ -200,26 +213,21 @@ pub fn fit_words(f: Option<Fit>) -> &'static str {
 }
 
 /// The fingertip sentence of one finger: the data's last segment against the table's bone
-/// only and bone plus soft tissue, and which it fits. `names.a` is the data, `names.b` the table.
+/// only and bone plus soft tissue, and which it fits. `names.a` is the data, `names.b` the
+/// table; differences are the table's value minus the data's.
 pub fn tip_finding_sentence(t: &TipFinding, names: Names<'_>, confidence: f64) -> String {
     let q = t.quantity;
     let inside = |e: &Estimate| t.data.ci.is_some_and(|ci| ci.contains(e.mean));
     let where_ = |e: &Estimate| {
-        if inside(e) {
-            "inside"
-        } else {
-            "outside"
-        }
+        if inside(e) { "inside" } else { "outside" }
     };
     let diff = |x: &Difference| match x.interval {
         Some(i) => format!(
-            "{} - {} = {} {}",
-            names.b,
-            names.a,
+            "difference {} {}",
             signed(x.difference, d(q)),
             interval(Some(i), d(q))
         ),
-        None => format!("{} - {} = {}", names.b, names.a, signed(x.difference, d(q))),
+        None => format!("difference {}", signed(x.difference, d(q))),
     };
     let holds = t.sweep.iter().all(|(_, f)| *f == t.fit);
     format!(
@@ -261,11 +269,19 @@ pub fn tip_overall(v: &TipVerdict, names: Names<'_>) -> String {
     match v.overall {
         Some(Fit::Skin) => format!(
             "On all {n} fingers {data}'s last segment agrees with {table}'s bone plus soft tissue and not with bone alone, at every correlation from 0 to 0.9: {data}'s fingertips are at the skin's outline ({record}{}).",
-            if v.recorded == Some(TipKind::Skin) { ", which this confirms" } else { "; record tip = skin" }
+            if v.recorded == Some(TipKind::Skin) {
+                ", which this confirms"
+            } else {
+                "; record tip = skin"
+            }
         ),
         Some(Fit::Bone) => format!(
             "On all {n} fingers {data}'s last segment agrees with {table}'s bone alone and not with bone plus soft tissue, at every correlation from 0 to 0.9: {data}'s fingertips are at the end of the bone ({record}{}).",
-            if v.recorded == Some(TipKind::Bone) { ", which this confirms" } else { "; record tip = bone" }
+            if v.recorded == Some(TipKind::Bone) {
+                ", which this confirms"
+            } else {
+                "; record tip = bone"
+            }
         ),
         _ => format!(
             "The fingers do not agree on one tip at every correlation from 0 to 0.9, so where {data}'s fingertips are is not settled by {table} ({record})."
@@ -286,7 +302,11 @@ pub fn table_finger_sentence(f: &TableFinger, names: Names<'_>) -> String {
             Some(false) => differ.push(format!(
                 "{s} ({} {} by {})",
                 names.b,
-                if q.difference.difference > 0.0 { "larger" } else { "smaller" },
+                if q.difference.difference > 0.0 {
+                    "larger"
+                } else {
+                    "smaller"
+                },
                 num(q.difference.difference.abs(), d(q.quantity))
             )),
             Some(true) => agree.push(s),
@@ -299,7 +319,12 @@ pub fn table_finger_sentence(f: &TableFinger, names: Names<'_>) -> String {
     let mut s = format!("{}: ", finger_name(f.finger));
     let mut parts = Vec::new();
     if !differ.is_empty() {
-        parts.push(format!("{} and {} differ on {}", names.a, names.b, differ.join(", ")));
+        parts.push(format!(
+            "{} and {} differ on {}",
+            names.a,
+            names.b,
+            differ.join(", ")
+        ));
     }
     if !agree.is_empty() {
         parts.push(format!("agree on {}", agree.join(", ")));
@@ -326,7 +351,10 @@ pub fn table_finger_sentence(f: &TableFinger, names: Names<'_>) -> String {
 /// The overall sentence of a comparison with a table.
 pub fn table_overall(c: &TableCohorts, names: Names<'_>) -> String {
     let all: Vec<_> = c.fingers.iter().flat_map(|f| &f.quantities).collect();
-    let differ = all.iter().filter(|q| q.difference.agrees == Some(false)).count();
+    let differ = all
+        .iter()
+        .filter(|q| q.difference.agrees == Some(false))
+        .count();
     let moved = all.iter().filter(|q| !q.verdict_holds()).count();
     let mut s = format!(
         "Overall: {} of {} quantities differ between {} and {} at the assumed correlation",
@@ -368,7 +396,9 @@ pub fn correlation_line(c: &Correlation) -> String {
         }
         None => format!(
             "A summary table gives no correlations between its segments, so a ratio of its means has a standard error only under an assumed one. Assumed (given with --correlation): {} for every finger. Every verdict is also given at correlations 0 and 0.9.",
-            c.fingers.first().map_or("0".to_string(), |f| trim_rho(f.rho))
+            c.fingers
+                .first()
+                .map_or("0".to_string(), |f| trim_rho(f.rho))
         ),
     }
 }
@@ -391,7 +421,8 @@ fn side_line(s: &SideInfo) -> String {
             "{name}a published summary table, {}, {unit}; its last segments taken {}",
             s.n.map_or("n not given".to_string(), |n| format!("{n} hands")),
             match s.table_tip {
-                Some(TipKind::Skin) => "to the skin (the soft tissue added), as the other side's rows record skin tips",
+                Some(TipKind::Skin) =>
+                    "to the skin (the soft tissue added), as the other side's rows record skin tips",
                 _ => "to the end of the bone",
             }
         ),
@@ -424,9 +455,13 @@ pub fn text(c: &TableCohorts, width: Width) -> String {
     }
     out.push_str(&format!("\n{}\n", correlation_line(&c.correlation)));
     if let Some(v) = &c.tips {
-        let (dn, tn) = if v.data == "a" { ("A", "B") } else { ("B", "A") };
+        let (dn, tn) = if v.data == "a" {
+            ("A", "B")
+        } else {
+            ("B", "A")
+        };
         out.push_str(&format!(
-            "\nWhere {dn}'s fingertips are: its last segment against {tn}'s, bone only and bone plus soft tissue ({conf} intervals)\n"
+            "\nWhere {dn}'s fingertips are: its last segment against {tn}'s, bone only and bone plus soft tissue ({conf} intervals; differences {tn} - {dn})\n"
         ));
         let mut g = Grid::new()
             .col("finger", Align::Left, Give::Keep)
@@ -456,7 +491,10 @@ pub fn text(c: &TableCohorts, width: Width) -> String {
             Names { a: "B", b: "A" }
         };
         for t in &v.fingers {
-            out.push_str(&format!("- {}\n", tip_finding_sentence(t, tip_names, c.confidence)));
+            out.push_str(&format!(
+                "- {}\n",
+                tip_finding_sentence(t, tip_names, c.confidence)
+            ));
         }
     }
     out.push_str(&format!(
@@ -557,7 +595,10 @@ pub fn csv(c: &TableCohorts) -> Result<Vec<u8>, Error> {
                     .find(|s| (s.rho - r).abs() < 1e-12)
                     .and_then(|s| s.agrees)
             };
-            let notes: Vec<String> = [q.a.why.clone(), q.b.why.clone()].into_iter().flatten().collect();
+            let notes: Vec<String> = [q.a.why.clone(), q.b.why.clone()]
+                .into_iter()
+                .flatten()
+                .collect();
             let row = vec![
                 f.finger.name().to_string(),
                 q.quantity.name().to_string(),

@@ -399,7 +399,11 @@ pub(crate) fn table_placement(
                     .iter()
                     .map(|(s, v)| (format!("segment {}", s.to_uppercase()), v)),
             )
-            .chain(p.metacarpal.iter().map(|m| ("MCP from the CMC".to_string(), m)));
+            .chain(
+                p.metacarpal
+                    .iter()
+                    .map(|m| ("MCP from the CMC".to_string(), m)),
+            );
         for (what, v) in rows {
             t.row(vec![
                 what,

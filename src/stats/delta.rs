@@ -180,8 +180,8 @@ mod tests {
                     let z0 = rng::standard_normal(&mut rng);
                     for (i, p) in parts.iter().enumerate() {
                         let z = rng::standard_normal(&mut rng);
-                        sums[i] += p.mean
-                            + p.sd.unwrap() * (rho.sqrt() * z0 + (1.0 - rho).sqrt() * z);
+                        sums[i] +=
+                            p.mean + p.sd.unwrap() * (rho.sqrt() * z0 + (1.0 - rho).sqrt() * z);
                     }
                 }
                 ratios.push(sums[2] / (sums[0] + sums[1] + sums[2]));
