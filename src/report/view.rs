@@ -1673,7 +1673,7 @@ fn literature_view(l: &LiteratureInputs) -> LiteratureView {
         .map(|t| format!("{} {}", t.finger.name(), percent(t.soft_share)))
         .collect();
     let audit = format!(
-        "What it changes for a rig audit: the paper's last segment ends at the skin, so a rig's last segment is compared with it as it is when the rig's tips are at the skin (the end of the finger's mesh), and no soft tissue is to be trimmed off. A rig whose tips sit at the end of the bone needs the fingertip's soft tissue added before it is compared: {name} measures it at {} of a finger measured to the skin, a share that scales with the rig's finger in any unit. A fixed offset in millimetres does not: a rig in the wrong unit would lose most of a segment to it.",
+        "What it changes for a rig audit: the paper's last segment ends at the skin, so a rig's last segment is compared with it as it is when the rig's tips are at the skin (the end of the finger's mesh), and no soft tissue is to be trimmed off. A rig whose tips sit at the end of the bone needs the fingertip's soft tissue added before it is compared: {name} measures it at {} of a finger measured to the skin, a share that scales with the rig's finger in any unit. A fixed offset in millimetres does not: a rig in the wrong unit would lose most of a segment to it. The audits of section 7 do not yet follow this: they still take the paper's tips as bone tips and trim an assumed 4 mm off every rig's last segment, so their last segments read about 4 mm short.",
         soft.join(", ")
     );
     let mut side = Vec::new();
