@@ -538,7 +538,10 @@ fn the_report_holds_the_paper_against_published_measurements() {
     let claims = Claims::load(Path::new("data/paper_claims.csv")).unwrap();
     let (files, v) = render_with_literature(&paper, &claims, 50, Some(&inputs));
     let key = v.key.fingertips.expect("the key result on the fingertips");
-    assert!(key.starts_with("The paper's fingertips are at the skin, not at the end of the bone."), "{key}");
+    assert!(
+        key.starts_with("The paper's fingertips are at the skin, not at the end of the bone."),
+        "{key}"
+    );
     let html = file(&files, "index.html");
     let doc = Html::parse_document(html);
     let sel = Selector::parse("table#literature-tips tbody tr").unwrap();
@@ -550,18 +553,35 @@ fn the_report_holds_the_paper_against_published_measurements() {
     for (row, want) in rows.iter().zip([
         ["thumb J~2", "0.4686 [0.4513, 0.4858]", "0.4070 ", "0.4641 "],
         ["index J~3", "0.2428 [0.2242, 0.2614]", "0.2029 ", "0.2403 "],
-        ["middle J~3", "0.2334 [0.2238, 0.2431]", "0.1969 ", "0.2313 "],
+        [
+            "middle J~3",
+            "0.2334 [0.2238, 0.2431]",
+            "0.1969 ",
+            "0.2313 ",
+        ],
         ["ring J~3", "0.2509 [0.2404, 0.2614]", "0.2052 ", "0.2407 "],
-        ["little J~3", "0.2787 [0.2652, 0.2922]", "0.2389 ", "0.2791 "],
+        [
+            "little J~3",
+            "0.2787 [0.2652, 0.2922]",
+            "0.2389 ",
+            "0.2791 ",
+        ],
     ]) {
         for w in want {
             assert!(row.contains(w), "{w:?} not in {row}");
         }
-        assert!(row.contains("bone plus soft tissue (tip at the skin)"), "{row}");
+        assert!(
+            row.contains("bone plus soft tissue (tip at the skin)"),
+            "{row}"
+        );
     }
     let md = file(&files, "report.md");
     assert!(md.contains("## 13. The paper against published measurements"));
-    assert!(md.contains("> **Where the paper's fingertips are.** The paper's fingertips are at the skin"));
-    assert!(md.contains("What it changes for a rig audit: the paper's last segment ends at the skin"));
+    assert!(md.contains(
+        "> **Where the paper's fingertips are.** The paper's fingertips are at the skin"
+    ));
+    assert!(
+        md.contains("What it changes for a rig audit: the paper's last segment ends at the skin")
+    );
     assert!(md.contains("| index | J\\~3 | 0.2428 [0.2242, 0.2614] | 0.2403 [0.2375, 0.2430] | agrees | 0.2185 ["), "{md}");
 }
