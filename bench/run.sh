@@ -49,6 +49,9 @@ echo "|---|---|---|---|"
 measure "paper data, full report with the atlas section (all formats and plots)" "300 ms / 60 MB" -- "$bin" report --out "$work/r0"
 measure "import the atlas (910 radiographs, atlas37)" "import + compare 100 ms" -- "$bin" import data/atlas/landmarks.csv --layout atlas37 --source "Digital Hand Atlas" --out "$work/atlas.csv"
 measure "compare the paper with the atlas" "import + compare 100 ms" -- "$bin" compare data/measurements.csv data/atlas/measurements.csv
+measure "compare the paper with a published table (B&K 2010, atlas correlations)" "100 ms" -- "$bin" compare data/measurements.csv data/literature/buryanov-kotiuk-2010.csv
+measure "place --reference a published table (every finger)" "100 ms" -- "$bin" place --hand thumb=5,index=8,middle=9,ring=8.5,little=6.5 --reference data/literature/buryanov-kotiuk-2010.csv
+measure "paper data, full report without the published-measurements section" "-" -- "$bin" report --out "$work/r2" --literature "$work/no-such-table.csv"
 measure "10,000 X-rays, stats --format json" "1 s / 100 MB" -- "$bin" stats --data "$work/x10k.csv" --format json
 measure "100,000 X-rays, stats --format json" "10 s / 300 MB" -- "$bin" stats --data "$work/x100k.csv" --format json
 measure "100,000 X-rays, full report" "15 s / 400 MB" -- "$bin" report --data "$work/x100k.csv" --out "$work/r1"
