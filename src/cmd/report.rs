@@ -133,9 +133,11 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     } else {
         None
     };
+    // The simulations' bootstraps take as many resamples as their printed coverage needs
+    // (coverage::SIM_RESAMPLES, at every size, the data's own too), not the analysis's.
     let cov_settings = CoverageSettings {
         sims: args.sims as usize,
-        resamples: settings.resamples,
+        resamples: settings.resamples.min(coverage::SIM_RESAMPLES),
         seed: settings.seed,
         confidence: settings.confidence,
         max_n: Some(coverage::REPORT_MAX_N),
