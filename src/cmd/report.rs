@@ -11,14 +11,16 @@ use crate::dataset::claims::Claims;
 use crate::error::Error;
 use crate::report::deform as deform_view;
 use crate::report::render::Templates;
-use crate::report::view::{AtlasInputs, DeformSection, ReferenceAudit, ReportInputs};
+use crate::report::view::{
+    AtlasInputs, DeformSection, LiteratureInputs, ReferenceAudit, ReportInputs,
+};
 use crate::report::writer::OutputFile;
 use crate::report::{self, Formats};
-use crate::rig::AuditedRig;
 use crate::rig::deform::{Pose, Skinning};
-use crate::rig::judge::WristRatios;
+use crate::rig::judge::{SoftTissue, WristRatios};
 use crate::rig::reference::{self, ReferenceRig};
 use crate::rig::session;
+use crate::rig::{AuditOptions, AuditedRig};
 use clap::ValueEnum;
 use std::path::{Path, PathBuf};
 
@@ -26,6 +28,8 @@ use std::path::{Path, PathBuf};
 const DEFAULT_RIGS: &str = "data/rigs";
 /// The atlas of the section "The paper against N atlas radiographs".
 const DEFAULT_ATLAS: &str = "data/atlas/measurements.csv";
+/// The published table of the section "The paper against published measurements".
+const DEFAULT_LITERATURE: &str = "data/literature/buryanov-kotiuk-2010.csv";
 /// The real rig whose audit and deformation the report shows (MIT, vendored).
 const DEFAULT_DEFORM_RIG: &str = "data/rigs/webxr-generic-hand/right.glb";
 /// Sample sizes of the coverage measured on the atlas's hands.
@@ -79,6 +83,9 @@ pub(crate) struct Args {
     /// Measurements of an atlas for "The paper against N atlas radiographs"; absent = no section
     #[arg(long, value_name = "PATH", default_value = DEFAULT_ATLAS)]
     atlas: PathBuf,
+    /// A published summary table for "The paper against published measurements" (its segments' correlations are taken from the atlas); absent = no section
+    #[arg(long, value_name = "PATH", default_value = DEFAULT_LITERATURE)]
+    literature: PathBuf,
     /// A rigged hand (glTF) audited and deformed as it is and as `audit --fix` writes it, in "Popular rigs"; absent = no such part
     #[arg(long, value_name = "PATH", default_value = DEFAULT_DEFORM_RIG)]
     deform_rig: PathBuf,
@@ -126,9 +133,11 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     } else {
         None
     };
+    // The simulations' bootstraps take as many resamples as their printed coverage needs
+    // (coverage::SIM_RESAMPLES, at every size, the data's own too), not the analysis's.
     let cov_settings = CoverageSettings {
         sims: args.sims as usize,
-        resamples: settings.resamples,
+        resamples: settings.resamples.min(coverage::SIM_RESAMPLES),
         seed: settings.seed,
         confidence: settings.confidence,
         max_n: Some(coverage::REPORT_MAX_N),
@@ -140,7 +149,9 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let a = super::analyse_showing_progress(&dataset, &settings, quiet)?;
     super::warn_implausible(&a);
     let paper_data = dataset;
-    let rigs = audit_references(references, &a);
+    // The fingertip's soft tissue of the published table, for rigs whose tips differ from the data's.
+    let soft_tissue = super::soft_tissue_from(&args.literature)?;
+    let rigs = audit_references(references, &a, &soft_tissue);
     // The coverage curve and the atlas section are independent (their random streams are
     // keyed by seed, size and simulation, not by thread), so they run side by side: the
     // same numbers, with the serial parts of one overlapping the other.
@@ -173,6 +184,13 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         },
     );
     let placements = placement::place_all(&a, args.model_length);
+    let literature = literature_inputs(
+        &args.literature,
+        &args.atlas,
+        &paper_data,
+        atlas.as_ref(),
+        settings.confidence,
+    )?;
     drop(paper_data);
     let wrist = match &atlas {
         Some(_) => session::wrist_ratios_beside(&args.atlas)?,
@@ -181,6 +199,7 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let deform = deform_section(
         &args.deform_rig,
         &a,
+        &soft_tissue,
         atlas.as_ref().map(|x| (&x.analysis, wrist.as_ref())),
     )?;
     let timestamp = args
@@ -203,11 +222,53 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         rigs: &rigs,
         paper_xrays,
         atlas: atlas.as_ref(),
+        literature: literature.as_ref(),
         deform: deform.as_ref(),
     };
     let files = report::render(&inputs, formats, &templates)?;
     write(&args.out, &files)?;
     Ok(0)
+}
+
+/// The paper against a published table, and the atlas against it, with the atlas's
+/// correlations assumed between the table's segments: only with the atlas (the correlations
+/// come from it) and the table present, over the paper's X-rays.
+fn literature_inputs(
+    table: &Path,
+    atlas_path: &Path,
+    paper: &Dataset,
+    atlas: Option<&AtlasInputs>,
+    confidence: f64,
+) -> Result<Option<LiteratureInputs>, Error> {
+    use crate::analysis::literature::{self, Side};
+    use crate::dataset::{CohortNotes, SummaryTable};
+    let Some(atlas) = atlas else { return Ok(None) };
+    if !table.exists() {
+        return Ok(None);
+    }
+    let t = SummaryTable::load(table)?;
+    let atlas_data = Dataset::load(atlas_path)?;
+    let correlation = literature::correlations_from(&atlas_data);
+    let notes_table = CohortNotes::beside(table)?;
+    let notes_atlas = CohortNotes::beside(atlas_path)?;
+    let mut p = literature::tables(Side::Data(paper), Side::Table(&t), &correlation, confidence);
+    p.a.about = CohortNotes::beside(Path::new(&paper.path))?;
+    p.b.about = notes_table.clone();
+    let mut x = literature::tables(
+        Side::Data(&atlas_data),
+        Side::Table(&t),
+        &correlation,
+        confidence,
+    );
+    x.a.about = notes_atlas.clone();
+    x.b.about = notes_table;
+    let mut info = atlas.cohorts.b.clone();
+    info.about = notes_atlas;
+    Ok(Some(LiteratureInputs {
+        paper: p,
+        atlas: Some(x),
+        atlas_info: Some(info),
+    }))
 }
 
 /// Refuses a coverage simulation too large to serve (see [`crate::analysis::budget`]),
@@ -274,12 +335,20 @@ fn check_claims(claims: &Claims, dataset: &Dataset) -> (Vec<ClaimResult>, Option
     }
 }
 
-/// Judges each reference rig against the statistics.
-fn audit_references(references: Vec<ReferenceRig>, a: &Analysis) -> Vec<ReferenceAudit> {
+/// Judges each reference rig against the statistics, as `audit` does (skin tips).
+fn audit_references(
+    references: Vec<ReferenceRig>,
+    a: &Analysis,
+    soft_tissue: &SoftTissue,
+) -> Vec<ReferenceAudit> {
+    let options = AuditOptions {
+        soft_tissue: soft_tissue.clone(),
+        ..AuditOptions::default()
+    };
     references
         .into_iter()
         .map(|rig| {
-            let audit = AuditedRig::of(&rig.name, &rig.chains, &[], a);
+            let audit = AuditedRig::with(&rig.name, &rig.chains, &[], a, &options, None);
             ReferenceAudit { rig, audit }
         })
         .collect()
@@ -292,6 +361,7 @@ fn audit_references(references: Vec<ReferenceRig>, a: &Analysis) -> Vec<Referenc
 fn deform_section(
     rig: &Path,
     a: &Analysis,
+    soft_tissue: &SoftTissue,
     atlas: Option<(&Analysis, Option<&WristRatios>)>,
 ) -> Result<Option<DeformSection>, Error> {
     if !rig.exists() {
@@ -299,7 +369,7 @@ fn deform_section(
     }
     let pose = Pose::fist();
     let req = super::deform::request(rig, &pose, Skinning::Lbs);
-    let mut fixed = session::fix_in_memory_with(rig, None, a)?;
+    let mut fixed = session::fix_in_memory_with(rig, None, a, soft_tissue)?;
     if let Some((atlas, wrist)) = atlas {
         fixed.audited.judge_metacarpals(atlas, wrist);
     }
