@@ -97,7 +97,9 @@ pub(crate) fn check_dir_targets(dir: &Path, names: &[String], force: bool) -> Re
         } else {
             format!("{} is a file, not a directory", f.display())
         };
-        return Err(format!("{what}; give a directory (it is created when missing)"));
+        return Err(format!(
+            "{what}; give a directory (it is created when missing)"
+        ));
     }
     let existing: Vec<String> = names
         .iter()

@@ -109,9 +109,7 @@ impl GltfFile {
                 file: label.to_string(),
                 problems: problems
                     .into_iter()
-                    .map(|e| {
-                        crate::dataset::Problem::file(format!("is not valid glTF 2.0: {e}"))
-                    })
+                    .map(|e| crate::dataset::Problem::file(format!("is not valid glTF 2.0: {e}")))
                     .collect(),
             });
         }

@@ -329,7 +329,7 @@ fn bare_of(m: &regex::Captures<'_>) -> Option<Bare> {
     Some(Bare {
         side: one_side(&[m.name("s1"), m.name("s2")])?,
         finger,
-        deform: deform_bone(&m),
+        deform: deform_bone(m),
         leaf: m.name("end").is_some(),
     })
 }
