@@ -140,7 +140,7 @@ impl Args {
 
 /// Reads `path` and deforms it.
 fn deform_path(path: &Path, req: &DeformRequest<'_>) -> Result<FileDeformation, Error> {
-    let file = GltfFile::load(path)?;
+    let file = crate::rig::open(path)?;
     deform_parsed(&file, path, req)
 }
 

@@ -14,6 +14,8 @@ pub(crate) mod accessor;
 pub(crate) mod anim;
 pub mod bend;
 pub(crate) mod chain;
+pub mod fbx;
+pub(crate) mod glb_parts;
 pub mod deform;
 pub mod fix;
 pub mod judge;
@@ -121,6 +123,24 @@ pub struct GltfFile {
     /// The folder of the file, where external buffers are read (`None` for
     /// bytes not read from a file: external buffers are then not read).
     pub dir: Option<PathBuf>,
+    /// What the file was when it was FBX, read as this glTF document ([`fbx`]).
+    pub fbx: Option<fbx::FbxSource>,
+}
+
+/// Reads a rig file of any format phalanx reads: glTF 2.0 (.glb, .gltf,
+/// .vrm) as it is, FBX ([`fbx::is_fbx`]: by its header or a .fbx name) as
+/// the glTF document [`fbx::read`] makes of it. The one entry point for rig
+/// files: what comes after reading does not know the format.
+pub fn open(path: &Path) -> Result<GltfFile, DataError> {
+    let label = path.display().to_string();
+    let bytes = crate::dataset::csvinput::read_input(path)?;
+    let mut file = if fbx::is_fbx(path, &bytes) {
+        fbx::read(&label, &bytes)?
+    } else {
+        GltfFile::from_bytes(&label, &bytes)?
+    };
+    file.dir = Some(path.parent().unwrap_or(Path::new(".")).to_path_buf());
+    Ok(file)
 }
 
 /// The local matrix of a node, in f64.
@@ -244,6 +264,7 @@ impl GltfFile {
             parent,
             world,
             dir: None,
+            fbx: None,
         })
     }
 
@@ -596,7 +617,7 @@ impl Rig {
     /// Reads a rig and finds its finger chains. Fails, listing the names it
     /// saw, when no complete finger is found.
     pub fn load(path: &Path, map: Option<&NameMap>) -> Result<Rig, DataError> {
-        Rig::from_file(GltfFile::load(path)?, map)
+        Rig::from_file(open(path)?, map)
     }
 
     /// Finds the finger chains of a parsed file: the best node for each joint
@@ -976,15 +997,29 @@ fn no_hand(label: &str, names: &[String], notes: Vec<String>) -> DataError {
     } else {
         format!("{n} node names: {}", listed.join(", "))
     };
-    let mut e = DataError::whole_file(
-        label,
+    let generic = naming::generic_joint_names(names);
+    let what = if generic.len() >= 3 {
+        format!(
+            "has no recognisable hand: its joints carry generic names ({}{}), as Maya names \
+             joints it creates, which do not say which finger or joint each is. Name them with \
+             --map FILE (columns node,side,finger,joint, one line per joint: e.g. joint5,right,index,MCP)",
+            generic.iter().take(6).map(|s| shown(s)).collect::<Vec<_>>().join(", "),
+            if generic.len() > 6 {
+                format!(" and {} more", generic.len() - 6)
+            } else {
+                String::new()
+            }
+        )
+    } else {
         format!(
             "has no recognisable hand: no finger chain (MCP and its inner joints) was found among its {seen}. \
-             Known conventions: Mixamo (mixamorig:RightHandIndex1..4), Rigify (f_index.01.R, DEF-f_index.01.R, thumb.01.R), \
-             VRM (rightIndexProximal), Unreal (index_01_r), WebXR (index-finger-phalanx-proximal); \
+             Known conventions: Mixamo (mixamorig:RightHandIndex1..4, LeftHandIndex1), Rigify (f_index.01.R, DEF-f_index.01.R, thumb.01.R), \
+             VRM (rightIndexProximal), Unreal (index_01_r), WebXR (index-finger-phalanx-proximal), \
+             Oculus (b_l_index1, b_l_index_null), SteamVR (finger_index_0_r), Unity (EthanLeftHandIndex1, Left_Index_Finger_Joint_01a); \
              for other names give --map FILE (columns node,side,finger,joint)"
-        ),
-    );
+        )
+    };
+    let mut e = DataError::whole_file(label, what);
     e.problems.extend(notes.into_iter().map(Problem::file));
     e
 }
