@@ -66,7 +66,11 @@ pub(crate) struct Args {
     /// Write a corrected copy of the rig here (.glb, or .gltf with the buffer embedded)
     #[arg(long, value_name = "OUT")]
     fix: Option<PathBuf>,
-    /// With --fix: move only joints that are themselves outside the prediction interval
+    /// Write the joints the fix moves to this CSV: node, old and new world position (m), new local
+    /// translation in the file's units and axes (FBX: Lcl Translation), to apply in a DCC
+    #[arg(long, value_name = "FILE.csv")]
+    moves: Option<PathBuf>,
+    /// With --fix or --moves: move only joints that are themselves outside the prediction interval
     #[arg(long)]
     only_outside: bool,
     /// What the rig's tip nodes mark
@@ -86,11 +90,11 @@ pub(crate) struct Args {
     /// prediction interval
     #[arg(long)]
     strict: bool,
-    /// With --fix: where an MCP goes. `finger`: where the finger's own proportions put it,
+    /// With --fix or --moves: where an MCP goes. `finger`: where the finger's own proportions put it,
     /// when it is part of the explanation. `atlas`: where the metacarpals' dataset puts it
     /// from its CMC (or the wrist), when it lies outside that prediction interval; the MCP is
     /// then held and only PIP and DIP move to fit the proportions
-    #[arg(long, value_enum, default_value_t = FixMcp::Finger, requires = "fix")]
+    #[arg(long, value_enum, default_value_t = FixMcp::Finger)]
     fix_mcp: FixMcp,
     /// Output format
     #[arg(long, value_enum, default_value_t = TextFormat::Table)]
@@ -101,6 +105,20 @@ pub(crate) struct Args {
 const DEFAULT_METACARPALS: &str = "data/atlas/measurements.csv";
 
 pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> {
+    if args.fix_mcp != FixMcp::Finger && args.fix.is_none() && args.moves.is_none() {
+        return Err(Error::Usage(
+            "--fix-mcp says where the fix puts an MCP: give it with --fix OUT or --moves FILE.csv"
+                .into(),
+        ));
+    }
+    if let Some(m) = &args.moves
+        && crate::rig::session::same_file(&args.rig, m)
+    {
+        return Err(Error::Usage(format!(
+            "--moves {} would overwrite the input rig; name a new .csv file",
+            m.display()
+        )));
+    }
     let metacarpals = match &args.metacarpals {
         Some(path) => Some(path.clone()),
         None => Some(PathBuf::from(DEFAULT_METACARPALS)).filter(|p| p.is_file()),
@@ -115,6 +133,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         only_outside: args.only_outside,
         metacarpals: metacarpals.as_deref(),
         mcp_from_atlas: args.fix_mcp == FixMcp::Atlas,
+        moves: args.moves.is_some(),
     })?;
     if metacarpals.is_none()
         && audit
@@ -133,6 +152,16 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         TextFormat::Table => table(&audit, width).into_bytes(),
         TextFormat::Json => json(&audit)?,
     };
+    if let (Some(path), Some((moves, warnings))) = (&args.moves, &audit.moves) {
+        let csv = report::csv_out::moves(moves)?;
+        crate::atomic::replace(path, &csv).map_err(Error::write(path))?;
+        if !quiet {
+            eprintln!("{}", fit_text(&moves_summary(&audit, path, moves.len()), width));
+            for w in warnings {
+                eprintln!("warning: {w}");
+            }
+        }
+    }
     out::print(&bytes)?;
     if !quiet && let Some(fix) = &audit.fix {
         eprintln!("{}", fit_text(&fix_summary(fix), width));
@@ -215,6 +244,23 @@ fn json(audit: &Audit) -> Result<Vec<u8>, Error> {
         warnings: &fix.warnings,
     });
     report::json::audit(&audit.analysis, &audit.rig, fix)
+}
+
+/// The line on standard error saying what `--moves` wrote.
+fn moves_summary(audit: &Audit, path: &std::path::Path, n: usize) -> String {
+    let units = match &audit.fbx {
+        Some(src) => format!(
+            "new Lcl Translations in the file's units ({} m each) and its parents' axes ({})",
+            crate::format::num(src.unit_meters, 4),
+            src.axes
+        ),
+        None => "new local translations in the file's units (metres) and its parents' axes".into(),
+    };
+    format!(
+        "wrote {}: {n} node{} to move (world positions in metres, +Y up; {units})",
+        path.display(),
+        if n == 1 { "" } else { "s" }
+    )
 }
 
 /// The line on standard error saying what the fix wrote.

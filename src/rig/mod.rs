@@ -20,6 +20,7 @@ pub mod deform;
 pub mod fix;
 pub mod judge;
 pub mod map;
+pub mod moves;
 pub mod naming;
 pub mod ray;
 pub mod reference;
@@ -695,6 +696,17 @@ impl Rig {
         }
         if let Some(w) = &weights {
             notes.extend(w.notes.iter().cloned());
+        }
+        if let Some(src) = &file.fbx {
+            notes.push(format!(
+                "Read from FBX {} ({}) with ufbx: its units ({} m each) and axes ({}) converted to \
+                 metres and +Y up, and the bind pose taken from the skin clusters; --fix cannot \
+                 write FBX, --moves FILE.csv lists the moves to apply in a DCC",
+                src.version,
+                if src.ascii { "ASCII" } else { "binary" },
+                crate::format::num(src.unit_meters, 4),
+                src.axes
+            ));
         }
         Ok(Rig {
             file,

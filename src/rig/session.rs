@@ -34,6 +34,9 @@ pub struct AuditRequest<'a> {
     /// interval from its CMC (or wrist) where `metacarpals` puts it, and holds
     /// the other MCPs ([`super::ray`]); needs `metacarpals`.
     pub mcp_from_atlas: bool,
+    /// `--moves`: list the nodes the fix moves ([`super::moves`]), for a rig
+    /// of any format (an FBX rig cannot be fixed in place).
+    pub moves: bool,
 }
 
 /// A finished audit.
@@ -44,6 +47,11 @@ pub struct Audit {
     pub rig: AuditedRig,
     /// What the fix wrote, when one was asked for.
     pub fix: Option<FixOutcome>,
+    /// The nodes the fix moves, when asked for ([`AuditRequest::moves`]),
+    /// with the warnings that go with them.
+    pub moves: Option<(Vec<super::moves::Move>, Vec<String>)>,
+    /// What the rig file was, when it was FBX.
+    pub fbx: Option<super::fbx::FbxSource>,
 }
 
 /// What the fix wrote.
@@ -71,6 +79,17 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     let map = req.map.map(NameMap::load).transpose()?;
     let fix_glb = req.fix.map(|out| fix_container(req.rig, out)).transpose()?;
     let rig = Rig::load(req.rig, map.as_ref())?;
+    if let (Some(src), Some(out)) = (&rig.file.fbx, req.fix) {
+        return Err(Error::Usage(format!(
+            "--fix {}: {} is an FBX file (FBX {}), and phalanx cannot write FBX (its reader, \
+             ufbx, only reads). Give --moves FILE.csv instead: it lists each joint the fix \
+             would move with its new world position and its new Lcl Translation, to set in \
+             Maya, Blender or another DCC (see the README's recipe)",
+            out.display(),
+            req.rig.display(),
+            src.version
+        )));
+    }
     let dataset = Dataset::load(req.data)?;
     analysis::budget::check_bootstrap(dataset.xray_count(), req.settings.resamples)
         .map_err(Error::Usage)?;
@@ -108,19 +127,32 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     if let Some(atlas) = &atlas {
         audited.judge_metacarpals(atlas, wrist.as_ref());
     }
+    let dir = req.rig.parent().unwrap_or(Path::new("."));
+    let opts = fix::FixOptions {
+        only_outside: req.only_outside,
+    };
+    let placed = || match &atlas {
+        Some(_) if req.mcp_from_atlas => {
+            super::ray::mcp_from_base(&audited, &analysis, &req.options.judge)
+        }
+        _ => audited.fingers.clone(),
+    };
+    let moves = if req.moves {
+        // The fix as --fix would write it, in memory, compared with the rig.
+        let fixed = fix::fix_with(&rig.file, &placed(), rig.weights.as_ref(), dir, true, &opts)?;
+        let copy = GltfFile::from_bytes(&rig.file.label, &fixed.bytes).map_err(|e| {
+            Error::render(
+                format!("the fixed copy of {} did not read back", rig.file.label),
+                e,
+            )
+        })?;
+        Some(super::moves::moves(&rig.file, &copy))
+    } else {
+        None
+    };
     let fix = match (req.fix, fix_glb) {
         (Some(out), Some(glb)) => {
-            let dir = req.rig.parent().unwrap_or(Path::new("."));
-            let opts = fix::FixOptions {
-                only_outside: req.only_outside,
-            };
-            let placed = match &atlas {
-                Some(_) if req.mcp_from_atlas => {
-                    super::ray::mcp_from_base(&audited, &analysis, &req.options.judge)
-                }
-                _ => audited.fingers.clone(),
-            };
-            let fixed = fix::fix_with(&rig.file, &placed, rig.weights.as_ref(), dir, glb, &opts)?;
+            let fixed = fix::fix_with(&rig.file, &placed(), rig.weights.as_ref(), dir, glb, &opts)?;
             let mut reaudit =
                 write_checked(&rig, &fixed, out, map.as_ref(), &analysis, &req.options)?;
             if let Some(atlas) = &atlas {
@@ -139,6 +171,8 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         analysis,
         rig: audited,
         fix,
+        moves,
+        fbx: rig.file.fbx.clone(),
     })
 }
 
@@ -276,7 +310,7 @@ fn write_checked(
 }
 
 /// True when `a` and `b` name the same file (`b` may not exist yet).
-fn same_file(a: &Path, b: &Path) -> bool {
+pub(crate) fn same_file(a: &Path, b: &Path) -> bool {
     let canon = |p: &Path| {
         let p = crate::atomic::resolve(p);
         let dir = p
