@@ -62,22 +62,32 @@ const BINARY_MAGIC: &[u8] = b"Kaydara FBX Binary";
 /// first kilobyte, or a `.fbx` name (so that a file renamed `.fbx` is
 /// refused as FBX, saying what it is not).
 pub fn is_fbx(path: &Path, bytes: &[u8]) -> bool {
-    let head = &bytes[..bytes.len().min(1024)];
-    let ascii = String::from_utf8_lossy(head);
     bytes.starts_with(BINARY_MAGIC)
-        || ascii.trim_start().starts_with("; FBX")
-        || ascii.contains("FBXHeaderExtension:")
+        || ascii_header(bytes)
         || path
             .extension()
             .and_then(|e| e.to_str())
             .is_some_and(|e| e.eq_ignore_ascii_case("fbx"))
 }
 
+/// The last 16 bytes of a whole binary FBX file (the FBX SDK writes them
+/// after the footer; ufbx does not need them, so a file cut short can still
+/// fail on its data first).
+const BINARY_END: [u8; 16] = [
+    0xf8, 0x5a, 0x8c, 0x6a, 0xde, 0xf5, 0xd9, 0x7e, 0xec, 0xe9, 0x0c, 0xe3, 0x75, 0x8f, 0x29, 0x0b,
+];
+
 /// The user's message for a file ufbx refuses.
 fn describe(e: &ufbx::Error, bytes: &[u8]) -> String {
     use ufbx::ErrorType as E;
     let what: &str = &e.description;
+    let cut = bytes.starts_with(BINARY_MAGIC) && !bytes.ends_with(&BINARY_END);
     match e.type_ {
+        _ if cut && e.type_ != E::UnsupportedVersion => format!(
+            "is cut short: a binary FBX file that does not end with the FBX footer ({} bytes; \
+             ufbx: {what}); copy or export the file again",
+            bytes.len()
+        ),
         E::EmptyFile => "is empty; it is no FBX file".into(),
         E::TruncatedFile => format!(
             "is cut short: the FBX data ends before it should ({} bytes read; ufbx: {what}); \
@@ -96,11 +106,35 @@ fn describe(e: &ufbx::Error, bytes: &[u8]) -> String {
              likely corrupt: export it again",
             bytes.len()
         ),
-        _ if !bytes.starts_with(BINARY_MAGIC) && std::str::from_utf8(bytes).is_err() => format!(
-            "is not an FBX file: it is not binary FBX (no \"Kaydara FBX Binary\" header) and not \
-             text either (ufbx: {what}); export the rig as FBX"
+        _ if !bytes.starts_with(BINARY_MAGIC) && !ascii_header(bytes) => format!(
+            "is not an FBX file: it is {}, with neither the binary FBX header (\"Kaydara FBX \
+             Binary\") nor an ASCII FBX one; export the rig as FBX, or give its .glb or .gltf",
+            what_it_is(bytes)
         ),
         _ => format!("is a broken FBX file ({what}); export it again"),
+    }
+}
+
+/// True when the first kilobyte reads as an ASCII FBX file's start.
+fn ascii_header(bytes: &[u8]) -> bool {
+    let head = String::from_utf8_lossy(&bytes[..bytes.len().min(1024)]);
+    head.trim_start().starts_with("; FBX") || head.contains("FBXHeaderExtension:")
+}
+
+/// What a file that is no FBX seems to be, for the message.
+fn what_it_is(bytes: &[u8]) -> &'static str {
+    if bytes.starts_with(b"\x89PNG") {
+        "a PNG image"
+    } else if bytes.starts_with(&[0xff, 0xd8, 0xff]) {
+        "a JPEG image"
+    } else if bytes.starts_with(b"glTF") {
+        "a binary glTF (GLB) file: name it .glb"
+    } else if bytes.trim_ascii_start().starts_with(b"{") {
+        "JSON (a .gltf file? name it .gltf)"
+    } else if std::str::from_utf8(bytes).is_ok() {
+        "text"
+    } else {
+        "binary data"
     }
 }
 
