@@ -54,6 +54,13 @@ measure "100,000 X-rays, stats --format json" "10 s / 300 MB" -- "$bin" stats --
 measure "100,000 X-rays, full report" "15 s / 400 MB" -- "$bin" report --data "$work/x100k.csv" --out "$work/r1"
 measure "rig audit (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb
 measure "rig audit --fix (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb --fix "$work/fixed.glb"
+# The SteamVR right glove (binary FBX 7500, 3,032 vertices), when ../shared has it.
+glove=../shared/rigs/steamvr-gloves/vr_glove_model.fbx
+if [ -f "$glove" ]; then
+    measure "rig audit, FBX (SteamVR glove, 4,900 triangles)" "-" -- "$bin" audit "$glove"
+    measure "rig audit --moves, FBX (SteamVR glove)" "-" -- "$bin" audit "$glove" --moves "$work/moves.csv"
+    measure "deform, FBX (SteamVR glove), fist, LBS" "-" -- "$bin" deform "$glove"
+fi
 measure "deform, 30,000-triangle hand, fist, LBS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb"
 measure "deform --fix --out, 30,000 triangles, DQS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb" --fix --skinning dqs --out "$work/d30k"
 echo

@@ -80,12 +80,17 @@ fn read_independently(bytes: &[u8]) -> Reading {
         for c in d.clusters.iter() {
             if let Some(b) = c.bone_node.as_ref() {
                 let m = &c.bind_to_world;
-                clusters[b.element.typed_id as usize] = Some(DVec3::new(m.m03, m.m13, m.m23) * unit);
+                clusters[b.element.typed_id as usize] =
+                    Some(DVec3::new(m.m03, m.m13, m.m23) * unit);
             }
         }
     }
     Reading {
-        names: scene.nodes.iter().map(|nd| nd.element.name.to_string()).collect(),
+        names: scene
+            .nodes
+            .iter()
+            .map(|nd| nd.element.name.to_string())
+            .collect(),
         composed,
         clusters,
     }
@@ -115,7 +120,11 @@ fn both_gloves_have_every_finger_with_metacarpal_and_tip_at_the_files_lengths() 
         // The file's node transforms and its clusters agree (the gloves are saved in their bind pose).
         for (i, c) in reading.clusters.iter().enumerate() {
             if let Some(c) = c {
-                assert!(c.distance(reading.composed[i]) < 1e-7, "{name} {}", reading.names[i]);
+                assert!(
+                    c.distance(reading.composed[i]) < 1e-7,
+                    "{name} {}",
+                    reading.names[i]
+                );
             }
         }
         let doc = wd
@@ -125,7 +134,11 @@ fn both_gloves_have_every_finger_with_metacarpal_and_tip_at_the_files_lengths() 
         let fs = fingers(&doc);
         let mut found: Vec<&str> = fs.iter().map(|f| f["finger"].as_str().unwrap()).collect();
         found.sort();
-        assert_eq!(found, ["index", "little", "middle", "ring", "thumb"], "{name}");
+        assert_eq!(
+            found,
+            ["index", "little", "middle", "ring", "thumb"],
+            "{name}"
+        );
         let s = &side[..1];
         for f in fs {
             assert_eq!(f["side"], side, "{name}");
@@ -174,15 +187,24 @@ fn both_gloves_have_every_finger_with_metacarpal_and_tip_at_the_files_lengths() 
             assert_eq!(ours.len(), theirs.len());
             for (a, b) in ours.iter().zip(&theirs) {
                 assert!((a - b).abs() < 1e-4, "{name} {finger}: {a} vs {b}");
-                assert!(*a > 0.01 && *a < 0.06, "{name} {finger}: a phalanx of {a} m");
+                assert!(
+                    *a > 0.01 && *a < 0.06,
+                    "{name} {finger}: a phalanx of {a} m"
+                );
             }
-            let mc = point(&f["metacarpal"]["position"]).distance(point(&f["joints"][0]["position"]));
-            let mc_theirs = reading.position(&meta).distance(reading.position(&expected[0]));
+            let mc =
+                point(&f["metacarpal"]["position"]).distance(point(&f["joints"][0]["position"]));
+            let mc_theirs = reading
+                .position(&meta)
+                .distance(reading.position(&expected[0]));
             assert!((mc - mc_theirs).abs() < 1e-4, "{name} {finger} metacarpal");
         }
         // The marker-like helper bones are never joints.
         let text = doc.to_string();
-        assert!(!text.contains("_aux\""), "{name}: an _aux bone was taken as a joint");
+        assert!(
+            !text.contains("_aux\""),
+            "{name}: an _aux bone was taken as a joint"
+        );
     }
 }
 
@@ -249,15 +271,26 @@ fn an_fbx_and_the_same_rig_as_gltf_give_the_same_verdicts() {
         let reading = read_independently(&wd.read(name));
         let gltf = name.replace(".fbx", ".gltf");
         wd.write(&gltf, gltf_of(&reading, &wd.read(name)).to_string());
-        let a = wd.run(&["audit", name, "--tip", "skin", "--format", "json"]).ok().json();
-        let b = wd.run(&["audit", &gltf, "--tip", "skin", "--format", "json"]).ok().json();
+        let a = wd
+            .run(&["audit", name, "--tip", "skin", "--format", "json"])
+            .ok()
+            .json();
+        let b = wd
+            .run(&["audit", &gltf, "--tip", "skin", "--format", "json"])
+            .ok()
+            .json();
         let (va, vb) = (verdicts(&a), verdicts(&b));
         assert_eq!(va.len(), 5);
         assert_eq!(va, vb, "{name}");
         // And the same segments to a micrometre (the glTF keeps the file's
         // axes, the FBX reader turns them to +X right, +Z front).
         for (fa, fb) in fingers(&a).iter().zip(fingers(&b)) {
-            for (sa, sb) in fa["audit"]["segments"].as_array().unwrap().iter().zip(fb["audit"]["segments"].as_array().unwrap()) {
+            for (sa, sb) in fa["audit"]["segments"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .zip(fb["audit"]["segments"].as_array().unwrap())
+            {
                 assert!((num(sa) - num(sb)).abs() < 1e-6);
             }
         }
@@ -270,8 +303,16 @@ fn csv_rows(bytes: &[u8]) -> Vec<(String, [f64; 9])> {
     assert_eq!(
         r.headers().unwrap().iter().collect::<Vec<_>>(),
         [
-            "node", "old_x_m", "old_y_m", "old_z_m", "new_x_m", "new_y_m", "new_z_m", "new_local_x",
-            "new_local_y", "new_local_z"
+            "node",
+            "old_x_m",
+            "old_y_m",
+            "old_z_m",
+            "new_x_m",
+            "new_y_m",
+            "new_z_m",
+            "new_local_x",
+            "new_local_y",
+            "new_local_z"
         ]
     );
     r.records()
@@ -289,7 +330,8 @@ fn moves_applied_to_the_fbx_with_the_loader_land_where_the_fix_puts_them() {
     for (name, _) in GLOVES {
         wd.run(&["audit", name, "--moves", "moves.csv"])
             .ok()
-            .stderr_has("nodes to move").stderr_has("Lcl Translation");
+            .stderr_has("nodes to move")
+            .stderr_has("Lcl Translation");
         let rows = csv_rows(&wd.read("moves.csv"));
         assert!(!rows.is_empty(), "{name}: the fix moves nothing");
         // Apply the CSV's Lcl Translations to the file's nodes with ufbx,
@@ -318,7 +360,12 @@ fn moves_applied_to_the_fbx_with_the_loader_land_where_the_fix_puts_them() {
             .map(|(n, v)| ufbx::PropOverrideDesc {
                 element_id: id(n),
                 prop_name: "Lcl Translation".into(),
-                value: ufbx::Vec4 { x: v[6], y: v[7], z: v[8], w: 0.0 },
+                value: ufbx::Vec4 {
+                    x: v[6],
+                    y: v[7],
+                    z: v[8],
+                    w: 0.0,
+                },
                 ..Default::default()
             })
             .collect();
@@ -330,23 +377,36 @@ fn moves_applied_to_the_fbx_with_the_loader_land_where_the_fix_puts_them() {
             },
         )
         .unwrap();
-        let moved = ufbx::evaluate_scene(&scene, &anim, 0.0, ufbx::EvaluateOpts::default()).unwrap();
+        let moved =
+            ufbx::evaluate_scene(&scene, &anim, 0.0, ufbx::EvaluateOpts::default()).unwrap();
         let world = |n: &str| {
-            let nd = moved.nodes.iter().find(|nd| nd.element.name.to_string() == n).expect(n);
+            let nd = moved
+                .nodes
+                .iter()
+                .find(|nd| nd.element.name.to_string() == n)
+                .expect(n);
             let m = &nd.node_to_world;
             DVec3::new(m.m03, m.m13, m.m23)
         };
         for (n, v) in &rows {
             let csv_new = DVec3::new(v[3], v[4], v[5]);
             let got = world(n);
-            assert!(got.distance(csv_new) < 1e-6, "{name} {n}: {got} vs {csv_new}");
+            assert!(
+                got.distance(csv_new) < 1e-6,
+                "{name} {n}: {got} vs {csv_new}"
+            );
         }
         // The CSV's new positions are the fix's: the audit's suggested
         // points for the moved joints.
         let doc = wd.run(&["audit", name, "--format", "json"]).ok().json();
         let mut suggested = 0;
         for f in fingers(&doc) {
-            for (rj, j) in f["joints"].as_array().unwrap().iter().zip(f["audit"]["joints"].as_array().unwrap()) {
+            for (rj, j) in f["joints"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .zip(f["audit"]["joints"].as_array().unwrap())
+            {
                 if j["moves"] == true
                     && let Some((_, v)) = rows.iter().find(|(n, _)| rj["name"] == n.as_str())
                 {
@@ -355,7 +415,10 @@ fn moves_applied_to_the_fbx_with_the_loader_land_where_the_fix_puts_them() {
                 }
             }
         }
-        assert!(suggested > 0, "{name}: no moved joint checked against the audit");
+        assert!(
+            suggested > 0,
+            "{name}: no moved joint checked against the audit"
+        );
     }
 }
 
@@ -373,14 +436,31 @@ fn fix_on_an_fbx_is_refused_pointing_to_moves() {
 fn moves_on_a_gltf_rig_list_the_fixed_copys_translations() {
     let Some(wd) = with_gloves() else { return };
     let reading = read_independently(&wd.read(GLOVES[0].0));
-    wd.write("glove.gltf", gltf_of(&reading, &wd.read(GLOVES[0].0)).to_string());
-    wd.run(&["audit", "glove.gltf", "--tip", "skin", "--moves", "m.csv", "--fix", "fixed.gltf"])
-        .ok();
+    wd.write(
+        "glove.gltf",
+        gltf_of(&reading, &wd.read(GLOVES[0].0)).to_string(),
+    );
+    wd.run(&[
+        "audit",
+        "glove.gltf",
+        "--tip",
+        "skin",
+        "--moves",
+        "m.csv",
+        "--fix",
+        "fixed.gltf",
+    ])
+    .ok();
     let rows = csv_rows(&wd.read("m.csv"));
     assert!(!rows.is_empty());
     let fixed: Value = serde_json::from_slice(&wd.read("fixed.gltf")).unwrap();
     for (n, v) in rows {
-        let node = fixed["nodes"].as_array().unwrap().iter().find(|x| x["name"] == n.as_str()).unwrap();
+        let node = fixed["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|x| x["name"] == n.as_str())
+            .unwrap();
         let t = point(&node["translation"]);
         assert!(t.distance(DVec3::new(v[6], v[7], v[8])) < 1e-9, "{n}");
     }
@@ -431,7 +511,9 @@ fn broken_fbx_files_get_a_clear_error_never_a_panic() {
     assert!(matches!(code, Some(0 | 2)), "{code:?}");
     // An FBX named .glb is read as FBX (by its header).
     wd.write("glove.glb", &glove);
-    wd.run(&["audit", "glove.glb"]).ok().stdout_has("finger_index_0_r");
+    wd.run(&["audit", "glove.glb"])
+        .ok()
+        .stdout_has("finger_index_0_r");
 }
 
 #[test]
@@ -453,4 +535,77 @@ fn a_maya_joint_n_hand_is_refused_naming_the_joints_and_pointing_to_map() {
         .stderr_has("'joint1', 'joint2'")
         .stderr_has("and 15 more")
         .stderr_has("--map FILE");
+}
+
+/// A seeded mutation loop over the fuzz target's body (fuzz/fuzz_targets/fbx.rs)
+/// for machines without cargo-fuzz: flipped bytes, cut tails and spliced
+/// runs of the gloves, each read, recognised and audited; never a panic.
+#[test]
+#[ignore = "slow: 4,000 mutated gloves (run with --ignored)"]
+fn mutated_gloves_never_panic() {
+    use phalanx::analysis::{Settings, analyse};
+    use phalanx::dataset::Dataset;
+    use phalanx::rig::{AuditOptions, AuditedRig, Rig};
+    let Some(dir) = gloves() else { return };
+    let d = Dataset::from_bytes("measurements.csv", &paper_data()).unwrap();
+    let a = analyse(
+        &d,
+        &Settings {
+            resamples: 200,
+            ..Settings::default()
+        },
+    );
+    let seeds: Vec<Vec<u8>> = GLOVES
+        .iter()
+        .map(|(n, _)| std::fs::read(dir.join(n)).unwrap())
+        .collect();
+    // xorshift64*: the same mutations on every machine.
+    let mut state = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = move |n: usize| {
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        (state.wrapping_mul(0x2545_F491_4F6C_DD1D) % n.max(1) as u64) as usize
+    };
+    let (mut read, mut audited) = (0, 0);
+    for k in 0..4000 {
+        let mut b = seeds[k % 2].clone();
+        match next(4) {
+            0 => {
+                for _ in 0..1 + next(16) {
+                    let i = next(b.len());
+                    b[i] ^= 1 << next(8);
+                }
+            }
+            1 => b.truncate(next(b.len())),
+            2 => {
+                let (i, j, len) = (next(b.len()), next(b.len()), 1 + next(64));
+                let run: Vec<u8> = b[j..(j + len).min(b.len())].to_vec();
+                b.splice(i..i, run);
+            }
+            _ => {
+                let i = next(b.len());
+                let end = (i + 1 + next(8)).min(b.len());
+                b[i..end].fill(0xff);
+            }
+        }
+        let Ok(file) = phalanx::rig::fbx::read("mutant.fbx", &b) else {
+            continue;
+        };
+        read += 1;
+        let Ok(rig) = Rig::from_file(file, None) else {
+            continue;
+        };
+        let audit = AuditedRig::with(
+            "m",
+            &rig.chains,
+            &rig.notes,
+            &a,
+            &AuditOptions::default(),
+            rig.weights.as_ref(),
+        );
+        audited += usize::from(!audit.fingers.is_empty());
+    }
+    eprintln!("mutated gloves: {read} of 4000 read, {audited} audited");
+    assert!(read > 0 && audited > 0);
 }

@@ -156,7 +156,10 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         let csv = report::csv_out::moves(moves)?;
         crate::atomic::replace(path, &csv).map_err(Error::write(path))?;
         if !quiet {
-            eprintln!("{}", fit_text(&moves_summary(&audit, path, moves.len()), width));
+            eprintln!(
+                "{}",
+                fit_text(&moves_summary(&audit, path, moves.len()), width)
+            );
             for w in warnings {
                 eprintln!("warning: {w}");
             }

@@ -277,7 +277,12 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
         }
         let positions: Vec<[f32; 3]> = m.positions.iter().map(|p| p.as_vec3().to_array()).collect();
         let (lo, hi) = bounds(&positions);
-        let pos = parts.accessor(&positions.concat(), 5126, "VEC3", Some((lo.to_vec(), hi.to_vec())));
+        let pos = parts.accessor(
+            &positions.concat(),
+            5126,
+            "VEC3",
+            Some((lo.to_vec(), hi.to_vec())),
+        );
         let tris: Vec<u32> = m.triangles.iter().flatten().copied().collect();
         let idx = parts.accessor(&tris, 5125, "SCALAR", None);
         let mut attributes = serde_json::Map::new();
@@ -291,7 +296,8 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
         let ibm = parts.accessor(&ibm, 5126, "MAT4", None);
         let (s, k) = (skins.len(), meshes.len());
         skins.push(json!({"joints": m.joints, "inverseBindMatrices": ibm}));
-        let mut mesh_json = json!({"primitives": [{"attributes": attributes, "indices": idx, "mode": 4}]});
+        let mut mesh_json =
+            json!({"primitives": [{"attributes": attributes, "indices": idx, "mode": 4}]});
         let nm = mesh.element.name.to_string();
         if !nm.is_empty() {
             mesh_json["name"] = json!(nm);
@@ -337,10 +343,9 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
             .map(|i| {
                 let nd = &scene.nodes[i];
                 (!nd.is_root).then(|| {
-                    ufbx::find_prop(&nd.element.props, "Lcl Translation")
-                        .map_or(DVec3::ZERO, |p| {
-                            DVec3::new(p.value_vec4.x, p.value_vec4.y, p.value_vec4.z)
-                        })
+                    ufbx::find_prop(&nd.element.props, "Lcl Translation").map_or(DVec3::ZERO, |p| {
+                        DVec3::new(p.value_vec4.x, p.value_vec4.y, p.value_vec4.z)
+                    })
                 })
             })
             .collect(),
@@ -389,7 +394,12 @@ fn skinned_mesh(
         }
         let k = ufbx::triangulate_face(&mut scratch, mesh, face) as usize;
         for t in scratch.chunks_exact(3).take(k) {
-            let v = |x: u32| mesh.vertex_indices.get(x as usize).copied().filter(|&v| (v as usize) < nv);
+            let v = |x: u32| {
+                mesh.vertex_indices
+                    .get(x as usize)
+                    .copied()
+                    .filter(|&v| (v as usize) < nv)
+            };
             if let (Some(a), Some(b), Some(c)) = (v(t[0]), v(t[1]), v(t[2])) {
                 triangles.push([a, b, c]);
             }
@@ -400,7 +410,9 @@ fn skinned_mesh(
     for sv in d.vertices.iter() {
         influence_start.push(influences.len());
         let begin = sv.weight_begin as usize;
-        let end = begin.saturating_add(sv.num_weights as usize).min(d.weights.len());
+        let end = begin
+            .saturating_add(sv.num_weights as usize)
+            .min(d.weights.len());
         let mut list: Vec<(u16, f64)> = d.weights.as_ref()[begin.min(end)..end]
             .iter()
             .filter(|w| w.weight.is_finite() && w.weight > 0.0)

@@ -14,10 +14,10 @@ pub(crate) mod accessor;
 pub(crate) mod anim;
 pub mod bend;
 pub(crate) mod chain;
-pub mod fbx;
-pub(crate) mod glb_parts;
 pub mod deform;
+pub mod fbx;
 pub mod fix;
+pub(crate) mod glb_parts;
 pub mod judge;
 pub mod map;
 pub mod moves;
@@ -1015,7 +1015,12 @@ fn no_hand(label: &str, names: &[String], notes: Vec<String>) -> DataError {
             "has no recognisable hand: its joints carry generic names ({}{}), as Maya names \
              joints it creates, which do not say which finger or joint each is. Name them with \
              --map FILE (columns node,side,finger,joint, one line per joint: e.g. joint5,right,index,MCP)",
-            generic.iter().take(6).map(|s| shown(s)).collect::<Vec<_>>().join(", "),
+            generic
+                .iter()
+                .take(6)
+                .map(|s| shown(s))
+                .collect::<Vec<_>>()
+                .join(", "),
             if generic.len() > 6 {
                 format!(" and {} more", generic.len() - 6)
             } else {

@@ -270,7 +270,10 @@ static KYLE: LazyLock<Regex> = LazyLock::new(|| {
 
 /// The name after any namespace (`mixamorig:`, `Armature|`), lower case.
 fn base_lower(name: &str) -> String {
-    name.rsplit([':', '|']).next().unwrap_or(name).to_ascii_lowercase()
+    name.rsplit([':', '|'])
+        .next()
+        .unwrap_or(name)
+        .to_ascii_lowercase()
 }
 
 /// Reads the conventions that number their bones otherwise than the pattern
@@ -552,8 +555,18 @@ mod tests {
             ("EthanRightHandThumb2", Some(Right), Thumb, Slot::Mcp),
             ("EthanRightHandPinky4", Some(Right), Little, Slot::Tip),
             ("Left_Index_Finger_Joint_01a", Some(Left), Index, Slot::Mcp),
-            ("Left_Index_Finger_Joint_01c", Some(Left), Index, Slot::Second),
-            ("Right_Pinky_Finger_Joint_01b", Some(Right), Little, Slot::First),
+            (
+                "Left_Index_Finger_Joint_01c",
+                Some(Left),
+                Index,
+                Slot::Second,
+            ),
+            (
+                "Right_Pinky_Finger_Joint_01b",
+                Some(Right),
+                Little,
+                Slot::First,
+            ),
             ("Right_Thumb_Joint_01a", Some(Right), Thumb, Slot::Mcp),
             ("Right_Thumb_Joint_01b", Some(Right), Thumb, Slot::First),
             // Prefix-less Mixamo / HumanIK, with Blender's leaf bones.

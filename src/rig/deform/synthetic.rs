@@ -15,8 +15,8 @@
 
 use super::{FingerNodes, HandChains, Skeleton};
 use crate::dataset::Finger;
-use crate::rig::naming::Side;
 use crate::rig::glb_parts::{GlbParts, bounds};
+use crate::rig::naming::Side;
 use crate::rig::skin::{SkinnedMesh, weld};
 use glam::{DMat4, DQuat, DVec3};
 
