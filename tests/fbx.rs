@@ -351,7 +351,7 @@ fn moves_applied_to_the_fbx_with_the_loader_land_where_the_fix_puts_them() {
             scene
                 .nodes
                 .iter()
-                .find(|nd| nd.element.name.to_string() == n)
+                .find(|nd| nd.element.name == n)
                 .map(|nd| nd.element.element_id)
                 .expect(n)
         };
@@ -380,11 +380,7 @@ fn moves_applied_to_the_fbx_with_the_loader_land_where_the_fix_puts_them() {
         let moved =
             ufbx::evaluate_scene(&scene, &anim, 0.0, ufbx::EvaluateOpts::default()).unwrap();
         let world = |n: &str| {
-            let nd = moved
-                .nodes
-                .iter()
-                .find(|nd| nd.element.name.to_string() == n)
-                .expect(n);
+            let nd = moved.nodes.iter().find(|nd| nd.element.name == n).expect(n);
             let m = &nd.node_to_world;
             DVec3::new(m.m03, m.m13, m.m23)
         };

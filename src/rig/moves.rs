@@ -69,12 +69,16 @@ pub fn moves(original: &GltfFile, fixed: &GltfFile) -> (Vec<Move>, Vec<String>) 
     let names = original.node_names();
     let mut out = Vec::new();
     let mut warnings = Vec::new();
-    let n = original.world.len().min(fixed.world.len());
-    for i in 0..n {
+    for (i, (name, (w_old, w_new))) in names
+        .iter()
+        .zip(original.world.iter().zip(&fixed.world))
+        .enumerate()
+    {
         let old = translation(&original.json, i);
         let new = translation(&fixed.json, i);
         let delta = new - old;
-        if !(delta.abs().max_element() > UNMOVED) {
+        // A NaN change is no move either (the reader refuses non-finite transforms).
+        if delta.abs().max_element().is_nan() || delta.abs().max_element() <= UNMOVED {
             continue;
         }
         let new_local = match &original.fbx {
@@ -83,7 +87,7 @@ pub fn moves(original: &GltfFile, fixed: &GltfFile) -> (Vec<Move>, Vec<String>) 
                     warnings.push(format!(
                         "{} does not inherit its parent's scale in full (FBX InheritType); its new \
                          Lcl Translation may be off by that scale: check its world position",
-                        quote(&names[i])
+                        quote(name)
                     ));
                 }
                 src.lcl_translation.get(i).copied().flatten().unwrap_or(old) + delta
@@ -92,9 +96,9 @@ pub fn moves(original: &GltfFile, fixed: &GltfFile) -> (Vec<Move>, Vec<String>) 
         };
         out.push(Move {
             node: i,
-            name: names[i].clone(),
-            old_world: original.world[i].w_axis.truncate(),
-            new_world: fixed.world[i].w_axis.truncate(),
+            name: name.clone(),
+            old_world: w_old.w_axis.truncate(),
+            new_world: w_new.w_axis.truncate(),
             new_local,
         });
     }
