@@ -24,6 +24,17 @@ fn gloves() -> Option<PathBuf> {
     }
 }
 
+/// The bootstrap's resamples in these tests: enough for stable verdicts on
+/// the paper's 5 X-rays, few enough for the debug build.
+const RESAMPLES: &str = "1000";
+
+/// `phalanx audit ARGS` with [`RESAMPLES`].
+fn audit(wd: &Workdir, args: &[&str]) -> Run {
+    let mut all = vec!["audit", "--resamples", RESAMPLES];
+    all.extend_from_slice(args);
+    wd.run(&all)
+}
+
 /// A work directory with the paper's data and the gloves.
 fn with_gloves() -> Option<Workdir> {
     let dir = gloves()?;
@@ -127,8 +138,7 @@ fn both_gloves_have_every_finger_with_metacarpal_and_tip_at_the_files_lengths() 
                 );
             }
         }
-        let doc = wd
-            .run(&["audit", name, "--tip", "skin", "--format", "json"])
+        let doc = audit(&wd, &[name, "--tip", "skin", "--format", "json"])
             .ok()
             .json();
         let fs = fingers(&doc);
@@ -271,12 +281,10 @@ fn an_fbx_and_the_same_rig_as_gltf_give_the_same_verdicts() {
         let reading = read_independently(&wd.read(name));
         let gltf = name.replace(".fbx", ".gltf");
         wd.write(&gltf, gltf_of(&reading, &wd.read(name)).to_string());
-        let a = wd
-            .run(&["audit", name, "--tip", "skin", "--format", "json"])
+        let a = audit(&wd, &[name, "--tip", "skin", "--format", "json"])
             .ok()
             .json();
-        let b = wd
-            .run(&["audit", &gltf, "--tip", "skin", "--format", "json"])
+        let b = audit(&wd, &[&gltf, "--tip", "skin", "--format", "json"])
             .ok()
             .json();
         let (va, vb) = (verdicts(&a), verdicts(&b));
@@ -328,7 +336,7 @@ fn csv_rows(bytes: &[u8]) -> Vec<(String, [f64; 9])> {
 fn moves_applied_to_the_fbx_with_the_loader_land_where_the_fix_puts_them() {
     let Some(wd) = with_gloves() else { return };
     for (name, _) in GLOVES {
-        wd.run(&["audit", name, "--moves", "moves.csv"])
+        audit(&wd, &[name, "--moves", "moves.csv"])
             .ok()
             .stderr_has("nodes to move")
             .stderr_has("Lcl Translation");
@@ -394,7 +402,7 @@ fn moves_applied_to_the_fbx_with_the_loader_land_where_the_fix_puts_them() {
         }
         // The CSV's new positions are the fix's: the audit's suggested
         // points for the moved joints.
-        let doc = wd.run(&["audit", name, "--format", "json"]).ok().json();
+        let doc = audit(&wd, &[name, "--format", "json"]).ok().json();
         let mut suggested = 0;
         for f in fingers(&doc) {
             for (rj, j) in f["joints"]
@@ -421,7 +429,7 @@ fn moves_applied_to_the_fbx_with_the_loader_land_where_the_fix_puts_them() {
 #[test]
 fn fix_on_an_fbx_is_refused_pointing_to_moves() {
     let Some(wd) = with_gloves() else { return };
-    wd.run(&["audit", GLOVES[0].0, "--fix", "out.glb"])
+    audit(&wd, &[GLOVES[0].0, "--fix", "out.glb"])
         .expect_code(2)
         .stderr_has("cannot write FBX")
         .stderr_has("--moves FILE.csv");
@@ -436,16 +444,18 @@ fn moves_on_a_gltf_rig_list_the_fixed_copys_translations() {
         "glove.gltf",
         gltf_of(&reading, &wd.read(GLOVES[0].0)).to_string(),
     );
-    wd.run(&[
-        "audit",
-        "glove.gltf",
-        "--tip",
-        "skin",
-        "--moves",
-        "m.csv",
-        "--fix",
-        "fixed.gltf",
-    ])
+    audit(
+        &wd,
+        &[
+            "glove.gltf",
+            "--tip",
+            "skin",
+            "--moves",
+            "m.csv",
+            "--fix",
+            "fixed.gltf",
+        ],
+    )
     .ok();
     let rows = csv_rows(&wd.read("m.csv"));
     assert!(!rows.is_empty());
@@ -460,6 +470,112 @@ fn moves_on_a_gltf_rig_list_the_fixed_copys_translations() {
         let t = point(&node["translation"]);
         assert!(t.distance(DVec3::new(v[6], v[7], v[8])) < 1e-9, "{n}");
     }
+}
+
+/// The JSON chunk of a GLB file (read here, not with phalanx's reader).
+fn glb_json(bytes: &[u8]) -> Value {
+    assert_eq!(&bytes[..4], b"glTF");
+    let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    serde_json::from_slice(&bytes[20..20 + len]).unwrap()
+}
+
+/// Each node's local translation, by name, from a glTF's JSON (`translation`,
+/// or a `matrix`'s last column; zero when it has neither).
+fn translations(doc: &Value) -> Vec<(String, DVec3)> {
+    doc["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| {
+            let t = match (&n["translation"], &n["matrix"]) {
+                (t, _) if t.is_array() => point(t),
+                (_, m) if m.is_array() => DVec3::new(num(&m[12]), num(&m[13]), num(&m[14])),
+                _ => DVec3::ZERO,
+            };
+            (n["name"].as_str().unwrap_or("").to_string(), t)
+        })
+        .collect()
+}
+
+#[test]
+fn moves_follow_the_fix_as_written_for_every_fix_option() {
+    // However the fix chooses its joints (by default, only those outside,
+    // MCPs from the atlas), --moves lists exactly the nodes whose
+    // translation the written --fix copy changes, with that translation;
+    // and --moves alone lists the same as --moves beside --fix.
+    let wd = Workdir::with_paper_data();
+    wd.write(
+        "hand.glb",
+        std::fs::read(manifest_dir().join("docs/examples/hand.glb")).unwrap(),
+    );
+    let atlas = manifest_dir().join("data/atlas/measurements.csv");
+    let atlas = atlas.to_str().unwrap();
+    let original = translations(&glb_json(&wd.read("hand.glb")));
+    let mut listed = Vec::new();
+    for opts in [vec![], vec!["--only-outside"], vec!["--fix-mcp", "atlas"]] {
+        let mut args = vec!["hand.glb", "--metacarpals", atlas];
+        args.extend(&opts);
+        let mut both = args.clone();
+        both.extend(["--fix", "fixed.glb", "--moves", "both.csv"]);
+        audit(&wd, &both).ok();
+        let mut alone = args.clone();
+        alone.extend(["--moves", "alone.csv"]);
+        audit(&wd, &alone).ok().stderr_has("nodes to move");
+        assert_eq!(wd.read("both.csv"), wd.read("alone.csv"), "{opts:?}");
+        let fixed = translations(&glb_json(&wd.read("fixed.glb")));
+        let changed: Vec<(String, DVec3)> = original
+            .iter()
+            .zip(&fixed)
+            .filter(|((_, a), (_, b))| a.distance(*b) > 1e-9)
+            .map(|(_, b)| b.clone())
+            .collect();
+        let rows = csv_rows(&wd.read("both.csv"));
+        assert!(!rows.is_empty(), "{opts:?}: the fix moves nothing");
+        assert_eq!(
+            rows.iter().map(|r| &r.0).collect::<Vec<_>>(),
+            changed.iter().map(|c| &c.0).collect::<Vec<_>>(),
+            "{opts:?}"
+        );
+        for ((n, v), (_, t)) in rows.iter().zip(&changed) {
+            assert!(
+                t.distance(DVec3::new(v[6], v[7], v[8])) < 1e-9,
+                "{opts:?} {n}"
+            );
+        }
+        listed.push(rows.into_iter().map(|r| r.0).collect::<Vec<_>>());
+    }
+    // The options matter here (--fix-mcp atlas moves MCPs), so a list that
+    // ignored them would fail above.
+    assert_ne!(listed[0], listed[2]);
+}
+
+#[test]
+fn an_fbx_audit_says_what_the_file_was_once() {
+    let Some(wd) = with_gloves() else { return };
+    let run = audit(&wd, &[GLOVES[0].0]);
+    let text = run.ok().stdout.replace("\n  ", " ");
+    assert!(
+        text.contains("read from binary FBX 7500 with ufbx: its units (metres) and axes"),
+        "{text}"
+    );
+    assert!(!text.contains("glTF units"), "{text}");
+    assert_eq!(text.matches("FBX 7500").count(), 1, "{text}");
+    let doc = audit(&wd, &[GLOVES[0].0, "--format", "json"]).ok().json();
+    assert_eq!(doc["fbx"]["version"], 7500);
+    assert_eq!(doc["fbx"]["encoding"], "binary");
+    // SteamVR's UnitScaleFactor is 100 (centimetres per unit): metres.
+    assert_eq!(doc["fbx"]["unit_m"], 1.0);
+    assert_eq!(doc["units"], "m");
+    // A glTF's header says glTF, and its document has no fbx.
+    wd.write(
+        "hand.glb",
+        std::fs::read(manifest_dir().join("docs/examples/hand.glb")).unwrap(),
+    );
+    audit(&wd, &["hand.glb"])
+        .ok()
+        .stdout_has("glTF units are metres");
+    let doc = audit(&wd, &["hand.glb", "--format", "json"]).ok().json();
+    assert!(doc.get("fbx").is_none());
 }
 
 #[test]
@@ -497,17 +613,17 @@ fn broken_fbx_files_get_a_clear_error_never_a_panic() {
         ("picture.fbx", "not an FBX file"),
         ("empty.fbx", "empty"),
     ] {
-        wd.run(&["audit", file])
+        audit(&wd, &[file])
             .expect_code(2)
             .stderr_has(file)
             .stderr_has(says);
     }
     // A corrupt file is refused or read; never a panic (checked by `run`).
-    let code = wd.run(&["audit", "corrupt.fbx"]).code;
+    let code = audit(&wd, &["corrupt.fbx"]).code;
     assert!(matches!(code, Some(0 | 2)), "{code:?}");
     // An FBX named .glb is read as FBX (by its header).
     wd.write("glove.glb", &glove);
-    wd.run(&["audit", "glove.glb"])
+    audit(&wd, &["glove.glb"])
         .ok()
         .stdout_has("finger_index_0_r");
 }
@@ -526,7 +642,7 @@ fn a_maya_joint_n_hand_is_refused_naming_the_joints_and_pointing_to_map() {
         .collect();
     let doc = json!({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": nodes});
     wd.write("maya.gltf", doc.to_string());
-    wd.run(&["audit", "maya.gltf"])
+    audit(&wd, &["maya.gltf"])
         .expect_code(2)
         .stderr_has("'joint1', 'joint2'")
         .stderr_has("and 15 more")

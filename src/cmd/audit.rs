@@ -31,12 +31,13 @@ pub enum FixMcp {
     Atlas,
 }
 
-/// Judge a rigged hand (glTF 2.0) against the X-ray statistics; --fix writes a corrected copy
+/// Judge a rigged hand (glTF 2.0 or FBX) against the X-ray statistics; --fix writes a corrected copy
 #[derive(clap::Args, Debug)]
 #[command(
     after_help = "Finds the finger chains of either hand by their names (Mixamo mixamorig:RightHandIndex1..4, \
                   Rigify f_index.01.R / DEF-f_index.01.R / thumb.01.R, VRM rightIndexProximal or its humanoid table, \
-                  Unreal index_01_r, WebXR index-finger-phalanx-proximal; case and separators ignored; --map for others) \
+                  Unreal index_01_r, WebXR index-finger-phalanx-proximal, SteamVR finger_index_0_r, Oculus b_r_index1, \
+                  Unity EthanRightHandIndex1 / Right_Index_Finger_Joint_01a; case and separators ignored; --map for others) \
                   and measures joint-to-joint distances in the node (bind) pose; the joints need not be parent and \
                   child when the names say which finger they belong to (WebXR). Every joint (MCP, PIP, DIP, tip) is \
                   reported inside the X-ray range, inside the prediction interval, or outside by how many mm and in \
@@ -48,12 +49,15 @@ pub enum FixMcp {
                   moved with them, translation keys offset, and the inverse bind matrices updated so the mesh's rest \
                   shape is unchanged; the input is never modified. --fix-mcp atlas places each MCP where the \
                   metacarpals' dataset puts it from its CMC (or the wrist, for a rig with a hand bone and no \
-                  metacarpals) when it lies outside that interval.\n\n\
+                  metacarpals) when it lies outside that interval. An FBX rig is read with ufbx (metres, +Y up, the \
+                  bind pose from its skin clusters) and cannot be fixed in place: --moves FILE.csv lists each node the \
+                  fix moves, with its new world position and its new local translation (FBX: Lcl Translation) to \
+                  set in a DCC.\n\n\
                   --map FILE: CSV with the header node,side,finger,joint (joint MCP, PIP, DIP, IP or tip).\n\n\
-                  Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv"
+                  Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv\n  phalanx audit glove.fbx --moves moves.csv"
 )]
 pub(crate) struct Args {
-    /// The rig: a .glb, .gltf or .vrm (glTF 2.0) file
+    /// The rig: a .glb, .gltf or .vrm (glTF 2.0) or .fbx file
     #[arg(value_name = "RIG")]
     rig: PathBuf,
     #[command(flatten)]
@@ -225,6 +229,7 @@ fn table(audit: &Audit, width: Width) -> String {
     let n_note = crate::format::xrays(a.dataset.xrays);
     report::audit::text(
         &audit.rig,
+        audit.fbx.as_ref(),
         &a.dataset.path,
         &n_note,
         a.settings.confidence,
@@ -246,18 +251,19 @@ fn json(audit: &Audit) -> Result<Vec<u8>, Error> {
             .collect(),
         warnings: &fix.warnings,
     });
-    report::json::audit(&audit.analysis, &audit.rig, fix)
+    report::json::audit(&audit.analysis, &audit.rig, audit.fbx.as_ref(), fix)
 }
 
 /// The line on standard error saying what `--moves` wrote.
 fn moves_summary(audit: &Audit, path: &std::path::Path, n: usize) -> String {
     let units = match &audit.fbx {
         Some(src) => format!(
-            "new Lcl Translations in the file's units ({} m each) and its parents' axes ({})",
-            crate::format::num(src.unit_meters, 4),
+            "new Lcl Translations in the file's units ({}), each in its parent's frame; the \
+             file's axes: {}",
+            report::audit::unit_words(src.unit_meters),
             src.axes
         ),
-        None => "new local translations in the file's units (metres) and its parents' axes".into(),
+        None => "new translations in metres, each in its parent's frame".into(),
     };
     format!(
         "wrote {}: {n} node{} to move (world positions in metres, +Y up; {units})",

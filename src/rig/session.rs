@@ -3,9 +3,9 @@
 //! the caller's business.
 
 use super::fix::{self, Fixed};
-use super::judge;
-use super::map::NameMap;
-use super::{AuditOptions, AuditedRig, GltfFile, Rig};
+use super::judge::{self, AuditOptions, AuditedRig};
+use super::read::map::NameMap;
+use super::read::{GltfFile, Rig};
 use crate::analysis::{self, Analysis, Settings};
 use crate::dataset::Dataset;
 use crate::error::Error;
@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 /// What to audit, against which data, and where to write a fixed copy.
 pub struct AuditRequest<'a> {
-    /// The rig: a .glb, .gltf or .vrm file.
+    /// The rig: a .glb, .gltf, .vrm or .fbx file.
     pub rig: &'a Path,
     /// Custom joint names (CSV with node,side,finger,joint).
     pub map: Option<&'a Path>,
@@ -32,9 +32,9 @@ pub struct AuditRequest<'a> {
     pub metacarpals: Option<&'a Path>,
     /// `--fix-mcp atlas`: the fix places each MCP outside the prediction
     /// interval from its CMC (or wrist) where `metacarpals` puts it, and holds
-    /// the other MCPs ([`super::ray`]); needs `metacarpals`.
+    /// the other MCPs ([`super::judge::ray`]); needs `metacarpals`.
     pub mcp_from_atlas: bool,
-    /// `--moves`: list the nodes the fix moves ([`super::moves`]), for a rig
+    /// `--moves`: list the nodes the fix moves ([`super::fix::moves`]), for a rig
     /// of any format (an FBX rig cannot be fixed in place).
     pub moves: bool,
 }
@@ -49,9 +49,9 @@ pub struct Audit {
     pub fix: Option<FixOutcome>,
     /// The nodes the fix moves, when asked for ([`AuditRequest::moves`]),
     /// with the warnings that go with them.
-    pub moves: Option<(Vec<super::moves::Move>, Vec<String>)>,
+    pub moves: Option<(Vec<fix::moves::Move>, Vec<String>)>,
     /// What the rig file was, when it was FBX.
-    pub fbx: Option<super::fbx::FbxSource>,
+    pub fbx: Option<super::read::source::FbxSource>,
 }
 
 /// What the fix wrote.
@@ -69,7 +69,9 @@ pub struct FixOutcome {
 /// The atlas's landmark file, looked for beside the metacarpals' dataset.
 pub const WRIST_LANDMARKS: &str = "landmarks.csv";
 
-/// Audits a rig against the statistics, and with `fix` writes a corrected copy.
+/// Audits a rig against the statistics, and with `fix` writes a corrected copy;
+/// with `moves`, lists the nodes that copy moves (the same copy: one fix
+/// serves both, so the list follows the fix).
 ///
 /// The fix is refused before any work when it would overwrite the input or its
 /// extension names no glTF container. The fixed copy is read back from memory
@@ -127,32 +129,37 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     if let Some(atlas) = &atlas {
         audited.judge_metacarpals(atlas, wrist.as_ref());
     }
-    let dir = req.rig.parent().unwrap_or(Path::new("."));
-    let opts = fix::FixOptions {
-        only_outside: req.only_outside,
-    };
-    let placed = || match &atlas {
-        Some(_) if req.mcp_from_atlas => {
-            super::ray::mcp_from_base(&audited, &analysis, &req.options.judge)
-        }
-        _ => audited.fingers.clone(),
-    };
-    let moves = if req.moves {
-        // The fix as --fix would write it, in memory, compared with the rig.
-        let fixed = fix::fix_with(&rig.file, &placed(), rig.weights.as_ref(), dir, true, &opts)?;
-        let copy = GltfFile::from_bytes(&rig.file.label, &fixed.bytes).map_err(|e| {
-            Error::render(
-                format!("the fixed copy of {} did not read back", rig.file.label),
-                e,
-            )
-        })?;
-        Some(super::moves::moves(&rig.file, &copy))
+    // One fix serves both --fix and --moves: the moves are read off the very
+    // bytes --fix writes, so they follow whatever the fix decides.
+    let fixed = if req.fix.is_some() || req.moves {
+        let dir = req.rig.parent().unwrap_or(Path::new("."));
+        let opts = fix::FixOptions {
+            only_outside: req.only_outside,
+        };
+        let placed = match &atlas {
+            Some(_) if req.mcp_from_atlas => {
+                judge::ray::mcp_from_base(&audited, &analysis, &req.options.judge)
+            }
+            _ => audited.fingers.clone(),
+        };
+        let glb = fix_glb.unwrap_or(true);
+        Some(fix::fix_with(
+            &rig.file,
+            &placed,
+            rig.weights.as_ref(),
+            dir,
+            glb,
+            &opts,
+        )?)
     } else {
         None
     };
-    let fix = match (req.fix, fix_glb) {
-        (Some(out), Some(glb)) => {
-            let fixed = fix::fix_with(&rig.file, &placed(), rig.weights.as_ref(), dir, glb, &opts)?;
+    let moves = match &fixed {
+        Some(fixed) if req.moves => Some(moves_of(&rig.file, fixed)?),
+        _ => None,
+    };
+    let fix = match (req.fix, fixed) {
+        (Some(out), Some(fixed)) => {
             let mut reaudit =
                 write_checked(&rig, &fixed, out, map.as_ref(), &analysis, &req.options)?;
             if let Some(atlas) = &atlas {
@@ -174,6 +181,21 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         moves,
         fbx: rig.file.fbx.clone(),
     })
+}
+
+/// The nodes `fixed` (the fix of `original`, as `--fix` writes it) moves,
+/// read back from its bytes ([`fix::moves`]), with their warnings.
+fn moves_of(
+    original: &GltfFile,
+    fixed: &Fixed,
+) -> Result<(Vec<fix::moves::Move>, Vec<String>), Error> {
+    let copy = GltfFile::from_bytes(&original.label, &fixed.bytes).map_err(|e| {
+        Error::render(
+            format!("the fixed copy of {} did not read back", original.label),
+            e,
+        )
+    })?;
+    Ok(fix::moves::moves(original, &copy))
 }
 
 /// A rig as `audit --fix` would write it, in memory: the parsed rig and its

@@ -1,6 +1,7 @@
 //! The parts of a GLB being built in memory: its binary chunk, buffer views
 //! and accessors. Used to write the synthetic tube hands and to hand an FBX
-//! scene on as glTF ([`super::fbx`]).
+//! scene on as glTF ([`super::fbx`]); the container around them is
+//! [`super::gltf`]'s.
 
 use super::skin::SkinnedMesh;
 

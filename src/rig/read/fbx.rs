@@ -29,31 +29,17 @@
 
 use super::GltfFile;
 use super::glb_parts::{GlbParts, bounds};
+use super::naming::shown;
 use super::skin::SkinnedMesh;
+use super::source::FbxSource;
 use crate::dataset::DataError;
 use glam::{DMat4, DVec3, DVec4};
 use serde_json::{Value, json};
 use std::path::Path;
 
-/// What an FBX file was, beside the glTF document it is read as.
-#[derive(Debug, Clone, PartialEq)]
-pub struct FbxSource {
-    /// The FBX version (7500 for 7.5).
-    pub version: u32,
-    pub ascii: bool,
-    /// Metres per file unit (`UnitScaleFactor` / 100).
-    pub unit_meters: f64,
-    /// The file's axes, as `-X right, +Y up, -Z front`.
-    pub axes: String,
-    /// Per node (the same index as the glTF's): the FBX node's
-    /// `Lcl Translation` in the file's units and its parent's axes; `None`
-    /// for the scene root that ufbx adds.
-    pub lcl_translation: Vec<Option<DVec3>>,
-    /// Per node: true when it inherits its parent's transform in full (FBX
-    /// `InheritType` RrSs, the default); a moved node that does not gets a
-    /// warning, its `Lcl Translation` being read in a scaled frame.
-    pub inherits_normally: Vec<bool>,
-}
+/// How far (metres, and per matrix entry) a bone's current world matrix may
+/// be from its cluster's bind matrix and still count as in its bind pose.
+const OFF_BIND: f64 = 1e-6;
 
 /// The magic of a binary FBX file.
 const BINARY_MAGIC: &[u8] = b"Kaydara FBX Binary";
@@ -235,7 +221,7 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
         return Err(fail(format!(
             "node {} has a non-finite transform (a zero scale above it, or a huge value); fix \
              its transform or its parents'",
-            super::shown(&name(i))
+            shown(&name(i))
         )));
     }
     let mut nodes: Vec<Value> = Vec::with_capacity(n);
@@ -248,7 +234,7 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
             return Err(fail(format!(
                 "node {} sits below a node with a singular transform (a zero scale); fix the \
                  scale of its parent",
-                super::shown(&name(i))
+                shown(&name(i))
             )));
         }
         let mut node = json!({ "matrix": local.to_cols_array() });
@@ -326,7 +312,7 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
         doc["bufferViews"] = json!(parts.views);
         doc["buffers"] = json!([{"byteLength": parts.bin.len()}]);
     }
-    let glb = super::accessor::glb(&doc, parts.bin).map_err(fail)?;
+    let glb = super::gltf::glb(&doc, parts.bin).map_err(fail)?;
     let mut file = GltfFile::from_bytes(label, &glb)?;
     let s = &scene.settings;
     file.fbx = Some(FbxSource {
@@ -351,6 +337,12 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
             .collect(),
         inherits_normally: (0..n)
             .map(|i| scene.nodes[i].inherit_mode == ufbx::InheritMode::Normal)
+            .collect(),
+        off_bind: (0..n)
+            .map(|i| {
+                bind[i]
+                    .is_some_and(|b| !b.abs_diff_eq(mat(&scene.nodes[i].node_to_world), OFF_BIND))
+            })
             .collect(),
     });
     Ok(file)
