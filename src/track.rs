@@ -36,6 +36,8 @@ pub(crate) struct AddRequest {
     pub rows: NewRows,
     /// Refuse rows flagged by [`outliers::flag_rows`].
     pub strict: bool,
+    /// Pool new rows whose fingertips differ from the dataset's (bone with skin).
+    pub mixed_tips: bool,
     pub settings: Settings,
 }
 
@@ -56,6 +58,23 @@ pub(crate) struct AddOutcome {
 /// The current UTC time, RFC 3339, for history records.
 pub(crate) fn now() -> String {
     humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
+}
+
+/// The tip rule of `add`: new rows whose fingertips are at the bone do not join rows at
+/// the skin (or the reverse) unless asked (`--mixed-tips`); see
+/// [`crate::dataset::tip::pooling_problem`].
+fn refuse_mixed_tips(current: &Dataset, new: &Dataset, allowed: bool) -> Result<(), Error> {
+    if allowed {
+        return Ok(());
+    }
+    let files = [
+        (current.path.as_str(), &current.rows[..]),
+        (new.path.as_str(), &new.rows[..]),
+    ];
+    match crate::dataset::tip::pooling_problem(&files, "--mixed-tips") {
+        Some(m) => Err(Error::Usage(format!("nothing added: {m}"))),
+        None => Ok(()),
+    }
 }
 
 /// Adds new rows to a dataset, then appends a snapshot to its history.
@@ -80,6 +99,7 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     let current_bytes = csvinput::read_input(&req.data)?;
     let label = req.data.display().to_string();
     let current = Dataset::from_bytes(&label, &current_bytes)?;
+    refuse_mixed_tips(&current, new, req.mixed_tips)?;
     let n = current.xray_count() + new.xray_count();
     analysis::budget::check_bootstrap(n, req.settings.resamples).map_err(Error::Usage)?;
     let from_options = !matches!(req.rows, NewRows::File(_));

@@ -92,7 +92,7 @@ fn numbers_are_kept_as_typed() {
     ])
     .ok();
     assert!(
-        text(&wd, DATA).ends_with("2a,thumb,275.00,231.10,,,,,,\n"),
+        text(&wd, DATA).ends_with("2a,thumb,275.00,231.10,,,,,,,\n"),
         "{}",
         text(&wd, DATA)
     );
@@ -102,7 +102,7 @@ fn numbers_are_kept_as_typed() {
     );
     wd.run(&["add", "new.csv"]).ok();
     assert!(
-        text(&wd, DATA).ends_with("2b,index,352.10,201.40,1.78e2,,,,,\n"),
+        text(&wd, DATA).ends_with("2b,index,352.10,201.40,1.78e2,,,,,,\n"),
         "{}",
         text(&wd, DATA)
     );

@@ -133,14 +133,14 @@ const NEW_FILE: &str = "xray,finger,j1,j2,j3\n\
     2b,thumb,262.7,240.5,\n";
 
 /// The same rows as the dataset's columns would hold them, typed by hand.
-const NEW_ROWS_IN_DATASET: &str = "2a,index,352.1,201.4,178.0,,,,,\n\
-    2a,middle,391.5,250.2,190.7,,,,,\n\
-    2a,ring,370.3,230.9,205.4,,,,,\n\
-    2a,little,290.2,170.4,175.8,,,,,\n\
-    2a,thumb,268.4,236.1,,,,,,\n\
-    2b,index,345.9,193.3,176.2,,,,,\n\
-    2b,thumb,262.7,240.5,,,,,,\n\
-    2c,index,361.2,199.9,181.3,female,34,left,,\n";
+const NEW_ROWS_IN_DATASET: &str = "2a,index,352.1,201.4,178.0,,,,,,\n\
+    2a,middle,391.5,250.2,190.7,,,,,,\n\
+    2a,ring,370.3,230.9,205.4,,,,,,\n\
+    2a,little,290.2,170.4,175.8,,,,,,\n\
+    2a,thumb,268.4,236.1,,,,,,,\n\
+    2b,index,345.9,193.3,176.2,,,,,,\n\
+    2b,thumb,262.7,240.5,,,,,,,\n\
+    2c,index,361.2,199.9,181.3,female,34,left,,,\n";
 
 #[test]
 fn add_then_stats_equals_stats_of_the_concatenated_file() {
@@ -612,7 +612,7 @@ fn eight_concurrent_adds_all_land_exactly_once() {
     let text = String::from_utf8(wd.read(DATA)).unwrap();
     assert!(text.as_bytes().starts_with(&paper_data()));
     for i in 0..8 {
-        let row = format!("c{i},index,{},190.5,171.25,,,,,", 345 + i);
+        let row = format!("c{i},index,{},190.5,171.25,,,,,,", 345 + i);
         let n = text.lines().filter(|l| *l == row).count();
         assert_eq!(n, 1, "row {row} appears {n} times:\n{text}");
     }
@@ -885,7 +885,7 @@ fn a_tenfold_typo_is_flagged_and_refused_only_with_strict() {
         // Kept as typed.
         let j: Vec<String> = lengths.split(',').map(str::to_string).collect();
         let j3 = j.get(2).cloned().unwrap_or_default();
-        let row = format!("{xray},{finger},{},{},{j3},,,,,\n", j[0], j[1]);
+        let row = format!("{xray},{finger},{},{},{j3},,,,,,\n", j[0], j[1]);
         assert!(text.ends_with(&row), "{row:?} not added:\n{text}");
     }
 }
@@ -1091,7 +1091,7 @@ fn add_through_a_symlinked_dataset_updates_its_target() {
     let link = std::fs::symlink_metadata(wd.path().join(DATA)).unwrap();
     let target = String::from_utf8(wd.read("real/m.csv")).unwrap();
     assert!(
-        target.ends_with("z,index,350,190,170,,,,,\n"),
+        target.ends_with("z,index,350,190,170,,,,,,\n"),
         "the link's target was not updated"
     );
     assert!(link.file_type().is_symlink(), "the link was replaced");

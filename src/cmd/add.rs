@@ -47,6 +47,9 @@ pub(crate) struct Args {
     /// Refuse rows flagged as likely errors instead of warning
     #[arg(long)]
     strict: bool,
+    /// Add rows whose fingertips differ from the dataset's (bone with skin), which is refused otherwise
+    #[arg(long)]
+    mixed_tips: bool,
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]
@@ -63,6 +66,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
         history: history.clone(),
         rows,
         strict: args.strict,
+        mixed_tips: args.mixed_tips,
         settings: args.boot.settings()?,
     })?;
     for f in &outcome.flags {

@@ -148,6 +148,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
                 history: history.clone(),
                 rows: NewRows::Rows(rows),
                 strict: args.strict,
+                mixed_tips: false,
                 settings,
             })?;
             for f in &outcome.flags {
