@@ -504,6 +504,15 @@ fn moves_follow_the_fix_as_written_for_every_fix_option() {
     // translation the written --fix copy changes, with that translation;
     // and --moves alone lists the same as --moves beside --fix.
     let wd = Workdir::with_paper_data();
+    // The atlas's tips are at the bone and the rig's at the skin: the measured
+    // soft tissue (data/literature/, read from the working directory) bridges
+    // them, so the MCPs from the atlas are judged and --fix-mcp atlas moves them.
+    for file in [
+        "data/literature/buryanov-kotiuk-2010.csv",
+        "data/literature/buryanov-kotiuk-2010.cohort.csv",
+    ] {
+        wd.write(file, std::fs::read(manifest_dir().join(file)).unwrap());
+    }
     wd.write(
         "hand.glb",
         std::fs::read(manifest_dir().join("docs/examples/hand.glb")).unwrap(),
