@@ -314,6 +314,15 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
     }
     let glb = super::gltf::glb(&doc, parts.bin).map_err(fail)?;
     let mut file = GltfFile::from_bytes(label, &glb)?;
+    // The glTF document holds its matrices in f32: a transform finite in f64
+    // can overflow there (found by the fuzz target), so check again.
+    if let Some(i) = (0..n.min(file.world.len())).find(|&i| !file.world[i].is_finite()) {
+        return Err(fail(format!(
+            "node {} has a transform too large to hold (beyond 32-bit floats, as glTF keeps \
+             them, in metres); fix its transform or its parents'",
+            shown(&name(i))
+        )));
+    }
     let s = &scene.settings;
     file.fbx = Some(FbxSource {
         version: scene.metadata.version,
