@@ -97,6 +97,13 @@ measure "place --reference a published table (every finger)" "100 ms" -- "$bin" 
 measure "paper data, full report without the published-measurements section" "-" -- "$bin" report --out "$work/r2" --literature "$work/no-such-table.csv"
 measure "rig audit (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb
 measure "rig audit --fix (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb --fix "$work/fixed.glb" --force
+# The SteamVR right glove (binary FBX 7500, 3,032 vertices), when ../shared has it.
+glove=../shared/rigs/steamvr-gloves/vr_glove_model.fbx
+if [ -f "$glove" ]; then
+    measure "rig audit, FBX (SteamVR glove, 4,900 triangles)" "-" -- "$bin" audit "$glove"
+    measure "rig audit --moves, FBX (SteamVR glove)" "-" -- "$bin" audit "$glove" --moves "$work/moves.csv"
+    measure "deform, FBX (SteamVR glove), fist, LBS" "-" -- "$bin" deform "$glove"
+fi
 measure "deform, 30,000-triangle hand, fist, LBS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb"
 measure "deform --fix --out, 30,000 triangles, DQS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb" --fix --skinning dqs --out "$work/d30k" --force
 echo

@@ -13,6 +13,7 @@ mod crash_report;
 mod data;
 mod deform;
 mod everyday;
+mod fbx;
 mod import;
 mod literature;
 mod option_ranges;

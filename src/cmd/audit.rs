@@ -31,13 +31,13 @@ pub enum FixMcp {
     Atlas,
 }
 
-/// Judge a rigged hand (glTF 2.0) against the X-ray statistics; --fix writes a corrected copy
+/// Judge a rigged hand (glTF 2.0 or FBX) against the X-ray statistics; --fix writes a corrected copy
 #[derive(clap::Args, Debug)]
 #[command(
     after_help = "Finds the finger chains of either hand by their names (Mixamo mixamorig:RightHandIndex1..4, \
                   Rigify f_index.01.R / DEF-f_index.01.R / thumb.01.R, VRM rightIndexProximal or its humanoid table, \
-                  Unreal index_01_r, WebXR index-finger-phalanx-proximal, Blender Index.R, Index.R.001; case and separators \
-                  ignored; --map for others) \
+                  Unreal index_01_r, WebXR index-finger-phalanx-proximal, SteamVR finger_index_0_r, Oculus b_r_index1, \
+                  Unity EthanRightHandIndex1 / Right_Index_Finger_Joint_01a, Blender Index.R, Index.R.001; case and separators ignored; --map for others) \
                   and measures joint-to-joint distances in the node (bind) pose; the joints need not be parent and \
                   child when the names say which finger they belong to (WebXR). Every joint (MCP, PIP, DIP, tip) is \
                   reported inside the X-ray range, inside the prediction interval, or outside by how many mm and in \
@@ -52,12 +52,15 @@ pub enum FixMcp {
                   moved with them, translation keys offset, and the inverse bind matrices updated so the mesh's rest \
                   shape is unchanged; the input is never modified. --fix-mcp atlas places each MCP where the \
                   metacarpals' dataset puts it from its CMC (or the wrist, for a rig with a hand bone and no \
-                  metacarpals) when it lies outside that interval.\n\n\
+                  metacarpals) when it lies outside that interval. An FBX rig is read with ufbx (metres, +Y up, the \
+                  bind pose from its skin clusters) and cannot be fixed in place: --moves FILE.csv lists each node the \
+                  fix moves, with its new world position and its new local translation (FBX: Lcl Translation) to \
+                  set in a DCC.\n\n\
                   --map FILE: CSV with the header node,side,finger,joint (joint MCP, PIP, DIP, IP or tip).\n\n\
-                  Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv"
+                  Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv\n  phalanx audit glove.fbx --moves moves.csv"
 )]
 pub(crate) struct Args {
-    /// The rig: a .glb, .gltf or .vrm (glTF 2.0) file
+    /// The rig: a .glb, .gltf or .vrm (glTF 2.0) or .fbx file
     #[arg(value_name = "RIG")]
     rig: PathBuf,
     #[command(flatten)]
@@ -70,7 +73,11 @@ pub(crate) struct Args {
     /// Write a corrected copy of the rig here (.glb, or .gltf with the buffer embedded)
     #[arg(long, value_name = "OUT")]
     fix: Option<PathBuf>,
-    /// With --fix: move only joints that are themselves outside the prediction interval
+    /// Write the joints the fix moves to this CSV: node, old and new world position (m), new local
+    /// translation in the file's units and axes (FBX: Lcl Translation), to apply in a DCC
+    #[arg(long, value_name = "FILE.csv")]
+    moves: Option<PathBuf>,
+    /// With --fix or --moves: move only joints that are themselves outside the prediction interval
     #[arg(long)]
     only_outside: bool,
     /// What the rig's tip nodes mark
@@ -92,11 +99,11 @@ pub(crate) struct Args {
     /// prediction interval
     #[arg(long)]
     strict: bool,
-    /// With --fix: where an MCP goes. `finger`: where the finger's own proportions put it,
+    /// With --fix or --moves: where an MCP goes. `finger`: where the finger's own proportions put it,
     /// when it is part of the explanation. `atlas`: where the metacarpals' dataset puts it
     /// from its CMC (or the wrist), when it lies outside that prediction interval; the MCP is
     /// then held and only PIP and DIP move to fit the proportions
-    #[arg(long, value_enum, default_value_t = FixMcp::Finger, requires = "fix")]
+    #[arg(long, value_enum, default_value_t = FixMcp::Finger)]
     fix_mcp: FixMcp,
     /// Output format
     #[arg(long, value_enum, default_value_t = TextFormat::Table)]
@@ -105,20 +112,32 @@ pub(crate) struct Args {
     force: ForceArgs,
 }
 
-/// Whether `a` and `b` name one existing file.
-fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
-    matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
-}
-
 /// The metacarpals' dataset when given or when the default exists.
 const DEFAULT_METACARPALS: &str = "data/atlas/measurements.csv";
 
 pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> {
+    if args.fix_mcp != FixMcp::Finger && args.fix.is_none() && args.moves.is_none() {
+        return Err(Error::Usage(
+            "--fix-mcp says where the fix puts an MCP: give it with --fix OUT or --moves FILE.csv"
+                .into(),
+        ));
+    }
+    if let Some(m) = &args.moves
+        && crate::rig::session::same_file(&args.rig, m)
+    {
+        return Err(Error::Usage(format!(
+            "--moves {} would overwrite the input rig; name a new .csv file",
+            m.display()
+        )));
+    }
     // Writing over the input is refused by the session with its own message, --force or not.
     if let Some(path) = &args.fix
-        && !same_file(path, &args.rig)
+        && !crate::rig::session::same_file(path, &args.rig)
     {
         check_output_file("--fix", path, args.force.force)?;
+    }
+    if let Some(path) = &args.moves {
+        check_output_file("--moves", path, args.force.force)?;
     }
     let metacarpals = match &args.metacarpals {
         Some(path) => Some(path.clone()),
@@ -135,6 +154,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         only_outside: args.only_outside,
         metacarpals: metacarpals.as_deref(),
         mcp_from_atlas: args.fix_mcp == FixMcp::Atlas,
+        moves: args.moves.is_some(),
     })?;
     if metacarpals.is_none()
         && audit
@@ -153,6 +173,19 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         TextFormat::Table => table(&audit, width).into_bytes(),
         TextFormat::Json => json(&audit)?,
     };
+    if let (Some(path), Some((moves, warnings))) = (&args.moves, &audit.moves) {
+        let csv = report::csv_out::moves(moves)?;
+        crate::atomic::replace(path, &csv).map_err(Error::write(path))?;
+        if !quiet {
+            eprintln!(
+                "{}",
+                fit_text(&moves_summary(&audit, path, moves.len()), width)
+            );
+            for w in warnings {
+                eprintln!("warning: {w}");
+            }
+        }
+    }
     out::print(&bytes)?;
     if !quiet && let Some(fix) = &audit.fix {
         eprintln!("{}", fit_text(&fix_summary(fix), width));
@@ -212,6 +245,7 @@ fn table(audit: &Audit, width: Width) -> String {
     let n_note = crate::format::xrays(a.dataset.xrays);
     report::audit::text(
         &audit.rig,
+        audit.fbx.as_ref(),
         &a.dataset.path,
         &n_note,
         a.settings.confidence,
@@ -233,7 +267,25 @@ fn json(audit: &Audit) -> Result<Vec<u8>, Error> {
             .collect(),
         warnings: &fix.warnings,
     });
-    report::json::audit(&audit.analysis, &audit.rig, fix)
+    report::json::audit(&audit.analysis, &audit.rig, audit.fbx.as_ref(), fix)
+}
+
+/// The line on standard error saying what `--moves` wrote.
+fn moves_summary(audit: &Audit, path: &std::path::Path, n: usize) -> String {
+    let units = match &audit.fbx {
+        Some(src) => format!(
+            "new Lcl Translations in the file's units ({}), each in its parent's frame; the \
+             file's axes: {}",
+            report::audit::unit_words(src.unit_meters),
+            src.axes
+        ),
+        None => "new translations in metres, each in its parent's frame".into(),
+    };
+    format!(
+        "wrote {}: {n} node{} to move (world positions in metres, +Y up; {units})",
+        path.display(),
+        if n == 1 { "" } else { "s" }
+    )
 }
 
 /// The line on standard error saying what the fix wrote.

@@ -19,7 +19,7 @@ use crate::rig::session::{self, FixedInMemory};
 use clap::ValueEnum;
 use std::path::{Path, PathBuf};
 
-/// Curl a rigged hand (glTF 2.0) and measure how its skin deforms; compare with --against or --fix
+/// Curl a rigged hand (glTF 2.0 or FBX) and measure how its skin deforms; compare with --against or --fix
 #[derive(clap::Args, Debug)]
 #[command(
     after_help = "Curls every finger of the rig's hand(s) to a pose, each joint about its flexion axis (in the palm's \
@@ -44,7 +44,7 @@ use std::path::{Path, PathBuf};
                   phalanx deform right.glb --angles 45,90,45 --format json"
 )]
 pub(crate) struct Args {
-    /// The rig: a .glb, .gltf or .vrm (glTF 2.0) file with a skinned mesh
+    /// The rig: a .glb, .gltf or .vrm (glTF 2.0) or .fbx file with a skinned mesh
     #[arg(value_name = "RIG")]
     rig: PathBuf,
     /// Compare with this version of the rig (B)
@@ -142,7 +142,7 @@ impl Args {
 
 /// Reads `path` and deforms it.
 fn deform_path(path: &Path, req: &DeformRequest<'_>) -> Result<FileDeformation, Error> {
-    let file = GltfFile::load(path)?;
+    let file = crate::rig::open(path)?;
     deform_parsed(&file, path, req)
 }
 

@@ -10,6 +10,7 @@ use crate::rig::bend::Bend;
 use crate::rig::judge::{
     Basis, FingerAudit, JudgeOptions, MetacarpalCheck, RayBase, SoftTissue, Standing, TipKind,
 };
+use crate::rig::read::source::FbxSource;
 use crate::rig::{AuditedFinger, AuditedRig};
 
 /// Millimetres per rig unit (glTF units are metres).
@@ -422,10 +423,44 @@ fn finger_table(
     t.render(width, 2, hidden)
 }
 
+/// What the rig file's units and axes are, for the audit's header: glTF's
+/// metres and +Y up, or what an FBX file was and how it was converted.
+pub(crate) fn units_words(fbx: Option<&FbxSource>) -> String {
+    match fbx {
+        None => "glTF units are metres, world space Y up".into(),
+        Some(src) => format!(
+            "read from {} FBX {} with ufbx: its units ({}) and axes ({}) converted to metres and \
+             world space +Y up, the bind pose from its skin clusters; FBX cannot be written, so \
+             --moves FILE.csv, not --fix, gives the fix",
+            if src.ascii { "ASCII" } else { "binary" },
+            src.version,
+            unit_words(src.unit_meters),
+            src.axes
+        ),
+    }
+}
+
+/// A file unit of `m` metres in words: `metres`, `centimetres`, ... for the
+/// common ones, else `0.3048 m each`.
+pub(crate) fn unit_words(m: f64) -> String {
+    let named = [
+        (1.0, "metres"),
+        (0.01, "centimetres"),
+        (0.001, "millimetres"),
+        (0.0254, "inches"),
+        (0.1, "decimetres"),
+    ];
+    match named.iter().find(|(u, _)| (m / u - 1.0).abs() < 1e-9) {
+        Some((_, name)) => (*name).to_string(),
+        None => format!("{} m each", crate::format::trimmed(m, 6)),
+    }
+}
+
 /// The terminal report of `phalanx audit`, fitted to `width` (tables give way
 /// as [`super::layout`] says; the other lines wrap).
 pub(crate) fn text(
     rig: &AuditedRig,
+    fbx: Option<&FbxSource>,
     data: &str,
     n_note: &str,
     confidence: f64,
@@ -439,8 +474,9 @@ pub(crate) fn text(
     );
     out.push_str(&para(
         &format!(
-            "Joints in mm along each finger from the rig's MCP (distal = towards the tip; glTF \
-             units are metres, world space Y up); {c} prediction intervals. {}",
+            "Joints in mm along each finger from the rig's MCP (distal = towards the tip; {}); \
+             {c} prediction intervals. {}",
+            units_words(fbx),
             tip_words(&rig.tips)
         ),
         "",

@@ -42,6 +42,25 @@ pub(crate) fn safe_cell(text: &str) -> String {
     }
 }
 
+/// `audit --moves`: one row per moved node ([`crate::rig::fix::moves::HEADER`]),
+/// nine decimals (a nanometre in metres). Node names are written exactly as
+/// the file has them (no spreadsheet guard): scripts look the nodes up by them.
+pub(crate) fn moves(moves: &[crate::rig::fix::moves::Move]) -> Result<Vec<u8>, Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let err = |e| Error::render("cannot write CSV", e);
+    w.write_record(crate::rig::fix::moves::HEADER)
+        .map_err(err)?;
+    for m in moves {
+        let mut row = vec![m.name.clone()];
+        for v in [m.old_world, m.new_world, m.new_local] {
+            row.extend(v.to_array().map(|x| crate::format::num(x, 9)));
+        }
+        w.write_record(&row).map_err(err)?;
+    }
+    w.into_inner()
+        .map_err(|e| Error::render("cannot write CSV", e.to_string()))
+}
+
 /// The statistics as CSV bytes; empty cells where a value is null. With groups
 /// (`--group-by`), two leading columns `group_by` and `group` name each row's
 /// group (`all` for the whole dataset).

@@ -297,6 +297,9 @@ pub(crate) struct AuditDocument<'a> {
     settings: SettingsView<'static>,
     /// Units of every length and position: "m".
     units: &'static str,
+    /// What the rig file was when it was FBX, read as glTF in metres and +Y up.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fbx: Option<FbxView<'a>>,
     rig: &'a crate::rig::AuditedRig,
     /// Fingers with a joint or value outside the prediction interval.
     fingers_outside: usize,
@@ -306,10 +309,25 @@ pub(crate) struct AuditDocument<'a> {
     fix: Option<FixView<'a>>,
 }
 
+/// An FBX rig file, for the audit document: what it was before it was
+/// converted to metres and +Y up.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct FbxView<'a> {
+    /// The FBX version (7500 for 7.5).
+    version: u32,
+    /// "binary" or "ascii".
+    encoding: &'static str,
+    /// Metres per file unit (the file's UnitScaleFactor / 100).
+    unit_m: f64,
+    /// The file's axes, as "-X right, +Y up, -Z front".
+    axes: &'a str,
+}
+
 /// The document of `phalanx audit --format json`.
 pub fn audit(
     a: &Analysis,
     rig: &crate::rig::AuditedRig,
+    fbx: Option<&crate::rig::read::source::FbxSource>,
     fix: Option<FixView<'_>>,
 ) -> Result<Vec<u8>, Error> {
     to_bytes(&AuditDocument {
@@ -317,6 +335,12 @@ pub fn audit(
         dataset: &a.dataset,
         settings: SettingsView::of(&a.settings),
         units: "m",
+        fbx: fbx.map(|s| FbxView {
+            version: s.version,
+            encoding: if s.ascii { "ascii" } else { "binary" },
+            unit_m: s.unit_meters,
+            axes: &s.axes,
+        }),
         rig,
         fingers_outside: rig.outside(),
         caveats: &super::audit::CAVEATS,

@@ -17,5 +17,5 @@ pub mod session;
 
 pub use judge::{AuditOptions, AuditedFinger, AuditedRig, SkinTip, TIP_INSIDE, bend, ray};
 pub use read::{
-    FingerChain, GltfFile, Rig, RigJoint, RigNode, map, naming, reference, skin, weights,
+    FingerChain, GltfFile, Rig, RigJoint, RigNode, fbx, map, naming, open, reference, skin, weights,
 };

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 /// What to audit, against which data, and where to write a fixed copy.
 pub struct AuditRequest<'a> {
-    /// The rig: a .glb, .gltf or .vrm file.
+    /// The rig: a .glb, .gltf, .vrm or .fbx file.
     pub rig: &'a Path,
     /// Custom joint names (CSV with node,side,finger,joint).
     pub map: Option<&'a Path>,
@@ -34,6 +34,9 @@ pub struct AuditRequest<'a> {
     /// interval from its CMC (or wrist) where `metacarpals` puts it, and holds
     /// the other MCPs ([`super::judge::ray`]); needs `metacarpals`.
     pub mcp_from_atlas: bool,
+    /// `--moves`: list the nodes the fix moves ([`super::fix::moves`]), for a rig
+    /// of any format (an FBX rig cannot be fixed in place).
+    pub moves: bool,
 }
 
 /// A finished audit.
@@ -44,6 +47,11 @@ pub struct Audit {
     pub rig: AuditedRig,
     /// What the fix wrote, when one was asked for.
     pub fix: Option<FixOutcome>,
+    /// The nodes the fix moves, when asked for ([`AuditRequest::moves`]),
+    /// with the warnings that go with them.
+    pub moves: Option<(Vec<fix::moves::Move>, Vec<String>)>,
+    /// What the rig file was, when it was FBX.
+    pub fbx: Option<super::read::source::FbxSource>,
 }
 
 /// What the fix wrote.
@@ -61,7 +69,9 @@ pub struct FixOutcome {
 /// The atlas's landmark file, looked for beside the metacarpals' dataset.
 pub const WRIST_LANDMARKS: &str = "landmarks.csv";
 
-/// Audits a rig against the statistics, and with `fix` writes a corrected copy.
+/// Audits a rig against the statistics, and with `fix` writes a corrected copy;
+/// with `moves`, lists the nodes that copy moves (the same copy: one fix
+/// serves both, so the list follows the fix).
 ///
 /// The fix is refused before any work when it would overwrite the input or its
 /// extension names no glTF container. The fixed copy is read back from memory
@@ -71,6 +81,17 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     let map = req.map.map(NameMap::load).transpose()?;
     let fix_glb = req.fix.map(|out| fix_container(req.rig, out)).transpose()?;
     let rig = Rig::load(req.rig, map.as_ref())?;
+    if let (Some(src), Some(out)) = (&rig.file.fbx, req.fix) {
+        return Err(Error::Usage(format!(
+            "--fix {}: {} is an FBX file (FBX {}), and phalanx cannot write FBX (its reader, \
+             ufbx, only reads). Give --moves FILE.csv instead: it lists each joint the fix \
+             would move with its new world position and its new Lcl Translation, to set in \
+             Maya, Blender or another DCC (see the README's recipe)",
+            out.display(),
+            req.rig.display(),
+            src.version
+        )));
+    }
     let dataset = Dataset::load(req.data)?;
     analysis::budget::check_bootstrap(dataset.xray_count(), req.settings.resamples)
         .map_err(Error::Usage)?;
@@ -116,19 +137,37 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     if let Some(atlas) = &atlas {
         audited.judge_metacarpals(atlas, wrist.as_ref());
     }
-    let fix = match (req.fix, fix_glb) {
-        (Some(out), Some(glb)) => {
-            let dir = req.rig.parent().unwrap_or(Path::new("."));
-            let opts = fix::FixOptions {
-                only_outside: req.only_outside,
-            };
-            let placed = match &atlas {
-                Some(_) if req.mcp_from_atlas => {
-                    judge::ray::mcp_from_base(&audited, &analysis, &audited.tips)
-                }
-                _ => audited.fingers.clone(),
-            };
-            let fixed = fix::fix_with(&rig.file, &placed, rig.weights.as_ref(), dir, glb, &opts)?;
+    // One fix serves both --fix and --moves: the moves are read off the very
+    // bytes --fix writes, so they follow whatever the fix decides.
+    let fixed = if req.fix.is_some() || req.moves {
+        let dir = req.rig.parent().unwrap_or(Path::new("."));
+        let opts = fix::FixOptions {
+            only_outside: req.only_outside,
+        };
+        let placed = match &atlas {
+            Some(_) if req.mcp_from_atlas => {
+                judge::ray::mcp_from_base(&audited, &analysis, &audited.tips)
+            }
+            _ => audited.fingers.clone(),
+        };
+        let glb = fix_glb.unwrap_or(true);
+        Some(fix::fix_with(
+            &rig.file,
+            &placed,
+            rig.weights.as_ref(),
+            dir,
+            glb,
+            &opts,
+        )?)
+    } else {
+        None
+    };
+    let moves = match &fixed {
+        Some(fixed) if req.moves => Some(moves_of(&rig.file, fixed)?),
+        _ => None,
+    };
+    let fix = match (req.fix, fixed) {
+        (Some(out), Some(fixed)) => {
             let mut reaudit =
                 write_checked(&rig, &fixed, out, map.as_ref(), &analysis, &req.options)?;
             if let Some(atlas) = &atlas {
@@ -147,7 +186,24 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         analysis,
         rig: audited,
         fix,
+        moves,
+        fbx: rig.file.fbx.clone(),
     })
+}
+
+/// The nodes `fixed` (the fix of `original`, as `--fix` writes it) moves,
+/// read back from its bytes ([`fix::moves`]), with their warnings.
+fn moves_of(
+    original: &GltfFile,
+    fixed: &Fixed,
+) -> Result<(Vec<fix::moves::Move>, Vec<String>), Error> {
+    let copy = GltfFile::from_bytes(&original.label, &fixed.bytes).map_err(|e| {
+        Error::render(
+            format!("the fixed copy of {} did not read back", original.label),
+            e,
+        )
+    })?;
+    Ok(fix::moves::moves(original, &copy))
 }
 
 /// A rig as `audit --fix` would write it, in memory: the parsed rig and its
@@ -325,7 +381,7 @@ fn write_checked(
 }
 
 /// True when `a` and `b` name the same file (`b` may not exist yet).
-fn same_file(a: &Path, b: &Path) -> bool {
+pub(crate) fn same_file(a: &Path, b: &Path) -> bool {
     let canon = |p: &Path| {
         let p = crate::atomic::resolve(p);
         let dir = p

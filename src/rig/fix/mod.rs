@@ -30,6 +30,7 @@
 
 pub(crate) mod accessor;
 pub(crate) mod anim;
+pub mod moves;
 pub(crate) mod remap;
 
 use crate::dataset::DataError;

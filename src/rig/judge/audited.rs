@@ -134,9 +134,10 @@ fn scale_warning(lengths: &[f64]) -> Option<String> {
     );
     Some(match likely {
         Some((unit, m)) => format!(
-            "{shown}; the file is likely in {unit} ({} mm fingers). glTF units are metres: \
-             re-export in metres. The mm figures, the soft tissue and the bend tolerance are off; \
-             relative values and ratios are not",
+            "{shown}; the file is likely in {unit} ({} mm fingers). Re-export it in metres (glTF \
+             is in metres; an FBX file must declare its true unit, with no scale on the armature \
+             hiding it). The mm figures, the soft tissue and the bend tolerance are off; relative \
+             values and ratios are not",
             crate::format::num(median * m * 1000.0, 1)
         ),
         None => format!(

@@ -26,6 +26,8 @@ pub struct GltfFile {
     /// The folder of the file, where external buffers are read (`None` for
     /// bytes not read from a file: external buffers are then not read).
     pub dir: Option<PathBuf>,
+    /// What the file was when it was FBX, read as this glTF document ([`super::fbx`]).
+    pub fbx: Option<super::source::FbxSource>,
 }
 
 /// The local matrix of a node, in f64.
@@ -171,6 +173,7 @@ impl GltfFile {
             parent,
             world,
             dir: None,
+            fbx: None,
         })
     }
 
@@ -188,7 +191,7 @@ impl GltfFile {
 
 /// What to say of a directory given as a rig: the rig files it holds (the
 /// first 8, by name), or that it holds none.
-fn directory_given(dir: &Path) -> String {
+pub(crate) fn directory_given(dir: &Path) -> String {
     let mut rigs: Vec<String> = std::fs::read_dir(dir)
         .into_iter()
         .flatten()
@@ -197,15 +200,19 @@ fn directory_given(dir: &Path) -> String {
         .map(|e| e.file_name().to_string_lossy().into_owned())
         .filter(|n| {
             let n = n.to_ascii_lowercase();
-            [".glb", ".gltf", ".vrm"].iter().any(|x| n.ends_with(x))
+            [".glb", ".gltf", ".vrm", ".fbx"]
+                .iter()
+                .any(|x| n.ends_with(x))
         })
         .collect();
     rigs.sort();
     let n = rigs.len();
     match n {
-        0 => "is a directory, not a rig file, and holds no .glb, .gltf or .vrm file; give the \
+        0 => {
+            "is a directory, not a rig file, and holds no .glb, .gltf, .vrm or .fbx file; give the \
               path of the rig file itself"
-            .to_string(),
+                .to_string()
+        }
         _ => {
             let shown: Vec<String> = rigs
                 .iter()

@@ -15,10 +15,15 @@
 //! what the rest of `rig` reads: positions and node indices, no format.
 //! [`sniff`] names what a file that is not glTF really is.
 //! [`reference`](mod@reference) reads another format into the same chains: the reference
-//! rigs of `data/rigs`. Nothing here judges, and nothing writes but
-//! [`gltf`]'s GLB container, shared by the fix and the synthetic hands.
+//! rigs of `data/rigs`. [`fbx`] reads FBX rigs (with ufbx) as a glTF document
+//! in memory, so everything after [`open`] reads one kind of file. Nothing
+//! here judges, and nothing writes but [`gltf`]'s GLB container and the
+//! accessors [`glb_parts`] lays out in it, shared by the fix, the synthetic
+//! hands and the FBX reader.
 
 pub(crate) mod anim;
+pub mod fbx;
+pub(crate) mod glb_parts;
 pub mod gltf;
 pub mod map;
 pub mod naming;
@@ -26,16 +31,37 @@ pub mod recognise;
 pub mod reference;
 pub mod skin;
 pub mod sniff;
+pub mod source;
 pub mod weights;
 
 pub use gltf::GltfFile;
 
 use crate::analysis::placement::Joint;
-use crate::dataset::Finger;
+use crate::dataset::{DataError, Finger};
 use glam::DVec3;
 use naming::Side;
 use schemars::JsonSchema;
 use serde::Serialize;
+use std::path::Path;
+
+/// Reads a rig file of any format phalanx reads: glTF 2.0 (.glb, .gltf,
+/// .vrm) as it is, FBX ([`fbx::is_fbx`]: by its header or a .fbx name) as
+/// the glTF document [`fbx::read`] makes of it. The one entry point for rig
+/// files: what comes after reading does not know the format.
+pub fn open(path: &Path) -> Result<GltfFile, DataError> {
+    let label = path.display().to_string();
+    if path.is_dir() {
+        return Err(DataError::whole_file(&label, gltf::directory_given(path)));
+    }
+    let bytes = crate::dataset::csvinput::read_input(path)?;
+    let mut file = if fbx::is_fbx(path, &bytes) {
+        fbx::read(&label, &bytes)?
+    } else {
+        GltfFile::from_bytes(&label, &bytes)?
+    };
+    file.dir = Some(path.parent().unwrap_or(Path::new(".")).to_path_buf());
+    Ok(file)
+}
 
 /// One joint of a rig finger.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

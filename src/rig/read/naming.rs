@@ -26,9 +26,28 @@
 //! [`parse_bare`] reads their side and finger, and [`super::recognise`] their
 //! part from their place in the chain.
 //!
+//! Three conventions number their bones otherwise and are read first, on the
+//! whole name:
+//! - SteamVR (its gloves): `finger_index_meta_r` (the metacarpal), then
+//!   `finger_index_0_r` .. `_2_r` counted from 0 (0 = MCP for index to pinky,
+//!   0 = CMC for the thumb, as Mixamo's 1) and the tip `finger_index_r_end`.
+//! - Oculus / Meta hand tracking: `b_l_index1` .. `3` and `b_r_thumb1` .. `3`
+//!   are numbered as Mixamo's (the thumb's 1 is its metacarpal bone, whose
+//!   origin is the CMC); the tip is `b_l_index_null` (`_null_end` lies past
+//!   it); `b_l_pinky0` is the little finger's metacarpal; `b_l_thumb0` is the
+//!   trapezium, a carpal bone whose origin is not a joint of the thumb (its
+//!   bind pose puts it 25 mm before the CMC), so it is not read.
+//! - Unity's Robot Kyle: `Left_Index_Finger_Joint_01a` .. `01c` (MCP, PIP,
+//!   DIP; `01d` a tip) and a two-joint thumb `Left_Thumb_Joint_01a`, `01b`
+//!   read as its MCP and IP.
+//!
+//! Unity's Ethan (`EthanLeftHandIndex1`) and prefix-less Mixamo / HumanIK
+//! (`LeftHandIndex1`, Blender's `LeftHandIndex4_end`) read as Mixamo does.
+//!
 //! The wrist (hand) bone of each convention is read by [`parse_hand`]:
 //! Mixamo `mixamorig:RightHand`, Rigify `hand.R` / `DEF-hand.R`, VRM
-//! `rightHand`, Unreal `hand_r`, WebXR `wrist`; its origin is the wrist joint.
+//! `rightHand`, Unreal `hand_r`, WebXR `wrist`, SteamVR `wrist_r`, Oculus
+//! `b_l_wrist`, Robot Kyle `Left_Wrist_Joint_01`; its origin is the wrist joint.
 
 use crate::dataset::Finger;
 use regex::Regex;
@@ -157,9 +176,11 @@ fn starts_word(name: &str, before: &[Option<char>], i: usize) -> bool {
 
 /// Words that mark a bone as a control, mechanism or helper rather than a joint
 /// of the skin (Rigify's `MCH-`, IK targets, twist helpers).
-const NOT_JOINTS: [&str; 12] = [
+/// Oculus's `*_marker` nodes (fingertip, pad and axis markers) and SteamVR's `*_aux`
+/// bones (at the DIPs, under the root) are helpers too.
+const NOT_JOINTS: [&str; 14] = [
     "mch", "ik", "fk", "ctrl", "ctl", "control", "target", "pole", "tweak", "twist", "helper",
-    "vis",
+    "vis", "marker", "aux",
 ];
 
 /// Names longer than this are never joint names (and are not run through the pattern).
@@ -200,6 +221,9 @@ fn sided_captures<'c>(
 /// Reads a node name; `None` when it names no finger joint.
 pub(crate) fn parse(name: &str) -> Option<Parsed> {
     let (c, before) = compared(name)?;
+    if let Some(p) = parse_numbered_otherwise(name) {
+        return p;
+    }
     if let Some(p) = parse_palm(&c) {
         return Some(p);
     }
@@ -239,6 +263,100 @@ pub(crate) fn parse(name: &str) -> Option<Parsed> {
 fn deform_bone(m: &regex::Captures<'_>) -> bool {
     m.get(0).is_some_and(|all| all.as_str().starts_with("def"))
         && m.name("finger").is_some_and(|f| f.start() >= 3)
+}
+
+/// SteamVR's names (the whole name after any namespace, lower case).
+static STEAMVR: LazyLock<Regex> = LazyLock::new(|| {
+    Regex::new(
+        r"^(?:.*[^a-z0-9])?finger_(?P<finger>thumb|index|middle|ring|pinky)_(?:(?P<part>meta|[0-2])_(?P<s2>[lr])|(?P<s3>[lr])_end)$",
+    )
+    .expect("the SteamVR pattern is valid")
+});
+
+/// Oculus's metacarpal (`0`) and tip (`_null`) names; their `1` .. `3` read as Mixamo's.
+static OCULUS: LazyLock<Regex> = LazyLock::new(|| {
+    Regex::new(
+        r"^(?:.*[^a-z0-9])?b_(?P<s>[lr])_(?P<finger>thumb|index|middle|ring|pinky)(?P<part>0|_null)(?P<end>_end)?$",
+    )
+    .expect("the Oculus pattern is valid")
+});
+
+/// Robot Kyle's lettered joints.
+static KYLE: LazyLock<Regex> = LazyLock::new(|| {
+    Regex::new(
+        r"^(?:.*[^a-z0-9])?(?P<s>left|right)_(?P<finger>thumb|index|middle|ring|pinky)(?:_finger)?_joint_0?1(?P<letter>[a-d])$",
+    )
+    .expect("the Kyle pattern is valid")
+});
+
+/// The name after any namespace (`mixamorig:`, `Armature|`), lower case.
+fn base_lower(name: &str) -> String {
+    name.rsplit([':', '|'])
+        .next()
+        .unwrap_or(name)
+        .to_ascii_lowercase()
+}
+
+/// Reads the conventions that number their bones otherwise than the pattern
+/// (see the module doc): `Some(parsed)` when the name is in one of them
+/// (`Some(None)`: in one, but not a finger joint, as Oculus's trapezium);
+/// `None` when it is in none.
+fn parse_numbered_otherwise(name: &str) -> Option<Option<Parsed>> {
+    let base = base_lower(name);
+    let finger = |f: &str| Finger::parse(f);
+    let parsed = |side: &str, f: &str, part: Part| {
+        Some(Parsed {
+            side: Side::parse(side),
+            finger: finger(f)?,
+            part,
+            deform: false,
+        })
+    };
+    if let Some(m) = STEAMVR.captures(&base) {
+        let side = m.name("s2").or(m.name("s3")).map_or("", |s| s.as_str());
+        let part = match m.name("part").map(|p| p.as_str()) {
+            Some("meta") => Part::Metacarpal,
+            Some(d) => Part::Number(d.parse::<u8>().ok()? + 1),
+            None => Part::Number(4),
+        };
+        return Some(parsed(side, &m["finger"], part));
+    }
+    if let Some(m) = OCULUS.captures(&base) {
+        let thumb = &m["finger"] == "thumb";
+        let part = match (&m["part"], m.name("end").is_some()) {
+            // The trapezium: a carpal bone before the thumb's CMC.
+            ("0", _) if thumb => return Some(None),
+            ("0", false) => Part::Metacarpal,
+            ("_null", false) => Part::Tip,
+            _ => return Some(None),
+        };
+        return Some(parsed(&m["s"], &m["finger"], part));
+    }
+    if let Some(m) = KYLE.captures(&base) {
+        let k = m["letter"].bytes().next()? - b'a';
+        // a is the MCP of every digit: a finger's part 1, the thumb's part 2.
+        let first = if &m["finger"] == "thumb" { 2 } else { 1 };
+        return Some(parsed(&m["s"], &m["finger"], Part::Number(first + k)));
+    }
+    None
+}
+
+/// Robot Kyle's wrist, `Left_Wrist_Joint_01`.
+static KYLE_WRIST: LazyLock<Regex> = LazyLock::new(|| {
+    Regex::new(r"^(?:.*[^a-z0-9])?(?P<s>left|right)_wrist_joint_0?1$")
+        .expect("the Kyle wrist pattern is valid")
+});
+
+/// The names that are generic joint names, as Maya gives the joints it creates
+/// (`joint1`, `joint21`, `Joint_3`): nothing in them says which finger or joint.
+pub(crate) fn generic_joint_names(names: &[String]) -> Vec<String> {
+    static GENERIC: LazyLock<Regex> =
+        LazyLock::new(|| Regex::new(r"^(?:joint|bone)_?[0-9]+$").expect("the pattern is valid"));
+    names
+        .iter()
+        .filter(|n| GENERIC.is_match(&base_lower(n)))
+        .cloned()
+        .collect()
 }
 
 /// The one side the captured side words name; `Some(None)` when none does,
@@ -347,6 +465,12 @@ pub struct HandBone {
 /// refused, a one-letter side only at the start of a word.
 pub fn parse_hand(name: &str) -> Option<HandBone> {
     let (c, before) = compared(name)?;
+    if let Some(m) = KYLE_WRIST.captures(&base_lower(name)) {
+        return Some(HandBone {
+            side: Side::parse(&m["s"]),
+            deform: false,
+        });
+    }
     let m = sided_captures(name, &c, &before, &HAND, &HAND_WORDS)?;
     let prefix = m.name("prefix").map_or("", |p| p.as_str());
     // A prefix that ends in a finger's name is no hand (`RightIndexHand`?):
@@ -522,6 +646,95 @@ mod tests {
         }
         // `Finger` ends in r: no side there.
         assert_eq!(bare("Finger_Index"), Some((None, Finger::Index, false)));
+    }
+
+    #[test]
+    fn fbx_conventions_read_alike() {
+        use Finger::*;
+        use Side::*;
+        let cases: &[(&str, Option<Side>, Finger, Slot)] = &[
+            // SteamVR gloves: counted from 0, `_meta` metacarpals, `_end` tips.
+            ("finger_index_meta_r", Some(Right), Index, Slot::Carpal),
+            ("finger_index_0_r", Some(Right), Index, Slot::Mcp),
+            ("finger_index_1_r", Some(Right), Index, Slot::First),
+            ("finger_index_2_r", Some(Right), Index, Slot::Second),
+            ("finger_index_r_end", Some(Right), Index, Slot::Tip),
+            ("finger_pinky_0_l", Some(Left), Little, Slot::Mcp),
+            ("finger_thumb_0_l", Some(Left), Thumb, Slot::Carpal),
+            ("finger_thumb_1_l", Some(Left), Thumb, Slot::Mcp),
+            ("finger_thumb_2_l", Some(Left), Thumb, Slot::First),
+            ("finger_thumb_l_end", Some(Left), Thumb, Slot::Tip),
+            // Oculus hand tracking.
+            ("b_l_index1", Some(Left), Index, Slot::Mcp),
+            ("b_l_index3", Some(Left), Index, Slot::Second),
+            ("b_l_index_null", Some(Left), Index, Slot::Tip),
+            ("b_r_pinky0", Some(Right), Little, Slot::Carpal),
+            ("b_r_pinky1", Some(Right), Little, Slot::Mcp),
+            ("b_r_thumb1", Some(Right), Thumb, Slot::Carpal),
+            ("b_r_thumb2", Some(Right), Thumb, Slot::Mcp),
+            ("b_r_thumb3", Some(Right), Thumb, Slot::First),
+            ("b_r_thumb_null", Some(Right), Thumb, Slot::Tip),
+            // Unity Standard Assets: Ethan, Robot Kyle.
+            ("EthanLeftHandIndex1", Some(Left), Index, Slot::Mcp),
+            ("EthanRightHandThumb2", Some(Right), Thumb, Slot::Mcp),
+            ("EthanRightHandPinky4", Some(Right), Little, Slot::Tip),
+            ("Left_Index_Finger_Joint_01a", Some(Left), Index, Slot::Mcp),
+            (
+                "Left_Index_Finger_Joint_01c",
+                Some(Left),
+                Index,
+                Slot::Second,
+            ),
+            (
+                "Right_Pinky_Finger_Joint_01b",
+                Some(Right),
+                Little,
+                Slot::First,
+            ),
+            ("Right_Thumb_Joint_01a", Some(Right), Thumb, Slot::Mcp),
+            ("Right_Thumb_Joint_01b", Some(Right), Thumb, Slot::First),
+            // Prefix-less Mixamo / HumanIK, with Blender's leaf bones.
+            ("LeftHandIndex1", Some(Left), Index, Slot::Mcp),
+            ("RightHandThumb1", Some(Right), Thumb, Slot::Carpal),
+            ("LeftHandMiddle3_end", Some(Left), Middle, Slot::Tip),
+        ];
+        for &(name, side, finger, slot) in cases {
+            assert_eq!(read(name), Some((side, finger, Some(slot))), "{name}");
+        }
+        for name in [
+            // Oculus: the thumb's trapezium, the leaf past the tip, markers.
+            "b_l_thumb0",
+            "b_l_pinky_null_end",
+            "l_index_finger_tip_marker",
+            "l_thumb_knuckle_marker",
+            "l_index_mcp_fe_axis_marker",
+            // SteamVR's helper bones at the DIPs.
+            "finger_index_r_aux",
+            "finger_thumb_l_aux",
+            // Maya's default names.
+            "joint1",
+            "joint21",
+        ] {
+            assert_eq!(read(name), None, "{name}");
+        }
+        assert_eq!(read("LeftHandIndex4_end").unwrap().2, None);
+        for (name, side) in [
+            ("wrist_r", Some(Right)),
+            ("b_l_wrist", Some(Left)),
+            ("Left_Wrist_Joint_01", Some(Left)),
+            ("EthanRightHand", Some(Right)),
+            ("LeftHand", Some(Left)),
+        ] {
+            assert_eq!(parse_hand(name).map(|h| h.side), Some(side), "{name}");
+        }
+        assert_eq!(parse_hand("Left_Wrist_Joint_01b"), None);
+        let maya: Vec<String> = ["Hips", "joint1", "Joint_2", "rig:joint21", "jointy"]
+            .map(String::from)
+            .to_vec();
+        assert_eq!(
+            generic_joint_names(&maya),
+            ["joint1", "Joint_2", "rig:joint21"]
+        );
     }
 
     #[test]

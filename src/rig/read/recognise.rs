@@ -212,7 +212,7 @@ impl Rig {
     /// Reads a rig and finds its finger chains. Fails, listing the names it
     /// saw, when no complete finger is found.
     pub fn load(path: &Path, map: Option<&NameMap>) -> Result<Rig, DataError> {
-        Rig::from_file(GltfFile::load(path)?, map)
+        Rig::from_file(super::open(path)?, map)
     }
 
     /// Finds the finger chains of a parsed file: the best node for each joint
@@ -569,16 +569,35 @@ fn no_hand(label: &str, names: &[String], notes: Vec<String>) -> DataError {
     } else {
         format!("{n} node names: {}", listed.join(", "))
     };
-    let mut e = DataError::whole_file(
-        label,
+    let generic = naming::generic_joint_names(names);
+    let what = if generic.len() >= 3 {
+        format!(
+            "has no recognisable hand: its joints carry generic names ({}{}), as Maya names \
+             joints it creates, which do not say which finger or joint each is. Name them with \
+             --map FILE (columns node,side,finger,joint, one line per joint: e.g. joint5,right,index,MCP)",
+            generic
+                .iter()
+                .take(6)
+                .map(|s| shown(s))
+                .collect::<Vec<_>>()
+                .join(", "),
+            if generic.len() > 6 {
+                format!(" and {} more", generic.len() - 6)
+            } else {
+                String::new()
+            }
+        )
+    } else {
         format!(
             "has no recognisable hand: no finger chain (MCP and its inner joints) was found among its {seen}. \
-             Known conventions: Mixamo (mixamorig:RightHandIndex1..4), Rigify (f_index.01.R, DEF-f_index.01.R, thumb.01.R), \
+             Known conventions: Mixamo (mixamorig:RightHandIndex1..4, LeftHandIndex1), Rigify (f_index.01.R, DEF-f_index.01.R, thumb.01.R), \
              VRM (rightIndexProximal), Unreal (index_01_r), WebXR (index-finger-phalanx-proximal), \
+             Oculus (b_l_index1, b_l_index_null), SteamVR (finger_index_0_r), Unity (EthanLeftHandIndex1, Left_Index_Finger_Joint_01a), \
              Blender (Index.R, Index.R.001); \
              for other names give --map FILE (columns node,side,finger,joint)"
-        ),
-    );
+        )
+    };
+    let mut e = DataError::whole_file(label, what);
     e.problems.extend(notes.into_iter().map(Problem::file));
     e
 }
