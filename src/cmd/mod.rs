@@ -17,6 +17,7 @@ pub(crate) mod history;
 pub(crate) mod import;
 pub(crate) mod man;
 pub(crate) mod place;
+pub(crate) mod remove;
 pub(crate) mod report;
 pub(crate) mod schema;
 pub(crate) mod snapshot;

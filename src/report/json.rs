@@ -174,8 +174,25 @@ pub(crate) struct HistoryDocument<'a> {
     schema_version: u32,
     /// Snapshots in the history file.
     snapshots: usize,
+    /// Every record: what made it and what it changed.
+    records: Vec<HistoryRecordView<'a>>,
     /// One series per finger and quantity.
     series: Vec<HistorySeries<'a>>,
+}
+
+/// One record of the history, without its statistics (those are in the series).
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct HistoryRecordView<'a> {
+    /// 1-based position in the history file.
+    record: usize,
+    time: &'a str,
+    event: Event,
+    sha256: &'a str,
+    xrays: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    change: Option<&'a crate::dataset::history::ChangeRecord>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    note: Option<&'a str>,
 }
 
 /// The document of `phalanx history --format json`: one series per finger and quantity.
@@ -212,6 +229,19 @@ pub fn history(
     to_bytes(&HistoryDocument {
         schema_version: SCHEMA_VERSION,
         snapshots: snaps.len(),
+        records: snaps
+            .iter()
+            .enumerate()
+            .map(|(i, s)| HistoryRecordView {
+                record: i + 1,
+                time: &s.time,
+                event: s.event,
+                sha256: &s.sha256,
+                xrays: s.xrays,
+                change: s.change.as_ref(),
+                note: s.note.as_deref(),
+            })
+            .collect(),
         series,
     })
 }

@@ -79,10 +79,49 @@ pub fn dataset_notes(a: &Analysis) -> Vec<String> {
     if a.pixel_lengths() {
         notes.push(PIXEL_NOTE.to_string());
     }
+    if let Some(n) = units_note(a) {
+        notes.push(n);
+    }
     if a.tips.bone + a.tips.skin > 0 {
         notes.push(format!("fingertips: {}", a.tips.describe()));
     }
     notes
+}
+
+/// What a dataset whose rows are in several units means for its statistics, when it is:
+/// the rows per unit, that relative values and ratios pool, and which fingers lose their
+/// total J.
+pub fn units_note(a: &Analysis) -> Option<String> {
+    if !a.mixed_units() {
+        return None;
+    }
+    let units: Vec<String> = a
+        .units
+        .iter()
+        .map(|(u, n)| {
+            format!(
+                "{} ({n} row{})",
+                u.as_deref().map_or("no unit named", |u| u),
+                if *n == 1 { "" } else { "s" }
+            )
+        })
+        .collect();
+    let without: Vec<&str> = a
+        .fingers
+        .iter()
+        .filter(|f| f.quantity(Quantity::Total).is_none())
+        .map(|f| f.finger.name())
+        .collect();
+    Some(format!(
+        "the rows give their lengths in {} units: {}. The relative values and ratios have no unit and pool across them; lengths in different units are never averaged, so the total length J is left out for {} (measured in more than one unit). For J in one unit, run phalanx on a file of that unit's rows",
+        a.units.len(),
+        units.join(", "),
+        if without.is_empty() {
+            "no finger".to_string()
+        } else {
+            without.join(", ")
+        }
+    ))
 }
 
 /// Why a dataset in pixels has no total length J.
@@ -228,66 +267,249 @@ pub(crate) fn coverage(
     fit_text(&out, width)
 }
 
-/// The history of each selected quantity, snapshot by snapshot. Too wide for
-/// `width`, the CI width goes first, then the SD, the event and the shift.
+/// How many quantities the compact history shows when the user picks none.
+pub(crate) const MOVED_SHOWN: usize = 6;
+
+/// How many records the compact history lists (the latest), before saying how many more.
+pub(crate) const RECORDS_SHOWN: usize = 12;
+
+/// What one history record changed, in words: the rows and X-rays added or removed, the
+/// file, the rows let in flagged, the note. Empty for a snapshot without a note.
+pub(crate) fn record_change(s: &Snapshot) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    if let Some(c) = &s.change {
+        let ids = if c.xrays.len() <= 4 {
+            c.xrays.join(", ")
+        } else {
+            format!(
+                "{} ... {}",
+                c.xrays[..2].join(", "),
+                c.xrays[c.xrays.len() - 1]
+            )
+        };
+        let sign = match s.event {
+            crate::dataset::history::Event::Remove => "-",
+            _ => "+",
+        };
+        let of = match c.xrays.len() {
+            1 => format!("X-ray {ids}"),
+            n => format!("{n} X-rays: {ids}"),
+        };
+        let what = format!(
+            "{sign}{} row{} ({of})",
+            c.rows,
+            if c.rows == 1 { "" } else { "s" }
+        );
+        parts.push(match (&c.file, s.event) {
+            (Some(f), _) => format!("{what} from {f}"),
+            (None, crate::dataset::history::Event::Remove) => what,
+            (None, _) => format!("{what} typed as options"),
+        });
+        if !c.flagged.is_empty() {
+            let rows: Vec<String> = c
+                .flagged
+                .iter()
+                .map(|f| format!("{} {}", f.xray, f.finger.name()))
+                .collect();
+            parts.push(match s.event {
+                crate::dataset::history::Event::Remove => {
+                    format!("had been added flagged: {}", rows.join(", "))
+                }
+                _ => format!("added though flagged: {}", rows.join(", ")),
+            });
+        }
+    }
+    if let Some(n) = &s.note {
+        parts.push(format!("note: {n}"));
+    }
+    parts.join("; ")
+}
+
+/// The history: by default the records (the latest [`RECORDS_SHOWN`], each with what it
+/// changed) and one table of the quantities that moved most from the first record to
+/// the last ([`MOVED_SHOWN`] of them), or of the ones `finger` and `quantity` pick; one
+/// quantity picked, its table record by record. `all` gives every selected quantity's
+/// table, record by record. Too wide for `width`, the CI width goes first, then the SD,
+/// the event and the shift.
 pub(crate) fn history(
     path: &std::path::Path,
     snaps: &[Snapshot],
     finger: Option<Finger>,
     quantity: Option<Quantity>,
+    all: bool,
     width: Width,
 ) -> String {
     if snaps.is_empty() {
         return fit_text(
             &format!(
-                "No snapshots in {} yet: 'phalanx add' records one per addition, 'phalanx snapshot' one on demand.\n",
+                "No snapshots in {} yet: 'phalanx add' and 'phalanx remove' record one per change, 'phalanx snapshot' one on demand.\n",
                 path.display()
             ),
             width,
         );
     }
     let mut hidden = Hidden::new();
-    let mut out = format!("{} snapshots in {}\n", snaps.len(), path.display());
-    for (f, q) in crate::analysis::tracking::selected(snaps, finger, quantity) {
-        let d = decimals(q.is_unitless());
-        out.push_str(&format!("\n{f} {}\n", q.label()));
-        let mut t = Grid::new()
-            .col("#", Align::Right, Give::Keep)
-            .col("time", Align::Left, Give::Keep)
-            .col("event", Align::Left, Give::Drop(3))
-            .col("n", Align::Right, Give::Keep)
-            .col("mean", Align::Right, Give::Keep)
-            .col("sd", Align::Right, Give::Drop(2))
-            .col("t CI", Align::Right, Give::Keep)
-            .col("CI width", Align::Right, Give::Drop(1))
-            .col("mean shift", Align::Right, Give::Drop(4));
-        let mut previous: Option<f64> = None;
-        for (i, s) in snaps.iter().enumerate() {
-            let Some(r) = s
-                .quantities
-                .iter()
-                .find(|r| r.finger == f && r.quantity == q)
-            else {
-                continue;
-            };
-            let ci = r.intervals.ci_t;
-            t.row(vec![
-                (i + 1).to_string(),
-                s.time.clone(),
-                s.event.to_string(),
-                r.n.to_string(),
-                num(r.mean, d),
-                opt(r.sd, d),
-                interval(ci, d),
-                opt(ci.map(|c| c.width()), d),
-                previous.map_or_else(|| "-".to_string(), |p| signed(r.mean - p, d)),
-            ]);
-            previous = Some(r.mean);
+    let mut out = format!(
+        "{} record{} in {}, {} to {}\n",
+        snaps.len(),
+        if snaps.len() == 1 { "" } else { "s" },
+        path.display(),
+        snaps[0].time,
+        snaps[snaps.len() - 1].time
+    );
+    let one = finger.is_some() && quantity.is_some();
+    if all || one {
+        for (f, q) in crate::analysis::tracking::selected(snaps, finger, quantity) {
+            out.push_str(&format!("\n{f} {}\n", q.label()));
+            out.push_str(&quantity_table(snaps, f, q, width, &mut hidden));
         }
-        out.push_str(&t.render(width, 0, &mut hidden));
+        if one {
+            out.push_str(&records_list(snaps, width));
+        }
+    } else {
+        out.push_str(&records_list(snaps, width));
+        out.push_str(&moved_table(snaps, finger, quantity, width, &mut hidden));
     }
     hidden.append_to(&mut out, width);
     fit_text(&out, width)
+}
+
+/// The records, one line each (the latest [`RECORDS_SHOWN`]): number, time, event,
+/// X-rays, what changed.
+fn records_list(snaps: &[Snapshot], width: Width) -> String {
+    let skip = snaps.len().saturating_sub(RECORDS_SHOWN);
+    let mut out = String::from("\n");
+    if skip > 0 {
+        out.push_str(&format!(
+            "(records 1 to {skip} not listed; --all shows every record)\n"
+        ));
+    }
+    for (i, s) in snaps.iter().enumerate().skip(skip) {
+        let change = record_change(s);
+        out.push_str(&format!(
+            "#{} {} {}, {}{}\n",
+            i + 1,
+            s.time,
+            s.event,
+            xrays(s.xrays),
+            if change.is_empty() {
+                String::new()
+            } else {
+                format!(": {change}")
+            }
+        ));
+    }
+    fit_text(&out, width)
+}
+
+/// One quantity record by record: mean, SD, t interval, its width, the shift from the
+/// record before.
+fn quantity_table(
+    snaps: &[Snapshot],
+    f: Finger,
+    q: Quantity,
+    width: Width,
+    hidden: &mut Hidden,
+) -> String {
+    let d = decimals(q.is_unitless());
+    let mut t = Grid::new()
+        .col("#", Align::Right, Give::Keep)
+        .col("time", Align::Left, Give::Keep)
+        .col("event", Align::Left, Give::Drop(3))
+        .col("n", Align::Right, Give::Keep)
+        .col("mean", Align::Right, Give::Keep)
+        .col("sd", Align::Right, Give::Drop(2))
+        .col("t CI", Align::Right, Give::Keep)
+        .col("CI width", Align::Right, Give::Drop(1))
+        .col("mean shift", Align::Right, Give::Drop(4));
+    let mut previous: Option<f64> = None;
+    for (i, s) in snaps.iter().enumerate() {
+        let Some(r) = s
+            .quantities
+            .iter()
+            .find(|r| r.finger == f && r.quantity == q)
+        else {
+            continue;
+        };
+        let ci = r.intervals.ci_t;
+        t.row(vec![
+            (i + 1).to_string(),
+            s.time.clone(),
+            s.event.to_string(),
+            r.n.to_string(),
+            num(r.mean, d),
+            opt(r.sd, d),
+            interval(ci, d),
+            opt(ci.map(|c| c.width()), d),
+            previous.map_or_else(|| "-".to_string(), |p| signed(r.mean - p, d)),
+        ]);
+        previous = Some(r.mean);
+    }
+    t.render(width, 0, hidden)
+}
+
+/// The quantities that moved most from the first record to the last (or those picked),
+/// one row each: X-rays, mean, shift, shift in SDs, t interval, first and last.
+fn moved_table(
+    snaps: &[Snapshot],
+    finger: Option<Finger>,
+    quantity: Option<Quantity>,
+    width: Width,
+    hidden: &mut Hidden,
+) -> String {
+    let (first, last) = (&snaps[0], &snaps[snaps.len() - 1]);
+    let moved = crate::analysis::tracking::moved(first, last, finger, quantity);
+    let picked = finger.is_some() || quantity.is_some();
+    let shown = if picked {
+        moved.len()
+    } else {
+        moved.len().min(MOVED_SHOWN)
+    };
+    let mut out = if picked {
+        format!(
+            "\nFrom record 1 to {} ({}; shift in SDs of record 1):\n",
+            snaps.len(),
+            match (finger, quantity) {
+                (Some(f), None) => format!("the {f}'s quantities"),
+                (None, Some(q)) => format!("{} of every finger", q.label()),
+                _ => "the quantities picked".to_string(),
+            }
+        )
+    } else {
+        format!(
+            "\nThe {shown} quantities that moved most from record 1 to {} (shift in SDs of record 1; \
+             --finger and --quantity pick others, --all shows every quantity record by record):\n",
+            snaps.len()
+        )
+    };
+    let mut t = Grid::new()
+        .col("finger", Align::Left, Give::Keep)
+        .col("quantity", Align::Left, Give::Keep)
+        .col("n", Align::Right, Give::Keep)
+        .col("mean", Align::Right, Give::Keep)
+        .col("shift", Align::Right, Give::Keep)
+        .col("SDs", Align::Right, Give::Drop(2))
+        .col("t CI first", Align::Right, Give::Drop(1))
+        .col("t CI last", Align::Right, Give::Keep);
+    for m in moved.iter().take(shown) {
+        let d = decimals(m.quantity.is_unitless());
+        t.row(vec![
+            m.finger.name().to_string(),
+            m.quantity.label().to_string(),
+            format!("{} -> {}", m.before.n, m.after.n),
+            format!("{} -> {}", num(m.before.mean, d), num(m.after.mean, d)),
+            signed(m.after.mean - m.before.mean, d),
+            m.standardised
+                .map_or_else(|| "-".to_string(), |z| signed(z, 1)),
+            interval(m.before.intervals.ci_t, d),
+            interval(m.after.intervals.ci_t, d),
+        ]);
+    }
+    if snaps.len() == 1 {
+        out.push_str("(one record: nothing has moved yet)\n");
+    }
+    out.push_str(&t.render(width, 0, hidden));
+    out
 }
 
 /// Joint positions and segment lengths of model fingers, one table each. Too
