@@ -225,6 +225,20 @@ pub struct Analysis {
     pub units: Vec<(Option<String>, usize)>,
     /// Where the rows put their fingertips.
     pub tips: TipCounts,
+    /// Rows added though flagged as likely errors (`add --accept-flagged`), file order.
+    pub flagged: Vec<FlaggedRow>,
+}
+
+/// A row of the data that `add` flagged as a likely error and was told to add anyway.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct FlaggedRow {
+    #[schemars(with = "String")]
+    pub xray: Arc<str>,
+    pub finger: Finger,
+    /// Line of the row in the dataset.
+    pub line: u64,
+    /// Why it was flagged (the dataset's `flagged` column).
+    pub reason: String,
 }
 
 impl Analysis {
@@ -438,6 +452,15 @@ pub fn analyse_with(
             .map(|(u, n)| (u.map(str::to_string), n))
             .collect(),
         tips: data.tips(),
+        flagged: data
+            .flagged()
+            .map(|r| FlaggedRow {
+                xray: r.xray.clone(),
+                finger: r.finger,
+                line: r.line,
+                reason: r.meta.flagged.as_deref().unwrap_or_default().to_string(),
+            })
+            .collect(),
     }
 }
 

@@ -17,17 +17,21 @@ use crate::format::{
 /// Too wide for `width`, the percentile and BCa intervals go first, then the
 /// range, the SE and the t interval, then (below about 75 columns) the min
 /// and max: the mean, SD and prediction interval stay.
-fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden) -> String {
+fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden, head: bool) -> String {
     let c = level(a.settings.confidence);
-    let mut out = format!(
-        "phalanx statistics of {} ({}, {} rows); confidence {c}, seed {}\n",
-        a.dataset.path,
-        xrays(a.dataset.xrays),
-        a.dataset.rows,
-        a.settings.seed
-    );
-    for line in dataset_notes(a) {
-        out.push_str(&format!("note: {line}\n"));
+    let mut out = String::new();
+    if head {
+        out.push_str(&format!(
+            "phalanx statistics of {} ({}, {} rows); confidence {c}, seed {}\n",
+            a.dataset.path,
+            xrays(a.dataset.xrays),
+            a.dataset.rows,
+            a.settings.seed
+        ));
+        for line in dataset_notes(a) {
+            out.push_str(&format!("note: {line}\n"));
+        }
+        out.push_str(&flagged_text(a));
     }
     for f in &a.fingers {
         out.push_str(&format!(
@@ -127,15 +131,44 @@ pub fn units_note(a: &Analysis) -> Option<String> {
 /// Why a dataset in pixels has no total length J.
 pub const PIXEL_NOTE: &str = "lengths are in pixels (px) of images whose scale differs, so the total length J and the metacarpal are not comparable across X-rays and are not averaged; the relative values and ratios are. Import with --pixel-spacing MM for lengths in millimetres";
 
-/// The statistics of the whole dataset, then of each group (`--group-by`).
+/// The rows of the data added though flagged as likely errors, when there are: each
+/// with its line and why, and how to take it out.
+pub(crate) fn flagged_text(a: &Analysis) -> String {
+    if a.flagged.is_empty() {
+        return String::new();
+    }
+    let mut out = format!(
+        "flagged: {} of the data {} added though flagged as a likely error (add --accept-flagged); check {}, and take out a wrong one with 'phalanx remove --xray ID --finger F':\n",
+        if a.flagged.len() == 1 {
+            "1 row".to_string()
+        } else {
+            format!("{} rows", a.flagged.len())
+        },
+        if a.flagged.len() == 1 { "was" } else { "were" },
+        if a.flagged.len() == 1 { "it" } else { "them" },
+    );
+    for f in &a.flagged {
+        out.push_str(&format!(
+            "  - X-ray {} {} (line {}): {}\n",
+            f.xray,
+            f.finger.name(),
+            f.line,
+            f.reason
+        ));
+    }
+    out
+}
+
+/// The statistics of the whole dataset, then of each group (`--group-by`), known groups
+/// first, then the differences between the known groups.
 pub(crate) fn stats_with_groups(
     a: &Analysis,
-    groups: &[crate::analysis::groups::Group],
+    groups: Option<&crate::analysis::groups::Groups>,
     width: Width,
 ) -> String {
     let mut hidden = Hidden::new();
-    let mut out = stats_body(a, width, &mut hidden);
-    for g in groups {
+    let mut out = stats_body(a, width, &mut hidden, true);
+    for g in groups.map_or(&[][..], |g| &g.groups) {
         out.push_str(&format!(
             "\n==== {} = {} ({}) ====\n",
             g.by,
@@ -145,15 +178,67 @@ pub(crate) fn stats_with_groups(
         if let Some(n) = &g.note {
             out.push_str(&format!("note: {n}\n"));
         }
-        // Skip the group's own title line (the dataset line repeats the overall one).
-        let body = stats_body(&g.analysis, width, &mut hidden);
-        out.push_str(
-            body.split_once('\n')
-                .map_or(body.as_str(), |(_, rest)| rest),
-        );
+        out.push_str(&stats_body(&g.analysis, width, &mut hidden, false));
+    }
+    for d in groups.map_or(&[][..], |g| &g.differences) {
+        out.push_str(&group_difference(groups.map_or("", |g| g.by), d, width, &mut hidden));
     }
     hidden.append_to(&mut out, width);
     fit_text(&out, width)
+}
+
+/// One known group against the reference group, per finger: a sentence (as `compare`
+/// says it), then per quantity each group's mean (SD), the difference with its Welch and
+/// bootstrap intervals, and Hedges' g.
+fn group_difference(
+    by: &str,
+    d: &crate::analysis::groups::GroupDifference,
+    width: Width,
+    hidden: &mut Hidden,
+) -> String {
+    use super::compare as cmp;
+    let c = &d.cohorts;
+    let lv = level(c.settings.confidence);
+    let mut out = format!(
+        "\n==== {by}: {} against {} (differences {} - {}) ====\n",
+        d.b, d.a, d.b, d.a
+    );
+    let names = cmp::Names {
+        a: d.a.as_str(),
+        b: d.b.as_str(),
+    };
+    for f in &c.fingers {
+        out.push_str(&format!(
+            "\n{} ({}: {}, {}: {})\n",
+            cmp::finger_sentence(f, names, c.settings.confidence),
+            d.a,
+            xrays(f.n_a),
+            d.b,
+            xrays(f.n_b)
+        ));
+        // Each group's means are in its own tables above.
+        let mut t = Grid::new()
+            .col("quantity", Align::Left, Give::Keep)
+            .col(format!("{} - {}", d.b, d.a), Align::Right, Give::Keep)
+            .col(format!("Welch {lv}"), Align::Right, Give::Keep)
+            .col(format!("bootstrap {lv}"), Align::Right, Give::Drop(2))
+            .col("Hedges' g", Align::Right, Give::Drop(1));
+        for q in &f.quantities {
+            let (k, cmpn) = (q.quantity, &q.comparison);
+            t.row(vec![
+                cmp::short(k).to_string(),
+                cmp::difference_cell(cmpn, k),
+                cmp::welch_cell(cmpn, k),
+                cmp::bootstrap_cell(cmpn, k),
+                cmp::hedges_cell(cmpn),
+            ]);
+        }
+        out.push_str(&t.render(width, 0, hidden));
+    }
+    for n in &c.notes {
+        out.push_str(&format!("note: {n}\n"));
+    }
+    out
 }
 
 /// The claim-by-claim check, then a summary line. Too wide for `width`, the

@@ -244,10 +244,20 @@ fn draw_heading(pen: &Pen, top: i32, panel: &Panel) -> DrawResult {
     pen.text((MARGIN, y), &label, Font::new(13.0).bold())?;
     let n = panel.points.len();
     let missing = panel.points.iter().filter(|p| ci(p).is_none()).count();
-    let mut info = match n {
-        0 => return Ok(()),
-        1 => "1 snapshot".to_string(),
-        n => format!("{n} snapshots"),
+    // Records of the same data (a removal undoing an addition, say) draw on one point.
+    let mut distinct: Vec<(usize, u64)> = panel
+        .points
+        .iter()
+        .map(|p| (p.xrays, p.mean.to_bits()))
+        .collect();
+    distinct.sort_unstable();
+    distinct.dedup();
+    let mut info = match (n, distinct.len()) {
+        (0, _) => return Ok(()),
+        (1, _) => "1 record".to_string(),
+        (n, d) if d == n => format!("{n} records"),
+        (n, 1) => format!("{n} records, all on one point (the same statistics)"),
+        (n, d) => format!("{n} records on {d} points (records with the same statistics coincide)"),
     };
     if missing > 0 {
         info.push_str(&format!(", {missing} without an interval"));
