@@ -421,25 +421,26 @@ fn import_into_a_dataset_goes_through_add() {
     wd.write("lab.csv", format!("{header}{base}"));
     let hand = format!("image,landmark,x,y\n{}", long_hand("new", &INDEX));
     wd.write("marks.csv", &hand);
-    let import = |extra: &[&str]| {
-        let mut args = vec![
-            "import",
-            "marks.csv",
-            "--layout",
-            "long",
-            "--into",
-            "lab.csv",
-        ];
+    wd.write("lab-mm.csv", format!("{header}{base}"));
+    let import_into = |into: &str, extra: &[&str]| {
+        let mut args = vec!["import", "marks.csv", "--layout", "long", "--into", into];
         args.extend_from_slice(extra);
         args.extend(["--side", "right", "--tip", "skin", "--source", "lab"]);
         wd.run(&args)
     };
-    // The lab's rows are in px: lengths in mm are refused.
+    let import = |extra: &[&str]| import_into("lab.csv", extra);
+    // The lab's rows are in px: lengths in mm go in beside them, their relative values
+    // pooled, their lengths never averaged with the px ones (nor checked against them).
     let before = wd.read("lab.csv");
-    import(&["--unit", "mm"])
-        .data_error()
-        .stderr_has("unit is 'mm' but the rows of lab.csv are in 'px' (line 2)");
-    assert_eq!(wd.read("lab.csv"), before);
+    import_into("lab-mm.csv", &["--unit", "mm"])
+        .ok()
+        .stdout_has("6 -> 7 X-rays")
+        .stderr_has("no current X-ray gives index lengths in 'mm', so the new rows in 'mm' are checked on their relative values only");
+    let mm = String::from_utf8(wd.read("lab-mm.csv")).unwrap();
+    assert!(
+        mm.ends_with("new,index,300,180.069431,100.04499,,,,right,lab,mm,skin\n"),
+        "{mm}"
+    );
     let run = import(&[]);
     run.ok()
         .stdout_has("imported 2 rows from 1 hand in marks.csv into lab.csv: 6 -> 7 X-rays");

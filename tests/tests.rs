@@ -14,6 +14,7 @@ mod data;
 mod deform;
 mod everyday;
 mod import;
+mod lab;
 mod option_ranges;
 mod options;
 mod place;

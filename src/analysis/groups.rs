@@ -268,17 +268,107 @@ mod tests {
     }
 
     #[test]
-    fn groups_have_the_right_sizes() {
+    fn groups_have_the_right_sizes_known_first() {
         let g = analyse_groups(&data(), &GroupBy::Sex, &Settings::default());
-        let sizes: Vec<(&str, usize)> = g.iter().map(|g| (g.label.as_str(), g.xrays)).collect();
+        let sizes: Vec<(&str, usize)> = g
+            .groups
+            .iter()
+            .map(|g| (g.label.as_str(), g.xrays))
+            .collect();
         assert_eq!(sizes, vec![("female", 2), ("male", 1), ("unknown", 1)]);
-        assert!(g[0].note.is_none());
-        assert!(g[1].note.as_deref().unwrap().contains("only 1 X-ray"));
+        // Two X-rays (under SMALL_GROUP) get the small-sample note, one the no-spread note.
+        assert!(
+            g.groups[0].note.as_deref().unwrap().contains("only 2 X-rays, fewer than 5"),
+            "{:?}",
+            g.groups[0].note
+        );
+        assert!(g.groups[1].note.as_deref().unwrap().contains("only 1 X-ray:"));
         // The female group: index n = 2 (a, c), thumb n = 1 (a).
-        let f = &g[0].analysis;
+        let f = &g.groups[0].analysis;
         assert_eq!(f.finger(crate::dataset::Finger::Index).unwrap().n, 2);
         assert_eq!(f.finger(crate::dataset::Finger::Thumb).unwrap().n, 1);
-        assert_ne!(g[0].analysis.settings.seed, g[1].analysis.settings.seed);
+        assert_ne!(
+            g.groups[0].analysis.settings.seed,
+            g.groups[1].analysis.settings.seed
+        );
+        // "unknown" is listed first in the file (d has no sex) but goes last anyway.
+        let d = Dataset::from_bytes(
+            "u.csv",
+            b"xray,finger,j1,j2,j3,sex\nd,index,6,3.5,3,\na,index,4,3,3,m\nb,index,5,3,3,f\n",
+        )
+        .unwrap();
+        let g = analyse_groups(&d, &GroupBy::Sex, &Settings::default());
+        let labels: Vec<&str> = g.groups.iter().map(|g| g.label.as_str()).collect();
+        assert_eq!(labels, vec!["female", "male", "unknown"]);
+    }
+
+    #[test]
+    fn an_x_ray_with_its_sex_on_one_row_only_is_of_that_sex() {
+        // a's thumb row leaves sex empty; its index row says f.
+        let d = Dataset::from_bytes(
+            "h.csv",
+            b"xray,finger,j1,j2,j3,sex\na,thumb,4,3,,\na,index,4,3,3,f\nb,index,5,3,3,m\n",
+        )
+        .unwrap();
+        let g = analyse_groups(&d, &GroupBy::Sex, &Settings::default());
+        let labels: Vec<(&str, usize)> = g
+            .groups
+            .iter()
+            .map(|g| (g.label.as_str(), g.analysis.dataset.rows))
+            .collect();
+        assert_eq!(labels, vec![("female", 2), ("male", 1)]);
+    }
+
+    #[test]
+    fn the_difference_of_two_groups_is_compare_s() {
+        // Six hands per sex; the males' J~1 is larger.
+        let mut text = String::from("xray,finger,j1,j2,j3,sex\n");
+        for (i, (j1, j2, j3)) in [
+            (40.0, 25.0, 20.0),
+            (41.0, 24.0, 20.5),
+            (39.5, 25.5, 19.5),
+            (40.5, 24.5, 21.0),
+            (42.0, 25.0, 20.0),
+            (39.0, 26.0, 20.5),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            text.push_str(&format!("f{i},index,{j1},{j2},{j3},f\n"));
+            text.push_str(&format!("m{i},index,{},{j2},{j3},m\n", j1 + 6.0));
+        }
+        let d = Dataset::from_bytes("s.csv", text.as_bytes()).unwrap();
+        let s = Settings {
+            resamples: 500,
+            ..Settings::default()
+        };
+        let g = analyse_groups(&d, &GroupBy::Sex, &s);
+        assert_eq!(g.differences.len(), 1);
+        let diff = &g.differences[0];
+        assert_eq!((diff.a.as_str(), diff.b.as_str()), ("female", "male"));
+        // The same numbers as comparing the two groups' rows as cohorts (the later
+        // group's seed).
+        let female = Dataset {
+            rows: d.rows.iter().filter(|r| r.xray.starts_with('f')).cloned().collect(),
+            ..d.clone()
+        };
+        let male = Dataset {
+            rows: d.rows.iter().filter(|r| r.xray.starts_with('m')).cloned().collect(),
+            ..d.clone()
+        };
+        let seed = group_seed(s.seed, 1);
+        let direct = compare::cohorts(&female, &male, &Settings { seed, ..s });
+        assert_eq!(diff.cohorts, direct);
+        let j1 = diff.cohorts.fingers[0]
+            .quantity(crate::dataset::Quantity::RelJ1)
+            .unwrap();
+        assert!(j1.difference > 0.0, "{}", j1.difference);
+        let w = j1.welch.unwrap().interval;
+        assert!(w.low > 0.0, "{w:?}");
+        assert!(j1.hedges_g.unwrap().g > 1.0);
+        // No difference without two known groups.
+        let one = analyse_groups(&female, &GroupBy::Sex, &s);
+        assert!(one.differences.is_empty());
     }
 
     #[test]
@@ -307,16 +397,21 @@ b,index,5,3,3,
             &GroupBy::Age(DEFAULT_AGE_BINS.to_vec()),
             &Settings::default(),
         );
-        let labels: Vec<&str> = g.iter().map(|g| g.label.as_str()).collect();
-        assert_eq!(labels, vec!["18-40", "65+", "0-18", "unknown"]);
+        let labels: Vec<&str> = g.groups.iter().map(|g| g.label.as_str()).collect();
+        // Youngest band first, "unknown" last (the file lists 18-40 first).
+        assert_eq!(labels, vec!["0-18", "18-40", "65+", "unknown"]);
         assert_eq!(age_band(-1.0, &[0.0, 10.0]), "under 0");
         assert_eq!(age_band(10.0, &[0.0, 10.0]), "10+");
         assert!(validate_age_bins(&[0.0, 18.0, 18.0]).is_err());
         assert!(validate_age_bins(&[]).is_err());
         let sides = analyse_groups(&data(), &GroupBy::Side, &Settings::default());
         assert_eq!(
-            sides.iter().map(|g| g.xrays).collect::<Vec<_>>(),
-            vec![1, 2, 1]
+            sides
+                .groups
+                .iter()
+                .map(|g| (g.label.as_str(), g.xrays))
+                .collect::<Vec<_>>(),
+            vec![("left", 1), ("right", 2), ("unknown", 1)]
         );
     }
 }

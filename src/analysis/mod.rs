@@ -109,9 +109,9 @@ pub struct XrayValues {
     /// The metacarpal (CMC to MCP) in data units, when measured.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mc: Option<f64>,
-    /// The unit of the lengths, when the row names one.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    #[schemars(with = "Option<String>")]
+    /// The unit of the lengths, when the row names one (not in the JSON documents, which
+    /// hold the statistics; the dataset holds the units).
+    #[serde(skip)]
     pub unit: Option<Arc<str>>,
 }
 

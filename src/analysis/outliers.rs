@@ -102,6 +102,8 @@ pub(crate) struct Reference {
     /// [`Reference::with_medians_of`]); empty when no current X-ray is in that unit,
     /// and the typo rule then does not apply.
     pub medians: Vec<f64>,
+    /// True when the medians are of the X-rays in one unit only (others left out).
+    pub one_unit: bool,
 }
 
 /// One relative value outside its interval.
@@ -175,6 +177,7 @@ impl Reference {
             relative,
             constant,
             medians,
+            one_unit: false,
         })
     }
 
@@ -182,6 +185,7 @@ impl Reference {
     /// current X-rays in the new row's unit); none leaves the typo rule out. O(k n log n).
     pub(crate) fn with_medians_of(mut self, rows: &[&[f64]]) -> Reference {
         let k = self.relative.len();
+        self.one_unit = rows.len() < self.n;
         self.medians = if rows.is_empty() || rows.iter().any(|r| r.len() != k) {
             Vec::new()
         } else {
@@ -283,8 +287,13 @@ pub(crate) fn reference(a: &Analysis, finger: Finger) -> Option<Reference> {
 }
 
 /// The reference of one finger for new rows in `unit`: relative values from all its
-/// X-rays, the typo rule's medians from those in `unit` only (none: no typo rule).
+/// X-rays, the typo rule's medians from those in `unit` only (none: no typo rule). A row
+/// that names no unit is compared with every X-ray (`add` gives such rows the dataset's
+/// unit first, and refuses them when the dataset names several).
 fn reference_in(a: &Analysis, finger: Finger, unit: Option<&str>) -> Option<Reference> {
+    if unit.is_none() {
+        return reference(a, finger);
+    }
     let fa = a.finger(finger)?;
     let same: Vec<&[f64]> = fa
         .xrays
@@ -329,7 +338,7 @@ pub(crate) fn unit_limits(a: &Analysis, rows: &[Row]) -> Vec<String> {
     let mut by_unit: Vec<(Option<&str>, Vec<Finger>)> = Vec::new();
     for r in rows {
         let unit = r.meta.unit.as_deref();
-        let Some(fa) = a.finger(r.finger) else {
+        let Some(fa) = a.finger(r.finger).filter(|_| unit.is_some()) else {
             continue;
         };
         if fa.xrays.iter().any(|x| x.unit.as_deref() == unit) {
@@ -344,7 +353,7 @@ pub(crate) fn unit_limits(a: &Analysis, rows: &[Row]) -> Vec<String> {
     by_unit
         .into_iter()
         .map(|(unit, fingers)| {
-            let named = unit.map_or_else(|| "no named unit".to_string(), |u| format!("'{u}'"));
+            let named = format!("'{}'", unit.unwrap_or_default());
             let names: Vec<&str> = fingers.iter().map(|f| f.name()).collect();
             format!(
                 "no current X-ray gives {} lengths in {named}, so the new rows in {named} are checked on their relative values only (the tenfold-typo rule compares lengths of one unit)",
@@ -373,7 +382,7 @@ pub(crate) fn limits(a: &Analysis, finger: Finger) -> Option<String> {
 /// The flag of one row, with its message.
 fn flag(row: &Row, r: &Reference, found: &Findings) -> Flag {
     let mut parts = outside_parts(r, &found.outside);
-    parts.extend(found.typos.iter().map(typo_part));
+    parts.extend(found.typos.iter().map(|t| typo_part(t, r.one_unit)));
     let segs = row.segments();
     let swapped = segs.len() == 3
         && segs[2] > segs[0]
@@ -464,14 +473,16 @@ fn outside_parts(r: &Reference, outside: &[Outside]) -> Vec<String> {
     parts
 }
 
-/// The message part of one length that looks mistyped.
-fn typo_part(t: &Typo) -> String {
+/// The message part of one length that looks mistyped; `one_unit` when the median is of
+/// the current X-rays in the row's unit only.
+fn typo_part(t: &Typo, one_unit: bool) -> String {
     format!(
-        "j{} = {} is {} times the median j{} of the current X-rays ({})",
+        "j{} = {} is {} times the median j{} of the current X-rays{} ({})",
         t.segment + 1,
         t.value,
         ratio_text(t.ratio),
         t.segment + 1,
+        if one_unit { " in its unit" } else { "" },
         t.median
     )
 }

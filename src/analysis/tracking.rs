@@ -387,7 +387,11 @@ mod tests {
         assert_eq!(s1.xrays, 5);
         let mut d2 = d.clone();
         let extra =
-            Dataset::from_bytes("n.csv", b"xray,finger,j1,j2,j3\nz,index,350,190,170\n").unwrap();
+            Dataset::from_bytes(
+                "n.csv",
+                b"xray,finger,j1,j2,j3,unit\nz,index,350,190,170,image units\n",
+            )
+            .unwrap();
         d2.rows.extend(extra.rows);
         let s2 = snapshot(&analyse(&d2, &Settings::default()), "t2".into(), Event::Add);
         let c = changes(&s1, &s2);

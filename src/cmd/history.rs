@@ -12,10 +12,10 @@ use crate::report::layout::Width;
 /// Show how the statistics moved, snapshot by snapshot
 #[derive(clap::Args, Debug)]
 #[command(
-    after_help = "By default: the records (each with the X-rays it added or removed, the file, the rows let in \
-                  flagged, the note) and one table of the quantities that moved most from the first record to the \
-                  last; --finger and --quantity pick the quantities (both: that one, record by record); --all shows \
-                  every quantity record by record.\n\n\
+    after_help = "By default: the snapshots (each with the X-rays it added or removed, the file, the rows let in \
+                  flagged, the note) and one table of the quantities that moved most from the first snapshot to the \
+                  last; --finger and --quantity pick the quantities (both: that one, snapshot by snapshot); --all \
+                  shows every quantity snapshot by snapshot.\n\n\
                   Examples:\n  phalanx history\n  phalanx history --finger index --quantity rel_j1\n  phalanx history --all --finger ring\n  phalanx history --format json"
 )]
 pub(crate) struct Args {
@@ -29,7 +29,7 @@ pub(crate) struct Args {
     /// Only this quantity: rel_j1, rel_j2, rel_j3 (not the thumb), ratio_j2_j1, ratio_j3_j2 (not the thumb) or total
     #[arg(long, value_parser = parse_quantity)]
     quantity: Option<Quantity>,
-    /// Every selected quantity's table, record by record
+    /// Every selected quantity's table, snapshot by snapshot
     #[arg(long)]
     all: bool,
     /// Output format

@@ -85,7 +85,7 @@ pub(crate) struct Args {
     /// Target half-width of the confidence interval of a relative mean, for "X-rays needed": greater than 0, at most 1
     #[arg(long, value_name = "W", default_value_t = 0.005, value_parser = parse_target, allow_negative_numbers = true)]
     target: f64,
-    /// "What changed" in the Tracking section runs from this record of the history (1 is the first, the default) to the last
+    /// "What changed" in the Tracking section runs from this snapshot of the history (1 is the first, the default) to the last
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..), allow_negative_numbers = true)]
     since: Option<u64>,
 }
@@ -122,7 +122,7 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         && (history.len() < 2 || n as usize >= history.len())
     {
         return Err(Error::Usage(format!(
-            "--since {n}: {} has {} record{}; 'What changed' runs from a record before the last, so give 1 to {}",
+            "--since {n}: {} has {} snapshot{}; 'What changed' runs from a snapshot before the last, so give 1 to {}",
             history_path.display(),
             history.len(),
             if history.len() == 1 { "" } else { "s" },

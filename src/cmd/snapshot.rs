@@ -9,7 +9,7 @@ use crate::track::{self, SnapshotOutcome};
 #[derive(clap::Args, Debug)]
 #[command(
     after_help = "A snapshot is written only when the data (its SHA-256) or the settings differ from the \
-                  history's last record; otherwise it says so and writes nothing.\n\n\
+                  history's last snapshot; otherwise it says so and writes nothing.\n\n\
                   Examples:\n  phalanx snapshot --note \"corrected 2b's ring by hand\"\n  phalanx snapshot --data lab/hands.csv"
 )]
 pub(crate) struct Args {
@@ -41,7 +41,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
             path.display()
         ),
         SnapshotOutcome::Unchanged { record, last } => format!(
-            "no change since record {record} of {} ({}, {}): the same data (sha256 {}) and settings; nothing written{}\n",
+            "no change since snapshot {record} of {} ({}, {}): the same data (sha256 {}) and settings; nothing written{}\n",
             path.display(),
             last.event,
             last.time,

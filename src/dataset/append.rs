@@ -297,7 +297,24 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
     for r in &current.rows {
         by_xray.entry(&r.xray).or_default().push(r);
     }
+    let named: Vec<&str> = current
+        .units()
+        .into_iter()
+        .filter_map(|(u, _)| u)
+        .collect();
     for r in &new.rows {
+        if r.meta.unit.is_none() && named.len() > 1 && !by_xray.contains_key(&*r.xray) {
+            let list: Vec<String> = named.iter().map(|u| quote(u)).collect();
+            problems.push(Problem::line(
+                r.line,
+                format!(
+                    "names no unit, but the rows of {} are in {} units ({}), so the new lengths' unit cannot be taken from them; give it (--unit, or the unit column)",
+                    current.path,
+                    named.len(),
+                    list.join(", ")
+                ),
+            ));
+        }
         if let Some(old) = existing.get(&(&*r.xray, r.finger)) {
             problems.push(Problem::line(
                 r.line,
@@ -468,7 +485,7 @@ mod tests {
     }
 
     #[test]
-    fn refuses_duplicates_conflicts_and_unknown_columns_naming_the_new_line() {
+    fn refuses_duplicates_and_conflicts_naming_the_new_line() {
         let cur = ds("d.csv", OLD);
         let new = ds(
             "n.csv",
@@ -477,13 +494,12 @@ mod tests {
         let e = appended_bytes_typed(OLD.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
         assert_eq!(e.file, "n.csv");
         let lines: Vec<u64> = e.problems.iter().filter_map(|p| p.line).collect();
-        assert_eq!(lines, vec![2, 3], "{e}");
+        assert_eq!(lines, vec![2], "{e}");
         assert!(
             e.problems[0]
                 .message
                 .contains("already has an index row in d.csv (line 2)")
         );
-        assert!(e.problems[1].message.contains("no 'age' column"));
         let new = ds(
             "n.csv",
             "xray,finger,j1,j2,j3,sex\nb,ring,1,2,3,f\na,ring,1,2,3,m\n",
@@ -499,22 +515,63 @@ mod tests {
     }
 
     #[test]
-    fn a_unit_other_than_the_datasets_is_refused() {
+    fn a_column_the_dataset_lacks_is_added_to_its_header() {
+        // c gives an age: the header gains 'age', every old row an empty field there (its
+        // other fields as typed).
+        let cur = ds("d.csv", OLD);
+        let new = ds("n.csv", "xray,finger,j1,j2,j3,age\nc,ring,1,2,3,40\n");
+        assert_eq!(added_columns(&cur, &new), ["age"]);
+        let (out, d) = appended_bytes_typed(OLD.as_bytes(), &cur, &new, &Typed::default()).unwrap();
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "xray,finger,j1,j2,j3,sex,age\na,index,4,3,3,f,\na,thumb,4,3,,f,\nc,ring,1,2,3,,40\n"
+        );
+        assert_eq!(d.columns.last().map(String::as_str), Some("age"));
+        // A column only named, never filled, is not added.
+        let new = ds("n.csv", "xray,finger,j1,j2,j3,mc\nc,ring,1,2,3,\n");
+        assert!(added_columns(&cur, &new).is_empty());
+        // CRLF and a byte-order mark survive the rewrite; quoted fields stay quoted.
+        let old = "\u{feff}xray,finger,j1,j2,j3,source\r\na,index,4,3,3,\"Fig. 1, left\"\r\n";
+        let cur = ds("d.csv", old);
+        let new = ds("n.csv", "xray,finger,j1,j2,j3,unit\nb,index,4,3,3,mm\n");
+        let (out, _) = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap();
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "\u{feff}xray,finger,j1,j2,j3,source,unit\r\na,index,4,3,3,\"Fig. 1, left\",\r\nb,index,4,3,3,,mm\r\n"
+        );
+    }
+
+    #[test]
+    fn rows_in_another_unit_are_appended_and_one_hand_keeps_one_unit() {
         let old = "xray,finger,j1,j2,j3,unit\na,index,4,3,3,image units\n";
         let cur = ds("d.csv", old);
         let new = ds(
             "n.csv",
             "xray,finger,j1,j2,j3,unit\nb,index,4,3,3,mm\nc,index,4,3,3,\n",
         );
+        let (out, d) = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap();
+        assert!(String::from_utf8(out).unwrap().ends_with("b,index,4,3,3,mm\nc,index,4,3,3,\n"));
+        assert_eq!(d.units(), [(Some("image units"), 1), (Some("mm"), 1), (None, 1)]);
+        // The same X-ray in another unit than its rows: refused.
+        let new = ds("n.csv", "xray,finger,j1,j2,j3,unit\na,ring,4,3,3,mm\n");
         let e = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
-        assert_eq!(e.problems.len(), 1, "{e}");
-        assert_eq!(e.problems[0].line, Some(2));
         assert!(
-            e.problems[0]
-                .message
-                .contains("unit is 'mm' but the rows of d.csv are in 'image units' (line 2)"),
+            e.to_string()
+                .contains("unit is 'mm' but d.csv line 2 gives 'image units' for the same X-ray 'a'"),
             "{e}"
         );
+        // A row without a unit takes the dataset's (one named unit), its X-ray's first.
+        let filled = with_defaults(&ds("n.csv", "xray,finger,j1,j2,j3\nz,index,4,3,3\n"), &cur);
+        assert_eq!(filled.rows[0].meta.unit.as_deref(), Some("image units"));
+        // With two units named, it must say which.
+        let two = ds("d.csv", "xray,finger,j1,j2,j3,unit\na,index,4,3,3,px\nb,index,4,3,3,mm\n");
+        let e = check_fits(&two, &ds("n.csv", "xray,finger,j1,j2,j3\nz,index,4,3,3\n")).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("names no unit, but the rows of d.csv are in 2 units ('px', 'mm')"),
+            "{e}"
+        );
+        assert!(check_fits(&two, &ds("n.csv", "xray,finger,j1,j2,j3\na,ring,4,3,3\n")).is_ok());
         // The metacarpal and the tip are appended where the file has their columns.
         let old = "xray,finger,j1,j2,j3,mc,unit,tip\na,index,4,3,3,9,px,bone\n";
         let cur = ds("d.csv", old);
@@ -528,13 +585,20 @@ mod tests {
                 .unwrap()
                 .ends_with("b,index,4,3,3,8.5,px,bone\n")
         );
-        let e = appended_bytes_typed(OLD.as_bytes(), &ds("d.csv", OLD), &new, &Typed::default())
-            .unwrap_err();
-        assert!(
-            e.to_string()
-                .contains("gives a mc, but d.csv has no 'mc' column"),
-            "{e}"
-        );
+    }
+
+    #[test]
+    fn removing_rows_keeps_every_other_byte() {
+        let old = "xray,finger,j1,j2,j3\r\na,index,4,3,3\r\n\r\nb,index,5,3,3\r\nc,index,6,3,3";
+        let out = |lines: &[u64]| String::from_utf8(removed_bytes(old.as_bytes(), "d.csv", lines).unwrap()).unwrap();
+        assert_eq!(out(&[]), old);
+        assert_eq!(out(&[2]), "xray,finger,j1,j2,j3\r\nb,index,5,3,3\r\nc,index,6,3,3");
+        assert_eq!(out(&[4]), "xray,finger,j1,j2,j3\r\na,index,4,3,3\r\n\r\nc,index,6,3,3");
+        assert_eq!(out(&[5]), "xray,finger,j1,j2,j3\r\na,index,4,3,3\r\n\r\nb,index,5,3,3\r\n");
+        // A byte-order mark stays; a quoted field over two lines goes with its row.
+        let bom = "\u{feff}xray,finger,j1,j2,j3,source\na,index,4,3,3,\"two\nlines\"\nb,index,5,3,3,x\n";
+        let got = String::from_utf8(removed_bytes(bom.as_bytes(), "d.csv", &[2]).unwrap()).unwrap();
+        assert_eq!(got, "\u{feff}xray,finger,j1,j2,j3,source\nb,index,5,3,3,x\n");
     }
 
     #[test]

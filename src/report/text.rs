@@ -435,7 +435,7 @@ pub(crate) fn history(
     }
     let mut hidden = Hidden::new();
     let mut out = format!(
-        "{} record{} in {}, {} to {}\n",
+        "{} snapshot{} in {}, {} to {}\n",
         snaps.len(),
         if snaps.len() == 1 { "" } else { "s" },
         path.display(),
@@ -466,7 +466,7 @@ fn records_list(snaps: &[Snapshot], width: Width) -> String {
     let mut out = String::from("\n");
     if skip > 0 {
         out.push_str(&format!(
-            "(records 1 to {skip} not listed; --all shows every record)\n"
+            "(snapshots 1 to {skip} not listed; --all shows every one)\n"
         ));
     }
     for (i, s) in snaps.iter().enumerate().skip(skip) {
@@ -552,7 +552,7 @@ fn moved_table(
     };
     let mut out = if picked {
         format!(
-            "\nFrom record 1 to {} ({}; shift in SDs of record 1):\n",
+            "\nFrom snapshot 1 to {} ({}; shift in SDs of snapshot 1):\n",
             snaps.len(),
             match (finger, quantity) {
                 (Some(f), None) => format!("the {f}'s quantities"),
@@ -562,8 +562,8 @@ fn moved_table(
         )
     } else {
         format!(
-            "\nThe {shown} quantities that moved most from record 1 to {} (shift in SDs of record 1; \
-             --finger and --quantity pick others, --all shows every quantity record by record):\n",
+            "\nThe {shown} quantities that moved most from snapshot 1 to {} (shift in SDs of snapshot 1; \
+             --finger and --quantity pick others, --all shows every quantity snapshot by snapshot):\n",
             snaps.len()
         )
     };
@@ -591,7 +591,7 @@ fn moved_table(
         ]);
     }
     if snaps.len() == 1 {
-        out.push_str("(one record: nothing has moved yet)\n");
+        out.push_str("(one snapshot: nothing has moved yet)\n");
     }
     out.push_str(&t.render(width, 0, hidden));
     out

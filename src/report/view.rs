@@ -471,6 +471,10 @@ pub struct PlotView {
     /// Path relative to the report directory, e.g. `plots/hand.svg`.
     pub file: String,
     pub svg: String,
+    /// The description's first sentence, shown under the plot.
+    pub caption: String,
+    /// The rest of the description (every value in words), folded away in HTML.
+    pub details: String,
 }
 
 /// Everything a report is built from.
@@ -1120,13 +1124,23 @@ pub fn interval_advice_of(points: &[CurvePoint], a: Option<&Analysis>) -> Option
                 .filter(|f| f.n == p.n)
                 .map(|f| f.finger.name())
                 .collect();
-            let others: Vec<String> = a
+            let mut others: Vec<usize> = a
                 .fingers
                 .iter()
-                .filter(|f| f.n != p.n)
-                .map(|f| format!("the {} has {}", f.finger.name(), f.n))
+                .map(|f| f.n)
+                .filter(|&n| n != p.n)
                 .collect();
-            format!(" (the {}; {})", and_list(&at), others.join(", "))
+            others.sort_unstable();
+            others.dedup();
+            let more = match others.as_slice() {
+                [one] => format!("{one}"),
+                [lo, .., hi] => format!("{lo} to {hi}"),
+                [] => String::new(),
+            };
+            format!(
+                " (the n of the {}; the other fingers have {more})",
+                and_list(&at)
+            )
         })
         .unwrap_or_default();
     let t = method(p, "t")?;
@@ -1370,7 +1384,13 @@ fn citation() -> CitationView {
 }
 
 fn plot(p: &Plot) -> PlotView {
+    let (caption, details) = match p.description.split_once(". ") {
+        Some((first, rest)) => (format!("{first}."), rest.to_string()),
+        None => (p.description.clone(), String::new()),
+    };
     PlotView {
+        caption,
+        details,
         id: p.id.clone(),
         kind: p.kind,
         title: p.title.clone(),
@@ -1398,12 +1418,12 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
     };
     let (note, compared, changes, listed) = if snaps.len() < 2 {
         let count = match snaps.len() {
-            0 => "No record yet".to_string(),
-            1 => "One record".to_string(),
-            k => format!("{k} records"),
+            0 => "No snapshot yet".to_string(),
+            1 => "One snapshot".to_string(),
+            k => format!("{k} snapshots"),
         };
         let note = format!(
-            "{count} in {}: changes and plots appear once there are two. 'phalanx add' and 'phalanx remove' record one per change; 'phalanx snapshot' one on demand.",
+            "{count} in {}: changes and plots appear once there are two. 'phalanx add' and 'phalanx remove' append one per change; 'phalanx snapshot' one on demand.",
             inputs.history_file
         );
         (Some(note), String::new(), Vec::new(), records(0))
@@ -1421,8 +1441,8 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
     TrackingView {
         file: inputs.history_file.to_string(),
         snapshots: match snaps.len() {
-            1 => "1 record".to_string(),
-            k => format!("{k} records"),
+            1 => "1 snapshot".to_string(),
+            k => format!("{k} snapshots"),
         },
         note,
         compared,
@@ -1437,7 +1457,7 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
 fn describe_snapshot(snaps: &[Snapshot], i: usize) -> String {
     let s = &snaps[i];
     format!(
-        "record {} ({}, {}, {})",
+        "snapshot {} ({}, {}, {})",
         i + 1,
         s.time,
         s.event,

@@ -574,7 +574,7 @@ mod tests {
 
     #[test]
     fn row_labels_name_every_tick() {
-        let rows = Rows::new(Strip::Labelled, 5);
+        let rows = Rows::new(Strip::Labelled, 5, 0);
         let labels: Vec<String> = rows.keys().iter().map(|&y| rows.label(y)).collect();
         assert_eq!(
             labels,

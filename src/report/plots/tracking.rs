@@ -24,7 +24,7 @@ use plotters::style::text_anchor::{HPos, VPos};
 /// Pixels above a panel's plotting area (its heading).
 const PANEL_TOP_PX: u32 = 30;
 /// Height of a panel's plotting area in pixels.
-const CHART_PX: u32 = 200;
+const CHART_PX: u32 = 140;
 /// Pixels below a panel's plotting area (tick labels and axis description).
 const X_AXIS_PX: u32 = 46;
 /// Height of the legend block in pixels.
@@ -254,10 +254,10 @@ fn draw_heading(pen: &Pen, top: i32, panel: &Panel) -> DrawResult {
     distinct.dedup();
     let mut info = match (n, distinct.len()) {
         (0, _) => return Ok(()),
-        (1, _) => "1 record".to_string(),
-        (n, d) if d == n => format!("{n} records"),
-        (n, 1) => format!("{n} records, all on one point (the same statistics)"),
-        (n, d) => format!("{n} records on {d} points (records with the same statistics coincide)"),
+        (1, _) => "1 snapshot".to_string(),
+        (n, d) if d == n => format!("{n} snapshots"),
+        (n, 1) => format!("{n} snapshots, all on one point (the same statistics)"),
+        (n, d) => format!("{n} snapshots on {d} points (snapshots with the same statistics coincide)"),
     };
     if missing > 0 {
         info.push_str(&format!(", {missing} without an interval"));
