@@ -235,7 +235,12 @@ fn xray_ids(rows: &[Row]) -> Vec<String> {
 /// Stages the dataset and the history in full before replacing either: a history that
 /// cannot be written stops the change with the dataset untouched. Between the two
 /// renames a crash can only lose the record ('phalanx snapshot' records it again).
-fn commit(data: &Path, bytes: &[u8], history_path: &Path, snapshot: &Snapshot) -> Result<(), Error> {
+fn commit(
+    data: &Path,
+    bytes: &[u8],
+    history_path: &Path,
+    snapshot: &Snapshot,
+) -> Result<(), Error> {
     let history_bytes =
         history::appended_bytes(history_path, snapshot).map_err(Error::write(history_path))?;
     let staged_data = atomic::stage(data, bytes).map_err(Error::write(data))?;
@@ -333,7 +338,12 @@ pub(crate) fn remove(req: &RemoveRequest) -> Result<RemoveOutcome, Error> {
             }));
         }
     }
-    let removed: Vec<Row> = current.rows.iter().filter(|r| selected(r)).cloned().collect();
+    let removed: Vec<Row> = current
+        .rows
+        .iter()
+        .filter(|r| selected(r))
+        .cloned()
+        .collect();
     if problems.is_empty() && removed.len() == current.rows.len() {
         problems.push(Problem::file(
             "removing these rows would leave no row; a dataset needs at least one, so nothing was removed",

@@ -93,7 +93,7 @@ fn numbers_are_kept_as_typed() {
     .ok();
     assert!(
         // The dataset names one unit, so the new row is written in it.
-        text(&wd, DATA).ends_with("2a,thumb,275.00,231.10,,,,,image units\n"),
+        text(&wd, DATA).ends_with("2a,thumb,275.00,231.10,,,,,,image units\n"),
         "{}",
         text(&wd, DATA)
     );
@@ -263,7 +263,11 @@ fn one_warning_per_flagged_row_consistent_with_its_interval() {
         .collect();
     assert_eq!(warnings.len(), 1, "{}", run.stderr);
     let w = warnings[0];
-    assert!(flagged[0].ends_with(&w[w.find("ring X-ray").unwrap()..]), "{}\n{w}", flagged[0]);
+    assert!(
+        flagged[0].ends_with(&w[w.find("ring X-ray").unwrap()..]),
+        "{}\n{w}",
+        flagged[0]
+    );
     assert!(
         w.starts_with("warning: <command line>: added though flagged (--accept-flagged): ring X-ray '2b': J~1 = 0.8956 is outside ["),
         "{w}"

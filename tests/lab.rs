@@ -85,7 +85,9 @@ fn a_labs_first_hour() {
 
     // 2. Add it to the paper's data (in image units): relative values pool, lengths not.
     let added = wd.run(&["add", "new.csv", "--note", "COCO batch, 0.1 mm/px"]);
-    added.ok().stdout_has("added 9 rows to data/measurements.csv: 5 -> 7 X-rays");
+    added
+        .ok()
+        .stdout_has("added 9 rows to data/measurements.csv: 5 -> 7 X-rays");
     added.stderr_has("the dataset's header gained the column tip");
     let stats = wd.run(&["stats", "--format", "json"]).ok().json();
     let idx = finger(&stats, "index");
@@ -93,16 +95,26 @@ fn a_labs_first_hour() {
     let mut rel = paper_index_rel_j1();
     rel.extend([rel[0], rel[1]]); // figures 1a and 1b again, at another scale
     let mean = rel.iter().sum::<f64>() / rel.len() as f64;
-    assert_close(num(&quantity(&stats, "index", "rel_j1")["mean"]), mean, 1e-12, "pooled J~1");
+    assert_close(
+        num(&quantity(&stats, "index", "rel_j1")["mean"]),
+        mean,
+        1e-12,
+        "pooled J~1",
+    );
     let names: Vec<&str> = idx["quantities"]
         .as_array()
         .unwrap()
         .iter()
         .map(|q| q["name"].as_str().unwrap())
         .collect();
-    assert!(!names.contains(&"total"), "J averaged across units: {names:?}");
+    assert!(
+        !names.contains(&"total"),
+        "J averaged across units: {names:?}"
+    );
     let table = wd.run_env(&["stats"], WIDE);
-    table.ok().stdout_has("lengths in 2 units: image units (25 rows), mm (9 rows)");
+    table
+        .ok()
+        .stdout_has("lengths in 2 units: image units (25 rows), mm (9 rows)");
     let before_typo = wd.run(&["stats", "--format", "json"]).ok().json();
 
     // 3. A tenfold typo is refused: exit 2, the reason, nothing written.
@@ -114,8 +126,16 @@ fn a_labs_first_hour() {
         .stderr_has("flagged as a likely error: ring X-ray 'L11'")
         .stderr_has("j1 looks 10 times too small")
         .stderr_has("add with --accept-flagged");
-    assert_eq!(wd.read(DATA), data_before, "a refused add changed the dataset");
-    assert_eq!(wd.read(HISTORY), history_before, "a refused add changed the history");
+    assert_eq!(
+        wd.read(DATA),
+        data_before,
+        "a refused add changed the dataset"
+    );
+    assert_eq!(
+        wd.read(HISTORY),
+        history_before,
+        "a refused add changed the history"
+    );
 
     // 4. Accepted with --accept-flagged: in, and recorded as flagged in data and history.
     let mut accept = TYPO.to_vec();
@@ -126,7 +146,10 @@ fn a_labs_first_hour() {
         .stdout_has("7 -> 8 X-rays, 1 of them recorded as flagged")
         .stderr_has("added though flagged (--accept-flagged): ring X-ray 'L11'");
     let csv = String::from_utf8(wd.read(DATA)).unwrap();
-    assert!(csv.lines().next().unwrap().ends_with(",tip,flagged"), "{csv}");
+    assert!(
+        csv.lines().next().unwrap().ends_with(",tip,flagged"),
+        "{csv}"
+    );
     let last = csv.lines().last().unwrap();
     assert!(last.starts_with("L11,ring,36.70,238.1,195.5,"), "{last}");
     assert!(last.contains("j1 looks 10 times too small"), "{last}");
@@ -146,14 +169,18 @@ fn a_labs_first_hour() {
     // 5. The report lists it, in the key results and with the statistics.
     let md = report(&wd, "rep-flagged");
     let key = md.split("## 1. Provenance").next().unwrap();
-    assert!(key.contains("**Flagged rows in the data.** 1 row of the data was added though flagged"), "{key}");
+    assert!(
+        key.contains("**Flagged rows in the data.** 1 row of the data was added though flagged"),
+        "{key}"
+    );
     assert!(key.contains("L11 ring"), "{key}");
     let listed = md
         .split("### Rows added though flagged")
         .nth(1)
         .expect("the list of flagged rows");
     assert!(
-        listed.contains("| L11 | ring | 36 |") && listed.contains("`phalanx remove --xray L11 --finger ring`"),
+        listed.contains("| L11 | ring | 36 |")
+            && listed.contains("`phalanx remove --xray L11 --finger ring`"),
         "{}",
         &listed[..listed.len().min(800)]
     );
@@ -205,5 +232,8 @@ fn a_labs_first_hour() {
     ] {
         assert!(tracking.contains(needle), "no {needle:?} in:\n{tracking}");
     }
-    assert!(!md.contains("### Rows added though flagged"), "L11 is still listed");
+    assert!(
+        !md.contains("### Rows added though flagged"),
+        "L11 is still listed"
+    );
 }

@@ -361,7 +361,7 @@ fn add_lengths_and_age_at_every_value() {
             // far from its median, proportions far outside the X-rays').
             if run.code == Some(2) {
                 assert!(
-                    run.stderr.contains("--lengths")
+                    run.stderr.contains("lengths")
                         || run.stderr.contains("flagged as a likely error"),
                     "{lengths}: {}",
                     run.stderr

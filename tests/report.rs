@@ -189,9 +189,7 @@ fn paper_numbers_appear_in_the_report() {
     let md = file(&files, "report.md");
     // Corrected worked example: PIP of the index at 484.6 (the paper misprints 494.6).
     assert!(
-        md.contains(
-            "| index | PIP | 484.6 | 472.8 | 504.7 | 32.0 |"
-        ),
+        md.contains("| index | PIP | 484.6 | 472.8 | 504.7 | 32.0 |"),
         "{md}"
     );
     assert!(md.contains("give mean 0.4846, not 0.4946"));

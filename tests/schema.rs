@@ -374,7 +374,8 @@ fn history_documents_and_records_satisfy_their_schemas() {
     .ok();
     // A snapshot of unchanged data writes nothing; one with a note and another seed does.
     wd.run(&["snapshot"]).ok();
-    wd.run(&["snapshot", "--seed", "3", "--note", "re-seeded"]).ok();
+    wd.run(&["snapshot", "--seed", "3", "--note", "re-seeded"])
+        .ok();
     wd.run(&["remove", "--xray", "2c"]).ok();
 
     // The history file's lines: one per snapshot (an add, a snapshot, a removal).

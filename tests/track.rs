@@ -506,11 +506,11 @@ const REFUSALS: &[Refusal] = &[
         problems: Some(1),
     },
     Refusal {
-        what: "a file row whose side conflicts with the X-ray's added row",
-        file: Some("xray,finger,j1,j2,j3,side\n9a,index,350,190,170,\n2a,ring,370,230,205,left\n"),
+        what: "a file row whose unit conflicts with the X-ray's added row",
+        file: Some("xray,finger,j1,j2,j3,unit\n9a,index,350,190,170,\n2a,ring,37.0,23.0,20.5,mm\n"),
         args: &["new.csv"],
         says: &[
-            "new.csv:3: side is 'left' but data/measurements.csv line 27 gives empty for the same X-ray '2a'",
+            "new.csv:3: unit is 'mm' but data/measurements.csv line 27 gives 'image units' for the same X-ray '2a'",
         ],
         problems: Some(1),
     },
@@ -1190,18 +1190,31 @@ fn group_by_gives_the_right_n_per_group() {
     // Under 5 X-rays a group carries the small-sample note.
     for (g, n) in [(0, 3), (1, 2)] {
         let note = groups[g]["note"].as_str().unwrap();
-        assert!(note.contains(&format!("only {n} X-rays, fewer than 5")), "{note}");
+        assert!(
+            note.contains(&format!("only {n} X-rays, fewer than 5")),
+            "{note}"
+        );
     }
     // Male against female, as 'compare' puts two cohorts: the difference of the means
     // (computed here from the rows) inside its Welch and bootstrap intervals.
     let d = &doc["groups"]["differences"][0];
-    assert_eq!((d["a"].as_str(), d["b"].as_str()), (Some("female"), Some("male")));
+    assert_eq!(
+        (d["a"].as_str(), d["b"].as_str()),
+        (Some("female"), Some("male"))
+    );
     assert_eq!(doc["groups"]["differences"].as_array().unwrap().len(), 1);
     let rel = |rows: &[[f64; 3]]| {
-        rows.iter().map(|r| r[0] / (r[0] + r[1] + r[2])).sum::<f64>() / rows.len() as f64
+        rows.iter()
+            .map(|r| r[0] / (r[0] + r[1] + r[2]))
+            .sum::<f64>()
+            / rows.len() as f64
     };
     let expect = rel(&[[417.0, 226.0, 184.0], [345.0, 200.0, 180.0]])
-        - rel(&[[340.0, 189.0, 170.0], [342.0, 195.0, 187.0], [360.0, 207.0, 174.0]]);
+        - rel(&[
+            [340.0, 189.0, 170.0],
+            [342.0, 195.0, 187.0],
+            [360.0, 207.0, 174.0],
+        ]);
     let index = d["fingers"]
         .as_array()
         .unwrap()
@@ -1216,7 +1229,11 @@ fn group_by_gives_the_right_n_per_group() {
         .unwrap();
     assert_close(num(&j1["difference"]), expect, 1e-12, "male - female J~1");
     for k in ["welch", "bootstrap"] {
-        let iv = if k == "welch" { &j1[k]["interval"] } else { &j1[k] };
+        let iv = if k == "welch" {
+            &j1[k]["interval"]
+        } else {
+            &j1[k]
+        };
         let (lo, hi) = interval(iv);
         assert!(lo < expect && expect < hi, "{k}: [{lo}, {hi}]");
     }
@@ -1360,7 +1377,12 @@ const TWO_XRAYS: &str = "xray,finger,j1,j2,j3,sex,age,side,source,unit\n\
 #[test]
 fn add_then_remove_restores_the_dataset_and_its_statistics_bit_for_bit() {
     let wd = Workdir::with_paper_data();
-    let stats = || wd.run(&["stats", "--format", "json"]).ok().stdout_bytes.clone();
+    let stats = || {
+        wd.run(&["stats", "--format", "json"])
+            .ok()
+            .stdout_bytes
+            .clone()
+    };
     let before = stats();
     wd.write("new.csv", TWO_XRAYS);
     wd.run(&["add", "new.csv"]).ok();
@@ -1368,7 +1390,11 @@ fn add_then_remove_restores_the_dataset_and_its_statistics_bit_for_bit() {
     wd.run(&["remove", "--xray", "4a,4b", "--note", "back to the paper"])
         .ok()
         .stdout_has("removed 4 rows from data/measurements.csv: 4a index (line 27), 4a ring (line 28), 4b index (line 29), 4b ring (line 30); 7 -> 5 X-rays");
-    assert_eq!(wd.read(DATA), paper_data(), "the file is not the paper's again");
+    assert_eq!(
+        wd.read(DATA),
+        paper_data(),
+        "the file is not the paper's again"
+    );
     // Every byte of the statistics document, the dataset's SHA-256 included.
     assert_eq!(stats(), before);
     let h = history(&wd);
@@ -1384,7 +1410,10 @@ fn add_then_remove_restores_the_dataset_and_its_statistics_bit_for_bit() {
         .ok()
         .stdout_has("removed 1 row from data/measurements.csv: 4b ring (line 30); 7 -> 7 X-rays");
     let text = String::from_utf8(wd.read(DATA)).unwrap();
-    assert!(text.ends_with("4b,index,345.9,193.3,176.2,,,right,lab,image units\n"), "{text}");
+    assert!(
+        text.ends_with("4b,index,345.9,193.3,176.2,,,right,lab,image units\n"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -1395,7 +1424,8 @@ fn remove_refuses_what_is_not_there_and_changes_nothing() {
     let run = wd.run(&["remove", "--xray", "1a,9z"]);
     run.data_error()
         .stderr_has("data/measurements.csv: has no X-ray '9z'; nothing was removed. Its X-rays are '1a', '1b', '1c', '1d', '1e'");
-    wd.run(&["remove", "--xray", "1a", "--finger", "pinky"]).ok();
+    wd.run(&["remove", "--xray", "1a", "--finger", "pinky"])
+        .ok();
     let run = wd.run(&["remove", "--xray", "1a", "--finger", "little"]);
     run.data_error()
         .stderr_has("X-ray '1a' has no little row (it has 4 rows of other fingers)");
@@ -1438,23 +1468,43 @@ fn flagged_rows_of_a_batch_are_refused_with_their_lines_and_a_swap_is_named() {
     assert_eq!(read_opt(&wd, HISTORY), hist);
     // Accepted: each warning names its line; the rows carry why they were flagged.
     let run = wd.run(&["add", "batch.csv", "--accept-flagged"]);
-    run.ok().stdout_has("added 3 rows to data/measurements.csv: 5 -> 8 X-rays, 2 of them recorded as flagged");
+    run.ok().stdout_has(
+        "added 3 rows to data/measurements.csv: 5 -> 8 X-rays, 2 of them recorded as flagged",
+    );
     let w = warnings(&run);
     assert_eq!(w.len(), 2, "{}", run.stderr);
-    assert!(w[0].starts_with("warning: batch.csv:3: added though flagged"), "{}", w[0]);
-    assert!(w[1].starts_with("warning: batch.csv:4: added though flagged"), "{}", w[1]);
+    assert!(
+        w[0].starts_with("warning: batch.csv:3: added though flagged"),
+        "{}",
+        w[0]
+    );
+    assert!(
+        w[1].starts_with("warning: batch.csv:4: added though flagged"),
+        "{}",
+        w[1]
+    );
     let text = String::from_utf8(wd.read(DATA)).unwrap();
     let lines: Vec<&str> = text.lines().collect();
     assert!(lines[0].ends_with(",unit,flagged"), "{}", lines[0]);
     assert!(lines[1].ends_with(",image units,"), "{}", lines[1]);
     assert!(lines[26].starts_with("5a,index,352.1,201.4,178.0,") && lines[26].ends_with(','));
-    assert!(lines[28].contains("j1 and j3 look swapped"), "{}", lines[28]);
+    assert!(
+        lines[28].contains("j1 and j3 look swapped"),
+        "{}",
+        lines[28]
+    );
     let h = history(&wd);
     let flagged = h[0]["change"]["flagged"].as_array().unwrap();
     assert_eq!(flagged.len(), 2);
-    assert_eq!((&flagged[0]["xray"], &flagged[1]["xray"]), (&"5b".into(), &"5c".into()));
+    assert_eq!(
+        (&flagged[0]["xray"], &flagged[1]["xray"]),
+        (&"5b".into(), &"5c".into())
+    );
     // --strict, the old spelling of the default, still refuses.
-    wd.write("more.csv", "xray,finger,j1,j2,j3\n6a,index,35.21,201.4,178.0\n");
+    wd.write(
+        "more.csv",
+        "xray,finger,j1,j2,j3\n6a,index,35.21,201.4,178.0\n",
+    );
     wd.run(&["add", "--strict", "more.csv"]).data_error();
 }
 
@@ -1462,17 +1512,31 @@ fn flagged_rows_of_a_batch_are_refused_with_their_lines_and_a_swap_is_named() {
 fn filling_an_empty_sex_age_or_side_is_no_conflict() {
     let wd = Workdir::with_paper_data();
     let add = |finger: &str, lengths: &str, extra: &[&str]| {
-        let mut args = vec!["add", "--xray", "7a", "--finger", finger, "--lengths", lengths];
+        let mut args = vec![
+            "add",
+            "--xray",
+            "7a",
+            "--finger",
+            finger,
+            "--lengths",
+            lengths,
+        ];
         args.extend(extra);
         wd.run(&args)
     };
     add("index", "352.1,201.4,178.0", &[]).ok();
-    add("middle", "390.0,250.1,200.2", &["--sex", "F", "--age", "41"]).ok();
+    add(
+        "middle",
+        "390.0,250.1,200.2",
+        &["--sex", "F", "--age", "41"],
+    )
+    .ok();
     add("ring", "370.2,231.0,205.9", &["--side", "left"]).ok();
     // The hand's values, once given, hold for its other rows.
     let run = add("little", "290.1,170.2,175.3", &["--sex", "male"]);
-    run.data_error()
-        .stderr_has("sex is 'male' but data/measurements.csv line 28 gives 'female' for the same X-ray '7a'");
+    run.data_error().stderr_has(
+        "sex is 'male' but data/measurements.csv line 28 gives 'female' for the same X-ray '7a'",
+    );
     add("little", "290.1,170.2,175.3", &[]).ok();
     let text = String::from_utf8(wd.read(DATA)).unwrap();
     let rows: Vec<&str> = text.lines().skip(26).collect();
@@ -1511,7 +1575,10 @@ fn rows_in_another_unit_pool_their_relative_values_and_gain_columns() {
         .stderr_has("no current X-ray gives index lengths in 'mm', so the new rows in 'mm' are checked on their relative values only");
     let text = String::from_utf8(wd.read(DATA)).unwrap();
     assert!(text.starts_with("xray,finger,j1,j2,j3,sex,age,side,source,unit,mc,tip\n1a,index,339.96,188.83,169.67,,,right,\"Figure 1a, Table 1\",image units,,\n"), "{text}");
-    assert!(text.ends_with("mm1,index,33.996,18.883,16.967,,,,,mm,60.1,skin\n"), "{text}");
+    assert!(
+        text.ends_with("mm1,index,33.996,18.883,16.967,,,,,mm,60.1,skin\n"),
+        "{text}"
+    );
     let doc = wd.run(&["stats", "--format", "json"]).ok().json();
     // J~1 of the index: the paper's five and 1a's again (the same proportions in mm).
     let rel: Vec<f64> = paper_rows()
@@ -1520,7 +1587,12 @@ fn rows_in_another_unit_pool_their_relative_values_and_gain_columns() {
         .map(|r| r.lengths[0] / r.lengths.iter().sum::<f64>())
         .collect();
     let expect = (rel.iter().sum::<f64>() + rel[0]) / 6.0;
-    assert_close(num(&quantity(&doc, "index", "rel_j1")["mean"]), expect, 1e-12, "J~1");
+    assert_close(
+        num(&quantity(&doc, "index", "rel_j1")["mean"]),
+        expect,
+        1e-12,
+        "J~1",
+    );
     let names = |f: &str| -> Vec<String> {
         finger(&doc, f)["quantities"]
             .as_array()
@@ -1530,12 +1602,25 @@ fn rows_in_another_unit_pool_their_relative_values_and_gain_columns() {
             .collect()
     };
     // The index mixes units: no J; the thumb does not: J as before.
-    assert!(!names("index").contains(&"total".to_string()), "{:?}", names("index"));
+    assert!(
+        !names("index").contains(&"total".to_string()),
+        "{:?}",
+        names("index")
+    );
     assert!(names("thumb").contains(&"total".to_string()));
     // A row without a unit cannot say which of the two it is in.
-    let run = wd.run(&["add", "--xray", "u1", "--finger", "index", "--lengths", "35.2,20.1,17.8"]);
-    run.data_error()
-        .stderr_has("names no unit, but the rows of data/measurements.csv are in 2 units ('image units', 'mm')");
+    let run = wd.run(&[
+        "add",
+        "--xray",
+        "u1",
+        "--finger",
+        "index",
+        "--lengths",
+        "35.2,20.1,17.8",
+    ]);
+    run.data_error().stderr_has(
+        "names no unit, but the rows of data/measurements.csv are in 2 units ('image units', 'mm')",
+    );
 }
 
 #[test]
@@ -1598,7 +1683,11 @@ fn history_is_one_compact_table_by_default() {
     let one = wd.run(&["history", "--finger", "ring", "--quantity", "rel_j1"]);
     one.ok();
     assert_eq!(tables(&one.stdout), 1, "{}", one.stdout);
-    assert!(one.stdout.contains("| 3 |") && one.stdout.contains("remove"), "{}", one.stdout);
+    assert!(
+        one.stdout.contains("| 3 |") && one.stdout.contains("remove"),
+        "{}",
+        one.stdout
+    );
 }
 
 #[test]
@@ -1607,10 +1696,28 @@ fn the_report_says_what_changed_since_any_record() {
     wd.run(&["snapshot"]).ok();
     wd.write("new.csv", TWO_XRAYS);
     wd.run(&["add", "new.csv"]).ok();
-    wd.run(&["add", "--xray", "4c", "--finger", "index", "--lengths", "349.0,197.2,177.1"])
-        .ok();
+    wd.run(&[
+        "add",
+        "--xray",
+        "4c",
+        "--finger",
+        "index",
+        "--lengths",
+        "349.0,197.2,177.1",
+    ])
+    .ok();
     let md = |extra: &[&str]| {
-        let mut args = vec!["report", "--out", "rep", "--format", "md", "--resamples", "200", "--sims", "20"];
+        let mut args = vec![
+            "report",
+            "--out",
+            "rep",
+            "--format",
+            "md",
+            "--resamples",
+            "200",
+            "--sims",
+            "20",
+        ];
         args.extend(extra);
         wd.run(&args).ok();
         String::from_utf8(wd.read("rep/report.md")).unwrap()
@@ -1619,11 +1726,20 @@ fn the_report_says_what_changed_since_any_record() {
     let all = md(&[]);
     assert!(all.contains("What changed: snapshot 3 ("), "{all}");
     assert!(all.contains("against snapshot 1 ("), "{all}");
-    assert!(all.contains("| index (the paper's 'grooming' finger) | J\\~1 = J1/J | 5 -> 8 |"), "{all}");
-    assert!(all.contains("+4 rows (2 X-rays: 4a, 4b) from new.csv"), "{all}");
+    assert!(
+        all.contains("| index (the paper's 'grooming' finger) | J\\~1 = J1/J | 5 -> 8 |"),
+        "{all}"
+    );
+    assert!(
+        all.contains("+4 rows (2 X-rays: 4a, 4b) from new.csv"),
+        "{all}"
+    );
     let since = md(&["--since", "2"]);
     assert!(since.contains("against snapshot 2 ("), "{since}");
-    assert!(since.contains("| index (the paper's 'grooming' finger) | J\\~1 = J1/J | 7 -> 8 |"), "{since}");
+    assert!(
+        since.contains("| index (the paper's 'grooming' finger) | J\\~1 = J1/J | 7 -> 8 |"),
+        "{since}"
+    );
     wd.run(&["report", "--out", "rep", "--since", "3"])
         .expect_code(2)
         .stderr_has("--since 3: data/history.jsonl has 3 snapshots");

@@ -52,7 +52,11 @@ impl GroupBy {
         match self {
             GroupBy::Age(edges) => match meta.age {
                 None => (true, 0, label),
-                Some(a) => (false, edges.iter().rposition(|&e| a >= e).map_or(0, |i| i + 1), label),
+                Some(a) => (
+                    false,
+                    edges.iter().rposition(|&e| a >= e).map_or(0, |i| i + 1),
+                    label,
+                ),
             },
             _ => (label == UNKNOWN, 0, label),
         }
@@ -218,7 +222,11 @@ pub fn analyse_groups(data: &Dataset, by: &GroupBy, settings: &Settings) -> Grou
                 GroupDifference {
                     a: groups[first].label.clone(),
                     b: groups[i].label.clone(),
-                    cohorts: compare::cohorts(&keys[first].1, &keys[i].1, &Settings { seed, ..*settings }),
+                    cohorts: compare::cohorts(
+                        &keys[first].1,
+                        &keys[i].1,
+                        &Settings { seed, ..*settings },
+                    ),
                 }
             })
             .collect(),
@@ -278,11 +286,21 @@ mod tests {
         assert_eq!(sizes, vec![("female", 2), ("male", 1), ("unknown", 1)]);
         // Two X-rays (under SMALL_GROUP) get the small-sample note, one the no-spread note.
         assert!(
-            g.groups[0].note.as_deref().unwrap().contains("only 2 X-rays, fewer than 5"),
+            g.groups[0]
+                .note
+                .as_deref()
+                .unwrap()
+                .contains("only 2 X-rays, fewer than 5"),
             "{:?}",
             g.groups[0].note
         );
-        assert!(g.groups[1].note.as_deref().unwrap().contains("only 1 X-ray:"));
+        assert!(
+            g.groups[1]
+                .note
+                .as_deref()
+                .unwrap()
+                .contains("only 1 X-ray:")
+        );
         // The female group: index n = 2 (a, c), thumb n = 1 (a).
         let f = &g.groups[0].analysis;
         assert_eq!(f.finger(crate::dataset::Finger::Index).unwrap().n, 2);
@@ -349,11 +367,21 @@ mod tests {
         // The same numbers as comparing the two groups' rows as cohorts (the later
         // group's seed).
         let female = Dataset {
-            rows: d.rows.iter().filter(|r| r.xray.starts_with('f')).cloned().collect(),
+            rows: d
+                .rows
+                .iter()
+                .filter(|r| r.xray.starts_with('f'))
+                .cloned()
+                .collect(),
             ..d.clone()
         };
         let male = Dataset {
-            rows: d.rows.iter().filter(|r| r.xray.starts_with('m')).cloned().collect(),
+            rows: d
+                .rows
+                .iter()
+                .filter(|r| r.xray.starts_with('m'))
+                .cloned()
+                .collect(),
             ..d.clone()
         };
         let seed = group_seed(s.seed, 1);

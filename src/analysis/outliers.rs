@@ -68,10 +68,10 @@
 
 use super::{Analysis, Interval, Quantity};
 use crate::dataset::{Finger, Row};
-use std::sync::Arc;
 use crate::format::{num, trimmed};
 use crate::stats::describe;
 use serde::Serialize;
+use std::sync::Arc;
 
 /// Family-wise false-alarm rate of the prediction rule per genuine row.
 pub(crate) const ROW_ALPHA: f64 = 0.01;
@@ -355,9 +355,12 @@ pub(crate) fn unit_limits(a: &Analysis, rows: &[Row]) -> Vec<String> {
         .map(|(unit, fingers)| {
             let named = format!("'{}'", unit.unwrap_or_default());
             let names: Vec<&str> = fingers.iter().map(|f| f.name()).collect();
+            let names = match names.split_last() {
+                Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+                _ => names.join(""),
+            };
             format!(
-                "no current X-ray gives {} lengths in {named}, so the new rows in {named} are checked on their relative values only (the tenfold-typo rule compares lengths of one unit)",
-                names.join(", ")
+                "no current X-ray gives {names} lengths in {named}, so the new rows in {named} are checked on their relative values only (the tenfold-typo rule compares lengths of one unit)"
             )
         })
         .collect()
@@ -384,9 +387,8 @@ fn flag(row: &Row, r: &Reference, found: &Findings) -> Flag {
     let mut parts = outside_parts(r, &found.outside);
     parts.extend(found.typos.iter().map(|t| typo_part(t, r.one_unit)));
     let segs = row.segments();
-    let swapped = segs.len() == 3
-        && segs[2] > segs[0]
-        && r.check(&[segs[2], segs[1], segs[0]]).is_empty();
+    let swapped =
+        segs.len() == 3 && segs[2] > segs[0] && r.check(&[segs[2], segs[1], segs[0]]).is_empty();
     let finding = format!(
         "{}{}",
         parts.join("; "),

@@ -113,16 +113,15 @@ pub(crate) fn moved<'s>(
     let mut out: Vec<Moved<'s>> = after
         .quantities
         .iter()
-        .filter(|q| finger.is_none_or(|f| f == q.finger) && quantity.is_none_or(|k| k == q.quantity))
+        .filter(|q| {
+            finger.is_none_or(|f| f == q.finger) && quantity.is_none_or(|k| k == q.quantity)
+        })
         .filter_map(|q| {
             let b = before
                 .quantities
                 .iter()
                 .find(|p| p.finger == q.finger && p.quantity == q.quantity)?;
-            let standardised = b
-                .sd
-                .filter(|&sd| sd > 0.0)
-                .map(|sd| (q.mean - b.mean) / sd);
+            let standardised = b.sd.filter(|&sd| sd > 0.0).map(|sd| (q.mean - b.mean) / sd);
             Some(Moved {
                 finger: q.finger,
                 quantity: q.quantity,
@@ -133,8 +132,12 @@ pub(crate) fn moved<'s>(
         })
         .collect();
     let key = |m: &Moved<'_>| {
-        let relative = (m.after.mean - m.before.mean).abs() / m.before.mean.abs().max(f64::MIN_POSITIVE);
-        (m.standardised.is_some(), m.standardised.map_or(relative, f64::abs))
+        let relative =
+            (m.after.mean - m.before.mean).abs() / m.before.mean.abs().max(f64::MIN_POSITIVE);
+        (
+            m.standardised.is_some(),
+            m.standardised.map_or(relative, f64::abs),
+        )
     };
     out.sort_by(|x, y| {
         let (kx, ky) = (key(x), key(y));
@@ -386,12 +389,11 @@ mod tests {
         assert_eq!(s1.quantities.len(), 28); // thumb 4 + 4 fingers x 6
         assert_eq!(s1.xrays, 5);
         let mut d2 = d.clone();
-        let extra =
-            Dataset::from_bytes(
-                "n.csv",
-                b"xray,finger,j1,j2,j3,unit\nz,index,350,190,170,image units\n",
-            )
-            .unwrap();
+        let extra = Dataset::from_bytes(
+            "n.csv",
+            b"xray,finger,j1,j2,j3,unit\nz,index,350,190,170,image units\n",
+        )
+        .unwrap();
         d2.rows.extend(extra.rows);
         let s2 = snapshot(&analyse(&d2, &Settings::default()), "t2".into(), Event::Add);
         let c = changes(&s1, &s2);

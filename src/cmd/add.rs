@@ -106,7 +106,11 @@ pub(crate) fn print_outcome(outcome: &track::AddOutcome) {
     if !outcome.added_columns.is_empty() {
         eprintln!(
             "note: the dataset's header gained the column{} {} (empty on its existing rows)",
-            if outcome.added_columns.len() == 1 { "" } else { "s" },
+            if outcome.added_columns.len() == 1 {
+                ""
+            } else {
+                "s"
+            },
             outcome.added_columns.join(", ")
         );
     }

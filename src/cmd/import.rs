@@ -63,7 +63,12 @@ pub struct Args {
     #[arg(long, requires = "into")]
     accept_flagged: bool,
     /// With --into: refuse flagged rows (the default; kept for scripts)
-    #[arg(long, requires = "into", hide = true, conflicts_with = "accept_flagged")]
+    #[arg(
+        long,
+        requires = "into",
+        hide = true,
+        conflicts_with = "accept_flagged"
+    )]
     strict: bool,
     /// With --into: a note for the history record
     #[arg(long, value_name = "TEXT", requires = "into")]

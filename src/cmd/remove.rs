@@ -17,7 +17,12 @@ use crate::track::{self, RemoveRequest};
 )]
 pub(crate) struct Args {
     /// The X-rays to remove, comma-separated
-    #[arg(long, value_name = "ID[,ID...]", value_delimiter = ',', required = true)]
+    #[arg(
+        long,
+        value_name = "ID[,ID...]",
+        value_delimiter = ',',
+        required = true
+    )]
     xray: Vec<String>,
     /// Only this finger of them (thumb, index, middle, ring, little, or an alias)
     #[arg(long, value_parser = parse_finger)]

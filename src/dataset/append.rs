@@ -297,11 +297,7 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
     for r in &current.rows {
         by_xray.entry(&r.xray).or_default().push(r);
     }
-    let named: Vec<&str> = current
-        .units()
-        .into_iter()
-        .filter_map(|(u, _)| u)
-        .collect();
+    let named: Vec<&str> = current.units().into_iter().filter_map(|(u, _)| u).collect();
     for r in &new.rows {
         if r.meta.unit.is_none() && named.len() > 1 && !by_xray.contains_key(&*r.xray) {
             let list: Vec<String> = named.iter().map(|u| quote(u)).collect();
@@ -431,7 +427,11 @@ fn meta_field(m: &super::Meta, column: &str) -> String {
 /// The dataset's bytes without the rows at `lines` (their records and the line ends and
 /// blank lines after them; every other byte is kept). `lines` must be rows of `bytes`,
 /// which must load as a dataset. O(bytes).
-pub(crate) fn removed_bytes(bytes: &[u8], label: &str, lines: &[u64]) -> Result<Vec<u8>, DataError> {
+pub(crate) fn removed_bytes(
+    bytes: &[u8],
+    label: &str,
+    lines: &[u64],
+) -> Result<Vec<u8>, DataError> {
     let mut starts: Vec<(u64, usize)> = Vec::new();
     super::csvinput::read_table::<Column>(label, bytes, |cells| {
         starts.push((cells.line(), cells.start() as usize));
@@ -550,22 +550,34 @@ mod tests {
             "xray,finger,j1,j2,j3,unit\nb,index,4,3,3,mm\nc,index,4,3,3,\n",
         );
         let (out, d) = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap();
-        assert!(String::from_utf8(out).unwrap().ends_with("b,index,4,3,3,mm\nc,index,4,3,3,\n"));
-        assert_eq!(d.units(), [(Some("image units"), 1), (Some("mm"), 1), (None, 1)]);
+        assert!(
+            String::from_utf8(out)
+                .unwrap()
+                .ends_with("b,index,4,3,3,mm\nc,index,4,3,3,\n")
+        );
+        assert_eq!(
+            d.units(),
+            [(Some("image units"), 1), (Some("mm"), 1), (None, 1)]
+        );
         // The same X-ray in another unit than its rows: refused.
         let new = ds("n.csv", "xray,finger,j1,j2,j3,unit\na,ring,4,3,3,mm\n");
         let e = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
         assert!(
-            e.to_string()
-                .contains("unit is 'mm' but d.csv line 2 gives 'image units' for the same X-ray 'a'"),
+            e.to_string().contains(
+                "unit is 'mm' but d.csv line 2 gives 'image units' for the same X-ray 'a'"
+            ),
             "{e}"
         );
         // A row without a unit takes the dataset's (one named unit), its X-ray's first.
         let filled = with_defaults(&ds("n.csv", "xray,finger,j1,j2,j3\nz,index,4,3,3\n"), &cur);
         assert_eq!(filled.rows[0].meta.unit.as_deref(), Some("image units"));
         // With two units named, it must say which.
-        let two = ds("d.csv", "xray,finger,j1,j2,j3,unit\na,index,4,3,3,px\nb,index,4,3,3,mm\n");
-        let e = check_fits(&two, &ds("n.csv", "xray,finger,j1,j2,j3\nz,index,4,3,3\n")).unwrap_err();
+        let two = ds(
+            "d.csv",
+            "xray,finger,j1,j2,j3,unit\na,index,4,3,3,px\nb,index,4,3,3,mm\n",
+        );
+        let e =
+            check_fits(&two, &ds("n.csv", "xray,finger,j1,j2,j3\nz,index,4,3,3\n")).unwrap_err();
         assert!(
             e.to_string()
                 .contains("names no unit, but the rows of d.csv are in 2 units ('px', 'mm')"),
@@ -590,15 +602,30 @@ mod tests {
     #[test]
     fn removing_rows_keeps_every_other_byte() {
         let old = "xray,finger,j1,j2,j3\r\na,index,4,3,3\r\n\r\nb,index,5,3,3\r\nc,index,6,3,3";
-        let out = |lines: &[u64]| String::from_utf8(removed_bytes(old.as_bytes(), "d.csv", lines).unwrap()).unwrap();
+        let out = |lines: &[u64]| {
+            String::from_utf8(removed_bytes(old.as_bytes(), "d.csv", lines).unwrap()).unwrap()
+        };
         assert_eq!(out(&[]), old);
-        assert_eq!(out(&[2]), "xray,finger,j1,j2,j3\r\nb,index,5,3,3\r\nc,index,6,3,3");
-        assert_eq!(out(&[4]), "xray,finger,j1,j2,j3\r\na,index,4,3,3\r\n\r\nc,index,6,3,3");
-        assert_eq!(out(&[5]), "xray,finger,j1,j2,j3\r\na,index,4,3,3\r\n\r\nb,index,5,3,3\r\n");
+        assert_eq!(
+            out(&[2]),
+            "xray,finger,j1,j2,j3\r\nb,index,5,3,3\r\nc,index,6,3,3"
+        );
+        assert_eq!(
+            out(&[4]),
+            "xray,finger,j1,j2,j3\r\na,index,4,3,3\r\n\r\nc,index,6,3,3"
+        );
+        assert_eq!(
+            out(&[5]),
+            "xray,finger,j1,j2,j3\r\na,index,4,3,3\r\n\r\nb,index,5,3,3\r\n"
+        );
         // A byte-order mark stays; a quoted field over two lines goes with its row.
-        let bom = "\u{feff}xray,finger,j1,j2,j3,source\na,index,4,3,3,\"two\nlines\"\nb,index,5,3,3,x\n";
+        let bom =
+            "\u{feff}xray,finger,j1,j2,j3,source\na,index,4,3,3,\"two\nlines\"\nb,index,5,3,3,x\n";
         let got = String::from_utf8(removed_bytes(bom.as_bytes(), "d.csv", &[2]).unwrap()).unwrap();
-        assert_eq!(got, "\u{feff}xray,finger,j1,j2,j3,source\nb,index,5,3,3,x\n");
+        assert_eq!(
+            got,
+            "\u{feff}xray,finger,j1,j2,j3,source\nb,index,5,3,3,x\n"
+        );
     }
 
     #[test]

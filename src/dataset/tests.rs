@@ -350,13 +350,21 @@ fn units_are_per_row_and_one_hand_has_one() {
         [(Some("image units"), 1), (Some("mm"), 2), (None, 1)]
     );
     assert_eq!(d.unit(), None);
-    assert_eq!(load(&format!("{h}a,index,1,2,3,mm\nb,ring,1,2,3,mm\n")).unwrap().unit(), Some("mm"));
+    assert_eq!(
+        load(&format!("{h}a,index,1,2,3,mm\nb,ring,1,2,3,mm\n"))
+            .unwrap()
+            .unit(),
+        Some("mm")
+    );
     // The rows of one X-ray: one unit.
-    let p = problems(&format!("{h}a,index,1,2,3,mm\na,ring,1,2,3,px\nb,toe,1,2,3,mm\n"));
+    let p = problems(&format!(
+        "{h}a,index,1,2,3,mm\na,ring,1,2,3,px\nb,toe,1,2,3,mm\n"
+    ));
     assert_eq!(p.len(), 2, "{p:#?}");
     assert_eq!((p[0].line, p[0].column), (Some(3), Some(6)));
     assert!(
-        p[0].message.contains("is 'px', but line 2 gives 'mm' for the same X-ray 'a'"),
+        p[0].message
+            .contains("is 'px', but line 2 gives 'mm' for the same X-ray 'a'"),
         "{}",
         p[0].message
     );
@@ -383,30 +391,45 @@ fn sex_age_and_side_may_be_left_empty_on_some_rows_of_a_hand() {
         "{h}a,index,4,3,3,,,\na,ring,4,3,3,f,30,\na,thumb,4,3,,m,31,\n"
     ));
     assert_eq!(p.len(), 2, "{p:#?}");
-    assert!(p[0].message.contains("is 'male', but line 3 gives 'female' for the same X-ray 'a'"), "{}", p[0].message);
-    assert!(p[1].message.contains("is 31, but line 3 gives 30"), "{}", p[1].message);
+    assert!(
+        p[0].message
+            .contains("is 'male', but line 3 gives 'female' for the same X-ray 'a'"),
+        "{}",
+        p[0].message
+    );
+    assert!(
+        p[1].message.contains("is 31, but line 3 gives 30"),
+        "{}",
+        p[1].message
+    );
 }
 
 #[test]
 fn an_unquoted_decimal_comma_is_named_as_one() {
     let h = "xray,finger,j1,j2,j3,sex,age,side,source,unit\n";
-    let p = problems(&format!("{h}D1,index,346,65,201.4,178.0,,,right,lab,image units\n"));
+    let p = problems(&format!(
+        "{h}D1,index,346,65,201.4,178.0,,,right,lab,image units\n"
+    ));
     assert_eq!(p.len(), 1, "{p:#?}");
     assert_eq!(
         p[0].message,
         "has 11 fields but the header has 10; j1 '346,65' looks like a number with a decimal comma: unquoted, the comma splits it in two fields; write it with a point (346.65)"
     );
     // Two of them, in j2 and j3.
-    let p = problems(&format!("{h}D1,index,346.6,201,4,178,0,,,right,lab,image units\n"));
+    let p = problems(&format!(
+        "{h}D1,index,346.6,201,4,178,0,,,right,lab,image units\n"
+    ));
     assert!(
-        p[0].message.contains("j2 '201,4' looks like a number with a decimal comma, j3 '178,0' looks like"),
+        p[0].message
+            .contains("j2 '201,4' looks like a number with a decimal comma, j3 '178,0' looks like"),
         "{}",
         p[0].message
     );
     // Integers only and an extra field: more than one way to join them, so no such claim.
     let p = problems("xray,finger,j1,j2,j3\n9a,index,350,190,170,\n");
     assert!(
-        p[0].message.ends_with("remove the extra fields, or quote a value that contains a comma"),
+        p[0].message
+            .ends_with("remove the extra fields, or quote a value that contains a comma"),
         "{}",
         p[0].message
     );

@@ -114,7 +114,11 @@ fn named(inputs: &ReportInputs<'_>) -> plots::Named {
         .map(|c| {
             c.xrays
                 .iter()
-                .filter(|x| a.fingers.iter().any(|f| f.xrays.iter().any(|v| *v.xray == ***x)))
+                .filter(|x| {
+                    a.fingers
+                        .iter()
+                        .any(|f| f.xrays.iter().any(|v| *v.xray == ***x))
+                })
                 .cloned()
                 .collect()
         })

@@ -181,7 +181,12 @@ pub(crate) fn stats_with_groups(
         out.push_str(&stats_body(&g.analysis, width, &mut hidden, false));
     }
     for d in groups.map_or(&[][..], |g| &g.differences) {
-        out.push_str(&group_difference(groups.map_or("", |g| g.by), d, width, &mut hidden));
+        out.push_str(&group_difference(
+            groups.map_or("", |g| g.by),
+            d,
+            width,
+            &mut hidden,
+        ));
     }
     hidden.append_to(&mut out, width);
     fit_text(&out, width)

@@ -723,7 +723,12 @@ fn and_list(items: &[&str]) -> String {
 pub fn counted(a: &Analysis) -> String {
     let total = a.dataset.xrays;
     let mut out = xrays(total);
-    let mut sizes: Vec<usize> = a.fingers.iter().map(|f| f.n).filter(|&n| n != total).collect();
+    let mut sizes: Vec<usize> = a
+        .fingers
+        .iter()
+        .map(|f| f.n)
+        .filter(|&n| n != total)
+        .collect();
     sizes.sort_unstable_by(|x, y| y.cmp(x));
     sizes.dedup();
     let parts: Vec<String> = sizes
@@ -754,7 +759,11 @@ fn flagged_rows(a: &Analysis) -> Vec<FlaggedView> {
             finger: f.finger.name().to_string(),
             line: f.line.to_string(),
             reason: f.reason.clone(),
-            remove: format!("phalanx remove --xray {} --finger {}", f.xray, f.finger.name()),
+            remove: format!(
+                "phalanx remove --xray {} --finger {}",
+                f.xray,
+                f.finger.name()
+            ),
         })
         .collect()
 }
@@ -1436,7 +1445,12 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
             describe_snapshot(snaps, e),
             describe_snapshot(snaps, b)
         );
-        (None, compared, change_rows(&snaps[b], &snaps[e]), records(b))
+        (
+            None,
+            compared,
+            change_rows(&snaps[b], &snaps[e]),
+            records(b),
+        )
     };
     TrackingView {
         file: inputs.history_file.to_string(),

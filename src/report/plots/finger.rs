@@ -12,8 +12,7 @@
 use super::draw::{
     Axes, Categories, Chart, Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, Linear, MARGIN,
     MUTED, NAMED, POINT, Pen, Px, Root, Swatch, WIDTH, clip, draw_axes, extent, finish, padded,
-    render,
-    stats_values, text_width, tick_format,
+    render, stats_values, text_width, tick_format,
 };
 use super::{Named, Plot, PlotKind, finger_phrase};
 use crate::analysis::{FingerAnalysis, Quantity, QuantityStats};
@@ -406,7 +405,11 @@ fn draw_labelled(
 /// A label beside point `p`, on its right or, near the right edge `right_px`, its left.
 fn label_at(pen: &Pen, p: Px, label: &str, font: Font, right_px: i32) -> DrawResult {
     if p.0 + 8 + text_width(label, 11.0) > right_px {
-        pen.text((p.0 - 8, p.1), label, font.anchor(HPos::Right, VPos::Center))
+        pen.text(
+            (p.0 - 8, p.1),
+            label,
+            font.anchor(HPos::Right, VPos::Center),
+        )
     } else {
         pen.text((p.0 + 8, p.1), label, font)
     }
@@ -426,7 +429,13 @@ fn draw_named(
         let y = rows.strip_high - NAMED_LANE * (lane as f64 + 0.5);
         let p = at(v, y);
         pen.dot(p, 5, NAMED, 1.0)?;
-        label_at(pen, p, &clip(id, 16), Font::new(11.0).colour(NAMED), right_px)?;
+        label_at(
+            pen,
+            p,
+            &clip(id, 16),
+            Font::new(11.0).colour(NAMED),
+            right_px,
+        )?;
     }
     Ok(())
 }

@@ -392,7 +392,10 @@ fn points_are_drawn_one_by_one_up_to_the_limit() {
         .filter(|i| p.svg.contains(&format!("\nx{i}\n</text>")))
         .count();
     assert!((1..=3 * finger::NAMED_MAX).contains(&ids), "{ids} ids");
-    assert!(p.svg.contains("named: flagged, outside the prediction interval, or newest"));
+    assert!(
+        p.svg
+            .contains("named: flagged, outside the prediction interval, or newest")
+    );
 }
 
 #[test]
@@ -596,14 +599,19 @@ fn beyond_a_dozen_only_the_xrays_worth_naming_are_labelled() {
     };
     let outside: Vec<usize> = (0..30)
         .filter(|&i| {
-            f.quantities.iter().filter(|q| q.name.is_relative()).any(|q| {
-                let k = match q.name {
-                    Quantity::RelJ1 => 0,
-                    Quantity::RelJ2 => 1,
-                    _ => 2,
-                };
-                q.intervals.pi.is_some_and(|pi| !pi.contains(f.xrays[i].relative[k]))
-            })
+            f.quantities
+                .iter()
+                .filter(|q| q.name.is_relative())
+                .any(|q| {
+                    let k = match q.name {
+                        Quantity::RelJ1 => 0,
+                        Quantity::RelJ2 => 1,
+                        _ => 2,
+                    };
+                    q.intervals
+                        .pi
+                        .is_some_and(|pi| !pi.contains(f.xrays[i].relative[k]))
+                })
         })
         .collect();
     assert_eq!(labelled(&plain.svg), outside);
@@ -618,12 +626,22 @@ fn beyond_a_dozen_only_the_xrays_worth_naming_are_labelled() {
     expect.sort_unstable();
     expect.dedup();
     assert_eq!(labelled(&p.svg), expect);
-    assert!(p.svg.contains("named: flagged, outside the prediction interval, or newest"));
-    assert!(p.description.contains("Named in the J~1 panel: "), "{}", p.description);
+    assert!(
+        p.svg
+            .contains("named: flagged, outside the prediction interval, or newest")
+    );
+    assert!(
+        p.description.contains("Named in the J~1 panel: "),
+        "{}",
+        p.description
+    );
     // A flag of another finger names nothing here; a large newest batch is not named.
     let other = Named {
         flagged: vec![("x3".to_string(), Finger::Index)],
         newest: (0..10).map(|i| format!("x{i}")).collect(),
     };
-    assert_eq!(labelled(&finger::plot(&f, 0.95, &other).unwrap().svg), outside);
+    assert_eq!(
+        labelled(&finger::plot(&f, 0.95, &other).unwrap().svg),
+        outside
+    );
 }

@@ -257,7 +257,9 @@ fn draw_heading(pen: &Pen, top: i32, panel: &Panel) -> DrawResult {
         (1, _) => "1 snapshot".to_string(),
         (n, d) if d == n => format!("{n} snapshots"),
         (n, 1) => format!("{n} snapshots, all on one point (the same statistics)"),
-        (n, d) => format!("{n} snapshots on {d} points (snapshots with the same statistics coincide)"),
+        (n, d) => {
+            format!("{n} snapshots on {d} points (snapshots with the same statistics coincide)")
+        }
     };
     if missing > 0 {
         info.push_str(&format!(", {missing} without an interval"));
