@@ -450,7 +450,7 @@ fn import_into_a_dataset_goes_through_add() {
     let mm = String::from_utf8(wd.read("lab-mm.csv")).unwrap();
     let last = mm.lines().last().unwrap();
     assert!(
-        last.starts_with("new,index,300,180.069431,100.04499,,,,right,lab,mm,skin,J~1 = "),
+        last.starts_with("new,index,300,180.069431,100.04499,,,,right,lab,mm,skin,\"J~1 = "),
         "{mm}"
     );
     let run = import(&[]);
@@ -462,7 +462,7 @@ fn import_into_a_dataset_goes_through_add() {
         text.lines()
             .last()
             .unwrap()
-            .starts_with("new,index,300,180.069431,100.04499,,,,right,lab,px,skin,J~1 = "),
+            .starts_with("new,index,300,180.069431,100.04499,,,,right,lab,px,skin,\"J~1 = "),
         "{text}"
     );
     // A snapshot of the statistics is appended, as for 'add'.
