@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # Times the release binary on the workloads of issue 6 and prints a Markdown
-# table of wall time and peak memory (/usr/bin/time -v), then how the cost grows
-# with X-rays and resamples. Usage: bench/run.sh [RUNS]   (default 3; best run kept)
+# table of wall time and peak memory (/usr/bin/time -v): first phalanx against the
+# NumPy peer (bench/peer.py, the same statistics) at 1k, 10k and 100k X-rays in the
+# same run, then the report at every size from the paper's 5 X-rays to 100,000, then
+# how the cost grows with X-rays and resamples.
+# Usage: bench/run.sh [RUNS]   (default 3; best run kept). The peer needs python3 with
+# numpy and scipy (pip install numpy scipy); without them its rows are skipped.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-3}
@@ -18,9 +22,10 @@ bin=target/release/phalanx
 # A synthetic skinned right hand of about 30,000 triangles (32 vertices per ring, a ring every 1.44 mm).
 target/release/examples/tube_hand "$work/hand30k-right.glb" right 32 1.44 0 2> /dev/null
 
+"$bin" synth --xrays 1000 --seed 1 --out "$work/x1k.csv"
 "$bin" synth --xrays 10000 --seed 1 --out "$work/x10k.csv"
 "$bin" synth --xrays 100000 --seed 1 --out "$work/x100k.csv"
-for n in 2500 5000; do "$bin" synth --xrays "$n" --seed 1 --out "$work/x$n.csv"; done
+for n in 10 50 200 2500 5000; do "$bin" synth --xrays "$n" --seed 1 --out "$work/x$n.csv"; done
 
 # measure LABEL TARGET -- COMMAND...: best wall time and its peak RSS over $runs runs.
 measure() {
@@ -38,20 +43,58 @@ measure() {
             best_kb=$kb
         fi
     done
-    printf '| %s | %s | %.3f s | %.1f MB |\n' "$label" "$target" "$best_s" "$(echo "$best_kb" | awk '{print $1/1024}')"
+    last_s=$best_s
+    last_mb=$(echo "$best_kb" | awk '{printf "%.1f", $1/1024}')
+    if [ -z "${silent:-}" ]; then
+        printf '| %s | %s | %.3f s | %s MB |\n' "$label" "$target" "$best_s" "$last_mb"
+    fi
 }
 
 echo "Machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(uname -sr); $($bin --version)"
 echo "Date: $(date -u +%Y-%m-%d); best of $runs runs; 10,000 resamples unless noted"
 echo
+if python3 -c "import numpy, scipy" 2> /dev/null; then
+    echo "phalanx against the NumPy peer (bench/peer.py: chunked index matrices, bincount, BLAS"
+    echo "matrix product; $(python3 -c 'import numpy, scipy; print("numpy", numpy.__version__, "scipy", scipy.__version__)')),"
+    echo "stats --format json, 10,000 resamples; the ratio is the peer's wall time over phalanx's:"
+    echo
+    echo "| workload | target | wall time | peak memory | ratio |"
+    echo "|---|---|---|---|---|"
+    for size in 1k 10k 100k; do
+        case $size in
+            1k) target="-" ;;
+            10k) target="60x the peer" ;;
+            100k) target="3 s / 250 MB" ;;
+        esac
+        silent=1 measure "" "" -- python3 bench/peer.py "$work/x$size.csv"
+        printf '| NumPy peer, %s X-rays | | %.3f s | %s MB | 1x |\n' "$size" "$last_s" "$last_mb"
+        peer_s=$last_s
+        silent=1 measure "" "" -- "$bin" stats --data "$work/x$size.csv" --format json
+        printf '| phalanx, %s X-rays | %s | %.3f s | %s MB | %s |\n' "$size" "$target" "$last_s" "$last_mb" \
+            "$(awk -v a="$peer_s" -v b="$last_s" 'BEGIN { printf "%.1fx faster", a / b }')"
+    done
+    echo
+else
+    echo "(NumPy peer skipped: python3 with numpy and scipy is missing; pip install numpy scipy)"
+    echo
+fi
+echo "The report (all formats and plots) at every size: the paper's data with the atlas and"
+echo "real-rig sections, then synthetic data of n X-rays (coverage simulated up to 200 X-rays):"
+echo
 echo "| workload | target | wall time | peak memory |"
 echo "|---|---|---|---|"
-measure "paper data, full report with the atlas section (all formats and plots)" "300 ms / 60 MB" -- "$bin" report --out "$work/r0"
+measure "report, paper data (5 X-rays), with the atlas and the real rig" "0.6 s" -- "$bin" report --out "$work/r5"
+for size in 10 50 200 1k 10k 100k; do
+    measure "report, $size X-rays" "2 s" -- "$bin" report --data "$work/x$size.csv" --out "$work/r$size"
+done
+echo
+echo "| workload | target | wall time | peak memory |"
+echo "|---|---|---|---|"
 measure "import the atlas (910 radiographs, atlas37)" "import + compare 100 ms" -- "$bin" import data/atlas/landmarks.csv --layout atlas37 --source "Digital Hand Atlas" --out "$work/atlas.csv"
 measure "compare the paper with the atlas" "import + compare 100 ms" -- "$bin" compare data/measurements.csv data/atlas/measurements.csv
-measure "10,000 X-rays, stats --format json" "1 s / 100 MB" -- "$bin" stats --data "$work/x10k.csv" --format json
-measure "100,000 X-rays, stats --format json" "10 s / 300 MB" -- "$bin" stats --data "$work/x100k.csv" --format json
-measure "100,000 X-rays, full report" "15 s / 400 MB" -- "$bin" report --data "$work/x100k.csv" --out "$work/r1"
+measure "compare the paper with a published table (B&K 2010, atlas correlations)" "100 ms" -- "$bin" compare data/measurements.csv data/literature/buryanov-kotiuk-2010.csv
+measure "place --reference a published table (every finger)" "100 ms" -- "$bin" place --hand thumb=5,index=8,middle=9,ring=8.5,little=6.5 --reference data/literature/buryanov-kotiuk-2010.csv
+measure "paper data, full report without the published-measurements section" "-" -- "$bin" report --out "$work/r2" --literature "$work/no-such-table.csv"
 measure "rig audit (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb
 measure "rig audit --fix (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb --fix "$work/fixed.glb"
 measure "deform, 30,000-triangle hand, fist, LBS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb"

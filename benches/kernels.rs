@@ -43,6 +43,68 @@ fn bootstrap_kernel(c: &mut Criterion) {
     g.finish();
 }
 
+/// The floor of the random bootstrap, its two halves alone at 10,000 X-rays: the index
+/// draws (ChaCha8 and Lemire's draw, as `phalanx::stats::rng` writes them, counted in a byte
+/// per X-ray) and the matrix product of 64 resamples' counts with 28 quantities
+/// (matrixmultiply's dgemm). One thread each; `bench/run.sh` prints the floor they imply.
+fn floor(c: &mut Criterion) {
+    use rand_chacha::ChaCha8Rng;
+    use rand_core::{Rng, SeedableRng};
+    let n = 10_000usize;
+    let mut g = c.benchmark_group("floor");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements((64 * n) as u64));
+    g.bench_function("draws_64x10000", |b| {
+        let mut counts = vec![0u8; 64 * n];
+        b.iter(|| {
+            let mut rng = ChaCha8Rng::from_seed([7; 32]);
+            counts.iter_mut().for_each(|c| *c = 0);
+            for row in counts.chunks_exact_mut(n) {
+                for _ in 0..n {
+                    // Lemire's multiply-shift (the rejection step is taken about n / 2^32 of the time).
+                    let i = ((u64::from(rng.next_u32()) * n as u64) >> 32) as usize;
+                    row[i] = row[i].wrapping_add(1);
+                }
+            }
+            black_box(&counts);
+        })
+    });
+    let a: Vec<f64> = (0..64 * n).map(|i| (i % 3) as f64).collect();
+    let cols = columns(n);
+    let v: Vec<f64> = (0..n)
+        .flat_map(|i| cols.iter().map(move |c| c[i]))
+        .collect();
+    let mut out = vec![0.0; 64 * 28];
+    // Elements: multiply-adds.
+    g.throughput(Throughput::Elements((64 * n * 28) as u64));
+    g.bench_function("gemm_64x10000x28", |b| {
+        b.iter(|| {
+            // SAFETY: a is 64 x n, v is n x 28 (one X-ray's quantities side by side, as the
+            // kernel lays them out) and out is 64 x 28, all row-major within their vectors.
+            unsafe {
+                matrixmultiply::dgemm(
+                    64,
+                    n,
+                    28,
+                    1.0,
+                    a.as_ptr(),
+                    n as isize,
+                    1,
+                    v.as_ptr(),
+                    28,
+                    1,
+                    0.0,
+                    out.as_mut_ptr(),
+                    28,
+                    1,
+                );
+            }
+            black_box(&out);
+        })
+    });
+    g.finish();
+}
+
 fn loader(c: &mut Criterion) {
     let mut g = c.benchmark_group("loader");
     g.sample_size(10);
@@ -67,5 +129,5 @@ fn analysis_paper(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, bootstrap_kernel, loader, analysis_paper);
+criterion_group!(benches, bootstrap_kernel, floor, loader, analysis_paper);
 criterion_main!(benches);

@@ -59,7 +59,9 @@
 //!   of the mean and the prediction interval), and the seeded bootstrap
 //!   ([`bootstrap::resample_means`](stats::bootstrap::resample_means),
 //!   [`bootstrap::Plan`](stats::bootstrap::Plan)).
-//! - [`rig`]: glTF rigs. [`GltfFile`](rig::GltfFile) and [`Rig`](rig::Rig) read
+//! - [`rig`]: glTF rigs, in sub-rooms [`read`](rig::read), [`judge`](rig::judge),
+//!   [`fix`](rig::fix), [`deform`](rig::deform) and [`session`](rig::session);
+//!   the paths below are re-exported. [`GltfFile`](rig::GltfFile) and [`Rig`](rig::Rig) read
 //!   a file's finger chains (with a [`map::NameMap`](rig::map::NameMap) for
 //!   unknown names); [`AuditedRig::of`](rig::AuditedRig::of) judges them
 //!   ([`judge`](rig::judge)); [`fix::fix`](rig::fix::fix) writes a corrected

@@ -45,6 +45,8 @@ pub(crate) struct AddRequest {
     pub accept_flagged: bool,
     /// The user's note for the history record.
     pub note: Option<String>,
+    /// Pool new rows whose fingertips differ from the dataset's (bone with skin).
+    pub mixed_tips: bool,
     pub settings: Settings,
 }
 
@@ -80,6 +82,23 @@ fn place(new: &Dataset, line: Option<u64>) -> String {
     }
 }
 
+/// The tip rule of `add`: new rows whose fingertips are at the bone do not join rows at
+/// the skin (or the reverse) unless asked (`--mixed-tips`); see
+/// [`crate::dataset::tip::pooling_problem`].
+fn refuse_mixed_tips(current: &Dataset, new: &Dataset, allowed: bool) -> Result<(), Error> {
+    if allowed {
+        return Ok(());
+    }
+    let files = [
+        (current.path.as_str(), &current.rows[..]),
+        (new.path.as_str(), &new.rows[..]),
+    ];
+    match crate::dataset::tip::pooling_problem(&files, "--mixed-tips") {
+        Some(m) => Err(Error::Usage(format!("nothing added: {m}"))),
+        None => Ok(()),
+    }
+}
+
 /// Adds new rows to a dataset, then appends a snapshot to its history.
 pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     let loaded;
@@ -104,6 +123,7 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     let current_bytes = csvinput::read_input(&req.data)?;
     let label = req.data.display().to_string();
     let current = Dataset::from_bytes(&label, &current_bytes)?;
+    refuse_mixed_tips(&current, new, req.mixed_tips)?;
     let n = current.xray_count() + new.xray_count();
     analysis::budget::check_bootstrap(n, req.settings.resamples).map_err(Error::Usage)?;
     // Conflicting metadata is refused before anything else is said about the rows.

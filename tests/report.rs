@@ -25,6 +25,16 @@ fn render_with(
     claims: &Claims,
     sims: usize,
 ) -> (Vec<OutputFile>, view::ReportView) {
+    render_with_literature(dataset, claims, sims, None)
+}
+
+/// [`render_with`], with the section "The paper against published measurements".
+fn render_with_literature(
+    dataset: &Dataset,
+    claims: &Claims,
+    sims: usize,
+    literature: Option<&view::LiteratureInputs>,
+) -> (Vec<OutputFile>, view::ReportView) {
     let results = claims::check(claims, dataset);
     let a = analysis::analyse(dataset, &Settings::default());
     let cs = CoverageSettings {
@@ -63,6 +73,7 @@ fn render_with(
         rigs: &rigs,
         paper_xrays: claims.named_in(dataset),
         atlas: None,
+        literature,
         deform: None,
     };
     let files = report::render(&inputs, Formats::ALL, &Templates::builtin().unwrap()).unwrap();
@@ -204,7 +215,7 @@ fn paper_numbers_appear_in_the_report() {
 fn data_derived_strings_are_escaped() {
     let mut data = paper_bytes();
     data.extend_from_slice(
-        b"\"<script>alert(1)</script>\",index,300,200,180,,,right,\"HYPERLINK(\"\"http://x\"\")|a\nb\",image units\n",
+        b"\"<script>alert(1)</script>\",index,300,200,180,,,right,\"HYPERLINK(\"\"http://x\"\")|a\nb\",image units,\n",
     );
     let (files, _) = render_bytes(&data);
     let html = file(&files, "index.html");
@@ -459,7 +470,7 @@ fn the_report_compares_the_paper_with_the_atlas() {
     wd.run(&["report", "--format", "md", "--sims", "50", "--out", "out"])
         .ok();
     let md = String::from_utf8(wd.read("out/report.md")).unwrap();
-    assert!(md.contains("## 12. The paper against 910 atlas radiographs"));
+    assert!(md.contains("## 11. The paper against 910 atlas radiographs"));
     for f in ["thumb", "index", "middle", "ring", "little"] {
         assert!(md.contains(&format!("(plots/atlas-{f}.svg)")), "{f}");
         assert!(wd.path().join(format!("out/plots/atlas-{f}.svg")).exists());
@@ -496,4 +507,80 @@ fn the_report_compares_the_paper_with_the_atlas() {
     assert!(md.contains("### Coverage measured on real hands"));
     assert!(md.contains("| 5 | atlas hands |"));
     assert!(md.contains("### Whole-hand proportions from the metacarpals"));
+}
+
+/// Section 13 and the key result: the fingertip table with its intervals (the issue's
+/// figures to 4 decimals), the finding, what it changes for an audit, every quantity beside
+/// the atlas, in HTML and Markdown.
+#[test]
+fn the_report_holds_the_paper_against_published_measurements() {
+    use phalanx::analysis::literature::{Side, correlations_from, tables};
+    use phalanx::dataset::{CohortNotes, SummaryTable};
+    let Some(atlas_bytes) = crate::common::vendored("data/atlas/measurements.csv") else {
+        return;
+    };
+    let atlas = Dataset::from_bytes("data/atlas/measurements.csv", &atlas_bytes).unwrap();
+    let paper = Dataset::load(Path::new("data/measurements.csv")).unwrap();
+    let table_path = Path::new("data/literature/buryanov-kotiuk-2010.csv");
+    let table = SummaryTable::load(table_path).unwrap();
+    let rho = correlations_from(&atlas);
+    let mut p = tables(Side::Data(&paper), Side::Table(&table), &rho, 0.95);
+    p.a.about = CohortNotes::beside(Path::new("data/measurements.csv")).unwrap();
+    p.b.about = CohortNotes::beside(table_path).unwrap();
+    let mut x = tables(Side::Data(&atlas), Side::Table(&table), &rho, 0.95);
+    x.b.about = p.b.about.clone();
+    let inputs = view::LiteratureInputs {
+        paper: p,
+        atlas: Some(x),
+        atlas_info: None,
+    };
+    let claims = Claims::load(Path::new("data/paper_claims.csv")).unwrap();
+    let (files, v) = render_with_literature(&paper, &claims, 50, Some(&inputs));
+    let key = v.key.fingertips.expect("the key result on the fingertips");
+    assert!(
+        key.starts_with("The paper's fingertips are at the skin, not at the end of the bone."),
+        "{key}"
+    );
+    let html = file(&files, "index.html");
+    let doc = Html::parse_document(html);
+    let sel = Selector::parse("table#literature-tips tbody tr").unwrap();
+    let rows: Vec<String> = doc
+        .select(&sel)
+        .map(|r| r.text().collect::<Vec<_>>().join("|"))
+        .collect();
+    assert_eq!(rows.len(), 5);
+    for (row, want) in rows.iter().zip([
+        ["thumb J~2", "0.4686 [0.4513, 0.4858]", "0.4070 ", "0.4641 "],
+        ["index J~3", "0.2428 [0.2242, 0.2614]", "0.2029 ", "0.2403 "],
+        [
+            "middle J~3",
+            "0.2334 [0.2238, 0.2431]",
+            "0.1969 ",
+            "0.2313 ",
+        ],
+        ["ring J~3", "0.2509 [0.2404, 0.2614]", "0.2052 ", "0.2407 "],
+        [
+            "little J~3",
+            "0.2787 [0.2652, 0.2922]",
+            "0.2389 ",
+            "0.2791 ",
+        ],
+    ]) {
+        for w in want {
+            assert!(row.contains(w), "{w:?} not in {row}");
+        }
+        assert!(
+            row.contains("bone plus soft tissue (tip at the skin)"),
+            "{row}"
+        );
+    }
+    let md = file(&files, "report.md");
+    assert!(md.contains("## 12. The paper against published measurements"));
+    assert!(md.contains(
+        "> **Where the paper's fingertips are.** The paper's fingertips are at the skin"
+    ));
+    assert!(
+        md.contains("What it changes for a rig audit: the paper's last segment ends at the skin")
+    );
+    assert!(md.contains("| index | J\\~3 | 0.2428 [0.2242, 0.2614] | 0.2403 [0.2375, 0.2430] | agrees | 0.2185 ["), "{md}");
 }

@@ -133,15 +133,15 @@ const NEW_FILE: &str = "xray,finger,j1,j2,j3\n\
     2b,thumb,262.7,240.5,\n";
 
 /// The same rows as the dataset's columns would hold them, typed by hand (in the
-/// dataset's one unit, which rows without one take).
-const NEW_ROWS_IN_DATASET: &str = "2a,index,352.1,201.4,178.0,,,,,image units\n\
-    2a,middle,391.5,250.2,190.7,,,,,image units\n\
-    2a,ring,370.3,230.9,205.4,,,,,image units\n\
-    2a,little,290.2,170.4,175.8,,,,,image units\n\
-    2a,thumb,268.4,236.1,,,,,,image units\n\
-    2b,index,345.9,193.3,176.2,,,,,image units\n\
-    2b,thumb,262.7,240.5,,,,,,image units\n\
-    2c,index,361.2,199.9,181.3,female,34,left,,image units\n";
+/// dataset's one unit, which rows without one take; the tip, not given, left unknown).
+const NEW_ROWS_IN_DATASET: &str = "2a,index,352.1,201.4,178.0,,,,,image units,\n\
+    2a,middle,391.5,250.2,190.7,,,,,image units,\n\
+    2a,ring,370.3,230.9,205.4,,,,,image units,\n\
+    2a,little,290.2,170.4,175.8,,,,,image units,\n\
+    2a,thumb,268.4,236.1,,,,,,image units,\n\
+    2b,index,345.9,193.3,176.2,,,,,image units,\n\
+    2b,thumb,262.7,240.5,,,,,,image units,\n\
+    2c,index,361.2,199.9,181.3,female,34,left,,image units,\n";
 
 #[test]
 fn add_then_stats_equals_stats_of_the_concatenated_file() {
@@ -629,7 +629,7 @@ fn eight_concurrent_adds_all_land_exactly_once() {
     let text = String::from_utf8(wd.read(DATA)).unwrap();
     assert!(text.as_bytes().starts_with(&paper_data()));
     for i in 0..8 {
-        let row = format!("c{i},index,{},190.5,171.25,,,,,image units", 345 + i);
+        let row = format!("c{i},index,{},190.5,171.25,,,,,image units,", 345 + i);
         let n = text.lines().filter(|l| *l == row).count();
         assert_eq!(n, 1, "row {row} appears {n} times:\n{text}");
     }
@@ -906,7 +906,7 @@ fn a_tenfold_typo_is_refused_unless_accepted() {
         // Kept as typed, in the dataset's unit, with why it was flagged.
         let j: Vec<String> = lengths.split(',').map(str::to_string).collect();
         let j3 = j.get(2).cloned().unwrap_or_default();
-        let row = format!("{xray},{finger},{},{},{j3},,,,,image units,", j[0], j[1]);
+        let row = format!("{xray},{finger},{},{},{j3},,,,,image units,,", j[0], j[1]);
         let last = text.lines().last().unwrap();
         assert!(last.starts_with(&row), "{row:?} not added:\n{text}");
         assert!(
@@ -1118,7 +1118,7 @@ fn add_through_a_symlinked_dataset_updates_its_target() {
     let link = std::fs::symlink_metadata(wd.path().join(DATA)).unwrap();
     let target = String::from_utf8(wd.read("real/m.csv")).unwrap();
     assert!(
-        target.ends_with("z,index,350,190,170,,,,,image units\n"),
+        target.ends_with("z,index,350,190,170,,,,,image units,\n"),
         "the link's target was not updated"
     );
     assert!(link.file_type().is_symlink(), "the link was replaced");
@@ -1411,7 +1411,7 @@ fn add_then_remove_restores_the_dataset_and_its_statistics_bit_for_bit() {
         .stdout_has("removed 1 row from data/measurements.csv: 4b ring (line 30); 7 -> 7 X-rays");
     let text = String::from_utf8(wd.read(DATA)).unwrap();
     assert!(
-        text.ends_with("4b,index,345.9,193.3,176.2,,,right,lab,image units\n"),
+        text.ends_with("4b,index,345.9,193.3,176.2,,,right,lab,image units,\n"),
         "{text}"
     );
 }
@@ -1485,8 +1485,8 @@ fn flagged_rows_of_a_batch_are_refused_with_their_lines_and_a_swap_is_named() {
     );
     let text = String::from_utf8(wd.read(DATA)).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    assert!(lines[0].ends_with(",unit,flagged"), "{}", lines[0]);
-    assert!(lines[1].ends_with(",image units,"), "{}", lines[1]);
+    assert!(lines[0].ends_with(",unit,tip,flagged"), "{}", lines[0]);
+    assert!(lines[1].ends_with(",image units,skin,"), "{}", lines[1]);
     assert!(lines[26].starts_with("5a,index,352.1,201.4,178.0,") && lines[26].ends_with(','));
     assert!(
         lines[28].contains("j1 and j3 look swapped"),
@@ -1543,10 +1543,10 @@ fn filling_an_empty_sex_age_or_side_is_no_conflict() {
     assert_eq!(
         rows,
         [
-            "7a,index,352.1,201.4,178.0,,,,,image units",
-            "7a,middle,390.0,250.1,200.2,female,41,,,image units",
-            "7a,ring,370.2,231.0,205.9,female,41,left,,image units",
-            "7a,little,290.1,170.2,175.3,female,41,left,,image units",
+            "7a,index,352.1,201.4,178.0,,,,,image units,",
+            "7a,middle,390.0,250.1,200.2,female,41,,,image units,",
+            "7a,ring,370.2,231.0,205.9,female,41,left,,image units,",
+            "7a,little,290.1,170.2,175.3,female,41,left,,image units,",
         ]
     );
     // Grouped, 7a is one female hand (its index row leaves sex empty).
@@ -1563,20 +1563,20 @@ fn filling_an_empty_sex_age_or_side_is_no_conflict() {
 #[test]
 fn rows_in_another_unit_pool_their_relative_values_and_gain_columns() {
     let wd = Workdir::with_paper_data();
-    // The paper's X-ray 1a again, in mm (a tenth), with its metacarpal and tip: columns
-    // the dataset lacks.
+    // The paper's X-ray 1a again, in mm (a tenth), with its metacarpal (a column the
+    // dataset lacks) and its tip (at the skin, as the paper's rows record).
     wd.write(
         "mm.csv",
         "xray,finger,j1,j2,j3,mc,unit,tip\nmm1,index,33.996,18.883,16.967,60.1,mm,skin\n",
     );
     let run = wd.run(&["add", "mm.csv"]);
     run.ok()
-        .stderr_has("the dataset's header gained the columns mc, tip")
+        .stderr_has("the dataset's header gained the column mc (empty on its existing rows)")
         .stderr_has("no current X-ray gives index lengths in 'mm', so the new rows in 'mm' are checked on their relative values only");
     let text = String::from_utf8(wd.read(DATA)).unwrap();
-    assert!(text.starts_with("xray,finger,j1,j2,j3,sex,age,side,source,unit,mc,tip\n1a,index,339.96,188.83,169.67,,,right,\"Figure 1a, Table 1\",image units,,\n"), "{text}");
+    assert!(text.starts_with("xray,finger,j1,j2,j3,sex,age,side,source,unit,tip,mc\n1a,index,339.96,188.83,169.67,,,right,\"Figure 1a, Table 1; tip at the skin inferred from Buryanov & Kotiuk 2010 (phalanx compare), not stated by the paper\",image units,skin,\n"), "{text}");
     assert!(
-        text.ends_with("mm1,index,33.996,18.883,16.967,,,,,mm,60.1,skin\n"),
+        text.ends_with("mm1,index,33.996,18.883,16.967,,,,,mm,skin,60.1\n"),
         "{text}"
     );
     let doc = wd.run(&["stats", "--format", "json"]).ok().json();

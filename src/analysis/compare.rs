@@ -376,10 +376,31 @@ pub struct CohortInfo {
     pub unit: Option<String>,
     /// Where the rows put their fingertips.
     pub tips: TipCounts,
+    /// The sides the rows record (`left`, `right`), sorted, once each.
+    pub sides: Vec<String>,
+    /// The youngest and oldest age the rows record.
+    pub ages: Option<(f64, f64)>,
+    /// The cohort's description beside its file, set by the caller.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub about: Option<crate::dataset::CohortNotes>,
 }
 
 impl CohortInfo {
-    fn of(data: &Dataset) -> CohortInfo {
+    pub(crate) fn of(data: &Dataset) -> CohortInfo {
+        let mut sides: Vec<String> = data
+            .rows
+            .iter()
+            .filter_map(|r| r.meta.side.as_deref().map(str::to_string))
+            .collect();
+        sides.sort();
+        sides.dedup();
+        let ages =
+            data.rows
+                .iter()
+                .filter_map(|r| r.meta.age)
+                .fold(None, |acc: Option<(f64, f64)>, a| {
+                    Some(acc.map_or((a, a), |(lo, hi)| (lo.min(a), hi.max(a))))
+                });
         CohortInfo {
             path: data.path.clone(),
             sha256: data.sha256.clone(),
@@ -387,6 +408,9 @@ impl CohortInfo {
             rows: data.rows.len(),
             unit: data.unit().map(str::to_string),
             tips: data.tips(),
+            sides,
+            ages,
+            about: None,
         }
     }
 }

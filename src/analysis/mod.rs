@@ -18,6 +18,7 @@ pub mod claims;
 pub mod compare;
 pub mod coverage;
 pub mod groups;
+pub mod literature;
 pub(crate) mod outliers;
 pub mod placement;
 pub(crate) mod plausible;

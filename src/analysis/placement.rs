@@ -243,3 +243,145 @@ mod tests {
         assert_eq!(place_all(&paper(), 1.0).len(), 5);
     }
 }
+
+/// A position or length placed from a summary table's ratio of means, in model units.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct TablePlaced {
+    pub mean: f64,
+    /// The t interval of the ratio of the table's means (delta-method SE), in model units.
+    pub ci: Option<crate::stats::Interval>,
+    /// The prediction interval for one hand (the first-order SD of one hand's ratio).
+    pub pi: Option<crate::stats::Interval>,
+}
+
+impl TablePlaced {
+    fn affine(e: &super::literature::Estimate, offset: f64, scale: f64) -> TablePlaced {
+        let map = |i: crate::stats::Interval| {
+            let (a, b) = (offset + scale * i.low, offset + scale * i.high);
+            crate::stats::Interval::new(a.min(b), a.max(b))
+        };
+        TablePlaced {
+            mean: offset + scale * e.mean,
+            ci: e.ci.map(map),
+            pi: e.pi.map(map),
+        }
+    }
+}
+
+/// Where one joint lies from the root, placed from a table.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct TableJoint {
+    pub joint: Joint,
+    pub position: TablePlaced,
+}
+
+/// Joint positions for one model finger from a summary table.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct TablePlacement {
+    pub finger: Finger,
+    pub length: f64,
+    /// Hands of the table (its smallest n among the segments used).
+    pub n: Option<usize>,
+    /// Where the table's finger ends: at the skin when it gives the soft tissue (a model
+    /// finger ends at its skin), else at the bone.
+    pub tip: crate::dataset::TipKind,
+    /// The correlation between segments the intervals rest on.
+    pub rho: f64,
+    pub joints: Vec<TableJoint>,
+    /// `j1`, `j2`, `j3` in model units.
+    pub segments: Vec<(String, TablePlaced)>,
+    /// The MCP's distance from the CMC, (mc/J) L, where the table gives the metacarpal.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub metacarpal: Option<TablePlaced>,
+    /// Why an interval is missing, when one is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub why: Option<String>,
+}
+
+/// Places the joints of `finger` for a model finger of total length `length` from a
+/// summary table's ratios of means, their intervals under correlation `rho` between the
+/// table's segments ([`super::literature::table_estimate`]). Err says what the table lacks.
+pub fn place_from_table(
+    table: &crate::dataset::SummaryTable,
+    finger: Finger,
+    length: f64,
+    rho: f64,
+    confidence: f64,
+) -> Result<TablePlacement, String> {
+    use crate::dataset::{Segment, TipKind};
+    let tip = if table.get(finger, Segment::TipSoftTissue).is_some() {
+        TipKind::Skin
+    } else {
+        TipKind::Bone
+    };
+    let est = |q| super::literature::table_estimate(table, finger, q, tip, rho, confidence);
+    let rel = [Quantity::RelJ1, Quantity::RelJ2, Quantity::RelJ3];
+    let k = finger.segments();
+    let mut segments = Vec::new();
+    let mut why = None;
+    for (i, &q) in rel[..k].iter().enumerate() {
+        let e = est(q)?;
+        why = why.or(e.why.clone());
+        segments.push((format!("j{}", i + 1), TablePlaced::affine(&e, 0.0, length)));
+    }
+    let last = if finger == Finger::Thumb {
+        Quantity::RelJ2
+    } else {
+        Quantity::RelJ3
+    };
+    let mut joints = vec![TableJoint {
+        joint: if finger == Finger::Thumb {
+            Joint::Ip
+        } else {
+            Joint::Pip
+        },
+        position: TablePlaced::affine(&est(Quantity::RelJ1)?, 0.0, length),
+    }];
+    if finger != Finger::Thumb {
+        joints.push(TableJoint {
+            joint: Joint::Dip,
+            position: TablePlaced::affine(&est(last)?, length, -length),
+        });
+    }
+    let metacarpal = est(Quantity::RatioMcJ)
+        .ok()
+        .map(|e| TablePlaced::affine(&e, 0.0, length));
+    Ok(TablePlacement {
+        finger,
+        length,
+        n: est(Quantity::RelJ1)?.n,
+        tip,
+        rho,
+        joints,
+        segments,
+        metacarpal,
+        why,
+    })
+}
+
+#[cfg(test)]
+mod table_tests {
+    use super::*;
+    use crate::dataset::SummaryTable;
+
+    #[test]
+    fn placed_from_bk_by_hand() {
+        let t = SummaryTable::load(std::path::Path::new(
+            "data/literature/buryanov-kotiuk-2010.csv",
+        ))
+        .unwrap();
+        let p = place_from_table(&t, Finger::Index, 100.0, 0.5, 0.95).unwrap();
+        // Tip at the skin: finger 39.78 + 22.38 + 15.82 + 3.84 = 81.82; PIP at 39.78 / 81.82,
+        // DIP at (39.78 + 22.38) / 81.82 of the length.
+        assert!((p.joints[0].position.mean - 100.0 * 39.78 / 81.82).abs() < 1e-12);
+        assert!((p.joints[1].position.mean - 100.0 * 62.16 / 81.82).abs() < 1e-12);
+        let ci = p.joints[1].position.ci.unwrap();
+        assert!(ci.low < p.joints[1].position.mean && p.joints[1].position.mean < ci.high);
+        assert_eq!(p.tip, crate::dataset::TipKind::Skin);
+        // mc/J: 68.12 / 81.82.
+        assert!((p.metacarpal.unwrap().mean - 100.0 * 68.12 / 81.82).abs() < 1e-12);
+        let th = place_from_table(&t, Finger::Thumb, 10.0, 0.5, 0.95).unwrap();
+        assert_eq!((th.joints.len(), th.segments.len()), (1, 2));
+        assert!((th.joints[0].position.mean - 10.0 * 31.57 / 58.91).abs() < 1e-12);
+    }
+}

@@ -60,6 +60,9 @@ pub(crate) struct Args {
     /// A note for the history record (e.g. where the X-rays come from)
     #[arg(long, value_name = "TEXT")]
     note: Option<String>,
+    /// Add rows whose fingertips differ from the dataset's (bone with skin), which is refused otherwise
+    #[arg(long)]
+    mixed_tips: bool,
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]
@@ -77,6 +80,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
         rows,
         accept_flagged: args.accept_flagged && !args.strict,
         note: args.note.clone(),
+        mixed_tips: args.mixed_tips,
         settings: args.boot.settings()?,
     })?;
     print_outcome(&outcome);

@@ -243,3 +243,67 @@ mod tests {
         assert!(parse_age_bins("151").unwrap_err().contains("from 0 to 150"));
     }
 }
+
+/// The default dataset a summary table's correlations between segments are taken from.
+pub(crate) const DEFAULT_CORRELATION_FROM: &str = "data/atlas/measurements.csv";
+
+/// The correlation assumed between the segments of a summary table (which gives none).
+#[derive(Args, Debug, Clone)]
+pub(crate) struct CorrelationArgs {
+    /// Correlation assumed between any two segments of a summary table's finger, from 0 to 1 (default: measured on --correlation-from)
+    #[arg(long, value_name = "R", value_parser = parse_correlation, allow_negative_numbers = true, conflicts_with = "correlation_from")]
+    pub(crate) correlation: Option<f64>,
+    /// Dataset with per-hand values whose segment-length correlations a summary table is assumed to share
+    #[arg(long, value_name = "PATH", default_value = DEFAULT_CORRELATION_FROM)]
+    pub(crate) correlation_from: PathBuf,
+}
+
+impl CorrelationArgs {
+    /// The assumed correlation: given, or measured on the dataset named (refused with the
+    /// way out when the default dataset is not there).
+    pub(crate) fn correlation(&self) -> Result<analysis::literature::Correlation, Error> {
+        if let Some(r) = self.correlation {
+            return Ok(analysis::literature::Correlation::given(r));
+        }
+        if self.correlation_from == Path::new(DEFAULT_CORRELATION_FROM)
+            && !self.correlation_from.exists()
+        {
+            return Err(Error::Usage(format!(
+                "a summary table gives no correlations between its segments, and {DEFAULT_CORRELATION_FROM} (whose per-hand correlations are assumed by default) is not in the current directory; run from the phalanx checkout, or give --correlation-from PATH (a dataset with per-hand values) or --correlation R"
+            )));
+        }
+        let data = crate::dataset::Dataset::load(&self.correlation_from)?;
+        Ok(analysis::literature::correlations_from(&data))
+    }
+}
+
+/// A correlation from 0 to 1.
+fn parse_correlation(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(r) if (0.0..=1.0).contains(&r) => Ok(r),
+        _ => Err(format!(
+            "'{text}' is not a correlation from 0 to 1 (e.g. 0.5)"
+        )),
+    }
+}
+
+/// Whether rows whose fingertips differ (bone with skin) may be pooled.
+#[derive(Args, Debug, Clone, Copy)]
+pub(crate) struct TipArgs {
+    /// Pool rows whose fingertips differ (some at the bone, some at the skin), which is refused otherwise
+    #[arg(long)]
+    pub(crate) mixed_tips: bool,
+}
+
+impl TipArgs {
+    /// Refuses a dataset that mixes bone and skin tips, unless --mixed-tips.
+    pub(crate) fn check(&self, data: &crate::dataset::Dataset) -> Result<(), Error> {
+        if self.mixed_tips {
+            return Ok(());
+        }
+        match crate::dataset::tip::pooling_problem(&[(&data.path, &data.rows)], "--mixed-tips") {
+            Some(m) => Err(Error::Usage(m)),
+            None => Ok(()),
+        }
+    }
+}

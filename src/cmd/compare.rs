@@ -1,38 +1,55 @@
 //! `phalanx compare`: two cohorts of X-rays, finger by finger.
 
-use super::args::BootArgs;
+use super::args::{BootArgs, CorrelationArgs, TipArgs};
 use super::out;
-use crate::analysis::compare;
-use crate::dataset::Dataset;
+use crate::analysis::{compare, literature};
+use crate::dataset::{CohortNotes, Source};
 use crate::error::Error;
 use crate::report;
 use crate::report::layout::Width;
 use clap::ValueEnum;
 use std::path::PathBuf;
 
-/// Compare two datasets finger by finger: differences, effect sizes and external coverage
+/// Compare two cohorts finger by finger: its conclusion first, then differences, effect sizes and coverage
 #[derive(clap::Args, Debug)]
 #[command(
-    after_help = "For every finger and quantity both datasets measure: n, mean and SD of each; the difference \
-                  B - A with a Welch t interval and a bootstrap interval (each cohort resampled on its own, \
-                  seeded); Hedges' g with its interval; and the external coverage, the share of B's X-rays \
-                  inside A's prediction interval for one new X-ray and of A's inside B's. Then a sentence per \
-                  finger naming its largest differences, and the fingertip offset (a share of the finger's \
-                  length) that would explain the difference of the last segment if one cohort measured to \
-                  the skin and the other to the bone. Lengths are compared only in one physical unit.\n\n\
+    after_help = "The output leads with its conclusion: one sentence overall and one per finger, then how \
+                  the cohorts differ (age, side, fingertip, landmarks, from their rows and from the \
+                  description X.cohort.csv beside a file X.csv), then the tables.\n\n\
+                  Two datasets: for every finger and quantity both measure, n, mean and SD of each; the \
+                  difference B - A with a Welch t interval and a bootstrap interval (each cohort resampled \
+                  on its own, seeded); Hedges' g with its interval; and the external coverage, the share of \
+                  B's X-rays inside A's prediction interval for one new X-ray and of A's inside B's; and the \
+                  fingertip offset (a share of the finger's length) that would explain the difference of the \
+                  last segment if one cohort measured to the skin and the other to the bone.\n\n\
+                  A published summary table (finger,segment,mean,sd,n,unit; see data/literature/) on either \
+                  side: its ratio of means for each quantity, with a delta-method standard error under an \
+                  assumed correlation between segments (by default each finger's mean correlation of \
+                  segment lengths in --correlation-from; --correlation R sets one), B - A with a Welch-type \
+                  interval, and the verdict at correlations 0 and 0.9 beside the assumed one. When the table \
+                  gives the fingertip's soft tissue, the dataset's last segment is set against the table's \
+                  bone only and bone plus soft tissue, and the output says which it fits. Lengths are \
+                  compared only in one physical unit. Rows of one dataset whose fingertips differ (bone \
+                  with skin) are refused unless --mixed-tips.\n\n\
                   Examples:\n  phalanx compare data/measurements.csv data/atlas/measurements.csv\n  \
+                  phalanx compare data/measurements.csv data/literature/buryanov-kotiuk-2010.csv\n  \
+                  phalanx compare lab.csv data/literature/buryanov-kotiuk-2010.csv --correlation 0.6\n  \
                   phalanx compare lab.csv data/atlas/measurements.csv --format json\n  \
                   phalanx compare a.csv b.csv --format csv --resamples 2000"
 )]
 pub struct Args {
-    /// Dataset A (the reference; differences are B - A)
+    /// Cohort A, a dataset or a summary table (the reference; differences are B - A)
     #[arg(value_name = "A")]
     a: PathBuf,
-    /// Dataset B
+    /// Cohort B, a dataset or a summary table
     #[arg(value_name = "B")]
     b: PathBuf,
     #[command(flatten)]
     boot: BootArgs,
+    #[command(flatten)]
+    correlation: CorrelationArgs,
+    #[command(flatten)]
+    tips: TipArgs,
     /// Output format
     #[arg(long, value_enum, default_value_t = Format::Table)]
     format: Format,
@@ -47,20 +64,56 @@ enum Format {
 
 pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     let settings = args.boot.settings()?;
-    let a = Dataset::load(&args.a)?;
-    let b = Dataset::load(&args.b)?;
-    let c = compare::cohorts(&a, &b, &settings);
-    if c.fingers.is_empty() {
-        return Err(Error::Usage(format!(
-            "{} and {} have no finger in common to compare",
-            a.path, b.path
-        )));
+    let a = Source::load(&args.a)?;
+    let b = Source::load(&args.b)?;
+    for s in [&a, &b] {
+        if let Source::Data(d) = s {
+            args.tips.check(d)?;
+        }
     }
-    let bytes = match args.format {
-        Format::Table => report::compare::text(&c, width).into_bytes(),
-        Format::Json => report::json::compare(&c)?,
-        Format::Csv => report::compare::csv(&c)?,
+    let (notes_a, notes_b) = (CohortNotes::beside(&args.a)?, CohortNotes::beside(&args.b)?);
+    let bytes = match (&a, &b) {
+        (Source::Data(x), Source::Data(y)) => {
+            let mut c = compare::cohorts(x, y, &settings);
+            if c.fingers.is_empty() {
+                return Err(no_common(&a, &b));
+            }
+            (c.a.about, c.b.about) = (notes_a, notes_b);
+            match args.format {
+                Format::Table => report::compare::text(&c, width).into_bytes(),
+                Format::Json => report::json::compare(&c)?,
+                Format::Csv => report::compare::csv(&c)?,
+            }
+        }
+        _ => {
+            let correlation = args.correlation.correlation()?;
+            let mut c = literature::tables(side(&a), side(&b), &correlation, settings.confidence);
+            if c.fingers.is_empty() {
+                return Err(no_common(&a, &b));
+            }
+            (c.a.about, c.b.about) = (notes_a, notes_b);
+            match args.format {
+                Format::Table => report::compare_table::text(&c, width).into_bytes(),
+                Format::Json => report::json::compare_table(&c)?,
+                Format::Csv => report::compare_table::csv(&c)?,
+            }
+        }
     };
     out::print(&bytes)?;
     Ok(0)
+}
+
+fn no_common(a: &Source, b: &Source) -> Error {
+    Error::Usage(format!(
+        "{} and {} have no finger in common to compare",
+        a.path(),
+        b.path()
+    ))
+}
+
+fn side(s: &Source) -> literature::Side<'_> {
+    match s {
+        Source::Data(d) => literature::Side::Data(d),
+        Source::Table(t) => literature::Side::Table(t),
+    }
 }

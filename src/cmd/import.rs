@@ -160,6 +160,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
                 rows: NewRows::Rows(rows),
                 accept_flagged: args.accept_flagged && !args.strict,
                 note: args.note.clone(),
+                mixed_tips: false,
                 settings,
             })?;
             super::add::print_outcome(&outcome);

@@ -1,6 +1,6 @@
 //! `phalanx place`: where to put the joints of a model finger.
 
-use super::args::{BootArgs, DataArgs, TextFormat, parse_finger, parse_length};
+use super::args::{BootArgs, CorrelationArgs, DataArgs, TextFormat, parse_finger, parse_length};
 use super::out;
 use crate::analysis::placement;
 use crate::dataset::Finger;
@@ -13,13 +13,23 @@ use crate::report::layout::Width;
 #[command(
     after_help = "Positions are measured from the finger's root joint (MCP): PIP at J~1 x L, DIP at (J~1 + J~2) x L, \
                   the tip at L; the thumb's IP joint at J~1 x L. Lengths are in your model's units.\n\n\
-                  Examples:\n  phalanx place --finger index --length 1000\n  phalanx place --hand thumb=5.1,index=7.9,middle=8.6,ring=8.1,little=6.4\n  phalanx place --finger ring --length 81.5 --format json"
+                  With --reference, the positions come from another cohort: a dataset with per-hand values \
+                  (e.g. the atlas, data/atlas/measurements.csv) or a published summary table \
+                  (data/literature/); from a table they are its ratios of means, the tip at the skin when it \
+                  gives the fingertip's soft tissue, and the intervals rest on an assumed correlation between \
+                  its segments (--correlation, --correlation-from), which the output states.\n\n\
+                  Examples:\n  phalanx place --finger index --length 1000\n  phalanx place --finger index --length 80 --reference data/literature/buryanov-kotiuk-2010.csv\n  phalanx place --hand thumb=5.1,index=7.9,middle=8.6,ring=8.1,little=6.4\n  phalanx place --finger ring --length 81.5 --format json"
 )]
 pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
     #[command(flatten)]
     boot: BootArgs,
+    /// Place from this cohort instead of --data: a dataset (e.g. data/atlas/measurements.csv) or a summary table (e.g. data/literature/buryanov-kotiuk-2010.csv)
+    #[arg(long, value_name = "DATA|TABLE")]
+    reference: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    correlation: CorrelationArgs,
     /// The finger (with --length)
     #[arg(long, value_parser = parse_finger, requires = "length", conflicts_with = "hand")]
     finger: Option<Finger>,
@@ -68,7 +78,15 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
             ));
         }
     };
-    let a = super::load_and_analyse(&args.data.data, &args.boot.settings()?)?;
+    let settings = args.boot.settings()?;
+    let data = match &args.reference {
+        None => args.data.data.clone(),
+        Some(r) => match crate::dataset::Source::load(r)? {
+            crate::dataset::Source::Table(t) => return place_from_table(args, &t, &wanted, width),
+            crate::dataset::Source::Data(_) => r.clone(),
+        },
+    };
+    let a = super::load_and_analyse(&data, &settings)?;
     let mut placements = Vec::new();
     for (f, l) in wanted {
         placements.push(placement::place(&a, f, l).ok_or_else(|| {
@@ -83,6 +101,36 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
             report::text::placement(&placements, a.settings.confidence, width).into_bytes()
         }
         TextFormat::Json => report::json::placement(&a, &placements)?,
+    };
+    out::print(&bytes)?;
+    Ok(0)
+}
+
+/// `place --reference TABLE`: the joints from a summary table's ratios of means.
+fn place_from_table(
+    args: &Args,
+    table: &crate::dataset::SummaryTable,
+    wanted: &[(Finger, f64)],
+    width: Width,
+) -> Result<i32, Error> {
+    let correlation = args.correlation.correlation()?;
+    let confidence = args.boot.settings()?.confidence;
+    let mut ps = Vec::new();
+    for &(f, l) in wanted {
+        let p = placement::place_from_table(table, f, l, correlation.of(f), confidence)
+            .map_err(|e| Error::Usage(format!("{}: {e}; it cannot place the {f}", table.path)))?;
+        ps.push(p);
+    }
+    let bytes = match args.format {
+        TextFormat::Table => report::text::table_placement(
+            &table.path,
+            &ps,
+            &report::compare_table::correlation_line(&correlation),
+            confidence,
+            width,
+        )
+        .into_bytes(),
+        TextFormat::Json => report::json::table_placement(table, &correlation, confidence, &ps)?,
     };
     out::print(&bytes)?;
     Ok(0)

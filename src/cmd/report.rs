@@ -11,7 +11,9 @@ use crate::dataset::claims::Claims;
 use crate::error::Error;
 use crate::report::deform as deform_view;
 use crate::report::render::Templates;
-use crate::report::view::{AtlasInputs, DeformSection, ReferenceAudit, ReportInputs};
+use crate::report::view::{
+    AtlasInputs, DeformSection, LiteratureInputs, ReferenceAudit, ReportInputs,
+};
 use crate::report::writer::OutputFile;
 use crate::report::{self, Formats};
 use crate::rig::AuditedRig;
@@ -26,6 +28,8 @@ use std::path::{Path, PathBuf};
 const DEFAULT_RIGS: &str = "data/rigs";
 /// The atlas of the section "The paper against N atlas radiographs".
 const DEFAULT_ATLAS: &str = "data/atlas/measurements.csv";
+/// The published table of the section "The paper against published measurements".
+const DEFAULT_LITERATURE: &str = "data/literature/buryanov-kotiuk-2010.csv";
 /// The real rig whose audit and deformation the report shows (MIT, vendored).
 const DEFAULT_DEFORM_RIG: &str = "data/rigs/webxr-generic-hand/right.glb";
 /// Sample sizes of the coverage measured on the atlas's hands.
@@ -79,6 +83,9 @@ pub(crate) struct Args {
     /// Measurements of an atlas for "The paper against N atlas radiographs"; absent = no section
     #[arg(long, value_name = "PATH", default_value = DEFAULT_ATLAS)]
     atlas: PathBuf,
+    /// A published summary table for "The paper against published measurements" (its segments' correlations are taken from the atlas); absent = no section
+    #[arg(long, value_name = "PATH", default_value = DEFAULT_LITERATURE)]
+    literature: PathBuf,
     /// A rigged hand (glTF) audited and deformed as it is and as `audit --fix` writes it, in "Popular rigs"; absent = no such part
     #[arg(long, value_name = "PATH", default_value = DEFAULT_DEFORM_RIG)]
     deform_rig: PathBuf,
@@ -140,9 +147,11 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     } else {
         None
     };
+    // The simulations' bootstraps take as many resamples as their printed coverage needs
+    // (coverage::SIM_RESAMPLES, at every size, the data's own too), not the analysis's.
     let cov_settings = CoverageSettings {
         sims: args.sims as usize,
-        resamples: settings.resamples,
+        resamples: settings.resamples.min(coverage::SIM_RESAMPLES),
         seed: settings.seed,
         confidence: settings.confidence,
         max_n: Some(coverage::REPORT_MAX_N),
@@ -187,6 +196,13 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         },
     );
     let placements = placement::place_all(&a, args.model_length);
+    let literature = literature_inputs(
+        &args.literature,
+        &args.atlas,
+        &paper_data,
+        atlas.as_ref(),
+        settings.confidence,
+    )?;
     drop(paper_data);
     let wrist = match &atlas {
         Some(_) => session::wrist_ratios_beside(&args.atlas)?,
@@ -218,11 +234,53 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         rigs: &rigs,
         paper_xrays,
         atlas: atlas.as_ref(),
+        literature: literature.as_ref(),
         deform: deform.as_ref(),
     };
     let files = report::render(&inputs, formats, &templates)?;
     write(&args.out, &files)?;
     Ok(0)
+}
+
+/// The paper against a published table, and the atlas against it, with the atlas's
+/// correlations assumed between the table's segments: only with the atlas (the correlations
+/// come from it) and the table present, over the paper's X-rays.
+fn literature_inputs(
+    table: &Path,
+    atlas_path: &Path,
+    paper: &Dataset,
+    atlas: Option<&AtlasInputs>,
+    confidence: f64,
+) -> Result<Option<LiteratureInputs>, Error> {
+    use crate::analysis::literature::{self, Side};
+    use crate::dataset::{CohortNotes, SummaryTable};
+    let Some(atlas) = atlas else { return Ok(None) };
+    if !table.exists() {
+        return Ok(None);
+    }
+    let t = SummaryTable::load(table)?;
+    let atlas_data = Dataset::load(atlas_path)?;
+    let correlation = literature::correlations_from(&atlas_data);
+    let notes_table = CohortNotes::beside(table)?;
+    let notes_atlas = CohortNotes::beside(atlas_path)?;
+    let mut p = literature::tables(Side::Data(paper), Side::Table(&t), &correlation, confidence);
+    p.a.about = CohortNotes::beside(Path::new(&paper.path))?;
+    p.b.about = notes_table.clone();
+    let mut x = literature::tables(
+        Side::Data(&atlas_data),
+        Side::Table(&t),
+        &correlation,
+        confidence,
+    );
+    x.a.about = notes_atlas.clone();
+    x.b.about = notes_table;
+    let mut info = atlas.cohorts.b.clone();
+    info.about = notes_atlas;
+    Ok(Some(LiteratureInputs {
+        paper: p,
+        atlas: Some(x),
+        atlas_info: Some(info),
+    }))
 }
 
 /// Refuses a coverage simulation too large to serve (see [`crate::analysis::budget`]),

@@ -1,6 +1,6 @@
 //! `phalanx stats`: the statistics of every finger.
 
-use super::args::{BootArgs, DataArgs, GroupArgs};
+use super::args::{BootArgs, DataArgs, GroupArgs, TipArgs};
 use super::out;
 use crate::dataset::Dataset;
 use crate::error::Error;
@@ -20,6 +20,8 @@ pub(crate) struct Args {
     boot: BootArgs,
     #[command(flatten)]
     groups: GroupArgs,
+    #[command(flatten)]
+    tips: TipArgs,
     /// Output format
     #[arg(long, value_enum, default_value_t = Format::Table)]
     format: Format,
@@ -36,6 +38,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
     let settings = args.boot.settings()?;
     let by = args.groups.group_by()?;
     let dataset = Dataset::load(&args.data.data)?;
+    args.tips.check(&dataset)?;
     let a = super::analyse_showing_progress(&dataset, &settings, quiet)?;
     super::warn_implausible(&a);
     let groups = super::groups_of(&dataset, by.as_ref(), &settings);

@@ -18,16 +18,20 @@
 
 pub(crate) mod append;
 pub mod claims;
+pub mod cohort;
 pub(crate) mod csvinput;
 pub(crate) mod error;
 pub(crate) mod finger;
 pub mod history;
 pub(crate) mod landmarks;
+pub mod literature;
 pub(crate) mod quantity;
 pub mod tip;
 
+pub use cohort::CohortNotes;
 pub use error::{DataError, Problem};
 pub use finger::Finger;
+pub use literature::{Segment, Source, SummaryTable, TableRow};
 pub use quantity::Quantity;
 pub use tip::{TipCounts, TipKind};
 

@@ -99,3 +99,112 @@ impl TipCounts {
         format!("mixed: {}", parts.join(", "))
     }
 }
+
+/// Lines as people read them: "2-6, 9, 12-13", at most `max` runs, then "and N more".
+fn line_runs(lines: &[u64], max: usize) -> String {
+    let mut runs: Vec<(u64, u64)> = Vec::new();
+    for &l in lines {
+        match runs.last_mut() {
+            Some((_, hi)) if *hi + 1 == l => *hi = l,
+            _ => runs.push((l, l)),
+        }
+    }
+    let shown: Vec<String> = runs
+        .iter()
+        .take(max)
+        .map(|&(a, b)| {
+            if a == b {
+                a.to_string()
+            } else {
+                format!("{a}-{b}")
+            }
+        })
+        .collect();
+    let more = runs.len().saturating_sub(max);
+    if more > 0 {
+        format!("{} and {more} more", shown.join(", "))
+    } else {
+        shown.join(", ")
+    }
+}
+
+/// The refusal to pool rows whose fingertips differ: `None` unless some rows of `files`
+/// (each a file's name and its rows) record their tips at the bone and others at the skin.
+/// Rows with no recorded tip pool with either. The message names the rows of each kind,
+/// why pooling them is wrong, and the way out (`option`, e.g. `--mixed-tips`).
+///
+/// A last segment to the bone is shorter than one to the skin by the fingertip's soft
+/// tissue (3.7 to 5.7 mm on average, Buryanov and Kotiuk 2010, about 4-8% of the finger),
+/// so a pooled J~3 mixes two quantities and every relative value shifts with it.
+pub fn pooling_problem(files: &[(&str, &[super::Row])], option: &str) -> Option<String> {
+    let kind = |k: TipKind| -> Vec<String> {
+        files
+            .iter()
+            .filter_map(|(name, rows)| {
+                let lines: Vec<u64> = rows
+                    .iter()
+                    .filter(|r| r.meta.tip == Some(k))
+                    .map(|r| r.line)
+                    .collect();
+                (!lines.is_empty()).then(|| {
+                    let n = lines.len();
+                    format!(
+                        "{n} row{} of {name} (line{} {})",
+                        if n == 1 { "" } else { "s" },
+                        if n == 1 { "" } else { "s" },
+                        line_runs(&lines, 6)
+                    )
+                })
+            })
+            .collect()
+    };
+    let (bone, skin) = (kind(TipKind::Bone), kind(TipKind::Skin));
+    if bone.is_empty() || skin.is_empty() {
+        return None;
+    }
+    Some(format!(
+        "the rows measure the last segment to different fingertips: {} at the end of the bone, {} at the skin's outline. A last segment to the skin is longer by the fingertip's soft tissue (3.7 to 5.7 mm on average, Buryanov & Kotiuk 2010), so pooled statistics would mix two quantities. Keep them in separate files and compare them with 'phalanx compare', re-measure one group to the other's tip, or give {option} to pool them anyway",
+        bone.join(" and "),
+        skin.join(" and ")
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dataset::Dataset;
+
+    #[test]
+    fn bone_with_skin_is_refused_naming_the_rows() {
+        let skin = Dataset::from_bytes(
+            "data.csv",
+            b"xray,finger,j1,j2,j3,tip\na,index,4,2,2,skin\nb,index,4,2,2,skin\nc,index,4,2,2,\n",
+        )
+        .unwrap();
+        let bone = Dataset::from_bytes(
+            "new.csv",
+            b"xray,finger,j1,j2,j3,tip\nd,index,4,2,2,bone\ne,index,4,2,2,bone\nf,index,4,2,2,bone\ng,index,4,2,2,skin\n",
+        )
+        .unwrap();
+        let m = pooling_problem(
+            &[("data.csv", &skin.rows), ("new.csv", &bone.rows)],
+            "--mixed-tips",
+        )
+        .unwrap();
+        assert!(
+            m.contains("3 rows of new.csv (lines 2-4) at the end of the bone"),
+            "{m}"
+        );
+        assert!(
+            m.contains("2 rows of data.csv (lines 2-3) and 1 row of new.csv (line 5) at the skin"),
+            "{m}"
+        );
+        assert!(m.contains("give --mixed-tips"), "{m}");
+        // Unrecorded tips pool with either; one kind alone is fine.
+        assert_eq!(
+            pooling_problem(&[("data.csv", &skin.rows)], "--mixed-tips"),
+            None
+        );
+        assert_eq!(line_runs(&[1, 2, 3, 5, 7, 8], 2), "1-3, 5 and 1 more");
+    }
+}

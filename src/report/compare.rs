@@ -209,17 +209,103 @@ pub fn tip_sentence(last: &LastSegment, cohorts: &Cohorts, names: Names<'_>) -> 
     )
 }
 
-/// The terminal output of `phalanx compare`: the cohorts, then per finger two tables
-/// (means and differences; effect size and external coverage), its sentence and its tip
-/// offset, then what was not compared. Fitted to `width` ([`super::layout`]).
+/// The overall sentence of two datasets compared: how many quantities differ clearly (a
+/// Welch interval without 0), the largest effect, and the last segment on every finger.
+pub fn overall_sentence(c: &Cohorts, names: Names<'_>) -> String {
+    let all: Vec<(Finger, Quantity, &Comparison)> = c
+        .fingers
+        .iter()
+        .flat_map(|f| {
+            f.quantities
+                .iter()
+                .map(move |q| (f.finger, q.quantity, &q.comparison))
+        })
+        .collect();
+    let clear: Vec<&(Finger, Quantity, &Comparison)> = all
+        .iter()
+        .filter(|(_, _, x)| x.welch.is_some_and(|w| !w.interval.contains(0.0)))
+        .collect();
+    let mut s = format!(
+        "Overall: {} of {} quantities over {} finger{} differ clearly (their Welch {} interval of B - A excludes 0)",
+        clear.len(),
+        all.len(),
+        c.fingers.len(),
+        if c.fingers.len() == 1 { "" } else { "s" },
+        level(c.settings.confidence)
+    );
+    let g = |x: &Comparison| x.hedges_g.map_or(0.0, |g| g.g.abs());
+    if let Some((f, q, x)) = clear.iter().max_by(|a, b| g(a.2).total_cmp(&g(b.2))) {
+        s.push_str(&format!(
+            "; the largest is the {} {} (g = {})",
+            f.name(),
+            q.symbol(),
+            x.hedges_g.map_or("n/a".to_string(), |g| signed(g.g, 2))
+        ));
+    }
+    let lasts: Vec<&LastSegment> = c
+        .fingers
+        .iter()
+        .filter_map(|f| f.last_segment.as_ref())
+        .collect();
+    if !lasts.is_empty() && lasts.len() == c.fingers.len() {
+        let shorter_b = lasts.iter().all(|l| l.difference < 0.0);
+        let shorter_a = lasts.iter().all(|l| l.difference > 0.0);
+        if shorter_a || shorter_b {
+            let (short, long) = if shorter_b {
+                (names.b, names.a)
+            } else {
+                (names.a, names.b)
+            };
+            let lo = lasts
+                .iter()
+                .map(|l| l.difference.abs())
+                .fold(f64::INFINITY, f64::min);
+            let hi = lasts.iter().map(|l| l.difference.abs()).fold(0.0, f64::max);
+            s.push_str(&format!(
+                ". On every finger {short}'s last segment is the shorter (by {} to {} of the finger): fingertips at the bone in {short} and at the skin in {long} would explain it",
+                num(lo, 4),
+                num(hi, 4)
+            ));
+        }
+    }
+    s.push('.');
+    s
+}
+
+/// The terminal output of `phalanx compare`: the cohorts, the conclusion (one sentence
+/// overall, one per finger with its fingertip offset), how the cohorts differ, then per
+/// finger two tables (means and differences; effect size and external coverage), then
+/// what was not compared. Fitted to `width` ([`super::layout`]).
 pub fn text(c: &Cohorts, width: Width) -> String {
     let conf = level(c.settings.confidence);
     let mut hidden = Hidden::new();
     let mut out = String::new();
     out.push_str(&format!("A: {} ({})\n", c.a.path, cohort_line(&c.a)));
     out.push_str(&format!("B: {} ({})\n", c.b.path, cohort_line(&c.b)));
+    out.push_str("\nConclusion\n");
+    out.push_str(&overall_sentence(c, Names::AB));
+    out.push('\n');
+    for f in &c.fingers {
+        out.push_str(&format!(
+            "- {}",
+            finger_sentence(f, Names::AB, c.settings.confidence)
+        ));
+        if let Some(last) = &f.last_segment {
+            out.push(' ');
+            out.push_str(&tip_sentence(last, c, Names::AB));
+        }
+        out.push('\n');
+    }
+    out.push_str("\nHow the cohorts differ\n");
+    let (pa, pb) = (
+        super::compare_table::Profile::of_data(&c.a),
+        super::compare_table::Profile::of_data(&c.b),
+    );
+    for l in super::compare_table::differences(&pa, &pb, Names::AB) {
+        out.push_str(&format!("- {l}\n"));
+    }
     out.push_str(&format!(
-        "Differences are B - A, with {conf} Welch and bootstrap intervals (each cohort resampled on its own: {} resamples, seed {}). PI: the {conf} prediction interval for one new X-ray.\n",
+        "\nThe tables: differences are B - A, with {conf} Welch and bootstrap intervals (each cohort resampled on its own: {} resamples, seed {}). PI: the {conf} prediction interval for one new X-ray.\n",
         c.settings.resamples, c.settings.seed
     ));
     for f in &c.fingers {
@@ -261,12 +347,6 @@ pub fn text(c: &Cohorts, width: Width) -> String {
         out.push_str(&head.render(width, 0, &mut hidden));
         out.push('\n');
         out.push_str(&cov.render(width, 0, &mut hidden));
-        out.push_str(&finger_sentence(f, Names::AB, c.settings.confidence));
-        out.push('\n');
-        if let Some(last) = &f.last_segment {
-            out.push_str(&tip_sentence(last, c, Names::AB));
-            out.push('\n');
-        }
     }
     if !c.notes.is_empty() {
         out.push('\n');

@@ -302,6 +302,39 @@ pub fn placement(
     })
 }
 
+/// Joints placed from a summary table: `phalanx place --reference TABLE --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct TablePlacementDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
+    schema_version: u32,
+    /// The table's path and SHA-256.
+    reference: &'a str,
+    sha256: &'a str,
+    confidence: f64,
+    /// The correlation assumed between the table's segments, in words.
+    correlation_assumption: String,
+    correlation: &'a crate::analysis::literature::Correlation,
+    placements: &'a [crate::analysis::placement::TablePlacement],
+}
+
+/// The document of `phalanx place --reference TABLE --format json`.
+pub fn table_placement(
+    table: &crate::dataset::SummaryTable,
+    correlation: &crate::analysis::literature::Correlation,
+    confidence: f64,
+    ps: &[crate::analysis::placement::TablePlacement],
+) -> Result<Vec<u8>, Error> {
+    to_bytes(&TablePlacementDocument {
+        schema_version: SCHEMA_VERSION,
+        reference: &table.path,
+        sha256: &table.sha256,
+        confidence,
+        correlation_assumption: super::compare_table::correlation_line(correlation),
+        correlation,
+        placements: ps,
+    })
+}
+
 /// What `audit --fix` did, for the audit document.
 #[derive(Serialize, JsonSchema)]
 pub struct FixView<'a> {
@@ -398,6 +431,42 @@ pub fn compare(c: &crate::analysis::compare::Cohorts) -> Result<Vec<u8>, Error> 
             })
             .collect(),
         notes: &c.notes,
+    })
+}
+
+/// A cohort compared with a summary table: `phalanx compare A TABLE --format json`.
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct TableCompareDocument<'a> {
+    #[schemars(extend("const" = SCHEMA_VERSION))]
+    schema_version: u32,
+    /// How the statistics are defined, in words.
+    method: &'static str,
+    /// The overall sentence, then one per finger.
+    conclusion: Vec<String>,
+    /// The correlation assumed between the table's segments, in words.
+    correlation_assumption: String,
+    #[serde(flatten)]
+    cohorts: &'a crate::analysis::literature::TableCohorts,
+}
+
+/// What the table comparison's numbers are.
+pub const TABLE_COMPARE_METHOD: &str = "differences are B - A; a dataset's estimate is its mean over X-rays with the t interval (SE = SD / sqrt(n)); a summary table's is the ratio of its means with a delta-method SE under the stated correlation between segments and a t interval on n - 1 df (n: the smallest n of the segments used), and the prediction interval from the first-order SD of one hand's ratio; the interval of B - A is Welch-type (SE = sqrt(SE_A^2 + SE_B^2), Welch-Satterthwaite df); agrees: that interval holds 0; sweep: the same at correlations 0, the assumed one and 0.9; tips: the data's last segment against the table's to the bone and to the skin (soft tissue added to the distal phalanx and to the finger)";
+
+/// The document of `phalanx compare A TABLE --format json`.
+pub fn compare_table(c: &crate::analysis::literature::TableCohorts) -> Result<Vec<u8>, Error> {
+    let names = super::compare::Names::AB;
+    let mut conclusion = vec![super::compare_table::table_overall(c, names)];
+    conclusion.extend(
+        c.fingers
+            .iter()
+            .map(|f| super::compare_table::table_finger_sentence(f, names)),
+    );
+    to_bytes(&TableCompareDocument {
+        schema_version: SCHEMA_VERSION,
+        method: TABLE_COMPARE_METHOD,
+        conclusion,
+        correlation_assumption: super::compare_table::correlation_line(&c.correlation),
+        cohorts: c,
     })
 }
 

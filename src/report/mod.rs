@@ -6,6 +6,7 @@
 
 pub(crate) mod audit;
 pub(crate) mod compare;
+pub(crate) mod compare_table;
 pub(crate) mod csv_out;
 pub(crate) mod deform;
 pub mod json;

@@ -671,6 +671,73 @@ pub(crate) fn placement(
     fit_text(&out, width)
 }
 
+/// Joint positions placed from a summary table, one table per finger, with the sentence
+/// the intervals rest on (the correlation assumed between the table's segments).
+pub(crate) fn table_placement(
+    table: &str,
+    ps: &[crate::analysis::placement::TablePlacement],
+    correlation: &str,
+    confidence: f64,
+    width: Width,
+) -> String {
+    let c = level(confidence);
+    let mut hidden = Hidden::new();
+    let mut out = String::new();
+    for p in ps {
+        out.push_str(&format!(
+            "{} - model length {} (from the means of {}, {} hands); positions from the root joint (MCP at 0, tip at {}, {})\n",
+            p.finger.display_name(),
+            exact(p.length),
+            table,
+            p.n.map_or("n not given".to_string(), |n| n.to_string()),
+            exact(p.length),
+            match p.tip {
+                crate::dataset::TipKind::Skin => "the tip at the skin: the table's soft tissue included",
+                crate::dataset::TipKind::Bone => "the tip at the end of the bone: the table gives no soft tissue",
+            }
+        ));
+        let mut t = Grid::new()
+            .col("", Align::Left, Give::Keep)
+            .col("ratio of means", Align::Right, Give::Keep)
+            .col(format!("t CI {c}"), Align::Right, Give::Keep)
+            .col("prediction", Align::Right, Give::Keep);
+        let d = length_decimals(p.length);
+        let rows = p
+            .joints
+            .iter()
+            .map(|j| (format!("{} joint", j.joint.name()), &j.position))
+            .chain(
+                p.segments
+                    .iter()
+                    .map(|(s, v)| (format!("segment {}", s.to_uppercase()), v)),
+            )
+            .chain(
+                p.metacarpal
+                    .iter()
+                    .map(|m| ("MCP from the CMC".to_string(), m)),
+            );
+        for (what, v) in rows {
+            t.row(vec![
+                what,
+                num(v.mean, d),
+                crate::format::interval(v.ci, d),
+                crate::format::interval(v.pi, d),
+            ]);
+        }
+        out.push_str(&t.render(width, 0, &mut hidden));
+        if let Some(w) = &p.why {
+            out.push_str(&format!("no interval: {w}\n"));
+        }
+        out.push_str(&format!(
+            "The intervals rest on an assumed correlation of {} between the table's segments of this finger.\n\n",
+            crate::format::trimmed(p.rho, 2)
+        ));
+    }
+    out.push_str(&format!("{correlation}\n"));
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
+}
+
 /// The coverage measured on a population of hands: every method's coverage over the
 /// quantities per sample size beside the normal model's, then each quantity's per size.
 pub fn population(

@@ -49,6 +49,8 @@ pub struct ReportView {
     pub rigs: Option<RigsView>,
     /// Set when an atlas was given: "The paper against N atlas radiographs".
     pub atlas: Option<AtlasView>,
+    /// Set when a published table was given: "The paper against published measurements".
+    pub literature: Option<LiteratureView>,
     /// Set when the deformation rig was found: its audit and its skin as it is
     /// and as `audit --fix` writes it.
     pub deform: Option<DeformView>,
@@ -365,6 +367,8 @@ pub struct CoverageView {
     pub sims: String,
     /// Resamples per simulated dataset at the data's own n and elsewhere, in words.
     pub resamples: String,
+    /// Why the simulations take the resamples they take, for the methods.
+    pub method: String,
     /// What the simulation says at the data's n, and which interval to use.
     pub summary: String,
     /// Sample sizes of the data not simulated (n = 1, or beyond the report's limit).
@@ -413,6 +417,8 @@ pub struct KeyResults {
     pub misprints: KeyMisprints,
     /// Which interval to use, from the coverage simulation.
     pub intervals: String,
+    /// Where the paper's fingertips are, from a published table (when one was compared).
+    pub fingertips: Option<String>,
 }
 
 /// One finger's joints as shares of its length, root joint (MCP) to tip.
@@ -508,6 +514,8 @@ pub struct ReportInputs<'a> {
     pub paper_xrays: (usize, usize),
     /// The atlas compared with the data (`data/atlas`); `None`: no atlas section.
     pub atlas: Option<&'a AtlasInputs>,
+    /// A published table compared with the data (`data/literature`); `None`: no section.
+    pub literature: Option<&'a LiteratureInputs>,
     /// A real rig audited and deformed (`data/rigs/webxr-generic-hand/right.glb`);
     /// `None`: no such part.
     pub deform: Option<&'a DeformSection>,
@@ -690,6 +698,7 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         groups: groups_view(inputs.groups, a.settings.confidence),
         rigs: rigs_view(inputs.rigs),
         atlas: inputs.atlas.map(|x| atlas_view(a, x)),
+        literature: inputs.literature.map(literature_view),
         deform: inputs.deform.map(|d| d.view.clone()),
         plots: plots.iter().map(plot).collect(),
     }
@@ -1201,6 +1210,34 @@ pub fn interval_advice_of(points: &[CurvePoint], a: Option<&Analysis>) -> Option
     Some(s)
 }
 
+/// Why the coverage simulations take fewer resamples than the statistics: the Monte-Carlo
+/// error of the printed figures (see [`crate::analysis::coverage::SIM_RESAMPLES`]).
+fn simulation_method(s: &CoverageSettings, asked: usize) -> String {
+    let se = |p: f64| 100.0 * (p * (1.0 - p) / s.sims.max(1) as f64).sqrt();
+    // The bootstrap's bias on the percentile coverage: about 70 / B points (0.35 measured at
+    // B = 200 against 10,000; the endpoint noise is of order 1 / B).
+    let curve = crate::analysis::coverage::CURVE_RESAMPLES;
+    let b = s.resamples.min(curve);
+    let bias = 70.0 / b.max(1) as f64;
+    let measured = if b == curve {
+        " (measured against 10000 resamples: 0.3 to 0.5 points at 10 to 50 X-rays)"
+    } else {
+        ""
+    };
+    format!(
+        "each simulated dataset is bootstrapped with {b} resamples{} (the statistics above use the {asked} asked for), chosen by the Monte-Carlo error of the printed coverage. From {} simulated datasets a coverage near 95% has a Monte-Carlo SE of {:.2} points, one near 85% of {:.2}; the bootstrap's own noise lowers the percentile and BCa coverage by about 70 / B points at B resamples, {bias:.2} here{measured}, {:.1} times the SE near 95%. More resamples would move no printed figure beyond that noise, at a cost that grows with them. The t and prediction intervals do not use the bootstrap.",
+        if s.resamples > curve {
+            format!(", {} at this data's n", s.resamples)
+        } else {
+            String::new()
+        },
+        s.sims,
+        se(0.95),
+        se(0.85),
+        bias / se(0.95).max(1e-9),
+    )
+}
+
 fn coverage(inputs: &ReportInputs<'_>) -> CoverageView {
     let s = inputs.coverage_settings;
     let points = inputs.coverage;
@@ -1215,16 +1252,26 @@ fn coverage(inputs: &ReportInputs<'_>) -> CoverageView {
     });
     CoverageView {
         sims: s.sims.to_string(),
-        resamples: format!(
-            "{} bootstrap resamples per simulated dataset at this data's n ({}), at most {} at the other sizes",
-            s.resamples,
-            if data.is_empty() {
+        resamples: {
+            let data = if data.is_empty() {
                 "not simulated".to_string()
             } else {
                 data.join(", ")
-            },
-            crate::analysis::coverage::CURVE_RESAMPLES
-        ),
+            };
+            let curve = crate::analysis::coverage::CURVE_RESAMPLES;
+            if s.resamples <= curve {
+                format!(
+                    "{} bootstrap resamples per simulated dataset at every size, this data's n ({data}) included, or the exact enumeration where it needs fewer",
+                    s.resamples
+                )
+            } else {
+                format!(
+                    "{} bootstrap resamples per simulated dataset at this data's n ({data}), at most {curve} at the other sizes",
+                    s.resamples
+                )
+            }
+        },
+        method: simulation_method(s, inputs.analysis.settings.resamples),
         summary,
         notes,
         rows: points
@@ -1376,7 +1423,45 @@ fn key_results(inputs: &ReportInputs<'_>, claims: &ClaimsView) -> KeyResults {
         intervals: interval_advice_of(inputs.coverage, Some(a)).unwrap_or_else(|| {
             "The coverage of the intervals could not be simulated at this data's size.".to_string()
         }),
+        fingertips: inputs.literature.and_then(key_fingertips),
     }
+}
+
+/// The key result on the fingertips: where the paper's are, and the evidence in one sentence.
+fn key_fingertips(l: &LiteratureInputs) -> Option<String> {
+    let v = l.paper.tips.as_ref()?;
+    let name = table_name(&l.paper.b);
+    let ranges = |pick: fn(&crate::analysis::literature::TipFinding) -> f64| {
+        let xs: Vec<f64> = v.fingers.iter().map(pick).collect();
+        let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        (lo, hi)
+    };
+    let (slo, shi) = ranges(|t| t.soft_share);
+    Some(match v.overall {
+        Some(crate::analysis::literature::Fit::Skin) => format!(
+            "The paper's fingertips are at the skin, not at the end of the bone. On all {} fingers its last segment agrees with the bone plus the fingertip's soft tissue of {name} and lies outside its own {} interval against bone alone, at every assumed correlation from 0 to 0.9. The soft tissue is {} to {} of a finger measured to the skin, so a rig's tip at the skin compares with the paper as it is, and a tip at the bone needs that share added.",
+            v.fingers.len(),
+            level(l.paper.confidence),
+            percent(slo),
+            percent(shi),
+        ),
+        Some(crate::analysis::literature::Fit::Bone) => format!(
+            "The paper's fingertips are at the end of the bone: on all {} fingers its last segment agrees with the bone alone of {name} and not with bone plus soft tissue.",
+            v.fingers.len()
+        ),
+        _ => format!(
+            "Where the paper's fingertips are is not settled by {name}: the fingers do not agree on one tip at every assumed correlation from 0 to 0.9."
+        ),
+    })
+}
+
+/// "Buryanov & Kotiuk 2010", or the table's file.
+fn table_name(s: &crate::analysis::literature::SideInfo) -> String {
+    s.about
+        .as_ref()
+        .and_then(|a| a.name.clone())
+        .unwrap_or_else(|| s.path.clone())
 }
 
 /// How to cite the paper and phalanx.
@@ -1783,7 +1868,7 @@ fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
             format!("The atlas: {}", cohort_line(&c.b)),
         ],
         differs: format!(
-            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with {}; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin. A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
+            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with {}; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin, and its data record them at the skin, inferred from published adult measurements (section 12). A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
             c.b.xrays,
             crate::dataset::landmarks::ATLAS_LANDMARKS,
             c.a.xrays
@@ -1797,6 +1882,222 @@ fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
         proportions_intro,
         proportions: atlas_proportions(&atlas.analysis),
         notes: c.notes.iter().chain(&p.notes).cloned().collect(),
+    }
+}
+
+/// What the section "The paper against published measurements" reads: the paper (A)
+/// against a published table (B), and, when the atlas is there, the atlas (A) against it.
+#[derive(Debug, Clone)]
+pub struct LiteratureInputs {
+    pub paper: crate::analysis::literature::TableCohorts,
+    pub atlas: Option<crate::analysis::literature::TableCohorts>,
+    /// The atlas's description, for its line on why it differs.
+    pub atlas_info: Option<crate::analysis::compare::CohortInfo>,
+}
+
+/// The section "The paper against published measurements".
+#[derive(Debug, Clone, Serialize)]
+pub struct LiteratureView {
+    pub title: String,
+    /// The Markdown anchor of the section's heading.
+    pub anchor: String,
+    /// The published table: its citation and sample.
+    pub source: String,
+    /// One line per cohort on why it differs from the paper.
+    pub cohorts: Vec<String>,
+    /// Where the fingertips are: the table of the issue, with intervals.
+    pub tips: Vec<LiteratureTipRow>,
+    pub tip_finding: String,
+    /// One sentence per finger: the evidence.
+    pub tip_evidence: Vec<String>,
+    /// What it changes for a rig audit.
+    pub audit: String,
+    /// The correlation assumed between the table's segments, and the verdicts at 0 and 0.9.
+    pub correlation: String,
+    /// The paper beside the table to the skin, the atlas beside it to the bone.
+    pub side: Vec<LiteratureSideRow>,
+    pub side_intro: String,
+    /// One sentence per finger of the paper against the table.
+    pub sentences: Vec<String>,
+    pub notes: Vec<String>,
+}
+
+/// One finger's last segment: the paper's, the table's bone only and bone plus soft tissue.
+#[derive(Debug, Clone, Serialize)]
+pub struct LiteratureTipRow {
+    pub finger: String,
+    pub paper: String,
+    pub bone: String,
+    pub skin: String,
+    /// "bone plus soft tissue (tip at the skin)".
+    pub fits: String,
+    /// The fit at each correlation: "0: skin; 0.85: skin; 0.9: skin".
+    pub sweep: String,
+}
+
+/// One finger and quantity: the paper and the table to the skin, the atlas and the table
+/// to the bone, with the verdicts.
+#[derive(Debug, Clone, Serialize)]
+pub struct LiteratureSideRow {
+    pub finger: String,
+    pub quantity: String,
+    pub paper: String,
+    pub table_skin: String,
+    /// The verdict at 0, the assumed correlation and 0.9.
+    pub paper_verdict: String,
+    pub atlas: String,
+    pub table_bone: String,
+    pub atlas_verdict: String,
+}
+
+/// The section "The paper against published measurements".
+fn literature_view(l: &LiteratureInputs) -> LiteratureView {
+    use super::compare::{Names, short};
+    use super::compare_table::{
+        Profile, correlation_line, differs_in, estimate_cell, fit_words, table_finger_sentence,
+        tip_finding_sentence, tip_overall, trim_rho, verdict_cell,
+    };
+    let p = &l.paper;
+    let name = table_name(&p.b);
+    let names = Names {
+        a: "the paper",
+        b: &name,
+    };
+    let about = p.b.about.clone().unwrap_or_default();
+    let source = format!(
+        "{}: {}. What was measured: {}.",
+        about.citation.clone().unwrap_or_else(|| p.b.path.clone()),
+        about
+            .sample
+            .clone()
+            .unwrap_or_else(|| "sample not described".to_string()),
+        about
+            .landmarks
+            .clone()
+            .unwrap_or_else(|| "not described".to_string()),
+    );
+    let paper_profile = Profile::of_side(&p.a);
+    let table_profile = Profile::of_side(&crate::analysis::literature::SideInfo {
+        table_tip: None,
+        ..p.b.clone()
+    });
+    let mut cohorts = vec![format!(
+        "{name} differs from the paper in {}.",
+        differs_in(&paper_profile, &table_profile)
+    )];
+    if let Some(info) = &l.atlas_info {
+        cohorts.push(format!(
+            "{} differs from the paper in {}.",
+            info.about
+                .as_ref()
+                .and_then(|a| a.name.clone())
+                .map(|n| {
+                    let mut c = n.chars();
+                    c.next().map_or(String::new(), |f| {
+                        f.to_uppercase().collect::<String>() + c.as_str()
+                    })
+                })
+                .unwrap_or_else(|| "The atlas".to_string()),
+            differs_in(&paper_profile, &Profile::of_data(info))
+        ));
+    }
+    let conf = level(p.confidence);
+    let (tips, tip_finding, tip_evidence) = match &p.tips {
+        Some(v) => (
+            v.fingers
+                .iter()
+                .map(|t| LiteratureTipRow {
+                    finger: format!("{} {}", t.finger.name(), t.quantity.symbol()),
+                    paper: estimate_cell(&t.data, t.quantity),
+                    bone: estimate_cell(&t.bone, t.quantity),
+                    skin: estimate_cell(&t.skin, t.quantity),
+                    fits: fit_words(t.fit).to_string(),
+                    sweep: t
+                        .sweep
+                        .iter()
+                        .map(|(r, f)| {
+                            format!(
+                                "{}: {}",
+                                trim_rho(*r),
+                                f.and_then(|f| f.tip()).map_or("n/a", |t| t.name())
+                            )
+                        })
+                        .collect::<Vec<_>>()
+                        .join("; "),
+                })
+                .collect(),
+            tip_overall(v, names),
+            v.fingers
+                .iter()
+                .map(|t| tip_finding_sentence(t, names, p.confidence))
+                .chain(std::iter::once(format!(
+                    "Each difference is {name}'s ratio minus the paper's mean, with its {conf} Welch-type interval (both uncertainties); it agrees when that interval holds 0."
+                )))
+                .collect(),
+        ),
+        None => (
+            Vec::new(),
+            format!("{name} gives no fingertip soft tissue, so the paper's tips cannot be placed."),
+            Vec::new(),
+        ),
+    };
+    let soft: Vec<String> = p
+        .tips
+        .iter()
+        .flat_map(|v| &v.fingers)
+        .map(|t| format!("{} {}", t.finger.name(), percent(t.soft_share)))
+        .collect();
+    let audit = format!(
+        "What it changes for a rig audit: the paper's last segment ends at the skin, so a rig's last segment is compared with it as it is when the rig's tips are at the skin (the end of the finger's mesh), and no soft tissue is to be trimmed off. A rig whose tips sit at the end of the bone needs the fingertip's soft tissue added before it is compared: {name} measures it at {} of a finger measured to the skin, a share that scales with the rig's finger in any unit. A fixed offset in millimetres does not: a rig in the wrong unit would lose most of a segment to it. The audits of section 13 do not yet follow this: they still take the paper's tips as bone tips and trim an assumed 4 mm off every rig's last segment, so their last segments read about 4 mm short.",
+        soft.join(", ")
+    );
+    let mut side = Vec::new();
+    for f in &p.fingers {
+        let atlas_f = l
+            .atlas
+            .as_ref()
+            .and_then(|a| a.fingers.iter().find(|g| g.finger == f.finger));
+        for q in &f.quantities {
+            let aq = atlas_f.and_then(|g| g.quantities.iter().find(|x| x.quantity == q.quantity));
+            side.push(LiteratureSideRow {
+                finger: f.finger.name().to_string(),
+                quantity: short(q.quantity).to_string(),
+                paper: estimate_cell(&q.a, q.quantity),
+                table_skin: estimate_cell(&q.b, q.quantity),
+                paper_verdict: verdict_cell(&q.sweep),
+                atlas: aq.map_or("n/a".into(), |x| estimate_cell(&x.a, q.quantity)),
+                table_bone: aq.map_or("n/a".into(), |x| estimate_cell(&x.b, q.quantity)),
+                atlas_verdict: aq.map_or("n/a".into(), |x| verdict_cell(&x.sweep)),
+            });
+        }
+    }
+    let tip_word = match p.b.table_tip {
+        Some(crate::dataset::TipKind::Skin) => {
+            "to the skin (its soft tissue added), as the paper's rows record skin tips"
+        }
+        _ => "to the end of the bone",
+    };
+    let side_intro = format!(
+        "Each cohort beside {name} measured to the same fingertip: the paper's X-rays (mean and {conf} t interval) against {name}'s ratios of means {tip_word}; the atlas (bone tips) against {name} to the bone. A verdict says whether the {conf} interval of the difference holds 0 (agrees) or not (differs), the same at correlations 0, the assumed one and 0.9 unless each is named."
+    );
+    LiteratureView {
+        title: "The paper against published measurements".to_string(),
+        anchor: "12-the-paper-against-published-measurements".to_string(),
+        source,
+        cohorts,
+        tips,
+        tip_finding,
+        tip_evidence,
+        audit,
+        correlation: correlation_line(&p.correlation),
+        side,
+        side_intro,
+        sentences: p
+            .fingers
+            .iter()
+            .map(|f| table_finger_sentence(f, names))
+            .collect(),
+        notes: p.notes.clone(),
     }
 }
 

@@ -3,9 +3,9 @@
 //! the caller's business.
 
 use super::fix::{self, Fixed};
-use super::judge;
-use super::map::NameMap;
-use super::{AuditOptions, AuditedRig, GltfFile, Rig};
+use super::judge::{self, AuditOptions, AuditedRig};
+use super::read::map::NameMap;
+use super::read::{GltfFile, Rig};
 use crate::analysis::{self, Analysis, Settings};
 use crate::dataset::Dataset;
 use crate::error::Error;
@@ -32,7 +32,7 @@ pub struct AuditRequest<'a> {
     pub metacarpals: Option<&'a Path>,
     /// `--fix-mcp atlas`: the fix places each MCP outside the prediction
     /// interval from its CMC (or wrist) where `metacarpals` puts it, and holds
-    /// the other MCPs ([`super::ray`]); needs `metacarpals`.
+    /// the other MCPs ([`super::judge::ray`]); needs `metacarpals`.
     pub mcp_from_atlas: bool,
 }
 
@@ -116,7 +116,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
             };
             let placed = match &atlas {
                 Some(_) if req.mcp_from_atlas => {
-                    super::ray::mcp_from_base(&audited, &analysis, &req.options.judge)
+                    judge::ray::mcp_from_base(&audited, &analysis, &req.options.judge)
                 }
                 _ => audited.fingers.clone(),
             };

@@ -238,35 +238,63 @@ fn compositions(n: usize, r: &mut [u32], mut visit: impl FnMut(&[u32])) {
     }
 }
 
-/// Resamples whose counts are built before one pass over the data accumulates
-/// them all: the data is read once per block instead of once per resample.
-const BLOCK: usize = 16;
+/// Most chunks drawn by one task before one matrix product sums them all: the product
+/// reads (packs) the value matrix once per task, so the more resamples per product, the
+/// less that costs (a quarter of the time at 64). Fewer where a task's counts would pass
+/// [`TASK_BYTES`]. The tasks are fixed by n and the chunk numbers, not by the threads, and
+/// each resample's sum does not depend on how many rows the product has, so the result is
+/// the same at any thread count and task size.
+const CHUNKS_PER_TASK: usize = 4;
 
-/// Draws `len` resamples from chunk `k`'s stream and writes their means,
-/// resample by resample, to `out` (`len * q` values).
+/// Most bytes of counts one task holds (one per X-ray per resample): at 100,000 X-rays a
+/// task is one chunk (6.4 MB), so the workers' counts stay small beside the data.
+const TASK_BYTES: usize = 8 << 20;
+
+/// X-rays per block of the product: a task's counts are turned into floating point
+/// resamples-per-task x `XRAYS` at a time (at most 1 MB), so the kernel needs O(resamples
+/// per task x n) bytes of counts and this block, whatever n. A multiple of matrixmultiply's
+/// depth panel (256 X-rays).
+const XRAYS: usize = 512;
+
+/// Draws the resamples of one task's chunks, each chunk from its own stream of `streams`
+/// (chunk k holds resamples 64k .. 64k+63 and draws from stream k), and writes their
+/// means, resample by resample, to `out` (`len * q` values for `len` resamples in all).
 ///
-/// Each resample is n draws of an X-ray index, counted in a byte per X-ray (a
-/// count past 255 spills into `overflow`, so the counts stay exact). Then, per
-/// block of [`BLOCK`] resamples, one pass over the row-major data adds
-/// `count * row` to each resample's sums. The sums run over X-rays in index
-/// order, exactly as a plain `sum_i c_i x_i` would. Cost: O(len n q) time, O(BLOCK n) bytes of counts.
-fn random_chunk(
+/// The draws: resample j draws n X-ray indices one after another (the crate's unbiased
+/// index draw), counted in a byte per X-ray; a count past 255 spills into `overflow`, so
+/// the counts stay exact. The sums: every quantity of every resample at once, as the
+/// matrix product S = C V of the counts C (`len` x n) and the row-major values V (n x q),
+/// by matrixmultiply's blocked `dgemm` (X-rays in blocks of [`XRAYS`], each block adding
+/// into S); each spilled draw then adds its row once more, and S / n are the means.
+///
+/// Summation order: `dgemm` sums each resample's products over X-rays in panels of 256, in
+/// index order from zero within a panel, then adds the panel to the running sum, with a
+/// fused multiply-add where the processor has one (x86-64 with AVX2 and FMA, AVX-512,
+/// AArch64). A mean can therefore differ in its last bits from a plain left-to-right
+/// `sum_i c_i x_i / n`, and on a processor without FMA from one with it; the resamples
+/// (the counts) are the same everywhere. Cost: n `len` draws and n `len` q multiply-adds,
+/// O(`len` n) bytes.
+fn random_task(
     rows: &[f64],
     q: usize,
     n: usize,
-    len: usize,
-    rng: &mut rand_chacha::ChaCha8Rng,
-    work: &mut ChunkWork,
-    out: &mut Vec<f64>,
+    streams: &mut [(rand_chacha::ChaCha8Rng, usize)],
+    work: &mut TaskWork,
+    out: &mut [f64],
 ) {
+    if n == 0 || q == 0 {
+        // No X-rays: no draws, and the means are 0 / 0.
+        out.iter_mut().for_each(|s| *s = f64::NAN);
+        return;
+    }
+    let len: usize = streams.iter().map(|s| s.1).sum();
     let n32 = u32::try_from(n).unwrap_or(u32::MAX);
-    let mut done = 0;
-    while done < len {
-        let b = BLOCK.min(len - done);
-        work.counts[..b * n].iter_mut().for_each(|c| *c = 0);
-        work.overflow.iter_mut().for_each(Vec::clear);
-        for r in 0..b {
-            let counts = &mut work.counts[r * n..(r + 1) * n];
+    let counts = &mut work.counts[..len * n];
+    counts.iter_mut().for_each(|c| *c = 0);
+    work.overflow.iter_mut().for_each(Vec::clear);
+    let mut rows_of_counts = counts.chunks_exact_mut(n).enumerate();
+    for (rng, chunk_len) in streams.iter_mut() {
+        for (r, counts) in rows_of_counts.by_ref().take(*chunk_len) {
             for _ in 0..n {
                 let i = rng::index(rng, n32) as usize;
                 match counts[i].checked_add(1) {
@@ -275,106 +303,87 @@ fn random_chunk(
                 }
             }
         }
-        let sums = &mut work.sums[..b * q];
-        sums.iter_mut().for_each(|v| *v = 0.0);
-        accumulate(rows, q, n, b, &work.counts, sums);
-        for r in 0..b {
-            let sums = &mut sums[r * q..(r + 1) * q];
-            // Counts past 255: each spilled draw adds its row once more.
-            for &i in &work.overflow[r] {
-                for (acc, x) in sums.iter_mut().zip(&rows[i * q..(i + 1) * q]) {
-                    *acc += x;
-                }
-            }
-            out.extend(sums.iter().map(|s| s / n as f64));
+    }
+    let sums = out;
+    let mut i0 = 0;
+    while i0 < n {
+        let i1 = (i0 + XRAYS).min(n);
+        let k = i1 - i0;
+        let block = &mut work.block[..len * k];
+        to_float(counts, n, i0, i1, block);
+        let values = &rows[i0 * q..i1 * q];
+        let beta = if i0 == 0 { 0.0 } else { 1.0 };
+        // SAFETY: `block` is `len` x k row-major (row stride k), `values` k x q row-major
+        // (row stride q) and `sums` `len` x q row-major (row stride q), all within their
+        // slices; `sums` is borrowed mutably, so it aliases neither input.
+        unsafe {
+            matrixmultiply::dgemm(
+                len,
+                k,
+                q,
+                1.0,
+                block.as_ptr(),
+                k as isize,
+                1,
+                values.as_ptr(),
+                q as isize,
+                1,
+                beta,
+                sums.as_mut_ptr(),
+                q as isize,
+                1,
+            );
         }
-        done += b;
+        i0 = i1;
+    }
+    for (r, sums) in sums.chunks_exact_mut(q).enumerate() {
+        // Counts past 255: each spilled draw adds its row once more.
+        for &i in &work.overflow[r] {
+            for (acc, x) in sums.iter_mut().zip(&rows[i * q..(i + 1) * q]) {
+                *acc += x;
+            }
+        }
+        sums.iter_mut().for_each(|s| *s /= n as f64);
     }
 }
 
-/// Adds `count * row` of every X-ray to the sums of each of `b` resamples.
-///
-/// Uses AVX2 where the processor has it (detected at run time). The
-/// arithmetic is the same either way (one multiply and one add per element, in
-/// the same order, never fused), so the results are identical on every machine.
-fn accumulate(rows: &[f64], q: usize, n: usize, b: usize, counts: &[u8], sums: &mut [f64]) {
+/// Copies X-rays `i0..i1` of every row of `counts` (rows of n) into `block` as floating
+/// point, the left factor of the product. AVX2 where the processor has it (detected at run
+/// time): the same values either way, a quarter of the instructions.
+fn to_float(counts: &[u8], n: usize, i0: usize, i1: usize, block: &mut [f64]) {
     #[cfg(target_arch = "x86_64")]
     {
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the processor supports AVX2, checked just above.
-            unsafe { accumulate_avx2(rows, q, n, b, counts, sums) };
+            unsafe { to_float_avx2(counts, n, i0, i1, block) };
             return;
         }
     }
-    accumulate_body(rows, q, n, b, counts, sums);
+    to_float_body(counts, n, i0, i1, block);
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn accumulate_avx2(
-    rows: &[f64],
-    q: usize,
-    n: usize,
-    b: usize,
-    counts: &[u8],
-    sums: &mut [f64],
-) {
-    accumulate_body(rows, q, n, b, counts, sums);
+unsafe fn to_float_avx2(counts: &[u8], n: usize, i0: usize, i1: usize, block: &mut [f64]) {
+    to_float_body(counts, n, i0, i1, block);
 }
 
 #[inline(always)]
-fn accumulate_body(rows: &[f64], q: usize, n: usize, b: usize, counts: &[u8], sums: &mut [f64]) {
-    // Tiles: X-rays in blocks that stay in cache while every resample of the
-    // block passes over them, and quantities in groups of 8, 4, then 1 summed
-    // in registers. No branch on zero counts (a third of them, at random:
-    // mispredicted); adding 0 * x leaves a sum of positive values bit for bit
-    // as it was.
-    const XRAYS: usize = 256;
-    let mut i0 = 0;
-    while i0 < n {
-        let i1 = (i0 + XRAYS).min(n);
-        let block = &rows[i0 * q..i1 * q];
-        for (r, sums) in sums.chunks_exact_mut(q).take(b).enumerate() {
-            let counts = &counts[r * n + i0..r * n + i1];
-            let mut t = 0;
-            while t + 8 <= q {
-                tile::<8>(block, q, t, counts, sums);
-                t += 8;
-            }
-            while t + 4 <= q {
-                tile::<4>(block, q, t, counts, sums);
-                t += 4;
-            }
-            while t < q {
-                tile::<1>(block, q, t, counts, sums);
-                t += 1;
-            }
+fn to_float_body(counts: &[u8], n: usize, i0: usize, i1: usize, block: &mut [f64]) {
+    for (b, c) in block.chunks_exact_mut(i1 - i0).zip(counts.chunks_exact(n)) {
+        for (x, &c) in b.iter_mut().zip(&c[i0..i1]) {
+            *x = f64::from(c);
         }
-        i0 = i1;
     }
 }
 
-/// Sums `count * x` over the X-rays of `block` for quantities `t .. t + W`,
-/// in registers, in X-ray order.
-#[inline(always)]
-fn tile<const W: usize>(block: &[f64], q: usize, t: usize, counts: &[u8], sums: &mut [f64]) {
-    let mut acc = [0.0f64; W];
-    acc.copy_from_slice(&sums[t..t + W]);
-    for (row, &c) in block.chunks_exact(q).zip(counts) {
-        let c = f64::from(c);
-        let x = &row[t..t + W];
-        for j in 0..W {
-            acc[j] += c * x[j];
-        }
-    }
-    sums[t..t + W].copy_from_slice(&acc);
-}
-
-/// Per-worker buffers of [`random_chunk`], reused across chunks.
-struct ChunkWork {
+/// Per-worker buffers of [`random_task`], reused across tasks.
+struct TaskWork {
+    /// Resamples per task x n counts, one byte each.
     counts: Vec<u8>,
     overflow: Vec<Vec<usize>>,
-    sums: Vec<f64>,
+    /// Resamples per task x [`XRAYS`] counts as floating point, the left factor.
+    block: Vec<f64>,
 }
 
 fn random(
@@ -387,38 +396,47 @@ fn random(
 ) -> Distribution {
     let q = columns.len();
     let chunks = resamples.div_ceil(CHUNK);
-    // Row-major copy: one X-ray's quantities side by side. Past 4 quantities the rows are
-    // padded with zero columns to a multiple of 4, so the kernel sums in tiles of 8 and 4
-    // only (a lone column costs a tile's pass of its own); the padding's sums are dropped,
-    // and every real column's sum is the same, bit for bit, as without it.
-    let width = if q > 4 { q.next_multiple_of(4) } else { q };
-    let mut rows = vec![0.0f64; n * width];
+    let chunks_per_task = (TASK_BYTES / (CHUNK * n.max(1))).clamp(1, CHUNKS_PER_TASK);
+    let tasks = chunks.div_ceil(chunks_per_task);
+    let per_task = chunks_per_task * CHUNK;
+    // Row-major copy, the right factor of the product: one X-ray's quantities side by side.
+    let mut rows = vec![0.0f64; n * q];
     for (k, col) in columns.iter().enumerate() {
         for (i, &x) in col.iter().enumerate() {
-            rows[i * width + k] = x;
+            rows[i * q + k] = x;
         }
     }
-    let per_chunk: Vec<Vec<f64>> = (0..chunks)
+    let per_task_means: Vec<Vec<f64>> = (0..tasks)
         .into_par_iter()
         .map_init(
-            || ChunkWork {
-                counts: vec![0u8; BLOCK * n],
-                overflow: vec![Vec::new(); BLOCK],
-                sums: vec![0.0; BLOCK * width],
+            || {
+                let most = per_task.min(resamples);
+                TaskWork {
+                    counts: vec![0u8; most * n],
+                    overflow: vec![Vec::new(); most],
+                    block: vec![0.0; most * XRAYS.min(n)],
+                }
             },
-            |work, k| {
-                let mut rng = rng::stream(seed, key, k as u64);
-                let len = CHUNK.min(resamples - k * CHUNK);
-                let mut out = Vec::with_capacity(len * width);
-                random_chunk(&rows, width, n, len, &mut rng, work, &mut out);
+            |work, t| {
+                let first = t * chunks_per_task;
+                let mut streams: Vec<(rand_chacha::ChaCha8Rng, usize)> = (first
+                    ..(first + chunks_per_task).min(chunks))
+                    .map(|k| {
+                        let len = CHUNK.min(resamples - k * CHUNK);
+                        (rng::stream(seed, key, k as u64), len)
+                    })
+                    .collect();
+                let len: usize = streams.iter().map(|s| s.1).sum();
+                let mut out = vec![0.0; len * q];
+                random_task(&rows, q, n, &mut streams, work, &mut out);
                 progress.advance(len as u64);
                 out
             },
         )
         .collect();
     let mut means = vec![Vec::with_capacity(resamples); q];
-    for chunk in &per_chunk {
-        for row in chunk.chunks_exact(width) {
+    for task in &per_task_means {
+        for row in task.chunks_exact(q.max(1)) {
             for (m, v) in means.iter_mut().zip(row) {
                 m.push(*v);
             }
@@ -633,24 +651,14 @@ mod tests {
         assert_eq!(one[0].len(), 1000);
     }
 
-    #[test]
-    fn blocked_kernel_equals_the_plain_definition_bit_for_bit() {
-        // The definition: resample j of chunk k draws n indices from stream k in order,
-        // and its mean is sum_i c_i x_i / n summed in index order.
-        let n = 300;
-        let cols: Vec<Vec<f64>> = (0..5)
-            .map(|q| {
-                (0..n)
-                    .map(|i| 1.0 + ((i * 37 + q * 11) % 97) as f64 / 7.0)
-                    .collect()
-            })
-            .collect();
-        let refs: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
-        let resamples = 150; // 3 chunks, the last one partial
-        let d = resample_means(&refs, resamples, 42, 9);
+    /// The plain definition: resample j of chunk k draws n indices from stream k in order,
+    /// and its mean is sum_i c_i x_i / n summed in index order.
+    fn plain_means(cols: &[Vec<f64>], resamples: usize, seed: u64, key: u64) -> Vec<Vec<f64>> {
+        let n = cols[0].len();
+        let mut means = vec![Vec::new(); cols.len()];
         for j in 0..resamples {
             let (k, within) = (j / CHUNK, j % CHUNK);
-            let mut r = rng::stream(42, 9, k as u64);
+            let mut r = rng::stream(seed, key, k as u64);
             let mut counts = vec![0u32; n];
             for _ in 0..=within {
                 counts.iter_mut().for_each(|c| *c = 0);
@@ -658,12 +666,55 @@ mod tests {
                     counts[rng::index(&mut r, n as u32) as usize] += 1;
                 }
             }
-            for (q, col) in cols.iter().enumerate() {
+            for (m, col) in means.iter_mut().zip(cols) {
                 let mut sum = 0.0;
                 for (c, x) in counts.iter().zip(col) {
                     sum += f64::from(*c) * x;
                 }
-                assert_eq!(d.means[q][j], sum / n as f64, "resample {j}, quantity {q}");
+                m.push(sum / n as f64);
+            }
+        }
+        means
+    }
+
+    #[test]
+    fn the_matrix_product_kernel_draws_the_plain_definitions_resamples() {
+        // Integer values: every product and partial sum is exact whatever the order, so the
+        // kernel (matrix product in panels, FMA or not) must equal the plain definition bit
+        // for bit: the same draws from the same streams give the same resamples. n = 2100
+        // spans five blocks of X-rays (the last partial); 300 resamples are 5 chunks, in a
+        // task of 4 chunks and one of 1.
+        let n = 2100;
+        let cols: Vec<Vec<f64>> = (0..5)
+            .map(|q| (0..n).map(|i| ((i * 37 + q * 11) % 97) as f64).collect())
+            .collect();
+        let refs: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
+        let d = resample_means(&refs, 300, 42, 9);
+        assert_eq!(d.means, plain_means(&cols, 300, 42, 9));
+    }
+
+    #[test]
+    fn the_matrix_product_kernel_equals_the_plain_sums_to_rounding() {
+        // Real values: the product sums in another order (panels of 256 X-rays, FMA where
+        // the processor has it), so a mean may differ in its last bits: here by at most a
+        // few units in the last place (relative 1e-15 x log2 n is the worst case).
+        let n = 300;
+        let cols: Vec<Vec<f64>> = (0..7)
+            .map(|q| {
+                (0..n)
+                    .map(|i| 1.0 + ((i * 37 + q * 11) % 97) as f64 / 7.0)
+                    .collect()
+            })
+            .collect();
+        let refs: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
+        let d = resample_means(&refs, 150, 42, 9);
+        let plain = plain_means(&cols, 150, 42, 9);
+        for (q, (a, b)) in d.means.iter().zip(&plain).enumerate() {
+            for (j, (x, y)) in a.iter().zip(b).enumerate() {
+                assert!(
+                    (x - y).abs() <= 8.0 * f64::EPSILON * y.abs(),
+                    "resample {j}, quantity {q}: {x} vs {y}"
+                );
             }
         }
     }

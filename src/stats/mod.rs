@@ -8,6 +8,7 @@
 //! its few messages call the unit resampled an X-ray, as phalanx's users do.
 
 pub mod bootstrap;
+pub mod delta;
 pub(crate) mod describe;
 pub(crate) mod estimate;
 pub(crate) mod interval;

@@ -1,14 +1,14 @@
 //! One glTF file deformed: each of its hands found ([`super::hand`]), its
-//! skinned mesh read ([`crate::rig::skin`]), curled to a pose and measured
+//! skinned mesh read ([`crate::rig::read::skin`]), curled to a pose and measured
 //! ([`super::deform`]); and two files compared hand by hand ([`super::verdict`]).
 
 use super::verdict::{self, JointVerdict};
 use super::{Deformation, HandChains, Pose, PosedHand, Skeleton, Skinning};
 use crate::dataset::DataError;
-use crate::rig::GltfFile;
-use crate::rig::map::NameMap;
-use crate::rig::naming::Side;
-use crate::rig::skin::{SkinnedMesh, pick_skin};
+use crate::rig::read::GltfFile;
+use crate::rig::read::map::NameMap;
+use crate::rig::read::naming::Side;
+use crate::rig::read::skin::{SkinnedMesh, pick_skin};
 use std::path::Path;
 
 /// One hand of a file, deformed.

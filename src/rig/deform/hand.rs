@@ -12,10 +12,12 @@
 //! scene root (Armature nodes sit at the origin, not at the wrist).
 
 use super::{FingerNodes, HandChains};
+use crate::analysis::placement::Joint;
 use crate::dataset::{DataError, Finger};
-use crate::rig::GltfFile;
-use crate::rig::map::NameMap;
-use crate::rig::naming::{Side, Slot};
+use crate::rig::read::map::NameMap;
+use crate::rig::read::naming::{Side, Slot};
+use crate::rig::read::recognise::{choose_nodes, recognise, skin_weights, weighted_nodes};
+use crate::rig::read::{GltfFile, Rig};
 use std::collections::{BTreeMap, HashMap};
 
 /// Every hand of `file` with at least one complete finger (MCP and its inner
@@ -29,10 +31,10 @@ pub fn hands(
 ) -> Result<Vec<HandChains>, DataError> {
     let names = file.node_names();
     // The same weights as the audit weighs candidates with.
-    let weights = crate::rig::skin_weights(file);
-    let weighted = crate::rig::weighted_nodes(weights.as_ref(), names.len());
-    let found = crate::rig::recognise(file, &names, map, &weighted)?;
-    let (best, _) = crate::rig::choose_nodes(&found);
+    let weights = skin_weights(file);
+    let weighted = weighted_nodes(weights.as_ref(), names.len());
+    let found = recognise(file, &names, map, &weighted)?;
+    let (best, _) = choose_nodes(&found);
     let mut groups: BTreeMap<Option<Side>, BTreeMap<Finger, HashMap<Slot, usize>>> =
         BTreeMap::new();
     for (&(s, finger, slot), &(_, node)) in &best {
@@ -192,6 +194,49 @@ fn wrist_of(
         .into_iter()
         .find(|a| rest.iter().all(|l| l.contains(a)))
         .filter(|&a| file.parent[a].is_some())
+}
+
+impl Rig {
+    /// The chains of each hand for the deformation measures ([`super`]):
+    /// per side, the fingers' metacarpal, bending joints and tip nodes and the
+    /// wrist. Fingers whose names carry no side (WebXR) are given `unsided`,
+    /// or left out when it is `None`. Reference chains without nodes are left out.
+    pub fn hand_chains(&self, unsided: Option<Side>) -> Vec<HandChains> {
+        let mut hands: BTreeMap<Side, HandChains> = BTreeMap::new();
+        for c in &self.chains {
+            let Some(side) = c.side.or(unsided) else {
+                continue;
+            };
+            if c.joints.iter().any(|j| j.node.is_none()) {
+                continue;
+            }
+            let bending: Vec<usize> = c
+                .joints
+                .iter()
+                .filter(|j| j.joint != Joint::Tip)
+                .filter_map(|j| j.node)
+                .collect();
+            let hand = hands.entry(side).or_insert_with(|| HandChains {
+                side,
+                wrist: c.wrist.as_ref().map(|w| w.node),
+                fingers: Vec::new(),
+            });
+            if hand.wrist.is_none() {
+                hand.wrist = c.wrist.as_ref().map(|w| w.node);
+            }
+            hand.fingers.push(FingerNodes {
+                finger: c.finger,
+                metacarpal: c.metacarpal.as_ref().map(|m| m.node),
+                joints: bending,
+                tip: c
+                    .joints
+                    .iter()
+                    .find(|j| j.joint == Joint::Tip)
+                    .and_then(|j| j.node),
+            });
+        }
+        hands.into_values().collect()
+    }
 }
 
 #[cfg(test)]

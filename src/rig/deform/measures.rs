@@ -68,7 +68,7 @@ use super::pose::{PosedFinger, PosedHand};
 use super::section::{self, Plane};
 use crate::analysis::placement::Joint;
 use crate::dataset::Finger;
-use crate::rig::skin::SkinnedMesh;
+use crate::rig::read::skin::SkinnedMesh;
 use glam::{DVec2, DVec3};
 use schemars::JsonSchema;
 use serde::Serialize;

@@ -39,7 +39,7 @@
 use super::{FingerNodes, HandChains, Skeleton};
 use crate::analysis::placement::Joint;
 use crate::dataset::Finger;
-use crate::rig::naming::Side;
+use crate::rig::read::naming::Side;
 use glam::{DMat3, DMat4, DQuat, DVec3};
 use schemars::JsonSchema;
 use serde::Serialize;

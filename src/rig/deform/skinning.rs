@@ -22,7 +22,7 @@
 //! influences). Dual quaternions are written out here: glam has none, and the
 //! crates that do are not widely kept; the algebra is a few lines.
 
-use crate::rig::skin::SkinnedMesh;
+use crate::rig::read::skin::SkinnedMesh;
 use glam::{DMat3, DMat4, DQuat, DVec3};
 use schemars::JsonSchema;
 use serde::Serialize;

@@ -15,8 +15,8 @@
 
 use super::{FingerNodes, HandChains, Skeleton};
 use crate::dataset::Finger;
-use crate::rig::naming::Side;
-use crate::rig::skin::{SkinnedMesh, weld};
+use crate::rig::read::naming::Side;
+use crate::rig::read::skin::{SkinnedMesh, weld};
 use glam::{DMat4, DQuat, DVec3};
 
 /// What to build.
@@ -361,7 +361,7 @@ impl SyntheticRig {
             "bufferViews": out.views,
             "buffers": [{"byteLength": out.bin.len()}],
         });
-        crate::rig::accessor::glb(&json, out.bin)
+        crate::rig::read::gltf::glb(&json, out.bin)
     }
 
     /// The skeleton's nodes as glTF JSON: name, local translation and rotation (from the

@@ -7,9 +7,11 @@
 
 use super::measures::HandMeasures;
 use super::*;
+use crate::dataset::Finger;
 use crate::report::render3d::{Figure, MeshView, View};
-use crate::rig::GltfFile;
-use crate::rig::skin::{SkinnedMesh, pick_skin};
+use crate::rig::read::GltfFile;
+use crate::rig::read::naming::Side;
+use crate::rig::read::skin::{SkinnedMesh, pick_skin};
 use std::path::{Path, PathBuf};
 
 fn rig_dir() -> Option<PathBuf> {
@@ -104,7 +106,7 @@ fn the_webxr_hands_curl_into_a_fist() {
         let hand = chains(&file, side);
         // The audit's reading of the rig gives the same chains (its names carry
         // no side: the caller gives it).
-        let rig = crate::rig::Rig::load(&dir.join(format!("{name}.glb")), None).unwrap();
+        let rig = crate::rig::read::Rig::load(&dir.join(format!("{name}.glb")), None).unwrap();
         assert_eq!(rig.hand_chains(Some(side)), vec![hand.clone()]);
         assert!(rig.hand_chains(None).is_empty());
         let nodes: Vec<usize> = hand.fingers.iter().flat_map(|f| f.joints.clone()).collect();

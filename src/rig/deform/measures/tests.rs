@@ -4,7 +4,7 @@ use super::*;
 use crate::rig::deform::pose::{PalmFrame, Pose, pose_hand, pose_in_frame};
 use crate::rig::deform::skinning::{Skinning, skin};
 use crate::rig::deform::synthetic::{HandSpec, SyntheticRig, tube_hand};
-use crate::rig::naming::Side;
+use crate::rig::read::naming::Side;
 
 /// One index finger (a tube along +y, palm facing -z), posed with only its
 /// PIP bent by `pip` degrees, skinned by `method`; the PIP's measures.

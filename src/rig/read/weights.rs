@@ -3,15 +3,15 @@
 //! its rest position in world space.
 //!
 //! Read for three uses: which nodes carry skin weight (a bone with weight is
-//! preferred over an unweighted namesake, see [`super`]), where each finger's
-//! skin bends ([`super::bend`]), and moving the weights with the joints in
-//! `--fix` ([`super::remap`]). Accessors are checked as [`super::skin`] checks
+//! preferred over an unweighted namesake, see [`super::recognise`]), where each finger's
+//! skin bends ([`crate::rig::judge::bend`]), and moving the weights with the joints in
+//! `--fix` (`rig::fix::remap`). Accessors are checked as [`super::skin`] checks
 //! them; a primitive whose weights cannot be read is left out with a note.
 //!
 //! A vertex v with influences (node j, weight w) rests at sum_j w_j M_j v,
 //! M_j = W_j B_j (world matrix times inverse bind matrix, see [`super::skin`]).
 
-use super::GltfFile;
+use super::gltf::{GltfFile, inverse_binds};
 use glam::{DMat4, DVec3};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -52,7 +52,7 @@ impl SkinWeights {
             if joints.is_empty() || joints.len() > usize::from(u16::MAX) {
                 continue;
             }
-            let ibm = match super::fix::inverse_binds(data, &skin, joints.len()) {
+            let ibm = match inverse_binds(data, &skin, joints.len()) {
                 Ok(m) => m,
                 Err(e) => {
                     out.notes

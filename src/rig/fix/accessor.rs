@@ -1,5 +1,5 @@
 //! Accessor elements read and written in place in the merged buffer of a
-//! fixed copy (see [`super::fix`]): after the merge every buffer view points
+//! fixed copy (see [`super`]): after the merge every buffer view points
 //! into buffer 0, so an accessor's elements lie at
 //! view.byteOffset + accessor.byteOffset + i x stride.
 //!
@@ -221,23 +221,6 @@ pub fn refresh_bounds(json: &mut Value, acc: usize, span: &Span, bin: &[u8]) {
     };
     json["accessors"][acc]["min"] = Value::Array(lo.into_iter().map(num).collect());
     json["accessors"][acc]["max"] = Value::Array(hi.into_iter().map(num).collect());
-}
-
-/// `json` and `bin` as the bytes of a GLB file (the binary chunk left out when `bin` is
-/// empty); the error says what could not be written. Cost: O(bytes).
-pub(crate) fn glb(json: &serde_json::Value, bin: Vec<u8>) -> Result<Vec<u8>, String> {
-    let text = serde_json::to_vec(json).map_err(|e| e.to_string())?;
-    gltf::binary::Glb {
-        header: gltf::binary::Header {
-            magic: *b"glTF",
-            version: 2,
-            length: 0,
-        },
-        json: text.into(),
-        bin: (!bin.is_empty()).then_some(bin.into()),
-    }
-    .to_vec()
-    .map_err(|e| format!("cannot be written as GLB ({e})"))
 }
 
 #[cfg(test)]

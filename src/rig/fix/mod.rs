@@ -1,5 +1,5 @@
 //! `audit --fix`: a copy of a rig with the joints the audit's explanation
-//! moves (see [`super::judge`]) where it puts them, the skin weights moved
+//! moves (see [`crate::rig::judge`]) where it puts them, the skin weights moved
 //! with them, and everything else kept.
 //!
 //! For each finger the explanation's joints (MCP, PIP, DIP: the fewest that
@@ -17,8 +17,8 @@
 //! W to W' gets the inverse bind matrix B' = W'^-1 W B, so W' B' = W B and every
 //! skinned vertex is where it was (up to the f32 the file stores). The skin
 //! weights of each moved finger are moved with its joints so its skin bends
-//! where the joints now are ([`super::remap`]). Translation keys of moved
-//! nodes are offset by their rest translation's change ([`super::anim`]);
+//! where the joints now are (`remap`). Translation keys of moved
+//! nodes are offset by their rest translation's change (`anim`);
 //! channels with paths glTF does not define are reported and left alone.
 //!
 //! Inverse bind matrices, weights and keys are rewritten in place in their
@@ -28,9 +28,15 @@
 //! is kept. The output is one .glb (or a .gltf with its buffer embedded),
 //! every buffer merged into one.
 
-use super::weights::SkinWeights;
-use super::{AuditedFinger, GltfFile, world_matrices};
+pub(crate) mod accessor;
+pub(crate) mod anim;
+pub(crate) mod remap;
+
 use crate::dataset::DataError;
+use crate::rig::judge::AuditedFinger;
+use crate::rig::read::gltf::{GltfFile, buffers, inverse_binds, local_matrix, world_matrices};
+use crate::rig::read::weights::SkinWeights;
+use crate::rig::read::{RigJoint, anim as channels};
 use base64::Engine;
 use glam::{DMat4, DVec3};
 use serde_json::{Value, json};
@@ -51,153 +57,6 @@ pub struct Fixed {
     pub moved: Vec<(String, f64)>,
     /// Remarks for the user (animations that drive moved joints, external images).
     pub warnings: Vec<String>,
-}
-
-/// Decodes `%xx` escapes of a URI path; `None` on a bad escape or non-UTF-8 result.
-fn percent_decode(uri: &str) -> Option<String> {
-    let b = uri.as_bytes();
-    let mut out = Vec::with_capacity(b.len());
-    let mut i = 0;
-    while i < b.len() {
-        if b[i] == b'%' {
-            let hex = std::str::from_utf8(b.get(i + 1..i + 3)?).ok()?;
-            out.push(u8::from_str_radix(hex, 16).ok()?);
-            i += 3;
-        } else {
-            out.push(b[i]);
-            i += 1;
-        }
-    }
-    String::from_utf8(out).ok()
-}
-
-/// Reads the data of every buffer: the GLB chunk (buffer 0 only, as the
-/// specification says), data URIs, or files beside the input. A file URI must
-/// be a relative path that stays beside the input (no `..`, no scheme), and
-/// only the declared byte length is read.
-pub(crate) fn buffers(file: &GltfFile, dir: &Path) -> Result<Vec<Vec<u8>>, DataError> {
-    let fail = |m: String| DataError::whole_file(&file.label, m);
-    file.document
-        .buffers()
-        .map(|b| {
-            let i = b.index();
-            let mut data = match b.source() {
-                gltf::buffer::Source::Bin if i == 0 => file
-                    .blob
-                    .clone()
-                    .ok_or_else(|| fail("refers to a GLB binary chunk it does not have".into()))?,
-                gltf::buffer::Source::Bin => {
-                    return Err(fail(format!(
-                        "buffer {i} has no data of its own (a compression fallback buffer?); --fix cannot copy it"
-                    )));
-                }
-                gltf::buffer::Source::Uri(uri) => {
-                    if let Some(rest) = uri.strip_prefix("data:") {
-                        let payload = rest
-                            .split_once(";base64,")
-                            .map(|(_, p)| p)
-                            .ok_or_else(|| fail(format!("buffer {i} has a data URI that is not base64")))?;
-                        base64::engine::general_purpose::STANDARD
-                            .decode(payload)
-                            .map_err(|e| fail(format!("buffer {i} has bad base64 ({e})")))?
-                    } else {
-                        let rel = percent_decode(uri)
-                            .filter(|r| {
-                                let p = Path::new(r);
-                                !r.contains(':')
-                                    && p.is_relative()
-                                    && p.components().all(|c| matches!(c, std::path::Component::Normal(_)))
-                            })
-                            .ok_or_else(|| {
-                                fail(format!(
-                                    "buffer {i} refers to '{uri}', which is not a plain relative path beside the file; \
-                                     --fix reads only files next to the input"
-                                ))
-                            })?;
-                        let p = dir.join(rel);
-                        let read = || -> std::io::Result<Vec<u8>> {
-                            let mut data = Vec::new();
-                            std::io::Read::read_to_end(
-                                &mut std::io::Read::take(std::fs::File::open(&p)?, (b.length() as u64).saturating_add(1)),
-                                &mut data,
-                            )?;
-                            Ok(data)
-                        };
-                        read().map_err(|e| {
-                            fail(format!(
-                                "buffer {i} refers to {} which cannot be read ({e}); keep it beside the .gltf",
-                                p.display()
-                            ))
-                        })?
-                    }
-                }
-            };
-            if data.len() < b.length() {
-                return Err(fail(format!(
-                    "buffer {i} holds {} bytes but declares {}",
-                    data.len(),
-                    b.length()
-                )));
-            }
-            data.truncate(b.length());
-            Ok(data)
-        })
-        .collect()
-}
-
-/// The inverse bind matrices of a skin, read with every offset checked
-/// (identity matrices when the skin has none).
-pub(crate) fn inverse_binds(
-    data: &[Vec<u8>],
-    skin: &gltf::Skin<'_>,
-    joints: usize,
-) -> Result<Vec<DMat4>, String> {
-    let Some(acc) = skin.inverse_bind_matrices() else {
-        return Ok(vec![DMat4::IDENTITY; joints]);
-    };
-    let what = format!(
-        "skin {}'s inverse bind matrices (accessor {})",
-        skin.index(),
-        acc.index()
-    );
-    if acc.data_type() != gltf::accessor::DataType::F32
-        || acc.dimensions() != gltf::accessor::Dimensions::Mat4
-        || acc.sparse().is_some()
-        || acc.count() != joints
-    {
-        return Err(format!(
-            "{what} are not {joints} plain float MAT4 values, as glTF requires"
-        ));
-    }
-    let view = acc
-        .view()
-        .ok_or_else(|| format!("{what} have no buffer view"))?;
-    let stride = view.stride().unwrap_or(64);
-    let buf = data
-        .get(view.buffer().index())
-        .ok_or_else(|| format!("{what} name a missing buffer"))?;
-    let start = view.offset().checked_add(acc.offset());
-    let need = stride
-        .checked_mul(joints.saturating_sub(1))
-        .and_then(|x| x.checked_add(64));
-    let in_view = need.and_then(|n| acc.offset().checked_add(n));
-    let view_end = view.offset().checked_add(view.length());
-    let (Some(start), Some(in_view), Some(view_end)) = (start, in_view, view_end) else {
-        return Err(format!("{what} have impossible offsets"));
-    };
-    if stride < 64 || in_view > view.length() || view_end > buf.len() {
-        return Err(format!("{what} do not fit their buffer view"));
-    }
-    Ok((0..joints)
-        .map(|k| {
-            let at = start + k * stride;
-            let cols: Vec<f64> = buf[at..at + 64]
-                .chunks_exact(4)
-                .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))
-                .collect();
-            DMat4::from_cols_slice(&cols)
-        })
-        .collect())
 }
 
 fn pad4(v: &mut Vec<u8>) {
@@ -240,7 +99,7 @@ pub fn fix_with(
     let mut touched: BTreeMap<usize, (DVec3, DVec3)> = BTreeMap::new();
     for &(node, _) in &plan.targets {
         let old =
-            super::local_matrix(&file.document.nodes().nth(node).ok_or_else(|| {
+            local_matrix(&file.document.nodes().nth(node).ok_or_else(|| {
                 DataError::whole_file(&file.label, format!("has no node {node}"))
             })?)
             .w_axis
@@ -256,19 +115,19 @@ pub fn fix_with(
         .filter(|(_, (old, new))| old != new)
         .map(|(&n, &(old, new))| (n, (old, new - old)))
         .collect();
-    let mut warnings = super::anim::offset_translations(&mut json, &mut bin, &delta);
+    let mut warnings = anim::offset_translations(&mut json, &mut bin, &delta);
     if let Some(w) = weights {
-        let moves: Vec<super::remap::FingerMove<'_>> = plan
+        let moves: Vec<remap::FingerMove<'_>> = plan
             .fingers
             .iter()
-            .map(|(i, new_positions)| super::remap::FingerMove {
+            .map(|(i, new_positions)| remap::FingerMove {
                 chain: &fingers[*i].chain,
                 new_positions: new_positions.clone(),
             })
             .collect();
-        let (remapped, notes) = super::remap::remap(w, &moves);
+        let (remapped, notes) = remap::remap(w, &moves);
         warnings.extend(notes);
-        warnings.extend(super::remap::write(&mut json, &mut bin, w, &remapped));
+        warnings.extend(remap::write(&mut json, &mut bin, w, &remapped));
     }
     let mut buffer = json!({"byteLength": bin.len()});
     if !glb {
@@ -315,7 +174,7 @@ fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
     };
     for (i, f) in fingers.iter().enumerate() {
         let (chain, audit) = (&f.chain, &f.audit);
-        let moves = |rj: &super::RigJoint| {
+        let moves = |rj: &RigJoint| {
             audit.joint(rj.joint).filter(|j| {
                 j.moves && j.shift > 0.0 && !(only_outside && j.standing.is_consistent())
             })
@@ -349,11 +208,7 @@ fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
 /// its local translation only; returns the new local and world matrices.
 /// Fails when the transform above a node is singular.
 fn move_nodes(file: &GltfFile, targets: &[Target]) -> Result<(Vec<DMat4>, Vec<DMat4>), DataError> {
-    let mut locals: Vec<DMat4> = file
-        .document
-        .nodes()
-        .map(|nd| super::local_matrix(&nd))
-        .collect();
+    let mut locals: Vec<DMat4> = file.document.nodes().map(|nd| local_matrix(&nd)).collect();
     let depth = |mut i: usize| {
         let mut d = 0;
         while let Some(p) = file.parent[i] {
@@ -487,14 +342,14 @@ fn rebind_skins(
         let own = skin
             .inverse_bind_matrices()
             .map(|a| a.index())
-            .filter(|&a| super::accessor::references(json).get(&a) == Some(&1));
-        let span = own.and_then(|a| super::accessor::span(json, a, bin.len()).map(|s| (a, s)));
+            .filter(|&a| accessor::references(json).get(&a) == Some(&1));
+        let span = own.and_then(|a| accessor::span(json, a, bin.len()).map(|s| (a, s)));
         match span {
             Some((a, span)) if span.component == 5126 && span.components == 16 => {
                 for (k, m) in new.iter().enumerate() {
                     span.write_f32(bin, k, m);
                 }
-                super::accessor::refresh_bounds(json, a, &span, bin);
+                accessor::refresh_bounds(json, a, &span, bin);
             }
             _ => {
                 pad4(bin);
@@ -524,7 +379,7 @@ fn rebind_skins(
 /// Remarks on what the fix leaves alone: animation channels with paths glTF
 /// does not define, and images left as external files.
 fn other_warnings(file: &GltfFile) -> Vec<String> {
-    let mut warnings = super::anim::unknown_paths(&file.json);
+    let mut warnings = channels::unknown_paths(&file.json);
     if file.document.images().any(
         |i| matches!(i.source(), gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:")),
     ) {
@@ -538,7 +393,7 @@ fn other_warnings(file: &GltfFile) -> Vec<String> {
 /// The output file: the JSON alone (`.gltf`, buffer embedded), or a GLB with the bytes.
 fn container(file: &GltfFile, json: &Value, bin: Vec<u8>, glb: bool) -> Result<Vec<u8>, DataError> {
     let bytes = if glb {
-        super::accessor::glb(json, bin)
+        crate::rig::read::gltf::glb(json, bin)
     } else {
         serde_json::to_vec(json).map_err(|e| e.to_string())
     };

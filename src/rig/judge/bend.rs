@@ -33,10 +33,10 @@
 //! of the MCP's bend. Cost: O(V m) for V vertices and m chain points, and a
 //! sort per joint.
 
-use super::FingerChain;
 use super::chain::{arc_positions, point_at, project};
-use super::weights::SkinWeights;
 use crate::analysis::placement::Joint;
+use crate::rig::read::FingerChain;
+use crate::rig::read::weights::SkinWeights;
 use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;

@@ -1,5 +1,5 @@
 //! Moving a finger's skin weights with its joints in `--fix`, so the skin
-//! bends where the moved joint now is (see [`super::bend`] for the bend).
+//! bends where the moved joint now is (see [`crate::rig::judge::bend`] for the bend).
 //!
 //! **Method.** Each finger vertex has an arc position u along the finger's
 //! axis (the old joints' polyline, extended before the MCP; the moved joints
@@ -28,10 +28,10 @@
 //! normalised bytes or shorts summing to their maximum exactly), so no
 //! accessor is added.
 
-use super::FingerChain;
 use super::accessor;
-use super::bend::{FingerAxis, finger_nodes};
-use super::weights::SkinWeights;
+use crate::rig::judge::bend::{self, FingerAxis, finger_nodes};
+use crate::rig::read::FingerChain;
+use crate::rig::read::weights::SkinWeights;
 use glam::{DMat4, DVec3};
 use serde_json::Value;
 use std::collections::{BTreeMap, BTreeSet};
@@ -124,7 +124,7 @@ pub fn remap(weights: &SkinWeights, moves: &[FingerMove<'_>]) -> (Remapped, Vec<
             continue;
         };
         // The finger's vertices: (primitive, vertex, u).
-        let found = super::bend::finger_vertices_at(&axis, weights, &nodes, &before);
+        let found = bend::finger_vertices_at(&axis, weights, &nodes, &before);
         let sectors = Sectors::new(&axis, weights, &found, points[points.len() - 1] - points[0]);
         let mut skipped = 0usize;
         for &(pi, v, u) in &found {

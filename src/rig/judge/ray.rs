@@ -1,7 +1,7 @@
 //! The MCP placed from its ray's base: what `audit --fix --fix-mcp atlas` moves.
 //!
 //! The finger's own statistics say where the MCP lies relative to PIP, DIP
-//! and tip; the metacarpal check ([`judge::metacarpal`], [`judge::wrist`])
+//! and tip; the metacarpal check ([`super::ray_base::metacarpal`], [`super::ray_base::wrist`])
 //! says where it lies along the ray, from the CMC (or the wrist) with the tip
 //! held. With the atlas chosen, the MCP is the atlas's: a finger whose MCP is
 //! outside the prediction interval from its base gets its MCP at the atlas's
@@ -12,8 +12,9 @@
 //! at the mean, inside the interval, so a second fix holds it and, when the
 //! first fit the proportions, moves nothing.
 
-use super::judge::{self, JudgeOptions};
-use super::{AuditedFinger, AuditedRig};
+use super::audited::{AuditedFinger, AuditedRig};
+use super::finger::audit_holding_mcp;
+use super::standing::JudgeOptions;
 use crate::analysis::Analysis;
 use crate::analysis::placement::Joint;
 
@@ -40,7 +41,7 @@ fn placed(f: &AuditedFinger, a: &Analysis, opts: &JudgeOptions) -> Option<Audite
     if outside {
         input.points[0] = m.suggested;
     }
-    let mut audit = judge::audit_holding_mcp(a, &input, opts)?;
+    let mut audit = audit_holding_mcp(a, &input, opts)?;
     if outside {
         let mcp = audit.joints.iter_mut().find(|j| j.joint == Joint::Mcp)?;
         mcp.moves = true;

@@ -32,6 +32,16 @@ use std::sync::LazyLock;
 /// Which hand (the dataset's side, re-exported where rigs name it).
 pub use crate::dataset::landmarks::Side;
 
+/// A node name fit for a message or a terminal: quoted, control characters
+/// replaced, at most 80 characters.
+pub(crate) fn shown(name: &str) -> String {
+    let clean: String = name
+        .chars()
+        .map(|c| if c.is_control() { '\u{FFFD}' } else { c })
+        .collect();
+    crate::dataset::csvinput::quote(&clean)
+}
+
 /// A joint position along a finger, including the thumb's CMC that is not used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub(crate) enum Slot {

@@ -20,7 +20,7 @@
 //! inverse bind matrix; the mesh node's own transform is ignored. So the bind
 //! pose skin matrices are M_j = W_j B_j ([`SkinnedMesh::skin_matrices`]).
 
-use super::GltfFile;
+use super::gltf::{GltfFile, buffers, inverse_binds};
 use crate::dataset::{DataError, Problem};
 use glam::{DMat4, DVec3};
 use gltf::accessor::{DataType, Dimensions};
@@ -90,7 +90,7 @@ impl SkinnedMesh {
     /// Reads skin `skin` of `file`; `dir` resolves external buffers (files
     /// beside the input). Every problem found is reported together.
     pub fn read(file: &GltfFile, dir: &Path, skin: usize) -> Result<SkinnedMesh, DataError> {
-        let data = super::fix::buffers(file, dir)?;
+        let data = buffers(file, dir)?;
         read_with(file, &data, skin).map_err(|problems| DataError {
             file: file.label.clone(),
             problems: problems.into_iter().map(Problem::file).collect(),
@@ -505,7 +505,7 @@ fn checked_inverse_binds(
     problems: &mut Vec<String>,
 ) -> Vec<DMat4> {
     let skin = sk.index();
-    let inverse_bind = match super::fix::inverse_binds(data, sk, joints) {
+    let inverse_bind = match inverse_binds(data, sk, joints) {
         Ok(m) => m,
         Err(e) => {
             problems.push(format!("/skins/{skin}: {e}"));
@@ -767,7 +767,7 @@ mod tests {
 
     /// `doc` and `bin` as GLB bytes.
     fn glb(doc: &serde_json::Value, bin: Vec<u8>) -> Vec<u8> {
-        crate::rig::accessor::glb(doc, bin).unwrap()
+        crate::rig::read::gltf::glb(doc, bin).unwrap()
     }
 
     fn read(bytes: &[u8]) -> Result<SkinnedMesh, DataError> {

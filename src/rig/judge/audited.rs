@@ -1,0 +1,378 @@
+//! A rig judged: every finger against the statistics ([`super::finger`])
+//! with where its skin bends ([`super::bend`]) and, for a skin tip inside the
+//! skin, the skin's end as its tip; the MCPs from their rays' bases
+//! ([`super::ray_base`]); and the rig's scale checked.
+
+use super::bend;
+use super::finger;
+use super::ray_base::{self, MetacarpalCheck, WRIST_DEFINITION, WristRatios};
+use super::standing::{FingerAudit, JudgeOptions, TipKind};
+use crate::analysis::Analysis;
+use crate::dataset::Finger;
+use crate::rig::read::FingerChain;
+use crate::rig::read::weights::SkinWeights;
+use glam::DVec3;
+use schemars::JsonSchema;
+use serde::Serialize;
+
+/// How a rig is judged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AuditOptions {
+    pub judge: JudgeOptions,
+    /// A joint further than this from where its skin bends is flagged (rig units).
+    pub bend_tolerance: f64,
+    /// With skin tips: take the skin's end from the mesh when it reaches
+    /// past the tip node (`--tip auto`).
+    pub measure_tip: bool,
+}
+
+impl Default for AuditOptions {
+    fn default() -> AuditOptions {
+        AuditOptions {
+            judge: JudgeOptions::default(),
+            bend_tolerance: bend::BEND_TOLERANCE_MM / 1000.0,
+            measure_tip: true,
+        }
+    }
+}
+
+/// A tip node this far (metres) or more inside the skin's end is not at the
+/// skin: WebXR's `*-tip` joints, the centres of the fingertips' spheres, lie
+/// 10-12 mm inside the generic hand's skin. 2 mm leaves room for a mesh's
+/// faceting at a rounded tip.
+pub const TIP_INSIDE: f64 = 0.002;
+
+/// The skin's end of a finger, measured on its mesh and used as its tip.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct SkinTip {
+    /// How far the skin reaches past the tip node, along the last segment.
+    pub beyond_node: f64,
+    /// The point used as the tip.
+    #[schemars(with = "[f64; 3]")]
+    pub position: DVec3,
+}
+
+/// A rig finger with its judgement.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct AuditedFinger {
+    #[serde(flatten)]
+    pub chain: FingerChain,
+    pub audit: FingerAudit,
+    /// Where the skin bends at each joint (empty without skin weights).
+    pub bends: Vec<bend::Bend>,
+    /// The skin's end used as the tip, when the tip node lies inside the skin.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub skin_tip: Option<SkinTip>,
+    /// The MCP judged from the CMC against the metacarpals' dataset, when the
+    /// rig has a metacarpal node and the audit was given one
+    /// ([`AuditedRig::judge_metacarpals`]). Not `metacarpal`: that key is
+    /// the chain's metacarpal node.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub metacarpal_check: Option<MetacarpalCheck>,
+}
+
+/// Every finger of a rig judged against the statistics.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct AuditedRig {
+    /// The file (or reference rig) the chains come from.
+    pub label: String,
+    /// How the tips were compared.
+    pub tips: JudgeOptions,
+    /// The bend tolerance used, in rig units.
+    pub bend_tolerance: f64,
+    pub fingers: Vec<AuditedFinger>,
+    /// Fingers left out and other remarks.
+    pub notes: Vec<String>,
+    /// Things that make the judgement doubtful (the rig's scale).
+    pub warnings: Vec<String>,
+}
+
+/// Plausible lengths of an adult finger from MCP to tip, in metres: a
+/// fingertip-to-knuckle length is 50-110 mm; half and twice that allow for
+/// children and stylised characters.
+const PLAUSIBLE_FINGER: (f64, f64) = (0.025, 0.22);
+
+/// A warning when the fingers' median length (MCP to the last point, in file
+/// units read as metres) is implausible, naming the unit that would make it
+/// plausible (the one nearest a 75 mm finger).
+fn scale_warning(lengths: &[f64]) -> Option<String> {
+    let mut l: Vec<f64> = lengths
+        .iter()
+        .copied()
+        .filter(|x| x.is_finite() && *x > 0.0)
+        .collect();
+    if l.is_empty() {
+        return None;
+    }
+    l.sort_by(f64::total_cmp);
+    let median = l[l.len() / 2];
+    let plausible = |x: f64| (PLAUSIBLE_FINGER.0..=PLAUSIBLE_FINGER.1).contains(&x);
+    if plausible(median) {
+        return None;
+    }
+    let units = [
+        ("centimetres", 0.01),
+        ("millimetres", 0.001),
+        ("inches", 0.0254),
+        ("decimetres", 0.1),
+    ];
+    let likely = units
+        .iter()
+        .filter(|(_, m)| plausible(median * m))
+        .min_by(|a, b| {
+            let off = |m: f64| (median * m / 0.075).ln().abs();
+            off(a.1).total_cmp(&off(b.1))
+        });
+    let shown = format!(
+        "its fingers are {} m long (median, MCP to tip), implausible for a hand in metres",
+        crate::format::num(median, 4)
+    );
+    Some(match likely {
+        Some((unit, m)) => format!(
+            "{shown}; the file is likely in {unit} ({} mm fingers). glTF units are metres: \
+             re-export in metres. The mm figures, the soft tissue and the bend tolerance are off; \
+             relative values and ratios are not",
+            crate::format::num(median * m * 1000.0, 1)
+        ),
+        None => format!(
+            "{shown} or in any common unit; the mm figures, the soft tissue and the bend \
+             tolerance are off; relative values and ratios are not"
+        ),
+    })
+}
+
+/// The note saying how the MCPs were judged from their rays' bases.
+fn metacarpal_note(
+    atlas: &Analysis,
+    wrist: Option<&WristRatios>,
+    from_cmc: usize,
+    from_wrist: usize,
+) -> String {
+    let n = atlas
+        .fingers
+        .iter()
+        .filter_map(|fa| fa.quantity(crate::dataset::Quantity::RatioMcJ))
+        .map(|s| s.n)
+        .max()
+        .unwrap_or(0);
+    let mcps = |k: usize| match k {
+        1 => "1 MCP is".to_string(),
+        k => format!("{k} MCPs are"),
+    };
+    let judged = match (from_cmc, from_wrist) {
+        (c, 0) => format!("{} also judged from their CMC", mcps(c)),
+        (0, w) => format!("{} also judged from the wrist", mcps(w)),
+        (c, w) => format!(
+            "{} also judged from their CMC and {w} from the wrist",
+            mcps(c)
+        ),
+    };
+    let mut out = format!(
+        "Metacarpals: {judged} against {} ({} with the metacarpal measured), with the same \
+         settings. The Digital Hand Atlas (the default) is children's left hands with {}: read \
+         this as a guide.",
+        atlas.dataset.path,
+        crate::format::xrays(n),
+        crate::dataset::landmarks::ATLAS_LANDMARKS
+    );
+    if from_wrist > 0 {
+        out.push_str(&format!(
+            " The wrist is {}; the rig's wrist-to-MCP distance over the finger's length (w/J) \
+             is judged against the same ratio measured on each X-ray of the atlas's landmarks \
+             (from {}). The thumb is not judged from the wrist: its distance depends on the \
+             thumb's pose.",
+            WRIST_DEFINITION,
+            wrist.map_or("the atlas's landmarks", |w| w.source.as_str())
+        ));
+    }
+    out
+}
+
+impl AuditedRig {
+    /// Judges `chains` against the analysis with the default options and no
+    /// skin; fingers the data lacks become notes.
+    pub fn of(label: &str, chains: &[FingerChain], notes: &[String], a: &Analysis) -> AuditedRig {
+        AuditedRig::with(label, chains, notes, a, &AuditOptions::default(), None)
+    }
+
+    /// Judges `chains` against the analysis with `opts`, and finds where the
+    /// skin bends when `weights` are given.
+    pub fn with(
+        label: &str,
+        chains: &[FingerChain],
+        notes: &[String],
+        a: &Analysis,
+        opts: &AuditOptions,
+        weights: Option<&SkinWeights>,
+    ) -> AuditedRig {
+        let mut notes = notes.to_vec();
+        let mut fingers = Vec::new();
+        let mut lengths = Vec::new();
+        for chain in chains {
+            let mut input = chain.input();
+            let mut skin_tip = None;
+            let n = input.points.len();
+            if opts.measure_tip
+                && opts.judge.rig_tip == TipKind::Skin
+                && let Some(w) = weights
+                && let Some(reach) = bend::skin_end(chain, w)
+                && n >= 2
+            {
+                let (last, tip) = (input.points[n - 2], input.points[n - 1]);
+                let node = last.distance(tip);
+                if reach > node + TIP_INSIDE {
+                    let position = last + (tip - last).normalize_or_zero() * reach;
+                    input.points[n - 1] = position;
+                    skin_tip = Some(SkinTip {
+                        beyond_node: reach - node,
+                        position,
+                    });
+                }
+            }
+            lengths.push(
+                input
+                    .points
+                    .windows(2)
+                    .map(|w| w[0].distance(w[1]))
+                    .sum::<f64>(),
+            );
+            match finger::audit_with(a, &input, &opts.judge) {
+                Some(audit) => {
+                    let bends = weights
+                        .map(|w| bend::bends(chain, w, opts.bend_tolerance))
+                        .unwrap_or_default();
+                    fingers.push(AuditedFinger {
+                        chain: chain.clone(),
+                        audit,
+                        bends,
+                        skin_tip,
+                        metacarpal_check: None,
+                    });
+                }
+                None => notes.push(format!(
+                    "{}: {} has no statistics for this finger (or the chain has zero length, or \
+                     a last segment no longer than the tip's soft tissue), so it is not judged",
+                    chain.label(),
+                    a.dataset.path
+                )),
+            }
+        }
+        AuditedRig {
+            label: label.to_string(),
+            tips: opts.judge,
+            bend_tolerance: opts.bend_tolerance,
+            fingers,
+            notes,
+            warnings: scale_warning(&lengths).into_iter().collect(),
+        }
+    }
+
+    /// Fingers with a joint or value outside the prediction interval.
+    pub fn outside(&self) -> usize {
+        self.fingers
+            .iter()
+            .filter(|f| !f.audit.is_consistent())
+            .count()
+    }
+
+    /// Judges the MCP of every finger from the base of its ray against
+    /// `atlas`'s metacarpal statistics: from its CMC where the finger has a
+    /// metacarpal node ([`ray_base::metacarpal`]), else from the wrist where the
+    /// hand has a wrist bone ([`ray_base::wrist`]; not the thumb). The fingers'
+    /// own standings are unchanged. A finger with a metacarpal that cannot be
+    /// judged (no tip, no mc/J in `atlas`) gets a note; without `wrist` (the
+    /// atlas's wrist-to-MCP over finger length, read from its landmark file) no MCP is
+    /// judged from the wrist, and a rig that has one gets a note.
+    pub fn judge_metacarpals(&mut self, atlas: &Analysis, wrist: Option<&WristRatios>) {
+        let (mut from_cmc, mut from_wrist, mut wrist_skipped) = (0, 0, 0);
+        for f in &mut self.fingers {
+            let Some(mcp) = f.chain.joints.first() else {
+                continue;
+            };
+            if let Some(node) = &f.chain.metacarpal {
+                f.metacarpal_check =
+                    ray_base::metacarpal(atlas, &f.audit, &node.name, node.position, mcp.position);
+                match f.metacarpal_check {
+                    Some(_) => from_cmc += 1,
+                    None => self.notes.push(format!(
+                        "{}: its MCP is not judged from the metacarpal {} ({})",
+                        f.chain.label(),
+                        node.name,
+                        if f.audit.length.is_none() {
+                            "the rig has no tip, so the finger's length is unknown".to_string()
+                        } else {
+                            format!("{} has no mc/J for this finger", atlas.dataset.path)
+                        }
+                    )),
+                }
+            } else if let Some(node) = &f.chain.wrist {
+                match wrist {
+                    Some(rho) => {
+                        f.metacarpal_check = ray_base::wrist(
+                            atlas,
+                            rho,
+                            &f.audit,
+                            &node.name,
+                            node.position,
+                            mcp.position,
+                        );
+                        from_wrist += usize::from(f.metacarpal_check.is_some());
+                    }
+                    None => wrist_skipped += usize::from(f.audit.finger != Finger::Thumb),
+                }
+            }
+        }
+        if from_cmc + from_wrist > 0 {
+            self.notes
+                .push(metacarpal_note(atlas, wrist, from_cmc, from_wrist));
+        }
+        if wrist_skipped > 0 {
+            self.notes.push(format!(
+                "Metacarpals: {wrist_skipped} MCPs are not judged from the wrist: the rig has no \
+                 metacarpals, and the atlas's landmark file (landmarks.csv beside {}, which gives \
+                 the wrist-to-MCP distance over the finger's length) was not found",
+                atlas.dataset.path
+            ));
+        }
+    }
+
+    /// Fingers whose MCP lies outside the prediction interval from its ray's
+    /// base (the CMC or the wrist).
+    pub fn metacarpals_outside(&self) -> usize {
+        self.fingers
+            .iter()
+            .filter_map(|f| f.metacarpal_check.as_ref())
+            .filter(|m| !m.standing.is_consistent())
+            .count()
+    }
+
+    /// Joints further from their bend than the tolerance.
+    pub fn bends_flagged(&self) -> usize {
+        self.fingers
+            .iter()
+            .flat_map(|f| &f.bends)
+            .filter(|b| b.flagged)
+            .count()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_implausible_scale_names_the_likely_unit() {
+        // 7.5 file units: centimetres (75 mm); 75: millimetres; 3 units: inches
+        // (76.2 mm), not centimetres (30 mm is further from 75 mm).
+        assert!(scale_warning(&[0.075, 0.08, 0.06]).is_none());
+        let w = scale_warning(&[7.5, 8.0, 6.0]).unwrap();
+        assert!(w.contains("likely in centimetres (75.0 mm fingers)"), "{w}");
+        let w = scale_warning(&[75.0, 80.0]).unwrap();
+        assert!(w.contains("likely in millimetres"), "{w}");
+        let w = scale_warning(&[3.0]).unwrap();
+        assert!(w.contains("likely in inches (76.2 mm"), "{w}");
+        let w = scale_warning(&[1e6]).unwrap();
+        assert!(w.contains("or in any common unit"), "{w}");
+        assert!(scale_warning(&[]).is_none());
+    }
+}

@@ -1,0 +1,232 @@
+//! Judging a rig's finger joints against the X-ray statistics: each joint's
+//! standing and the explanation that moves the fewest joints.
+//!
+//! A rig finger is a chain of joint centres P0 (MCP), P1, P2 (PIP, DIP; the
+//! thumb has one inner joint, IP) and, when the rig has one, the tip. Its
+//! segments are the chords c_k = |P_k - P_(k-1)|.
+//!
+//! **The tip.** A rig's tip node usually marks the skin at the end of the
+//! finger, while an X-ray's J3 ends at the bone tip (the distal phalanx's
+//! tuft). So, with a skin tip and bone-tip data, the last segment is
+//! compared as c_last - s, s the soft tissue beyond the bone tip
+//! ([`DEFAULT_SOFT_TISSUE_MM`](super::DEFAULT_SOFT_TISSUE_MM), `--tip-soft-tissue`); with `--tip bone` it is
+//! compared as it is. In general the correction is s x ([rig tip is skin] -
+//! [data tip is skin]); the compared segments s_k are the chords with that
+//! correction on the last one, L = sum s_k and J~k = s_k / L (eq. 2).
+//!
+//! **Each joint against the others.** Every joint gets a standing: where the
+//! X-rays put it given the rest of the finger as the rig has it, in distances
+//! from the rig's MCP along the chain (+ towards the tip):
+//! - PIP (IP) at J~1 L and DIP at (1 - J~3) L (MCP and tip held);
+//! - MCP at s_1 - J1 with J1 = R x/(1 - x), x = J~1 and R = L - s_1 the rest
+//!   of the finger (PIP and tip held): J1/R = J~1/(1 - J~1);
+//! - tip at (L - s_last) + J_last + correction, J_last = R' x/(1 - x), x the
+//!   last J~ and R' = L - s_last (MCP and DIP held).
+//!
+//! x/(1 - x) is increasing, so the range and prediction interval of x map
+//! onto positions end to end (a monotone map keeps the coverage of an
+//! interval).
+//!
+//! Without a tip (VRM, Unreal) L is unknown; a finger is then judged on
+//! r = J2/J1 alone: the PIP belongs at (c_1 + c_2) / (1 + r) with MCP and DIP
+//! fixed (decreasing in r, so intervals swap ends), and the MCP at
+//! c_1 - c_2 / r with PIP and DIP fixed (increasing in r). The DIP and the whole thumb cannot be
+//! judged without a tip.
+//!
+//! **The fewest joints.** A misfit of the proportions can come from any joint:
+//! rigs often put the MCP at the finger's visible base (the web), distal of
+//! the knuckle, and the tip at the skin. So the judgement looks for the
+//! explanation that moves the fewest joints (MCP, PIP, DIP; the tip node is
+//! never moved: its soft tissue is modelled above): first none, then each
+//! joint alone, then pairs, keeping the first size at which every value lies
+//! inside its prediction interval. A joint alone is placed where the worst
+//! value is best (the smallest largest normalised distance from the mean, 1 at
+//! a prediction limit); a pair is placed exactly at the means. Between
+//! explanations of the same size the better fit wins, then the smaller total
+//! move. Joints move along the rig's own chain (the polyline through its
+//! joints), the MCP along the first segment's backward extension (at most one
+//! segment back, half a segment forward). See `rig::chain`. No files, no glTF.
+
+use super::chain::point_at;
+use super::expected::{StandingInput, ratio_standings, relative_standings};
+use super::explain::{Axis, Solved, explain};
+use super::standing::{
+    Basis, ChainInput, Explanation, FingerAudit, JointCheck, JudgeOptions, Standing, chain_kinds,
+    stats, value_check, value_of,
+};
+use crate::analysis::placement::Joint;
+use crate::analysis::{Analysis, Quantity, QuantityStats};
+use crate::dataset::Finger;
+
+/// The statistics a finger is judged on: every unitless quantity with a tip,
+/// J2/J1 without one (none for a thumb without a tip).
+fn judged_quantities<'a>(
+    a: &'a Analysis,
+    chain: &ChainInput,
+) -> Option<Vec<(Quantity, &'a QuantityStats)>> {
+    let qs: Vec<Quantity> = match (chain.has_tip, chain.finger) {
+        (true, f) => Quantity::of(f)
+            .iter()
+            .copied()
+            .filter(|q| q.is_unitless())
+            .collect(),
+        (false, Finger::Thumb) => Vec::new(),
+        (false, _) => vec![Quantity::RatioJ2J1],
+    };
+    qs.into_iter()
+        .map(|q| stats(a, chain.finger, q).map(|s| (q, s)))
+        .collect()
+}
+
+/// Judges one rig finger with the default options (a skin tip, 4 mm soft tissue).
+pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
+    audit_with(a, chain, &JudgeOptions::default())
+}
+
+/// Judges one rig finger. `None` when the data has no such finger or the chain
+/// has the wrong number of points, a non-finite point, a zero-length segment
+/// or a last segment no longer than the tip correction. Cost: O(1) for the
+/// standings, a few thousand evaluations of the proportions for the explanation.
+pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Option<FingerAudit> {
+    judge_finger(a, chain, opts, false)
+}
+
+/// Judges one rig finger as [`audit_with`] with its MCP held where it is: the
+/// explanation moves only the inner joints (for an MCP placed from its ray's
+/// base, [`super::ray_base::metacarpal`] or [`super::ray_base::wrist`]).
+pub fn audit_holding_mcp(
+    a: &Analysis,
+    chain: &ChainInput,
+    opts: &JudgeOptions,
+) -> Option<FingerAudit> {
+    judge_finger(a, chain, opts, true)
+}
+
+/// The segments c_k of a chain, the tip correction and the compared segments;
+/// `None` for a chain [`audit_with`] refuses.
+fn compared_segments(chain: &ChainInput, opts: &JudgeOptions) -> Option<(Vec<f64>, f64, Vec<f64>)> {
+    if chain.points.len() != ChainInput::expected_points(chain.finger, chain.has_tip)
+        || chain.points.iter().any(|p| !p.is_finite())
+    {
+        return None;
+    }
+    let segments: Vec<f64> = chain
+        .points
+        .windows(2)
+        .map(|w| w[0].distance(w[1]))
+        .collect();
+    if segments.iter().any(|&c| !(c.is_finite() && c > 0.0)) {
+        return None;
+    }
+    let tip_correction = if chain.has_tip {
+        opts.tip_correction()
+    } else {
+        0.0
+    };
+    let mut compared = segments.clone();
+    if let Some(last) = compared.last_mut() {
+        *last -= tip_correction;
+    }
+    if compared.iter().any(|&c| !(c.is_finite() && c > 0.0)) {
+        return None;
+    }
+    Some((segments, tip_correction, compared))
+}
+
+fn judge_finger(
+    a: &Analysis,
+    chain: &ChainInput,
+    opts: &JudgeOptions,
+    hold_mcp: bool,
+) -> Option<FingerAudit> {
+    let finger = chain.finger;
+    let fa = a.finger(finger)?;
+    let (segments, tip_correction, compared) = compared_segments(chain, opts)?;
+    let quantities = judged_quantities(a, chain)?;
+    let basis = match (chain.has_tip, finger) {
+        (true, _) => Basis::Relative,
+        (false, Finger::Thumb) => Basis::None,
+        (false, _) => Basis::Ratio,
+    };
+    let values = quantities
+        .iter()
+        .map(|&(q, s)| value_check(q, value_of(q, &compared), s))
+        .collect();
+    let unjudged = match basis {
+        Basis::Relative => Vec::new(),
+        Basis::Ratio => vec![Joint::Dip],
+        Basis::None => vec![Joint::Ip],
+    };
+    let standings = match basis {
+        Basis::Relative => relative_standings(a, finger, &segments, &compared, tip_correction)?,
+        Basis::Ratio => ratio_standings(a, finger, &compared)?,
+        Basis::None => Vec::new(),
+    };
+    let axis = Axis::new(chain, &compared, tip_correction);
+    let solved = explain(&axis, &quantities, basis, hold_mcp);
+    let joints = joint_checks(chain, &axis, &solved, standings)?;
+    let explanation = Explanation {
+        moved: solved.moved,
+        consistent: solved.consistent,
+        score: solved.score.is_finite().then_some(solved.score),
+        values: solved
+            .segments
+            .map(|s| {
+                quantities
+                    .iter()
+                    .map(|&(q, st)| value_check(q, value_of(q, &s), st))
+                    .collect()
+            })
+            .unwrap_or_default(),
+        also: solved.also,
+    };
+    Some(FingerAudit {
+        finger,
+        has_tip: chain.has_tip,
+        basis,
+        n: fa.n,
+        length: (basis == Basis::Relative).then(|| compared.iter().sum()),
+        segments,
+        tip_correction,
+        compared,
+        values,
+        joints,
+        unjudged,
+        explanation,
+    })
+}
+
+/// Each judged joint's check, with where the explanation puts it.
+fn joint_checks(
+    chain: &ChainInput,
+    axis: &Axis,
+    solved: &Solved,
+    standings: Vec<StandingInput>,
+) -> Option<Vec<JointCheck>> {
+    let kinds = chain_kinds(chain.finger, chain.has_tip);
+    let mut joints = Vec::new();
+    for (joint, measured, expected, range, pi) in standings {
+        let k = kinds.iter().position(|&j| j == joint)?;
+        let moves = solved.moved.contains(&joint);
+        let (suggested, shift_along) = match (&solved.arcs, moves) {
+            (Some(arcs), true) => (
+                point_at(&axis.points, arcs[k]),
+                arcs[k] - axis.joint_arcs[k],
+            ),
+            _ => (chain.points[k], 0.0),
+        };
+        joints.push(JointCheck {
+            joint,
+            measured,
+            expected,
+            range,
+            pi,
+            standing: Standing::of(measured, range, pi),
+            moves,
+            suggested,
+            shift: chain.points[k].distance(suggested),
+            shift_along,
+        });
+    }
+    Some(joints)
+}

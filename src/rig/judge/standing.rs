@@ -1,0 +1,326 @@
+//! The terms of a finger's judgement ([`super::finger`], whose module notes
+//! the docs here refer to): the options, a chain's points, and where its
+//! values and joints stand against the X-ray statistics (range, prediction
+//! interval), with the small arithmetic they share.
+
+use crate::analysis::placement::Joint;
+use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
+use crate::dataset::Finger;
+use crate::rig::read::FingerChain;
+use glam::DVec3;
+use schemars::JsonSchema;
+use serde::Serialize;
+
+/// Soft tissue between the bone tip (the distal phalanx's tuft) and the skin
+/// at the end of a finger, in mm, when the rig does not say.
+///
+/// An assumption, not a measured mean: no study measuring the soft tissue
+/// distal to the tuft along the finger's axis was found. The nearest measured
+/// figures are thinner tissues over the same bone: the nail bed (dorsal soft
+/// tissue between nail and tuft) measures 2.38 +/- 0.27 mm (range 1.75-3.10)
+/// on lateral radiographs of 100 normal adults (PubMed 18428986, 2008), and
+/// the soft tissue under the nail 1.6 +/- 0.1 mm by ultrasound (Diagnosis of
+/// digital clubbing by high-frequency ultrasound imaging); the pulp that caps
+/// the tip is thicker than the nail bed. 4 mm is taken, and `--tip-soft-tissue`
+/// sets it for a given hand.
+pub const DEFAULT_SOFT_TISSUE_MM: f64 = 4.0;
+
+/// What the tip node of a rig (or the end of an X-ray's J3) marks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum TipKind {
+    /// The skin at the end of the finger (most rigs; WebXR's `*-tip`).
+    Skin,
+    /// The end of the distal phalanx (an X-ray's bone tip).
+    Bone,
+}
+
+/// How a rig is compared with the data.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+pub struct JudgeOptions {
+    /// What the rig's tip nodes mark.
+    pub rig_tip: TipKind,
+    /// What the data's tips mark. The paper does not say; taken as bone tips.
+    pub data_tip: TipKind,
+    /// Soft tissue between bone tip and skin tip, in rig units (metres).
+    pub soft_tissue: f64,
+}
+
+impl Default for JudgeOptions {
+    fn default() -> JudgeOptions {
+        JudgeOptions {
+            rig_tip: TipKind::Skin,
+            data_tip: TipKind::Bone,
+            soft_tissue: DEFAULT_SOFT_TISSUE_MM / 1000.0,
+        }
+    }
+}
+
+impl JudgeOptions {
+    /// Taken off the rig's last segment to compare like with like:
+    /// s x ([rig tip is skin] - [data tip is skin]).
+    pub fn tip_correction(&self) -> f64 {
+        let skin = |t: TipKind| f64::from(u8::from(t == TipKind::Skin));
+        self.soft_tissue * (skin(self.rig_tip) - skin(self.data_tip))
+    }
+}
+
+/// One finger of a rig, as joint centres from the root.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainInput {
+    pub finger: Finger,
+    /// Root (MCP), the inner joints, then the tip when `has_tip`, in the rig's space.
+    pub points: Vec<DVec3>,
+    pub has_tip: bool,
+}
+
+impl ChainInput {
+    /// Number of points a complete chain of `finger` has.
+    pub fn expected_points(finger: Finger, has_tip: bool) -> usize {
+        1 + Joint::inner(finger).len() + usize::from(has_tip)
+    }
+}
+
+impl FingerChain {
+    /// The chain's geometry, for the analysis.
+    pub fn input(&self) -> ChainInput {
+        ChainInput {
+            finger: self.finger,
+            points: self.joints.iter().map(|j| j.position).collect(),
+            has_tip: self.has_tip,
+        }
+    }
+}
+
+/// What a finger was judged on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Basis {
+    /// Relative values J~k: the rig has a tip.
+    Relative,
+    /// The ratio J2/J1 only: no tip.
+    Ratio,
+    /// Nothing can be judged (a thumb without a tip).
+    None,
+}
+
+/// Where a measured value stands against the statistics.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[serde(tag = "standing", rename_all = "snake_case")]
+pub enum Standing {
+    /// Inside the observed range [min, max] of the X-rays.
+    InRange,
+    /// Outside the observed range, inside the prediction interval for one new hand.
+    InPrediction,
+    /// Above the prediction interval (above the range when there is none) by `by`.
+    Above { by: f64 },
+    /// Below it by `by`.
+    Below { by: f64 },
+}
+
+impl Standing {
+    /// Judges `x` against the prediction interval when there is one (else the
+    /// range): outside it, by how much; inside it, whether also inside the
+    /// observed range. O(1).
+    ///
+    /// The range is widened by one part in a million of its ends, the precision
+    /// a glTF file (f32) keeps: an X-ray's own proportions stored in a rig must
+    /// still read as inside the range they set.
+    pub fn of(x: f64, range: Interval, pi: Option<Interval>) -> Standing {
+        let tol = 1e-6 * range.low.abs().max(range.high.abs());
+        let in_range = range.low - tol <= x && x <= range.high + tol;
+        let outer = match pi {
+            Some(pi) if pi.contains(x) || (in_range && pi.width() >= range.width()) => {
+                return if in_range {
+                    Standing::InRange
+                } else {
+                    Standing::InPrediction
+                };
+            }
+            Some(pi) => pi,
+            None if in_range => return Standing::InRange,
+            None => range,
+        };
+        if x > outer.high {
+            Standing::Above { by: x - outer.high }
+        } else {
+            Standing::Below { by: outer.low - x }
+        }
+    }
+
+    /// True when inside the range or the prediction interval.
+    pub fn is_consistent(self) -> bool {
+        matches!(self, Standing::InRange | Standing::InPrediction)
+    }
+}
+
+/// One quantity of a rig finger against the X-rays.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct ValueCheck {
+    pub quantity: Quantity,
+    pub measured: f64,
+    pub mean: f64,
+    pub range: Interval,
+    pub pi: Option<Interval>,
+    #[serde(flatten)]
+    pub standing: Standing,
+}
+
+/// One joint of a rig finger against the X-rays, in the rig's units, given
+/// the rest of the finger as the rig has it (see the module notes).
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct JointCheck {
+    pub joint: Joint,
+    /// Distance from the rig's MCP along the chain, as the rig has it (0 for the MCP).
+    pub measured: f64,
+    /// Where the mean puts it, on the same scale (negative: proximal of the rig's MCP).
+    pub expected: f64,
+    pub range: Interval,
+    pub pi: Option<Interval>,
+    /// `Above` means the joint sits too far towards the tip.
+    #[serde(flatten)]
+    pub standing: Standing,
+    /// True when the explanation moves this joint.
+    pub moves: bool,
+    /// Where the explanation puts the joint (the rig's joint when it does not move it).
+    #[schemars(with = "[f64; 3]")]
+    pub suggested: DVec3,
+    /// Distance from the rig's joint to the suggested one.
+    pub shift: f64,
+    /// How far the suggestion lies along the chain from the rig's joint:
+    /// positive towards the tip, negative towards the root.
+    pub shift_along: f64,
+}
+
+/// The fewest joints whose moves bring the finger inside the X-rays' prediction intervals.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct Explanation {
+    /// The joints that move, root first (empty: nothing needs to move).
+    pub moved: Vec<Joint>,
+    /// True when, with those moved, every value is inside its prediction interval.
+    pub consistent: bool,
+    /// The largest normalised distance of a value from its mean after the
+    /// moves: 0 at the mean, 1 at a prediction limit (`None` when no value
+    /// could be judged).
+    pub score: Option<f64>,
+    /// The values after the moves.
+    pub values: Vec<ValueCheck>,
+    /// Other sets of as many joints that would also bring the finger inside.
+    pub also: Vec<Vec<Joint>>,
+}
+
+/// A rig finger judged against the X-ray statistics.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct FingerAudit {
+    pub finger: Finger,
+    pub has_tip: bool,
+    pub basis: Basis,
+    /// X-rays behind the statistics.
+    pub n: usize,
+    /// The rig's segment lengths c_k (J1, J2[, J3]; without a tip one fewer).
+    pub segments: Vec<f64>,
+    /// Taken off the last segment to compare the rig's tip with the data's (see the module notes).
+    pub tip_correction: f64,
+    /// The segments compared with the X-rays: `segments` with the last one corrected.
+    pub compared: Vec<f64>,
+    /// L = sum of the compared segments, with a tip.
+    pub length: Option<f64>,
+    pub values: Vec<ValueCheck>,
+    /// MCP, the inner joints and the tip, each against the rest of the finger.
+    pub joints: Vec<JointCheck>,
+    /// Inner joints that could not be judged (no tip).
+    pub unjudged: Vec<Joint>,
+    pub explanation: Explanation,
+}
+
+impl FingerAudit {
+    /// True when every judged joint and value is inside the range or the prediction interval.
+    pub fn is_consistent(&self) -> bool {
+        self.joints.iter().all(|j| j.standing.is_consistent())
+            && self.values.iter().all(|v| v.standing.is_consistent())
+    }
+
+    /// The check of `joint`, when judged.
+    pub fn joint(&self, joint: Joint) -> Option<&JointCheck> {
+        self.joints.iter().find(|j| j.joint == joint)
+    }
+
+    /// The suggested chain: the rig's points with the explanation's joints moved.
+    pub fn suggested_chain(&self, chain: &ChainInput) -> Vec<DVec3> {
+        let kinds = chain_kinds(chain.finger, chain.has_tip);
+        chain
+            .points
+            .iter()
+            .zip(&kinds)
+            .map(|(p, k)| match self.joint(*k) {
+                Some(j) if j.moves => j.suggested,
+                _ => *p,
+            })
+            .collect()
+    }
+}
+
+/// The joints of a chain of `finger`, root first.
+pub(super) fn chain_kinds(finger: Finger, has_tip: bool) -> Vec<Joint> {
+    let mut k = vec![Joint::Mcp];
+    k.extend_from_slice(Joint::inner(finger));
+    if has_tip {
+        k.push(Joint::Tip);
+    }
+    k
+}
+
+/// The statistics of `quantity` for `finger`, when the data has them.
+pub(super) fn stats(a: &Analysis, finger: Finger, q: Quantity) -> Option<&QuantityStats> {
+    a.finger(finger)?.quantity(q)
+}
+
+pub(super) fn value_check(q: Quantity, measured: f64, s: &QuantityStats) -> ValueCheck {
+    let range = Interval::new(s.min, s.max);
+    ValueCheck {
+        quantity: q,
+        measured,
+        mean: s.mean,
+        range,
+        pi: s.intervals.pi,
+        standing: Standing::of(measured, range, s.intervals.pi),
+    }
+}
+
+/// The value of `q` for segments `s` (the thumb's two, a finger's three, or
+/// the first two without a tip).
+pub(super) fn value_of(q: Quantity, s: &[f64]) -> f64 {
+    let total: f64 = s.iter().sum();
+    match q {
+        Quantity::RelJ1 => s[0] / total,
+        Quantity::RelJ2 => s[1] / total,
+        Quantity::RelJ3 => s[2] / total,
+        Quantity::RatioJ2J1 => s[1] / s[0],
+        Quantity::RatioJ3J2 => s[2] / s[1],
+        Quantity::Total => total,
+        // The metacarpal is not part of the chain: never among the judged quantities.
+        Quantity::RatioMcJ | Quantity::RatioJ1Mc => f64::NAN,
+    }
+}
+
+/// How far `x` lies from the mean of `s`, in units of the distance from the
+/// mean to the prediction limit on that side (the range's end without an
+/// interval): at most 1 inside. O(1).
+pub(super) fn normalised(x: f64, s: &QuantityStats) -> f64 {
+    let (lo, hi) = s
+        .intervals
+        .pi
+        .map_or((s.min, s.max), |pi| (pi.low, pi.high));
+    let (d, half) = if x >= s.mean {
+        (x - s.mean, hi - s.mean)
+    } else {
+        (s.mean - x, s.mean - lo)
+    };
+    if half > 0.0 {
+        d / half
+    } else if d > 0.0 {
+        f64::INFINITY
+    } else {
+        0.0
+    }
+}
