@@ -436,6 +436,20 @@ fn the_committed_example_rigs_are_current() {
     }
 }
 
+/// The fingertip's soft tissue as a share of the finger (MCP to the skin tip),
+/// by hand from Buryanov & Kotiuk 2010, Table I (data/literature/): soft tissue
+/// over soft tissue + distal + middle + proximal phalanx, thumb 5.67 / 58.91.
+pub(crate) fn soft_tissue_share(finger: &str) -> f64 {
+    match finger {
+        "thumb" => 5.67 / (5.67 + 21.67 + 31.57),
+        "index" => 3.84 / (3.84 + 15.82 + 22.38 + 39.78),
+        "middle" => 3.95 / (3.95 + 17.40 + 26.33 + 44.63),
+        "ring" => 3.95 / (3.95 + 17.30 + 25.65 + 41.37),
+        "little" => 3.73 / (3.73 + 15.96 + 18.11 + 32.74),
+        other => panic!("no finger {other}"),
+    }
+}
+
 /// Worst distance between the skinned rest vertices of two files.
 fn worst_vertex_move(a: &[u8], b: &[u8]) -> f64 {
     let (v0, v1) = (skinned_rest_vertices(a), skinned_rest_vertices(b));

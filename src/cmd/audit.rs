@@ -7,7 +7,7 @@ use crate::report;
 use crate::report::layout::{Width, fit_text};
 use crate::rig::AuditOptions;
 use crate::rig::bend::BEND_TOLERANCE_MM;
-use crate::rig::judge::{DEFAULT_SOFT_TISSUE_MM, JudgeOptions, TipKind};
+use crate::rig::judge::{SoftTissue, TipKind};
 use crate::rig::session::{self, Audit, AuditRequest, FixOutcome};
 use std::path::PathBuf;
 
@@ -41,7 +41,10 @@ pub enum FixMcp {
                   child when the names say which finger they belong to (WebXR). Every joint (MCP, PIP, DIP, tip) is \
                   reported inside the X-ray range, inside the prediction interval, or outside by how many mm and in \
                   which direction, and the misfit is explained by moving the fewest joints. Tips are read as skin tips \
-                  and compared with the X-rays' bone tips less the fingertip's soft tissue (--tip, --tip-soft-tissue). \
+                  (--tip) and the data's where its tip column says (the paper's at the skin): alike, the last \
+                  segments are compared as they are; bone against skin, the last segment is corrected by that \
+                  finger's soft tissue measured by Buryanov & Kotiuk 2010 (data/literature/), as a share of the \
+                  rig's finger, so a rig in any unit is judged alike (--tip-soft-tissue MM sets one length). \
                   Rigs without tip nodes are judged on J2/J1 only. Where the skin weights make the mesh bend is found \
                   for each joint, and a joint further than --bend-tolerance from its bend is flagged.\n\n\
                   --fix OUT.glb writes a copy with the explanation's joints moved along each finger, the skin weights \
@@ -72,7 +75,9 @@ pub(crate) struct Args {
     /// What the rig's tip nodes mark
     #[arg(long, value_enum, default_value_t = Tip::Auto)]
     tip: Tip,
-    /// Soft tissue between the bone tip and a skin tip, in mm (default 4, an assumption: see README)
+    /// Soft tissue between the bone tip and a skin tip, in mm, on every finger, where the rig's
+    /// tips and the data's differ [default: each finger's measured share of its length, from
+    /// data/literature/buryanov-kotiuk-2010.csv]
     #[arg(long, value_name = "MM")]
     tip_soft_tissue: Option<f64>,
     /// Flag a joint further than this from where its skin bends, in mm (default 3)
@@ -105,13 +110,14 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         Some(path) => Some(path.clone()),
         None => Some(PathBuf::from(DEFAULT_METACARPALS)).filter(|p| p.is_file()),
     };
+    let options = options(args)?;
     let mut audit = session::audit(&AuditRequest {
         rig: &args.rig,
         map: args.map.as_deref(),
         fix: args.fix.as_deref(),
         data: &args.data.data,
         settings: args.boot.settings()?,
-        options: options(args)?,
+        options,
         only_outside: args.only_outside,
         metacarpals: metacarpals.as_deref(),
         mcp_from_atlas: args.fix_mcp == FixMcp::Atlas,
@@ -150,7 +156,8 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
 }
 
 /// The tip and bend options, in metres; lengths must be finite, not negative
-/// (the bend tolerance above zero).
+/// (the bend tolerance above zero). Without `--tip-soft-tissue` the soft
+/// tissue is the measured table's, when it is found.
 fn options(args: &Args) -> Result<AuditOptions, Error> {
     let mm = |name: &str, v: Option<f64>, default: f64, zero_ok: bool| -> Result<f64, Error> {
         let x = v.unwrap_or(default);
@@ -163,20 +170,18 @@ fn options(args: &Args) -> Result<AuditOptions, Error> {
             )))
         }
     };
-    Ok(AuditOptions {
-        judge: JudgeOptions {
-            rig_tip: match args.tip {
-                Tip::Auto | Tip::Skin => TipKind::Skin,
-                Tip::Bone => TipKind::Bone,
-            },
-            soft_tissue: mm(
-                "tip-soft-tissue",
-                args.tip_soft_tissue,
-                DEFAULT_SOFT_TISSUE_MM,
-                true,
-            )?,
-            ..JudgeOptions::default()
+    let soft_tissue = match args.tip_soft_tissue {
+        Some(given) => SoftTissue::Length {
+            length: mm("tip-soft-tissue", Some(given), 0.0, true)?,
         },
+        None => super::soft_tissue_table()?,
+    };
+    Ok(AuditOptions {
+        rig_tip: match args.tip {
+            Tip::Auto | Tip::Skin => TipKind::Skin,
+            Tip::Bone => TipKind::Bone,
+        },
+        soft_tissue,
         bend_tolerance: mm(
             "bend-tolerance",
             args.bend_tolerance,

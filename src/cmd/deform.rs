@@ -224,6 +224,7 @@ fn deform_rigs(args: &Args, req: &DeformRequest<'_>) -> Result<Deformed, Error> 
             args.map.as_deref(),
             &args.data.data,
             args.boot.settings()?,
+            &super::soft_tissue_table()?,
         )?;
         let (a, b, verdicts) = compare_fixed(&fixed, &args.rig, req)?;
         (a, Some(b), verdicts, Some(fixed.moved))

@@ -16,11 +16,11 @@ use crate::report::view::{
 };
 use crate::report::writer::OutputFile;
 use crate::report::{self, Formats};
-use crate::rig::AuditedRig;
 use crate::rig::deform::{Pose, Skinning};
-use crate::rig::judge::WristRatios;
+use crate::rig::judge::{SoftTissue, WristRatios};
 use crate::rig::reference::{self, ReferenceRig};
 use crate::rig::session;
+use crate::rig::{AuditOptions, AuditedRig};
 use clap::ValueEnum;
 use std::path::{Path, PathBuf};
 
@@ -163,7 +163,9 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let a = super::analyse_showing_progress(&dataset, &settings, quiet)?;
     super::warn_implausible(&a);
     let paper_data = dataset;
-    let rigs = audit_references(references, &a);
+    // The fingertip's soft tissue of the published table, for rigs whose tips differ from the data's.
+    let soft_tissue = super::soft_tissue_from(&args.literature)?;
+    let rigs = audit_references(references, &a, &soft_tissue);
     // The coverage curve and the atlas section are independent (their random streams are
     // keyed by seed, size and simulation, not by thread), so they run side by side: the
     // same numbers, with the serial parts of one overlapping the other.
@@ -211,6 +213,7 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let deform = deform_section(
         &args.deform_rig,
         &a,
+        &soft_tissue,
         atlas.as_ref().map(|x| (&x.analysis, wrist.as_ref())),
     )?;
     let timestamp = args
@@ -347,12 +350,20 @@ fn check_claims(claims: &Claims, dataset: &Dataset) -> (Vec<ClaimResult>, Option
     }
 }
 
-/// Judges each reference rig against the statistics.
-fn audit_references(references: Vec<ReferenceRig>, a: &Analysis) -> Vec<ReferenceAudit> {
+/// Judges each reference rig against the statistics, as `audit` does (skin tips).
+fn audit_references(
+    references: Vec<ReferenceRig>,
+    a: &Analysis,
+    soft_tissue: &SoftTissue,
+) -> Vec<ReferenceAudit> {
+    let options = AuditOptions {
+        soft_tissue: soft_tissue.clone(),
+        ..AuditOptions::default()
+    };
     references
         .into_iter()
         .map(|rig| {
-            let audit = AuditedRig::of(&rig.name, &rig.chains, &[], a);
+            let audit = AuditedRig::with(&rig.name, &rig.chains, &[], a, &options, None);
             ReferenceAudit { rig, audit }
         })
         .collect()
@@ -365,6 +376,7 @@ fn audit_references(references: Vec<ReferenceRig>, a: &Analysis) -> Vec<Referenc
 fn deform_section(
     rig: &Path,
     a: &Analysis,
+    soft_tissue: &SoftTissue,
     atlas: Option<(&Analysis, Option<&WristRatios>)>,
 ) -> Result<Option<DeformSection>, Error> {
     if !rig.exists() {
@@ -372,7 +384,7 @@ fn deform_section(
     }
     let pose = Pose::fist();
     let req = super::deform::request(rig, &pose, Skinning::Lbs);
-    let mut fixed = session::fix_in_memory_with(rig, None, a)?;
+    let mut fixed = session::fix_in_memory_with(rig, None, a, soft_tissue)?;
     if let Some((atlas, wrist)) = atlas {
         fixed.audited.judge_metacarpals(atlas, wrist);
     }

@@ -5,10 +5,10 @@
 use super::layout::{Align, Give, Grid, Hidden, Width};
 use crate::analysis::placement::Joint;
 use crate::analysis::{Interval, Quantity};
-use crate::format::{level, num};
+use crate::format::{level, num, percent};
 use crate::rig::bend::Bend;
 use crate::rig::judge::{
-    Basis, FingerAudit, JudgeOptions, MetacarpalCheck, RayBase, Standing, TipKind,
+    Basis, FingerAudit, JudgeOptions, MetacarpalCheck, RayBase, SoftTissue, Standing, TipKind,
 };
 use crate::rig::{AuditedFinger, AuditedRig};
 
@@ -19,7 +19,7 @@ pub(crate) const MM: f64 = 1000.0;
 pub(crate) const CAVEATS: [&str; 3] = [
     "The statistics come from X-rays of right hands; a left hand is judged as their mirror image.",
     "A rig's joints are rotation centres, while the X-ray lengths run between bone ends; the two differ by a few per cent, so read the prediction interval as a guide, not a verdict.",
-    "A rig's tip usually sits at the skin and so includes the fingertip's soft tissue, which the distal phalanx on an X-ray does not; it is taken off the last segment (4 mm unless --tip-soft-tissue says otherwise, an assumption: no measured mean was found).",
+    "A rig's tip usually sits at the skin, and so do the paper's X-ray tips (their tip column: inferred from Buryanov & Kotiuk 2010, not stated by the paper), so such a rig is compared as it is. Where a rig's tips and the data's differ (one at the bone, the other at the skin), the last segment is corrected by the fingertip's soft tissue Buryanov & Kotiuk measured for that finger (66 adults, 3.7 to 5.7 mm), as a share of the rig's finger; --tip-soft-tissue MM sets one length for every finger instead.",
 ];
 
 /// `text` as one line starting with `first`; [`super::layout::fit_text`]
@@ -57,34 +57,63 @@ pub(crate) fn basis_words(a: &FingerAudit) -> String {
     }
 }
 
-/// How the tips are compared, in words.
+/// How the tips are compared, in words: whether the rig's tips and the
+/// data's agree (nothing trimmed), and what bridges them when they do not.
 pub(crate) fn tip_words(t: &JudgeOptions) -> String {
-    let kind = |k: TipKind| match k {
-        TipKind::Skin => "skin",
-        TipKind::Bone => "bone",
+    let rig = t.rig_tip.name();
+    let data = match t.data_tips.single() {
+        Some(k) => format!(
+            "the X-rays' tips are {} tips (the data's tip column)",
+            k.name()
+        ),
+        None => format!(
+            "the X-rays' tips are {} in the data's tip column, taken as {} tips",
+            t.data_tips.describe(),
+            t.data_tip.name()
+        ),
     };
-    let c = t.tip_correction();
-    let data = if t.data_tip == TipKind::Bone {
-        "the X-rays' tips taken as bone tips (the paper does not say)"
+    if t.rig_tip == t.data_tip {
+        return format!(
+            "Rig tips read as {rig} tips and {data}: alike, so nothing is trimmed and each last \
+             segment is compared as it is."
+        );
+    }
+    let longer = if t.rig_tip == TipKind::Skin {
+        "shorter"
     } else {
-        "the X-rays' tips are skin tips"
+        "longer"
     };
-    if c == 0.0 {
-        format!(
-            "Rig tips read as {} tips and compared as they are; {data}.",
-            kind(t.rig_tip)
-        )
-    } else {
-        format!(
-            "Rig tips read as {} tips, compared {} mm {} for the fingertip's soft tissue; {data}.",
-            kind(t.rig_tip),
-            num(c.abs() * MM, 1),
-            if c > 0.0 {
-                "nearer the root"
-            } else {
-                "further out"
-            }
-        )
+    match &t.soft_tissue {
+        SoftTissue::Length { length } => format!(
+            "Rig tips read as {rig} tips and {data}: each last segment is compared {} mm \
+             {longer} for the fingertip's soft tissue (--tip-soft-tissue).",
+            num(length * MM, 1)
+        ),
+        SoftTissue::Table {
+            source,
+            name,
+            fingers,
+            ..
+        } => {
+            let shares: Vec<f64> = fingers.iter().map(|f| f.share(t.rig_tip)).collect();
+            let low = shares.iter().copied().fold(f64::INFINITY, f64::min);
+            let high = shares.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            format!(
+                "Rig tips read as {rig} tips and {data}: each last segment is compared {longer} \
+                 by the fingertip's soft tissue {} measured for that finger, as a share of the \
+                 rig's finger ({} to {} of its length), so a rig in any unit is judged alike.",
+                name.as_deref().map_or_else(
+                    || format!("that {source}"),
+                    |n| format!("that {n} ({source})")
+                ),
+                percent(low),
+                percent(high)
+            )
+        }
+        SoftTissue::Unknown => format!(
+            "Rig tips read as {rig} tips and {data}, and no figure for the fingertip's soft \
+             tissue between the two is known, so the fingers with a tip are not judged."
+        ),
     }
 }
 
@@ -109,9 +138,15 @@ pub(crate) fn heading(f: &AuditedFinger) -> String {
         && let Some(last) = a.compared.last()
     {
         line.push_str(&format!(
-            "; compared J{} {}",
+            "; compared J{} {} ({} mm soft tissue {})",
             a.compared.len(),
-            num(last * MM, 2)
+            num(last * MM, 2),
+            num(a.tip_correction.abs() * MM, 2),
+            if a.tip_correction > 0.0 {
+                "off"
+            } else {
+                "added"
+            }
         ));
     }
     if let Some(l) = a.length {

@@ -3,7 +3,7 @@
 //! the caller's business.
 
 use super::fix::{self, Fixed};
-use super::judge::{self, AuditOptions, AuditedRig};
+use super::judge::{self, AuditOptions, AuditedRig, JudgeOptions, SoftTissue};
 use super::read::map::NameMap;
 use super::read::{GltfFile, Rig};
 use crate::analysis::{self, Analysis, Settings};
@@ -75,6 +75,14 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     analysis::budget::check_bootstrap(dataset.xray_count(), req.settings.resamples)
         .map_err(Error::Usage)?;
     let analysis = analysis::analyse(&dataset, &req.settings);
+    refuse_unlike_tips(
+        &JudgeOptions::new(
+            req.options.rig_tip,
+            req.options.soft_tissue.clone(),
+            &analysis,
+        ),
+        &analysis,
+    )?;
     if req.mcp_from_atlas && req.metacarpals.is_none() {
         return Err(Error::Usage(
             "--fix-mcp atlas needs the metacarpals' dataset: give --metacarpals DATASET (the \
@@ -116,7 +124,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
             };
             let placed = match &atlas {
                 Some(_) if req.mcp_from_atlas => {
-                    judge::ray::mcp_from_base(&audited, &analysis, &req.options.judge)
+                    judge::ray::mcp_from_base(&audited, &analysis, &audited.tips)
                 }
                 _ => audited.fingers.clone(),
             };
@@ -155,12 +163,14 @@ pub struct FixedInMemory {
 
 /// Judges `rig` against the statistics of `data` and fixes it as
 /// [`audit`] with `--fix` does, without writing anything: the fixed copy is
-/// the same bytes `audit --fix OUT.glb` writes, parsed from memory.
+/// the same bytes `audit --fix OUT.glb` writes, parsed from memory;
+/// `soft_tissue` as `audit` takes it, used where the rig's tips and the data's differ.
 pub fn fix_in_memory(
     rig: &Path,
     map: Option<&Path>,
     data: &Path,
     settings: Settings,
+    soft_tissue: &SoftTissue,
 ) -> Result<FixedInMemory, Error> {
     let map = map.map(NameMap::load).transpose()?;
     let loaded = Rig::load(rig, map.as_ref())?;
@@ -168,7 +178,7 @@ pub fn fix_in_memory(
     analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)
         .map_err(Error::Usage)?;
     let analysis = analysis::analyse(&dataset, &settings);
-    fix_loaded(rig, loaded, &analysis)
+    fix_loaded(rig, loaded, &analysis, soft_tissue)
 }
 
 /// [`fix_in_memory`] against statistics already computed (the report's).
@@ -176,21 +186,35 @@ pub fn fix_in_memory_with(
     rig: &Path,
     map: Option<&Path>,
     analysis: &Analysis,
+    soft_tissue: &SoftTissue,
 ) -> Result<FixedInMemory, Error> {
     let map = map.map(NameMap::load).transpose()?;
     let loaded = Rig::load(rig, map.as_ref())?;
-    fix_loaded(rig, loaded, analysis)
+    fix_loaded(rig, loaded, analysis, soft_tissue)
 }
 
-fn fix_loaded(rig: &Path, loaded: Rig, analysis: &Analysis) -> Result<FixedInMemory, Error> {
+fn fix_loaded(
+    rig: &Path,
+    loaded: Rig,
+    analysis: &Analysis,
+    soft_tissue: &SoftTissue,
+) -> Result<FixedInMemory, Error> {
     // `audit --fix OUT.glb` with its default options: the same judgement
     // (skin tips, bends from the skin weights) and the same fix.
+    let options = AuditOptions {
+        soft_tissue: soft_tissue.clone(),
+        ..AuditOptions::default()
+    };
+    refuse_unlike_tips(
+        &JudgeOptions::new(options.rig_tip, options.soft_tissue.clone(), analysis),
+        analysis,
+    )?;
     let audited = AuditedRig::with(
         &loaded.file.label,
         &loaded.chains,
         &loaded.notes,
         analysis,
-        &AuditOptions::default(),
+        &options,
         loaded.weights.as_ref(),
     );
     let dir = rig.parent().unwrap_or(Path::new("."));
@@ -215,6 +239,31 @@ fn fix_loaded(rig: &Path, loaded: Rig, analysis: &Analysis) -> Result<FixedInMem
         moved: out.moved,
         audited,
     })
+}
+
+/// Refuses to judge a rig whose tips differ from the data's (one at the bone,
+/// the other at the skin) when no soft tissue figure is known to bridge them.
+fn refuse_unlike_tips(judge: &JudgeOptions, a: &Analysis) -> Result<(), Error> {
+    if !judge.lacks_soft_tissue() {
+        return Ok(());
+    }
+    let data = match judge.data_tips.single() {
+        Some(t) => format!("{}'s rows end {}", a.dataset.path, t.phrase()),
+        None => format!(
+            "{}'s tips are {}, taken as bone tips",
+            a.dataset.path,
+            judge.data_tips.describe()
+        ),
+    };
+    Err(Error::Usage(format!(
+        "the rig's tips are read as {rig} tips and {data}, so each last segment must be \
+         corrected by the fingertip's soft tissue, and no figure for it is known: {table} (its \
+         measured mean per finger) was not found here. Run from the folder that holds data/, \
+         give --tip-soft-tissue MM, or give --tip {kind} if the rig's tips mark the {kind} too",
+        rig = judge.rig_tip.name(),
+        kind = judge.data_tip.name(),
+        table = judge::SOFT_TISSUE_TABLE,
+    )))
 }
 
 /// The container of a fixed copy written to `out`: `true` for GLB (.glb,

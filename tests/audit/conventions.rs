@@ -145,7 +145,7 @@ fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
     for needle in [
         "Explanation: the MCP sits ",
         " mm distal of where the X-rays put it (at the finger web, not the knuckle?); PIP, DIP and \
-         the tip are consistent with the X-rays once the MCP and the soft tissue are accounted for.",
+         the tip are consistent with the X-rays once the MCP is accounted for.",
         "move MCP ",
     ] {
         assert!(words.contains(needle), "{needle}\n{words}");

@@ -5,9 +5,9 @@
 //! the five measured hands and must fall inside the X-ray range. The hand sits
 //! under an `Armature` scaled 0.01 (centimetres, as Mixamo exports), turned 30
 //! degrees, and each finger bends 12 degrees at its middle joints, so world
-//! transforms compose rotation, scale and translation. Tip nodes sit at the
-//! skin: 0.4 cm (the audit's default soft tissue) past the bone tip X-ray 1b
-//! gives, unless the spec says otherwise.
+//! transforms compose rotation, scale and translation. Tip nodes sit where
+//! X-ray 1b's last segment ends: at the skin, as the paper's rows are (their tip
+//! column; Buryanov & Kotiuk 2010, data/literature/), unless the spec adds tissue.
 
 use glam::{DMat4, DQuat, DVec3};
 use serde_json::{Value, json};
@@ -62,7 +62,7 @@ pub struct HandSpec {
     pub moves: Vec<(&'static str, usize, f64)>,
     /// Extra top-level JSON members (e.g. extensionsRequired).
     pub extra: Vec<(&'static str, Value)>,
-    /// Soft tissue past the bone tip, in cm: where the tip nodes sit.
+    /// Extra length past the X-rays' (skin) tip, in cm: where the tip nodes sit.
     pub tip_tissue_cm: f64,
     /// The Armature's scale: 0.01 makes the centimetres of the nodes metres.
     pub armature_scale: f64,
@@ -93,7 +93,7 @@ impl HandSpec {
             matrices: false,
             moves: Vec::new(),
             extra: Vec::new(),
-            tip_tissue_cm: 0.4,
+            tip_tissue_cm: 0.0,
             armature_scale: 0.01,
             siblings: false,
             metacarpals: false,

@@ -12,7 +12,14 @@ use serde_json::Value;
 fn with_atlas() -> Option<Workdir> {
     let wd = Workdir::new();
     wd.copy_paper_data();
-    for file in ["data/atlas/measurements.csv", "data/atlas/landmarks.csv"] {
+    // The atlas's tips are at the bone and the rigs' at the skin: the measured soft
+    // tissue (data/literature/) bridges them.
+    for file in [
+        "data/atlas/measurements.csv",
+        "data/atlas/landmarks.csv",
+        "data/literature/buryanov-kotiuk-2010.csv",
+        "data/literature/buryanov-kotiuk-2010.cohort.csv",
+    ] {
         let path = manifest_dir().join(file);
         let Ok(bytes) = std::fs::read(&path) else {
             eprintln!("skipped: {} is not readable", path.display());
@@ -65,7 +72,11 @@ fn a_hand_bone_without_metacarpals_judges_the_mcp_from_the_wrist() {
             m["mc"].is_null() && m["values"] == serde_json::json!([]),
             "{m}"
         );
-        let j = num(&f["audit"]["length"]);
+        // J runs to the atlas's tips, at the bone: the rig's skin tip less the finger's
+        // measured soft tissue, as a share of the finger.
+        let j = num(&m["length"]);
+        let share = 1.0 - j / num(&f["audit"]["length"]);
+        assert_close(share, super::soft_tissue_share(name), 1e-9, name);
         let y = &m["wrist_over_length"];
         assert_close(num(&y["measured"]), w / j, 1e-9, name);
         assert_eq!(y["n"], 910, "{name}");

@@ -6,7 +6,7 @@
 use super::bend;
 use super::finger;
 use super::ray_base::{self, MetacarpalCheck, WRIST_DEFINITION, WristRatios};
-use super::standing::{FingerAudit, JudgeOptions, TipKind};
+use super::standing::{FingerAudit, JudgeOptions, SoftTissue, TipKind};
 use crate::analysis::Analysis;
 use crate::dataset::Finger;
 use crate::rig::read::FingerChain;
@@ -16,9 +16,13 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 /// How a rig is judged.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct AuditOptions {
-    pub judge: JudgeOptions,
+    /// What the rig's tip nodes mark.
+    pub rig_tip: TipKind,
+    /// The soft tissue used where the rig's tips and the data's differ; the
+    /// data's tips come from its `tip` column ([`JudgeOptions::new`]).
+    pub soft_tissue: SoftTissue,
     /// A joint further than this from where its skin bends is flagged (rig units).
     pub bend_tolerance: f64,
     /// With skin tips: take the skin's end from the mesh when it reaches
@@ -29,7 +33,8 @@ pub struct AuditOptions {
 impl Default for AuditOptions {
     fn default() -> AuditOptions {
         AuditOptions {
-            judge: JudgeOptions::default(),
+            rig_tip: TipKind::Skin,
+            soft_tissue: SoftTissue::Unknown,
             bend_tolerance: bend::BEND_TOLERANCE_MM / 1000.0,
             measure_tip: true,
         }
@@ -189,8 +194,8 @@ fn metacarpal_note(
 }
 
 impl AuditedRig {
-    /// Judges `chains` against the analysis with the default options and no
-    /// skin; fingers the data lacks become notes.
+    /// Judges `chains` against the analysis with the default options (skin
+    /// tips, no soft tissue figure) and no skin; fingers the data lacks become notes.
     pub fn of(label: &str, chains: &[FingerChain], notes: &[String], a: &Analysis) -> AuditedRig {
         AuditedRig::with(label, chains, notes, a, &AuditOptions::default(), None)
     }
@@ -205,6 +210,7 @@ impl AuditedRig {
         opts: &AuditOptions,
         weights: Option<&SkinWeights>,
     ) -> AuditedRig {
+        let judge = JudgeOptions::new(opts.rig_tip, opts.soft_tissue.clone(), a);
         let mut notes = notes.to_vec();
         let mut fingers = Vec::new();
         let mut lengths = Vec::new();
@@ -213,7 +219,7 @@ impl AuditedRig {
             let mut skin_tip = None;
             let n = input.points.len();
             if opts.measure_tip
-                && opts.judge.rig_tip == TipKind::Skin
+                && opts.rig_tip == TipKind::Skin
                 && let Some(w) = weights
                 && let Some(reach) = bend::skin_end(chain, w)
                 && n >= 2
@@ -236,7 +242,7 @@ impl AuditedRig {
                     .map(|w| w[0].distance(w[1]))
                     .sum::<f64>(),
             );
-            match finger::audit_with(a, &input, &opts.judge) {
+            match finger::audit_with(a, &input, &judge) {
                 Some(audit) => {
                     let bends = weights
                         .map(|w| bend::bends(chain, w, opts.bend_tolerance))
@@ -249,6 +255,19 @@ impl AuditedRig {
                         metacarpal_check: None,
                     });
                 }
+                None if input.has_tip
+                    && a.finger(chain.finger).is_some()
+                    && judge.tip_correction(chain.finger, 1.0).is_none() =>
+                {
+                    notes.push(format!(
+                        "{}: its tip is read as a {} tip and {}'s as {} tips, and no figure for \
+                         this finger's soft tissue between the two is known, so it is not judged",
+                        chain.label(),
+                        judge.rig_tip.name(),
+                        a.dataset.path,
+                        judge.data_tip.name()
+                    ))
+                }
                 None => notes.push(format!(
                     "{}: {} has no statistics for this finger (or the chain has zero length, or \
                      a last segment no longer than the tip's soft tissue), so it is not judged",
@@ -259,7 +278,7 @@ impl AuditedRig {
         }
         AuditedRig {
             label: label.to_string(),
-            tips: opts.judge,
+            tips: judge,
             bend_tolerance: opts.bend_tolerance,
             fingers,
             notes,
@@ -289,9 +308,25 @@ impl AuditedRig {
             let Some(mcp) = f.chain.joints.first() else {
                 continue;
             };
+            // The finger's length to the metacarpals' dataset's own tips
+            // (the atlas's are at the bone), not to the finger data's.
+            let length = f
+                .audit
+                .length
+                .and_then(|_| {
+                    self.tips
+                        .length_against(&atlas.tips, f.audit.finger, &f.audit.segments)
+                })
+                .unwrap_or(f64::NAN);
             if let Some(node) = &f.chain.metacarpal {
-                f.metacarpal_check =
-                    ray_base::metacarpal(atlas, &f.audit, &node.name, node.position, mcp.position);
+                f.metacarpal_check = ray_base::metacarpal(
+                    atlas,
+                    &f.audit,
+                    length,
+                    &node.name,
+                    node.position,
+                    mcp.position,
+                );
                 match f.metacarpal_check {
                     Some(_) => from_cmc += 1,
                     None => self.notes.push(format!(
@@ -300,6 +335,14 @@ impl AuditedRig {
                         node.name,
                         if f.audit.length.is_none() {
                             "the rig has no tip, so the finger's length is unknown".to_string()
+                        } else if length.is_nan() {
+                            format!(
+                                "its tip is read as a {} tip and {}'s as {} tips, and no figure \
+                                 for the soft tissue between the two is known",
+                                self.tips.rig_tip.name(),
+                                atlas.dataset.path,
+                                super::standing::data_tip_of(&atlas.tips).name()
+                            )
                         } else {
                             format!("{} has no mc/J for this finger", atlas.dataset.path)
                         }
@@ -312,6 +355,7 @@ impl AuditedRig {
                             atlas,
                             rho,
                             &f.audit,
+                            length,
                             &node.name,
                             node.position,
                             mcp.position,

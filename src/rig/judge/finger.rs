@@ -6,13 +6,18 @@
 //! segments are the chords c_k = |P_k - P_(k-1)|.
 //!
 //! **The tip.** A rig's tip node usually marks the skin at the end of the
-//! finger, while an X-ray's J3 ends at the bone tip (the distal phalanx's
-//! tuft). So, with a skin tip and bone-tip data, the last segment is
-//! compared as c_last - s, s the soft tissue beyond the bone tip
-//! ([`DEFAULT_SOFT_TISSUE_MM`](super::DEFAULT_SOFT_TISSUE_MM), `--tip-soft-tissue`); with `--tip bone` it is
-//! compared as it is. In general the correction is s x ([rig tip is skin] -
-//! [data tip is skin]); the compared segments s_k are the chords with that
-//! correction on the last one, L = sum s_k and J~k = s_k / L (eq. 2).
+//! finger; a dataset's J3 ends where its `tip` column says: at the skin (the
+//! paper's X-rays) or at the bone tip, the distal phalanx's tuft (the atlas).
+//! Where the two agree the last segment is compared as it is. Where they
+//! differ it is compared as c_last - s, s the soft tissue beyond the bone tip
+//! ([`SoftTissue::correction`](super::SoftTissue::correction)): the measured
+//! share of the finger from a published table (Buryanov and Kotiuk 2010),
+//! times the rig's finger length, or one length given by `--tip-soft-tissue`;
+//! s > 0 for a skin tip against bone tips, s < 0 for a bone tip against skin
+//! tips. s is computed once per finger, from the chain as given, and held
+//! while the explanation moves joints. The compared segments s_k are the
+//! chords with that correction on the last one, L = sum s_k and J~k = s_k / L
+//! (eq. 2).
 //!
 //! **Each joint against the others.** Every joint gets a standing: where the
 //! X-rays put it given the rest of the finger as the rig has it, in distances
@@ -78,14 +83,16 @@ fn judged_quantities<'a>(
         .collect()
 }
 
-/// Judges one rig finger with the default options (a skin tip, 4 mm soft tissue).
+/// Judges one rig finger with a skin tip and no soft tissue figure
+/// ([`JudgeOptions::skin`]): against data with bone tips it is not judged.
 pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
-    audit_with(a, chain, &JudgeOptions::default())
+    audit_with(a, chain, &JudgeOptions::skin(a))
 }
 
 /// Judges one rig finger. `None` when the data has no such finger or the chain
-/// has the wrong number of points, a non-finite point, a zero-length segment
-/// or a last segment no longer than the tip correction. Cost: O(1) for the
+/// has the wrong number of points, a non-finite point, a zero-length segment,
+/// tips unlike the data's with no soft tissue figure for the finger, or a last
+/// segment no longer than the tip correction. Cost: O(1) for the
 /// standings, a few thousand evaluations of the proportions for the explanation.
 pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Option<FingerAudit> {
     judge_finger(a, chain, opts, false)
@@ -119,7 +126,7 @@ fn compared_segments(chain: &ChainInput, opts: &JudgeOptions) -> Option<(Vec<f64
         return None;
     }
     let tip_correction = if chain.has_tip {
-        opts.tip_correction()
+        opts.tip_correction(chain.finger, segments.iter().sum())?
     } else {
         0.0
     };

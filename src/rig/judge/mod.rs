@@ -28,6 +28,6 @@ pub use ray_base::{
     wrist,
 };
 pub use standing::{
-    Basis, ChainInput, DEFAULT_SOFT_TISSUE_MM, Explanation, FingerAudit, JointCheck, JudgeOptions,
-    Standing, TipKind, ValueCheck,
+    Basis, ChainInput, Explanation, FingerAudit, FingerSoftTissue, JointCheck, JudgeOptions,
+    SOFT_TISSUE_TABLE, SoftTissue, Standing, TipKind, ValueCheck, data_tip_of,
 };

@@ -143,7 +143,8 @@ pub struct MetacarpalCheck {
     /// The rig's metacarpal mc: CMC to MCP, in rig units; null from the
     /// wrist (the rig has no metacarpal, and none is estimated).
     pub mc: Option<f64>,
-    /// The finger's length J as compared (MCP to tip, the tip's soft tissue taken off).
+    /// The finger's length J, MCP to the tip as the metacarpals' dataset
+    /// measures it (the atlas's: at the bone, the rig's soft tissue taken off).
     pub length: f64,
     /// From a CMC: mc/J and J1/mc against the dataset; empty from the wrist.
     pub values: Vec<ValueCheck>,
@@ -168,23 +169,25 @@ pub struct MetacarpalCheck {
 
 /// Judges a finger's MCP from its CMC (`cmc`, the metacarpal node's origin)
 /// against the metacarpal statistics of `a`, given the finger as judged and
-/// its MCP `mcp`.
+/// its MCP `mcp`, and the finger's length `length` to the dataset's tips
+/// ([`super::JudgeOptions::length_against`]).
 ///
 /// With S = mc + J (CMC to the compared tip through the MCP, held) and x = mc/J,
 /// the MCP belongs at S x / (1 + x) from the CMC, increasing in x, so the
 /// range and prediction interval of x map onto positions end to end. Moving
 /// the MCP along the line lengthens mc as much as it shortens J; holding J
 /// instead would read a 10 mm shift as about 10 (1 + x) mm. `None` without a
-/// tip (J unknown), without the dataset's mc/J for the finger, or for a CMC on
-/// the MCP. O(1).
+/// tip (J unknown), for a `length` not finite, without the dataset's mc/J
+/// for the finger, or for a CMC on the MCP. O(1).
 pub fn metacarpal(
     a: &Analysis,
     audit: &FingerAudit,
+    length: f64,
     node: &str,
     cmc: DVec3,
     mcp: DVec3,
 ) -> Option<MetacarpalCheck> {
-    let (length, mc) = ray_lengths(audit, cmc, mcp)?;
+    let (length, mc) = ray_lengths(audit, length, cmc, mcp)?;
     let x = stats(a, audit.finger, Quantity::RatioMcJ)?;
     let values: Vec<ValueCheck> = [
         (Quantity::RatioMcJ, mc / length),
@@ -205,7 +208,8 @@ pub fn metacarpal(
 /// Judges a finger's MCP from the wrist (`wrist`, the hand bone's origin; see
 /// [`WRIST_DEFINITION`]) where the rig has no metacarpal.
 ///
-/// With w the wrist-to-MCP distance, J the compared length and y = w/J, the
+/// With w the wrist-to-MCP distance, J the finger's `length` to the atlas's
+/// tips ([`super::JudgeOptions::length_against`]) and y = w/J, the
 /// MCP belongs at S y / (1 + y) from the wrist, S = w + J held (wrist and
 /// compared tip fixed), as [`metacarpal`] with x = mc/J. The atlas's y is
 /// measured per X-ray (`ratios`, [`WristRatios`]): its mean, range and t
@@ -215,12 +219,13 @@ pub fn wrist(
     a: &Analysis,
     ratios: &WristRatios,
     audit: &FingerAudit,
+    length: f64,
     node: &str,
     wrist: DVec3,
     mcp: DVec3,
 ) -> Option<MetacarpalCheck> {
     let y = ratios.of(audit.finger)?;
-    let (length, w) = ray_lengths(audit, wrist, mcp)?;
+    let (length, w) = ray_lengths(audit, length, wrist, mcp)?;
     let pi = y.pi(a.settings.confidence);
     let measured = w / length;
     Some(MetacarpalCheck {
@@ -243,12 +248,13 @@ pub fn wrist(
     })
 }
 
-/// The compared length J of a judged finger and the distance from `origin` to
-/// `mcp`; `None` without a tip or for an origin on the MCP.
-fn ray_lengths(audit: &FingerAudit, origin: DVec3, mcp: DVec3) -> Option<(f64, f64)> {
-    let length = audit.length?;
+/// The length J of a judged finger and the distance from `origin` to `mcp`;
+/// `None` without a tip, for a length not finite and positive, or for an
+/// origin on the MCP.
+fn ray_lengths(audit: &FingerAudit, length: f64, origin: DVec3, mcp: DVec3) -> Option<(f64, f64)> {
+    audit.length?;
     let to_mcp = origin.distance(mcp);
-    (origin.is_finite() && mcp.is_finite() && to_mcp > 0.0 && length > 0.0)
+    (origin.is_finite() && mcp.is_finite() && to_mcp > 0.0 && length.is_finite() && length > 0.0)
         .then_some((length, to_mcp))
 }
 

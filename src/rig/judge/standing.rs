@@ -5,63 +5,193 @@
 
 use crate::analysis::placement::Joint;
 use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
-use crate::dataset::Finger;
+pub use crate::dataset::TipKind;
+use crate::dataset::{Finger, Segment, SummaryTable, TipCounts};
 use crate::rig::read::FingerChain;
 use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-/// Soft tissue between the bone tip (the distal phalanx's tuft) and the skin
-/// at the end of a finger, in mm, when the rig does not say.
-///
-/// An assumption, not a measured mean: no study measuring the soft tissue
-/// distal to the tuft along the finger's axis was found. The nearest measured
-/// figures are thinner tissues over the same bone: the nail bed (dorsal soft
-/// tissue between nail and tuft) measures 2.38 +/- 0.27 mm (range 1.75-3.10)
-/// on lateral radiographs of 100 normal adults (PubMed 18428986, 2008), and
-/// the soft tissue under the nail 1.6 +/- 0.1 mm by ultrasound (Diagnosis of
-/// digital clubbing by high-frequency ultrasound imaging); the pulp that caps
-/// the tip is thicker than the nail bed. 4 mm is taken, and `--tip-soft-tissue`
-/// sets it for a given hand.
-pub const DEFAULT_SOFT_TISSUE_MM: f64 = 4.0;
+/// The published table whose fingertip soft tissue is used when a rig's tips
+/// and the data's differ (one at the bone, the other at the skin), read at run
+/// time: Buryanov and Kotiuk (2010), Table I, 66 adult right hands.
+pub const SOFT_TISSUE_TABLE: &str = "data/literature/buryanov-kotiuk-2010.csv";
 
-/// What the tip node of a rig (or the end of an X-ray's J3) marks.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum TipKind {
-    /// The skin at the end of the finger (most rigs; WebXR's `*-tip`).
-    Skin,
-    /// The end of the distal phalanx (an X-ray's bone tip).
-    Bone,
+/// The fingertip's soft tissue beyond the distal phalanx: what separates a tip
+/// at the skin from a tip at the bone.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(tag = "from", rename_all = "snake_case")]
+pub enum SoftTissue {
+    /// No figure is known: a rig is judged only where its tips and the data's agree.
+    Unknown,
+    /// The same length on every finger, in rig units (`--tip-soft-tissue MM`).
+    Length { length: f64 },
+    /// Each finger's measured mean from a published table, taken as a share of
+    /// the finger's length ([`SoftTissue::correction`]).
+    Table {
+        /// The table, as given.
+        source: String,
+        /// The source's short name ("Buryanov & Kotiuk 2010"), from its notes.
+        name: Option<String>,
+        /// The table's unit (the shares have none).
+        unit: String,
+        fingers: Vec<FingerSoftTissue>,
+    },
 }
 
-/// How a rig is compared with the data.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
-pub struct JudgeOptions {
-    /// What the rig's tip nodes mark.
-    pub rig_tip: TipKind,
-    /// What the data's tips mark. The paper does not say; taken as bone tips.
-    pub data_tip: TipKind,
-    /// Soft tissue between bone tip and skin tip, in rig units (metres).
+/// One finger's soft tissue and bones in a published table, in its unit.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct FingerSoftTissue {
+    pub finger: Finger,
+    /// Mean soft tissue beyond the distal phalanx (the table's `tip_soft_tissue`).
     pub soft_tissue: f64,
+    /// The finger's phalanges end to end, MCP to the bone tip: the sum of the
+    /// table's means of J1, J2[, J3].
+    pub bone: f64,
 }
 
-impl Default for JudgeOptions {
-    fn default() -> JudgeOptions {
-        JudgeOptions {
-            rig_tip: TipKind::Skin,
-            data_tip: TipKind::Bone,
-            soft_tissue: DEFAULT_SOFT_TISSUE_MM / 1000.0,
+impl FingerSoftTissue {
+    /// The soft tissue's share of the finger measured to the tip of `kind`:
+    /// t / (b + t) to the skin, t / b to the bone.
+    pub fn share(&self, kind: TipKind) -> f64 {
+        match kind {
+            TipKind::Skin => self.soft_tissue / (self.bone + self.soft_tissue),
+            TipKind::Bone => self.soft_tissue / self.bone,
         }
     }
 }
 
+impl SoftTissue {
+    /// The fingers of `table` that give their soft tissue and every phalanx,
+    /// `name` the source's short name. O(rows).
+    pub fn from_table(table: &SummaryTable, name: Option<String>) -> SoftTissue {
+        let fingers = table
+            .fingers()
+            .into_iter()
+            .filter_map(|finger| {
+                let soft_tissue = table.get(finger, Segment::TipSoftTissue)?.mean;
+                let bone = Segment::phalanges(finger)
+                    .iter()
+                    .map(|&s| table.get(finger, s).map(|r| r.mean))
+                    .sum::<Option<f64>>()?;
+                Some(FingerSoftTissue {
+                    finger,
+                    soft_tissue,
+                    bone,
+                })
+            })
+            .collect();
+        SoftTissue::Table {
+            source: table.path.clone(),
+            name,
+            unit: table.unit.clone(),
+            fingers,
+        }
+    }
+
+    /// A table's figures for `finger`, if it gives them.
+    pub fn of(&self, finger: Finger) -> Option<&FingerSoftTissue> {
+        match self {
+            SoftTissue::Table { fingers, .. } => fingers.iter().find(|f| f.finger == finger),
+            _ => None,
+        }
+    }
+
+    /// What is taken off a rig finger's last segment to compare its tip
+    /// (`rig`) with a dataset's (`data`), the finger `length` long in rig units
+    /// as the rig has it (MCP to its tip); `None` when the tips differ and no
+    /// figure for `finger` is known. O(1).
+    ///
+    /// 0 when the tips agree. Otherwise, with one length s: +s for a skin tip
+    /// against bone-tip data, -s the other way. From a table, the soft tissue
+    /// is the table's share of the finger, so it scales with the rig in any
+    /// unit: L t / (b + t) off a skin tip, L t / b onto a bone tip (L the rig's
+    /// finger, t the table's soft tissue, b its phalanges end to end), which
+    /// turns a finger of the table's proportions exactly into the table's
+    /// finger to the other tip.
+    pub fn correction(
+        &self,
+        rig: TipKind,
+        data: TipKind,
+        finger: Finger,
+        length: f64,
+    ) -> Option<f64> {
+        if rig == data {
+            return Some(0.0);
+        }
+        let sign = if rig == TipKind::Skin { 1.0 } else { -1.0 };
+        match self {
+            SoftTissue::Unknown => None,
+            SoftTissue::Length { length: s } => Some(sign * s),
+            SoftTissue::Table { .. } => Some(sign * length * self.of(finger)?.share(rig)),
+        }
+    }
+}
+
+/// What a dataset's tips mark, from its `tip` column: the one kind all its
+/// rows record, else (not recorded, or mixed) taken as bone tips, the usual
+/// landmark on an X-ray.
+pub fn data_tip_of(tips: &TipCounts) -> TipKind {
+    tips.single().unwrap_or(TipKind::Bone)
+}
+
+/// How a rig is compared with the data.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct JudgeOptions {
+    /// What the rig's tip nodes mark.
+    pub rig_tip: TipKind,
+    /// What the data's tips mark, from its `tip` column ([`data_tip_of`]).
+    pub data_tip: TipKind,
+    /// Where the data's rows put their tips, as their `tip` column says.
+    pub data_tips: TipCounts,
+    /// The soft tissue between bone tip and skin tip, used when the two differ.
+    pub soft_tissue: SoftTissue,
+}
+
 impl JudgeOptions {
-    /// Taken off the rig's last segment to compare like with like:
-    /// s x ([rig tip is skin] - [data tip is skin]).
-    pub fn tip_correction(&self) -> f64 {
-        let skin = |t: TipKind| f64::from(u8::from(t == TipKind::Skin));
-        self.soft_tissue * (skin(self.rig_tip) - skin(self.data_tip))
+    /// The options to judge a rig whose tips mark `rig_tip` against the
+    /// statistics `a`, their tips read from the data's `tip` column.
+    pub fn new(rig_tip: TipKind, soft_tissue: SoftTissue, a: &Analysis) -> JudgeOptions {
+        JudgeOptions {
+            rig_tip,
+            data_tip: data_tip_of(&a.tips),
+            data_tips: a.tips,
+            soft_tissue,
+        }
+    }
+
+    /// Skin tips against `a`'s tips, with no soft tissue figure: what
+    /// [`super::audit`] uses.
+    pub fn skin(a: &Analysis) -> JudgeOptions {
+        JudgeOptions::new(TipKind::Skin, SoftTissue::Unknown, a)
+    }
+
+    /// Taken off the last segment of a rig finger `length` long to compare
+    /// like with like ([`SoftTissue::correction`]).
+    pub fn tip_correction(&self, finger: Finger, length: f64) -> Option<f64> {
+        self.soft_tissue
+            .correction(self.rig_tip, self.data_tip, finger, length)
+    }
+
+    /// The rig finger's length, segments `segments` (MCP to its tip), with its
+    /// tip moved to where the tips of data `tips` end (another dataset's, as
+    /// the metacarpals'); `None` when that needs a soft tissue figure not known.
+    pub fn length_against(
+        &self,
+        tips: &TipCounts,
+        finger: Finger,
+        segments: &[f64],
+    ) -> Option<f64> {
+        let length: f64 = segments.iter().sum();
+        let c = self
+            .soft_tissue
+            .correction(self.rig_tip, data_tip_of(tips), finger, length)?;
+        Some(length - c)
+    }
+
+    /// True when the rig's tips and the data's differ and no soft tissue figure is known at all.
+    pub fn lacks_soft_tissue(&self) -> bool {
+        self.rig_tip != self.data_tip && self.soft_tissue == SoftTissue::Unknown
     }
 }
 

@@ -13,12 +13,26 @@ fn paper() -> Analysis {
     analyse(&d, &Settings::default())
 }
 
-/// Tips compared as they are (bone tips on both sides).
-fn bone() -> JudgeOptions {
-    JudgeOptions {
-        rig_tip: TipKind::Bone,
-        ..JudgeOptions::default()
-    }
+/// Tips compared as they are: the rig's tips read as the data's kind.
+fn alike(a: &Analysis) -> JudgeOptions {
+    JudgeOptions::new(data_tip_of(&a.tips), SoftTissue::Unknown, a)
+}
+
+/// The paper's X-rays with every tip recorded at the bone instead of the skin.
+fn paper_with_bone_tips() -> Analysis {
+    let text = std::fs::read_to_string("data/measurements.csv").unwrap();
+    let bone = text.replace(",skin\n", ",bone\n");
+    assert_ne!(bone, text, "the paper's rows record skin tips");
+    let d = Dataset::from_bytes("bone.csv", bone.as_bytes()).unwrap();
+    let a = analyse(&d, &Settings::default());
+    assert_eq!(data_tip_of(&a.tips), TipKind::Bone);
+    a
+}
+
+/// The soft tissue of the vendored table, Buryanov & Kotiuk 2010.
+fn table_soft_tissue() -> SoftTissue {
+    let t = crate::dataset::SummaryTable::load(Path::new(SOFT_TISSUE_TABLE)).unwrap();
+    SoftTissue::from_table(&t, None)
 }
 
 /// A straight finger along x with the given segment lengths (and a tip).
@@ -67,7 +81,7 @@ fn an_mcp_10_mm_towards_the_web_is_out_too_distal_on_the_metacarpal_line() {
     let x = atlas_mean_mc_over_j("index");
     // A straight index finger along x: CMC at the origin, the metacarpal
     // at the atlas's mean mc/J of an 80 mm finger (J~ at the paper's
-    // means), the skin tip 4 mm past the bone tip (the default).
+    // means), the skin tip 4 mm past the atlas's bone tip (--tip-soft-tissue 4).
     let length = 0.080;
     let mc = x * length;
     let segs = [0.4846 * length, 0.2726 * length, 0.2428 * length + 0.004];
@@ -79,11 +93,16 @@ fn an_mcp_10_mm_towards_the_web_is_out_too_distal_on_the_metacarpal_line() {
         }
         c
     };
+    let opts = JudgeOptions::new(TipKind::Skin, SoftTissue::Length { length: 0.004 }, &atlas);
     let judge = |c: &ChainInput| {
-        let audit = audit_with(&atlas, c, &JudgeOptions::default()).unwrap();
+        let audit = audit_with(&atlas, c, &opts).unwrap();
+        let length = opts
+            .length_against(&atlas.tips, Finger::Index, &audit.segments)
+            .unwrap();
         metacarpal(
             &atlas,
             &audit,
+            length,
             "index_metacarpal_r",
             DVec3::ZERO,
             c.points[0],
@@ -225,7 +244,7 @@ fn a_finger_with_the_paper_means_is_in_range_and_needs_no_move() {
         .iter()
         .map(|&q| f.quantity(q).unwrap().mean * 80.0)
         .collect();
-    let r = audit_with(&a, &straight(Finger::Index, &m), &bone()).unwrap();
+    let r = audit_with(&a, &straight(Finger::Index, &m), &alike(&a)).unwrap();
     assert_eq!(r.basis, Basis::Relative);
     assert!(r.is_consistent());
     let kinds: Vec<Joint> = r.joints.iter().map(|j| j.joint).collect();
@@ -246,7 +265,12 @@ fn a_finger_with_the_paper_means_is_in_range_and_needs_no_move() {
 fn a_pip_far_towards_the_tip_is_flagged_above_with_its_distance() {
     let a = paper();
     // J~1 = 0.6 of 100 units: the paper's index max is 0.5047.
-    let r = audit_with(&a, &straight(Finger::Index, &[60.0, 22.0, 18.0]), &bone()).unwrap();
+    let r = audit_with(
+        &a,
+        &straight(Finger::Index, &[60.0, 22.0, 18.0]),
+        &alike(&a),
+    )
+    .unwrap();
     let pip = r.joint(Joint::Pip).unwrap();
     let pi = pip.pi.unwrap();
     match pip.standing {
@@ -416,7 +440,7 @@ fn without_a_tip_a_finger_is_judged_on_its_ratio_and_the_thumb_not_at_all() {
 
 #[test]
 fn a_skin_tip_is_compared_without_its_soft_tissue() {
-    let a = paper();
+    let a = paper_with_bone_tips();
     let f = a.finger(Finger::Index).unwrap();
     let m: Vec<f64> = [Quantity::RelJ1, Quantity::RelJ2, Quantity::RelJ3]
         .iter()
@@ -424,10 +448,7 @@ fn a_skin_tip_is_compared_without_its_soft_tissue() {
         .collect();
     // The X-ray mean finger with 4 units of soft tissue past the bone tip.
     let skin = [m[0], m[1], m[2] + 4.0];
-    let opts = JudgeOptions {
-        soft_tissue: 4.0,
-        ..JudgeOptions::default()
-    };
+    let opts = JudgeOptions::new(TipKind::Skin, SoftTissue::Length { length: 4.0 }, &a);
     let r = audit_with(&a, &straight(Finger::Index, &skin), &opts).unwrap();
     assert_eq!(r.tip_correction, 4.0);
     assert!((r.compared[2] - m[2]).abs() < 1e-12);
@@ -437,20 +458,93 @@ fn a_skin_tip_is_compared_without_its_soft_tissue() {
     let tip = r.joint(Joint::Tip).unwrap();
     assert!((tip.measured - 84.0).abs() < 1e-9 && (tip.expected - 84.0).abs() < 1e-9);
     // Read as a bone tip, the same rig's J~3 is too long.
-    let r = audit_with(&a, &straight(Finger::Index, &skin), &bone()).unwrap();
+    let r = audit_with(&a, &straight(Finger::Index, &skin), &alike(&a)).unwrap();
     assert_eq!(r.tip_correction, 0.0);
     assert!((r.values[2].measured - (m[2] + 4.0) / 84.0).abs() < 1e-12);
-    // Data with skin tips and a skin tip: nothing to correct; a bone tip gains it.
-    let both = JudgeOptions {
-        data_tip: TipKind::Skin,
-        ..opts
+    // The paper's data (skin tips) and a skin tip: nothing to correct,
+    // whatever figure is given; a bone tip gains the soft tissue.
+    let p = paper();
+    let both = JudgeOptions::new(TipKind::Skin, SoftTissue::Length { length: 4.0 }, &p);
+    assert_eq!(both.data_tip, TipKind::Skin);
+    assert_eq!(both.tip_correction(Finger::Index, 80.0), Some(0.0));
+    let rig_bone = JudgeOptions::new(TipKind::Bone, SoftTissue::Length { length: 4.0 }, &p);
+    assert_eq!(rig_bone.tip_correction(Finger::Index, 80.0), Some(-4.0));
+    // Unlike tips and no figure: not judged, and said to lack it.
+    let none = JudgeOptions::new(TipKind::Bone, SoftTissue::Unknown, &p);
+    assert!(none.lacks_soft_tissue() && !both.lacks_soft_tissue());
+    assert!(audit_with(&p, &straight(Finger::Index, &m), &none).is_none());
+    assert!(audit(&p, &straight(Finger::Index, &m)).is_some());
+}
+
+/// The table's soft tissue as a share of the finger: a rig finger with
+/// Buryanov & Kotiuk's mean index (Table I: proximal 39.78, middle 22.38,
+/// distal 15.82, soft tissue 3.84 mm) to the skin, against bone-tip data, is
+/// compared as their bone finger; to the bone, against skin-tip data, as their
+/// finger to the skin. The same in any unit.
+#[test]
+fn the_table_soft_tissue_is_a_share_of_the_finger_in_any_unit() {
+    let soft = table_soft_tissue();
+    let bone_data = paper_with_bone_tips();
+    let skin_data = paper();
+    for scale in [1.0, 0.001, 1e-5] {
+        let skin = [39.78 * scale, 22.38 * scale, (15.82 + 3.84) * scale];
+        let opts = JudgeOptions::new(TipKind::Skin, soft.clone(), &bone_data);
+        let r = audit_with(&bone_data, &straight(Finger::Index, &skin), &opts).unwrap();
+        // 81.82 x 3.84 / 81.82 = 3.84, by hand.
+        assert!((r.tip_correction - 3.84 * scale).abs() < 1e-12 * scale.max(1e-3));
+        assert!((r.compared[2] - 15.82 * scale).abs() < 1e-9 * scale);
+        assert!((r.values[2].measured - 15.82 / 77.98).abs() < 1e-12);
+        let bone = [39.78 * scale, 22.38 * scale, 15.82 * scale];
+        let opts = JudgeOptions::new(TipKind::Bone, soft.clone(), &skin_data);
+        let r = audit_with(&skin_data, &straight(Finger::Index, &bone), &opts).unwrap();
+        assert!((r.tip_correction + 3.84 * scale).abs() < 1e-12 * scale.max(1e-3));
+        assert!((r.values[2].measured - 19.66 / 81.82).abs() < 1e-12);
+    }
+    // The thumb (distal 21.67, proximal 31.57, soft tissue 5.67): a share
+    // 5.67 / 58.91 of a skin finger, by hand.
+    let thumb = soft.of(Finger::Thumb).unwrap();
+    assert!((thumb.share(TipKind::Skin) - 5.67 / 58.91).abs() < 1e-15);
+    assert!((thumb.share(TipKind::Bone) - 5.67 / 53.24).abs() < 1e-15);
+}
+
+/// A rig in the wrong unit (a Mixamo Soldier 0.21 units tall: its fingers
+/// a thousandth of a finger in metres) gets the same standings as the same
+/// rig in metres when the soft tissue is the table's share; a fixed 4 mm
+/// takes most of its last segment.
+#[test]
+fn a_rig_scaled_to_a_thousandth_stands_as_in_metres() {
+    let a = paper_with_bone_tips();
+    let soft = table_soft_tissue();
+    // The WebXR hand's index, in metres, with its skin tip (README).
+    let metres = [0.04191, 0.02430, 0.02271];
+    let thousandth: Vec<f64> = metres.iter().map(|s| s / 1000.0).collect();
+    let standings = |segs: &[f64], soft: &SoftTissue| {
+        let opts = JudgeOptions::new(TipKind::Skin, soft.clone(), &a);
+        let r = audit_with(&a, &straight(Finger::Index, segs), &opts)?;
+        let kind = |s: Standing| std::mem::discriminant(&s);
+        Some((
+            r.values
+                .iter()
+                .map(|v| (v.measured, kind(v.standing)))
+                .collect::<Vec<_>>(),
+            r.joints
+                .iter()
+                .map(|j| kind(j.standing))
+                .collect::<Vec<_>>(),
+            r.explanation.moved,
+        ))
     };
-    assert_eq!(both.tip_correction(), 0.0);
-    let rig_bone = JudgeOptions {
-        rig_tip: TipKind::Bone,
-        ..both
-    };
-    assert_eq!(rig_bone.tip_correction(), -4.0);
+    let (v1, j1, m1) = standings(&metres, &soft).unwrap();
+    let (v2, j2, m2) = standings(&thousandth, &soft).unwrap();
+    for (x, y) in v1.iter().zip(&v2) {
+        assert!((x.0 - y.0).abs() < 1e-12, "{x:?} {y:?}");
+        assert_eq!(x.1, y.1);
+    }
+    assert_eq!((j1, m1), (j2, m2));
+    // 4 mm of a 0.0227 mm segment: nothing is left to compare.
+    let fixed = SoftTissue::Length { length: 0.004 };
+    assert!(standings(&metres, &fixed).is_some());
+    assert!(standings(&thousandth, &fixed).is_none());
 }
 
 #[test]
@@ -459,7 +553,7 @@ fn an_mcp_at_the_web_is_named_not_the_pip() {
     // its MCP 10 units towards the tip: J1 shrinks by 10, nothing else moves.
     let a = paper();
     let segs = [34.247 - 10.0, 19.524, 18.670];
-    let r = audit_with(&a, &straight(Finger::Index, &segs), &bone()).unwrap();
+    let r = audit_with(&a, &straight(Finger::Index, &segs), &alike(&a)).unwrap();
     assert!(!r.is_consistent());
     assert_eq!(r.explanation.moved, vec![Joint::Mcp], "{:?}", r.explanation);
     let mcp = r.joint(Joint::Mcp).unwrap();
@@ -482,7 +576,12 @@ fn an_mcp_at_the_web_is_named_not_the_pip() {
 fn pairs_land_exactly_on_the_means() {
     // PIP and DIP both far off: no single joint fits; the pair moved fits exactly.
     let a = paper();
-    let r = audit_with(&a, &straight(Finger::Middle, &[60.0, 10.0, 30.0]), &bone()).unwrap();
+    let r = audit_with(
+        &a,
+        &straight(Finger::Middle, &[60.0, 10.0, 30.0]),
+        &alike(&a),
+    )
+    .unwrap();
     assert_eq!(r.explanation.moved.len(), 2, "{:?}", r.explanation);
     // The ratios of the means are not the means of the ratios: close, not 0.
     assert!(

@@ -261,10 +261,11 @@ mod values {
             let r = rigs.iter().find(|r| r.id == id).unwrap();
             let c = r.chains.iter().find(|c| c.finger == finger).unwrap();
             // The rig's own proportions: its tips compared as they are.
-            let opts = crate::rig::judge::JudgeOptions {
-                rig_tip: crate::rig::judge::TipKind::Bone,
-                ..Default::default()
-            };
+            let opts = crate::rig::judge::JudgeOptions::new(
+                crate::rig::judge::data_tip_of(&a.tips),
+                crate::rig::judge::SoftTissue::Unknown,
+                &a,
+            );
             let audit = crate::rig::judge::audit_with(&a, &c.input(), &opts).unwrap();
             audit
                 .values
