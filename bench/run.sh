@@ -90,15 +90,15 @@ done
 echo
 echo "| workload | target | wall time | peak memory |"
 echo "|---|---|---|---|"
-measure "import the atlas (910 radiographs, atlas37)" "import + compare 100 ms" -- "$bin" import data/atlas/landmarks.csv --layout atlas37 --source "Digital Hand Atlas" --out "$work/atlas.csv"
+measure "import the atlas (910 radiographs, atlas37)" "import + compare 100 ms" -- "$bin" import data/atlas/landmarks.csv --layout atlas37 --source "Digital Hand Atlas" --out "$work/atlas.csv" --force
 measure "compare the paper with the atlas" "import + compare 100 ms" -- "$bin" compare data/measurements.csv data/atlas/measurements.csv
 measure "compare the paper with a published table (B&K 2010, atlas correlations)" "100 ms" -- "$bin" compare data/measurements.csv data/literature/buryanov-kotiuk-2010.csv
 measure "place --reference a published table (every finger)" "100 ms" -- "$bin" place --hand thumb=5,index=8,middle=9,ring=8.5,little=6.5 --reference data/literature/buryanov-kotiuk-2010.csv
 measure "paper data, full report without the published-measurements section" "-" -- "$bin" report --out "$work/r2" --literature "$work/no-such-table.csv"
 measure "rig audit (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb
-measure "rig audit --fix (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb --fix "$work/fixed.glb"
+measure "rig audit --fix (docs/examples/hand.glb)" "-" -- "$bin" audit docs/examples/hand.glb --fix "$work/fixed.glb" --force
 measure "deform, 30,000-triangle hand, fist, LBS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb"
-measure "deform --fix --out, 30,000 triangles, DQS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb" --fix --skinning dqs --out "$work/d30k"
+measure "deform --fix --out, 30,000 triangles, DQS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb" --fix --skinning dqs --out "$work/d30k" --force
 echo
 echo "Growth with X-rays (stats --format json, 10,000 resamples):"
 echo

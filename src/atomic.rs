@@ -60,6 +60,65 @@ pub(crate) fn replace(target: &Path, bytes: &[u8]) -> std::io::Result<()> {
     commit(stage(target, bytes)?, target)
 }
 
+/// The first existing ancestor of `path` (itself included) that is not a directory.
+fn file_above(path: &Path) -> Option<&Path> {
+    path.ancestors()
+        .filter(|p| !p.as_os_str().is_empty())
+        .find(|p| p.exists())
+        .filter(|p| !p.is_dir())
+}
+
+/// Whether a file can be written at `target`, checked before any work: it is
+/// not a directory, nothing above it is a file, and it does not exist unless
+/// `force`. The error says what to do.
+pub(crate) fn check_target(target: &Path, force: bool) -> Result<(), String> {
+    if target.is_dir() {
+        return Err("this is a directory; name the file to write".into());
+    }
+    if let Some(f) = target.parent().and_then(file_above) {
+        return Err(format!(
+            "{} is a file, not a directory, so nothing can be written under it",
+            f.display()
+        ));
+    }
+    if target.exists() && !force {
+        return Err("the file exists; give --force to replace it, or name a new file".into());
+    }
+    Ok(())
+}
+
+/// Whether the files `names` can be written in the directory `dir`, checked
+/// before any work: it is not a file (nor under one), and none of them exists
+/// unless `force`; every existing one is named.
+pub(crate) fn check_dir_targets(dir: &Path, names: &[String], force: bool) -> Result<(), String> {
+    if let Some(f) = file_above(dir) {
+        let what = if f == dir {
+            "this is a file, not a directory".to_string()
+        } else {
+            format!("{} is a file, not a directory", f.display())
+        };
+        return Err(format!(
+            "{what}; give a directory (it is created when missing)"
+        ));
+    }
+    let existing: Vec<String> = names
+        .iter()
+        .map(|n| dir.join(n))
+        .filter(|p| p.exists())
+        .map(|p| p.display().to_string())
+        .collect();
+    if existing.is_empty() || force {
+        return Ok(());
+    }
+    let one = existing.len() == 1;
+    Err(format!(
+        "{} exist{}; give --force to replace {}, or another directory",
+        existing.join(", "),
+        if one { "s" } else { "" },
+        if one { "it" } else { "them" }
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -407,6 +407,27 @@ fn fix_never_overwrites_the_input_and_bad_files_are_clear_errors() {
     assert!(!wd.path().join("hand.fbx").exists());
 }
 
+/// An existing output is replaced only with --force, and refused before any work.
+#[test]
+fn fix_and_deform_outputs_that_exist_need_force() {
+    let wd = Workdir::with_paper_data();
+    let input = build(&HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0));
+    wd.write("hand.glb", &input);
+    wd.write("taken.glb", b"an artist's file");
+    wd.run(&["audit", "hand.glb", "--fix", "taken.glb"])
+        .data_error()
+        .stderr_has("--fix taken.glb: the file exists; give --force to replace it");
+    assert_eq!(wd.read("taken.glb"), b"an artist's file");
+    wd.run(&["audit", "hand.glb", "--fix", "taken.glb", "--force"])
+        .ok();
+    assert_ne!(wd.read("taken.glb"), b"an artist's file");
+    // deform --out names a directory; a file there is refused before the deformation.
+    wd.write("renders", b"not a directory");
+    wd.run(&["deform", "hand.glb", "--side", "right", "--out", "renders"])
+        .data_error()
+        .stderr_has("--out renders: this is a file, not a directory");
+}
+
 /// The example rigs of the README (docs/examples) are what the builder makes;
 /// `PHALANX_WRITE_EXAMPLES=1 cargo test --test integration audit::the_committed_example_rigs`
 /// renews them.
@@ -722,4 +743,60 @@ fn the_readme_fix_example_is_current() {
         );
     }
     assert_eq!(lines, 4, "{}\n{}", run.stdout, run.stderr);
+}
+
+/// A file that is not a rig, or a directory, is named for what it is; an image
+/// the gltf crate would unwrap (found by fuzzing: `audit --fix` exited 101) is
+/// refused at the door with its JSON path, every problem listed, nothing written.
+#[test]
+fn what_is_not_a_rig_is_named_and_images_are_checked_at_the_door() {
+    let wd = Workdir::with_paper_data();
+    let good = build(&HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0));
+    wd.write("photo.glb", b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\0\x01");
+    wd.run(&["audit", "photo.glb"])
+        .data_error()
+        .stderr_has("photo.glb: is a PNG image, not a glTF file; give a .glb, .gltf or .vrm");
+    wd.mkdir("rigs");
+    wd.write("rigs/b.glb", &good);
+    wd.write("rigs/a.gltf", b"{}");
+    wd.write("rigs/notes.txt", b"x");
+    wd.run(&["audit", "rigs"]).data_error().stderr_has(
+        "rigs: is a directory, not a rig file; it holds 2 rig files: rigs/a.gltf, rigs/b.glb; \
+         give one of them",
+    );
+    wd.run(&["deform", "rigs"])
+        .data_error()
+        .stderr_has("is a directory, not a rig file");
+    // Two images: one whose `uri` key is misspelt, one in a buffer view without
+    // its MIME type. Both are named, by JSON path, in one error.
+    wd.write(
+        "images.glb",
+        edit(&good, |j| {
+            j["images"] = serde_json::json!([{"urii": "skin.png"}, {"bufferView": 0}]);
+        }),
+    );
+    for args in [
+        &["audit", "images.glb"][..],
+        &["audit", "images.glb", "--fix", "out.glb"],
+    ] {
+        wd.run(args)
+            .data_error()
+            .stderr_has("2 problems in images.glb")
+            .stderr_has("/images/0 has neither uri nor bufferView (a misspelt key?)")
+            .stderr_has("/images/1 has a bufferView but no mimeType");
+    }
+    assert!(!wd.path().join("out.glb").exists());
+    // With the MIME type and a real image file name, both read and fix.
+    wd.write(
+        "images.glb",
+        edit(&good, |j| {
+            j["images"] = serde_json::json!([
+                {"uri": "skin.png"},
+                {"bufferView": 0, "mimeType": "image/png"}
+            ]);
+        }),
+    );
+    wd.run(&["audit", "images.glb", "--fix", "out.glb"])
+        .ok()
+        .stderr_has("images referenced by file name stay external");
 }

@@ -599,3 +599,99 @@ fn the_webxr_hands_deform_and_draw() {
         }
     }
 }
+
+/// A VRM 0.x avatar's right hand as VRoid exports it, made from the tube hand:
+/// `J_Bip_R_Hand` with every finger's first bone hanging from it (no
+/// metacarpals: their weights go to the hand bone, their nodes become
+/// unweighted leaves of it), the thumb `J_Bip_R_Thumb1..3` (VRM 0.x reads its
+/// Proximal as the CMC), no tip nodes, and the humanoid table (`extensions.VRM`)
+/// naming every bone. The file name says no side; the table does.
+fn vrm0_avatar() -> Vec<u8> {
+    use phalanx::dataset::Finger;
+    let mut rig = phalanx::rig::deform::synthetic::tube_hand(&HandSpec::default());
+    let wrist = rig.chains.wrist.unwrap();
+    rig.names[wrist] = "J_Bip_R_Hand".into();
+    let mut bones = vec![serde_json::json!({"bone": "rightHand", "node": wrist})];
+    let mut merged_into_hand = Vec::new();
+    for (k, f) in rig.chains.fingers.iter().enumerate() {
+        let mc = f.metacarpal.unwrap();
+        let (vrm, vroid) = match f.finger {
+            Finger::Thumb => ("Thumb", "Thumb"),
+            Finger::Index => ("Index", "Index"),
+            Finger::Middle => ("Middle", "Middle"),
+            Finger::Ring => ("Ring", "Ring"),
+            Finger::Little => ("Little", "Little"),
+        };
+        let mut nodes = f.joints.clone();
+        if f.finger == Finger::Thumb {
+            nodes.insert(0, mc);
+        } else {
+            rig.names[mc] = format!("J_Sec_R_Palm{k}");
+            merged_into_hand.push(mc);
+            rig.skeleton.parent[f.joints[0]] = Some(wrist);
+        }
+        for (i, &n) in nodes.iter().enumerate() {
+            rig.names[n] = format!("J_Bip_R_{vroid}{}", i + 1);
+            let part = ["Proximal", "Intermediate", "Distal"][i];
+            bones.push(serde_json::json!({"bone": format!("right{vrm}{part}"), "node": n}));
+        }
+        rig.names[f.tip.unwrap()] = format!("J_Sec_R_Nail{k}");
+    }
+    // Skin slots are node - 1 (every node but the Armature is a joint).
+    let slot = |n: usize| (n - 1) as u16;
+    let hand_slot = slot(wrist);
+    let merged: Vec<u16> = merged_into_hand.iter().map(|&n| slot(n)).collect();
+    let mesh = &mut rig.mesh;
+    let mut flat = Vec::new();
+    let mut start = Vec::new();
+    for v in 0..mesh.positions.len() {
+        start.push(flat.len());
+        let mut infl: Vec<(u16, f64)> = Vec::new();
+        for &(j, w) in mesh.influences_of(v) {
+            let j = if merged.contains(&j) { hand_slot } else { j };
+            match infl.iter_mut().find(|x| x.0 == j) {
+                Some(x) => x.1 += w,
+                None => infl.push((j, w)),
+            }
+        }
+        infl.sort_by(|a, b| b.1.total_cmp(&a.1));
+        flat.extend(infl);
+    }
+    start.push(flat.len());
+    mesh.influences = flat;
+    mesh.influence_start = start;
+    let glb = rig.to_glb().unwrap();
+    let (mut doc, bin) = crate::audit::hand::read_glb(&glb);
+    doc["extensionsUsed"] = serde_json::json!(["VRM"]);
+    doc["extensions"] =
+        serde_json::json!({"VRM": {"specVersion": "0.0", "humanoid": {"humanBones": bones}}});
+    crate::audit::hand::glb(&doc, bin)
+}
+
+#[test]
+fn a_vrm0_avatar_whose_fingers_hang_from_the_hand_bone_is_posed() {
+    let wd = Workdir::with_paper_data();
+    wd.write("avatar.vrm", vrm0_avatar());
+    // The audit reads it (a thumb CMC, four fingers from the hand bone)...
+    let audit = wd.run(&["audit", "avatar.vrm", "--format", "json"]);
+    let doc: Value = serde_json::from_str(&audit.ok().stdout).unwrap();
+    assert_eq!(doc["rig"]["fingers"].as_array().unwrap().len(), 5);
+    // ...and deform poses it: the hand bone is the wrist, no finger's metacarpal.
+    let run = wd.run(&["deform", "avatar.vrm", "--format", "json"]);
+    let doc: Value = serde_json::from_str(&run.ok().stdout).unwrap();
+    let hand = &doc["rig"]["hands"][0];
+    assert_eq!(hand["side"], "right", "{hand}");
+    let fingers = hand["measures"]["fingers"].as_array().unwrap();
+    assert_eq!(fingers.len(), 5);
+    // Every finger is curled at every joint of its own (before, the shared hand
+    // bone was refused as the metacarpal of four fingers and the wrist at once).
+    for f in fingers {
+        let joints = f["joints"].as_array().unwrap();
+        let want = if f["finger"] == "thumb" { 2 } else { 3 };
+        assert_eq!(joints.len(), want, "{}", f["finger"]);
+        for j in joints {
+            assert!(num(&j["angle"]) >= 30.0 - 1e-9, "{j}");
+            assert!(num(&j["volume_loss"]) > 0.0, "{j}");
+        }
+    }
+}

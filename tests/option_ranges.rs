@@ -319,11 +319,12 @@ fn a_bootstrap_too_large_to_serve_is_refused_with_what_fits() {
 #[test]
 fn synth_options() {
     let wd = Workdir::new();
-    let base: &[&str] = &["synth", "--out", "s.csv"];
+    // Every probe writes s.csv again: --force replaces it.
+    let base: &[&str] = &["synth", "--out", "s.csv", "--force"];
     probe(&wd, base, &XRAYS, &values_but_max(&XRAYS));
     probe(
         &wd,
-        &["synth", "--xrays", "2", "--out", "s.csv"],
+        &["synth", "--xrays", "2", "--out", "s.csv", "--force"],
         &SEED,
         &values(&SEED),
     );

@@ -307,3 +307,31 @@ impl TipArgs {
         }
     }
 }
+
+/// `--force`: replace outputs that exist.
+#[derive(Args, Debug, Clone, Copy)]
+pub(crate) struct ForceArgs {
+    /// Replace output files that already exist (without it, an existing output is refused
+    /// before any work)
+    #[arg(long)]
+    pub(crate) force: bool,
+}
+
+/// Checks, before any work, that `option`'s file `path` can be written
+/// ([`crate::atomic::check_target`]).
+pub(crate) fn check_output_file(option: &str, path: &Path, force: bool) -> Result<(), Error> {
+    crate::atomic::check_target(path, force)
+        .map_err(|e| Error::Usage(format!("{option} {}: {e}", path.display())))
+}
+
+/// Checks, before any work, that `option`'s directory `dir` can take the files
+/// `names` ([`crate::atomic::check_dir_targets`]).
+pub(crate) fn check_output_dir(
+    option: &str,
+    dir: &Path,
+    names: &[String],
+    force: bool,
+) -> Result<(), Error> {
+    crate::atomic::check_dir_targets(dir, names, force)
+        .map_err(|e| Error::Usage(format!("{option} {}: {e}", dir.display())))
+}

@@ -1,6 +1,6 @@
 //! `phalanx audit`: judge a rigged hand against the X-ray statistics; `--fix` writes a corrected copy.
 
-use super::args::{BootArgs, DataArgs, TextFormat};
+use super::args::{BootArgs, DataArgs, ForceArgs, TextFormat, check_output_file};
 use super::out;
 use crate::error::{EXIT_FAILURE, Error};
 use crate::report;
@@ -36,7 +36,8 @@ pub enum FixMcp {
 #[command(
     after_help = "Finds the finger chains of either hand by their names (Mixamo mixamorig:RightHandIndex1..4, \
                   Rigify f_index.01.R / DEF-f_index.01.R / thumb.01.R, VRM rightIndexProximal or its humanoid table, \
-                  Unreal index_01_r, WebXR index-finger-phalanx-proximal; case and separators ignored; --map for others) \
+                  Unreal index_01_r, WebXR index-finger-phalanx-proximal, Blender Index.R, Index.R.001; case and separators \
+                  ignored; --map for others) \
                   and measures joint-to-joint distances in the node (bind) pose; the joints need not be parent and \
                   child when the names say which finger they belong to (WebXR). Every joint (MCP, PIP, DIP, tip) is \
                   reported inside the X-ray range, inside the prediction interval, or outside by how many mm and in \
@@ -100,12 +101,25 @@ pub(crate) struct Args {
     /// Output format
     #[arg(long, value_enum, default_value_t = TextFormat::Table)]
     format: TextFormat,
+    #[command(flatten)]
+    force: ForceArgs,
+}
+
+/// Whether `a` and `b` name one existing file.
+fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
 }
 
 /// The metacarpals' dataset when given or when the default exists.
 const DEFAULT_METACARPALS: &str = "data/atlas/measurements.csv";
 
 pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> {
+    // Writing over the input is refused by the session with its own message, --force or not.
+    if let Some(path) = &args.fix
+        && !same_file(path, &args.rig)
+    {
+        check_output_file("--fix", path, args.force.force)?;
+    }
     let metacarpals = match &args.metacarpals {
         Some(path) => Some(path.clone()),
         None => Some(PathBuf::from(DEFAULT_METACARPALS)).filter(|p| p.is_file()),

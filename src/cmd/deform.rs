@@ -1,7 +1,7 @@
 //! `phalanx deform`: curl a rigged hand, skin it, measure the skin, and
 //! compare it with another version of the rig or with what `audit --fix` writes.
 
-use super::args::{BootArgs, DataArgs, TextFormat};
+use super::args::{BootArgs, DataArgs, ForceArgs, TextFormat, check_output_dir};
 use super::out;
 use crate::error::Error;
 use crate::report::deform::{self as view, DeformDocument, HandVerdicts, RenderView, RigView};
@@ -78,6 +78,8 @@ pub(crate) struct Args {
     /// Output format
     #[arg(long, value_enum, default_value_t = TextFormat::Table)]
     format: TextFormat,
+    #[command(flatten)]
+    force: ForceArgs,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -255,6 +257,15 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
         Some(SideArg::Right) => Some(Side::Right),
         None => side_from_label(&args.rig.display().to_string()),
     };
+    if let Some(dir) = &args.out {
+        // Checked before the work: the figures' names are known from the side (both when
+        // the side is not known yet).
+        let names: Vec<String> = match side {
+            Some(s) => vec![format!("deform-{}.png", s.name())],
+            None => vec!["deform-left.png".into(), "deform-right.png".into()],
+        };
+        check_output_dir("--out", dir, &names, args.force.force)?;
+    }
     let req = DeformRequest {
         map: map.as_ref(),
         side,

@@ -1,6 +1,6 @@
 //! `phalanx import`: landmark annotations in, measurement rows out.
 
-use super::args::{BootArgs, HistoryArgs};
+use super::args::{BootArgs, ForceArgs, HistoryArgs, check_output_file};
 use super::out;
 use crate::dataset::Dataset;
 use crate::dataset::TipKind;
@@ -77,6 +77,8 @@ pub struct Args {
     history: HistoryArgs,
     #[command(flatten)]
     boot: BootArgs,
+    #[command(flatten)]
+    force: ForceArgs,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -130,6 +132,9 @@ impl Args {
 pub(crate) fn run(args: &Args) -> Result<i32, Error> {
     let options = args.options()?;
     let settings = args.boot.settings()?;
+    if let Some(path) = &args.out {
+        check_output_file("--out", path, args.force.force)?;
+    }
     let import = landmarks::import_file(args.layout(), &args.file, &options)?;
     for note in &import.notes {
         eprintln!("note: {note}");

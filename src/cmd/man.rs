@@ -14,6 +14,8 @@ pub(crate) struct Args {
     /// Write phalanx.1 and a phalanx-COMMAND.1 for each command into this directory
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    #[command(flatten)]
+    force: super::args::ForceArgs,
 }
 
 /// Renders the page of `cmd` (the whole command line) to standard output, or
@@ -21,7 +23,7 @@ pub(crate) struct Args {
 pub(crate) fn run(args: &Args, cmd: clap::Command) -> Result<i32, Error> {
     match &args.out {
         None => out::print(&page(cmd)?)?,
-        Some(dir) => write_pages(dir, cmd)?,
+        Some(dir) => write_pages(dir, cmd, args.force.force)?,
     }
     Ok(0)
 }
@@ -35,11 +37,13 @@ fn page(cmd: clap::Command) -> Result<Vec<u8>, Error> {
 
 /// Renders every page in memory, stages them all, then renames them into place:
 /// a failure leaves the directory as it was.
-fn write_pages(dir: &Path, cmd: clap::Command) -> Result<(), Error> {
+fn write_pages(dir: &Path, cmd: clap::Command, force: bool) -> Result<(), Error> {
     let mut pages = Vec::new();
     let mut cmd = cmd.disable_help_subcommand(true);
     cmd.build();
     render_all(cmd, &mut pages).map_err(not_rendered)?;
+    let names: Vec<String> = pages.iter().map(|(n, _)| n.clone()).collect();
+    super::args::check_output_dir("--out", dir, &names, force)?;
     let mut staged = Vec::with_capacity(pages.len());
     for (name, page) in &pages {
         let path = dir.join(name);
@@ -111,9 +115,15 @@ mod tests {
     #[test]
     fn out_writes_one_page_per_command() {
         let dir = tempfile::tempdir().unwrap();
-        let args = Args {
+        let mut args = Args {
             out: Some(dir.path().to_path_buf()),
+            force: crate::cmd::args::ForceArgs { force: false },
         };
+        assert_eq!(run(&args, Cli::command()).unwrap(), 0);
+        // A second run replaces the pages only with --force.
+        let e = run(&args, Cli::command()).unwrap_err().to_string();
+        assert!(e.contains("phalanx.1") && e.contains("give --force"), "{e}");
+        args.force.force = true;
         assert_eq!(run(&args, Cli::command()).unwrap(), 0);
         for name in ["phalanx", "phalanx-stats", "phalanx-audit", "phalanx-man"] {
             let page = std::fs::read(dir.path().join(format!("{name}.1"))).unwrap();

@@ -1,6 +1,6 @@
 //! `phalanx synth`: a synthetic dataset.
 
-use super::args::{parse_seed, parse_whole};
+use super::args::{ForceArgs, check_output_file, parse_seed, parse_whole};
 use super::out;
 use crate::analysis;
 use crate::error::Error;
@@ -27,6 +27,8 @@ pub(crate) struct Args {
     /// Leave sex, age and side empty
     #[arg(long)]
     no_metadata: bool,
+    #[command(flatten)]
+    force: ForceArgs,
 }
 
 /// Most X-rays generated: 5 rows each, about 300 MB of CSV built in memory,
@@ -38,6 +40,9 @@ fn parse_xrays(text: &str) -> Result<u64, String> {
 }
 
 pub(crate) fn run(args: &Args) -> Result<i32, Error> {
+    if let Some(path) = &args.out {
+        check_output_file("--out", path, args.force.force)?;
+    }
     let bytes = generate(&SynthOptions {
         xrays: args.xrays as usize,
         seed: args.seed,

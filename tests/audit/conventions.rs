@@ -1,7 +1,8 @@
 //! Naming conventions and layouts of real rigs, built by the tests: UE5's leaf
 //! tips and metacarpals, Rigify's weighted DEF- bones against unweighted ORG-
 //! twins, sibling joints read by name (with --map too), an MCP at the finger
-//! web, and a rig in centimetres.
+//! web, a rig in centimetres, and Blender's names without a digit on the
+//! first bone.
 
 use super::hand::{HandSpec, Naming, build};
 use super::{audit_json, audit_json_mapped, finger_of, fingers, joint_of, worst_vertex_move};
@@ -175,4 +176,53 @@ fn a_rig_in_centimetres_gets_a_warning_naming_the_unit() {
         audit_json(&wd, "m.glb")["rig"]["warnings"],
         serde_json::json!([])
     );
+}
+
+#[test]
+fn blender_names_with_no_digit_on_the_first_bone_are_read_by_their_place_in_the_chain() {
+    let wd = Workdir::with_paper_data();
+    let mut spec = HandSpec::new(Naming::Blender);
+    spec.metacarpals = true;
+    spec.left_too = true;
+    wd.write("robot.glb", build(&spec));
+    let doc = audit_json(&wd, "robot.glb");
+    assert_eq!(fingers(&doc).len(), 10, "{}", doc["rig"]["notes"]);
+    for f in fingers(&doc) {
+        let (name, side) = (f["finger"].as_str().unwrap(), f["side"].as_str().unwrap());
+        let s = if side == "left" { "L" } else { "R" };
+        let names: Vec<&str> = f["joints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|j| j["name"].as_str().unwrap())
+            .collect();
+        if name == "thumb" {
+            // Thumb.R is the CMC (the first bone, as in every numbered convention).
+            assert_eq!(f["metacarpal"]["name"], format!("Thumb.{s}"));
+            assert_eq!(
+                names,
+                [
+                    format!("Thumb.{s}.001"),
+                    format!("Thumb.{s}.002"),
+                    format!("Thumb.{s}.002_end")
+                ]
+            );
+        } else {
+            let base = if name == "little" { "Pinky" } else { name };
+            let base = format!("{}{}", base[..1].to_uppercase(), &base[1..]);
+            assert_eq!(
+                names,
+                [
+                    format!("{base}.{s}"),
+                    format!("{base}.{s}.001"),
+                    format!("{base}.{s}.002"),
+                    format!("{base}.{s}.003")
+                ],
+                "{side} {name}"
+            );
+        }
+        assert_eq!(f["audit"]["basis"], "relative", "{side} {name}");
+        assert_eq!(f["wrist"]["name"], format!("Hand.{s}"));
+    }
+    assert_eq!(doc["fingers_outside"], 0);
 }

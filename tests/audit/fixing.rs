@@ -393,6 +393,7 @@ fn only_outside_moves_only_joints_outside_their_interval() {
         "--fix",
         "outside.glb",
         "--only-outside",
+        "--force",
     ])
     .ok()
     .stderr_has("0 joints moved; re-audited, 1 of 5 fingers outside");

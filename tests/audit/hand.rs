@@ -33,6 +33,11 @@ pub enum Naming {
     Unreal5,
     /// WebXR joint names, no side: index-finger-phalanx-proximal.., index-finger-tip.
     WebXr,
+    /// Blender's duplicate names, as a cartoon robot has them: `Index.R`,
+    /// `Index.R.001`, `Index.R.002`, tip `Index.R.003`; the thumb's first bone
+    /// `Thumb.R` (its CMC: give `metacarpals`), then `Thumb.R.001`,
+    /// `Thumb.R.002` and the leaf `Thumb.R.002_end`; hand `Hand.R`.
+    Blender,
     /// Hips, Spine, Bone.000..: nothing recognisable.
     Anonymous,
 }
@@ -155,6 +160,10 @@ fn joint_name(
             vrm_part(finger, k, false)
         ),
         Naming::VrmTable | Naming::Vrm0Table | Naming::Anonymous => format!("Bone.{serial:03}"),
+        Naming::Blender if thumb && tip => format!("Thumb.{s}.{k:03}_end"),
+        Naming::Blender if thumb => format!("Thumb.{s}.{:03}", k + 1),
+        Naming::Blender if k == 0 => format!("{}.{s}", cap(pinky)),
+        Naming::Blender => format!("{}.{s}.{k:03}", cap(pinky)),
         Naming::Unreal => format!(
             "{pinky}_{:02}_{}",
             k + 1 + usize::from(thumb),
@@ -217,6 +226,7 @@ fn metacarpal_name(naming: Naming, left: bool, finger: &str) -> Option<String> {
         Naming::Rigify if thumb => format!("DEF-thumb.01.{s}"),
         Naming::Rigify => format!("DEF-palm.{:02}.{s}", palm?),
         Naming::Vrm if thumb => format!("{side}ThumbMetacarpal"),
+        Naming::Blender if thumb => format!("Thumb.{s}"),
         _ => return None,
     })
 }
@@ -304,6 +314,8 @@ pub fn build(spec: &HandSpec) -> Vec<u8> {
             (Naming::WebXr, _) => "wrist".into(),
             (Naming::Rigify, false) => "DEF-hand.R".into(),
             (Naming::Rigify, true) => "DEF-hand.L".into(),
+            (Naming::Blender, false) => "Hand.R".into(),
+            (Naming::Blender, true) => "Hand.L".into(),
             (_, false) => "RightHand".into(),
             (_, true) => "LeftHand".into(),
         };

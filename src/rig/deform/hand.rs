@@ -5,18 +5,23 @@
 //! `--map` file, VRM tables, then the naming conventions), but the nodes of
 //! a finger need not be one parent-child chain: WebXR's joints are siblings,
 //! and the pose carries each distal joint with the proximal ones anyway
-//! ([`super::pose`]). The metacarpal is the node named so, or else the MCP's
-//! parent when that is not the wrist. The wrist is a node whose whole name is
-//! `wrist` or `hand` (with a side and a `mixamorig`/`DEF` prefix allowed), or
+//! ([`super::pose`]). The wrist is the hand bone the audit recognises (a VRM
+//! humanoid table's `rightHand`, or a name such as `wrist`, `RightHand`,
+//! `J_Bip_R_Hand`, `hand_r`; see [`crate::rig::read::naming::parse_hand`]), or
 //! else the nearest common ancestor of the fingers' MCPs when that is not a
-//! scene root (Armature nodes sit at the origin, not at the wrist).
+//! scene root (Armature nodes sit at the origin, not at the wrist). The
+//! metacarpal is the node named so, or else the MCP's parent when that is
+//! neither the wrist nor the parent of another finger's MCP: every finger of a
+//! VRM avatar hangs from the one hand bone, which is no finger's metacarpal.
 
 use super::{FingerNodes, HandChains};
 use crate::analysis::placement::Joint;
 use crate::dataset::{DataError, Finger};
 use crate::rig::read::map::NameMap;
 use crate::rig::read::naming::{Side, Slot};
-use crate::rig::read::recognise::{choose_nodes, recognise, skin_weights, weighted_nodes};
+use crate::rig::read::recognise::{
+    choose_nodes, recognise, skin_weights, weighted_nodes, wrist_of, wrists,
+};
 use crate::rig::read::{GltfFile, Rig};
 use std::collections::{BTreeMap, HashMap};
 
@@ -45,11 +50,12 @@ pub fn hands(
             .or_default()
             .insert(slot, node);
     }
+    let hand_bones = wrists(file, &names, &weighted);
     let mut out: Vec<HandChains> = Vec::new();
     for (s, fingers) in groups {
-        let fingers: Vec<FingerNodes> = fingers
+        let mut fingers: Vec<FingerNodes> = fingers
             .into_iter()
-            .filter_map(|(finger, slots)| finger_nodes(file, finger, &slots))
+            .filter_map(|(finger, slots)| finger_nodes(finger, &slots))
             .collect();
         if fingers.is_empty() {
             continue;
@@ -73,7 +79,10 @@ pub fn hands(
                 ),
             ));
         }
-        let wrist = wrist_of(file, &names, side, &fingers);
+        let wrist = wrist_of(&hand_bones, s)
+            .or_else(|| common_ancestor(file, &fingers))
+            .filter(|w| !fingers.iter().any(|f| f.finger_nodes().contains(w)));
+        parent_metacarpals(file, wrist, &mut fingers);
         out.push(HandChains {
             side,
             wrist,
@@ -104,76 +113,51 @@ pub(crate) fn side_from_label(label: &str) -> Option<Side> {
     }
 }
 
-/// A finger's nodes from its recognised slots; `None` without the MCP or an inner joint.
-fn finger_nodes(
-    file: &GltfFile,
-    finger: Finger,
-    slots: &HashMap<Slot, usize>,
-) -> Option<FingerNodes> {
+/// A finger's nodes from its recognised slots, its metacarpal the one named
+/// so (see [`parent_metacarpals`] for the others); `None` without the MCP or an
+/// inner joint.
+fn finger_nodes(finger: Finger, slots: &HashMap<Slot, usize>) -> Option<FingerNodes> {
     let mcp = *slots.get(&Slot::Mcp)?;
     let mut joints = vec![mcp, *slots.get(&Slot::First)?];
     if finger != Finger::Thumb {
         joints.push(*slots.get(&Slot::Second)?);
     }
-    let metacarpal = slots.get(&Slot::Carpal).copied().or_else(|| {
-        // The MCP's parent, unless it is the hand itself (a name like `hand`/`wrist`).
-        file.parent[mcp]
-            .filter(|&p| file.parent[p].is_some() && !is_wrist_name(&file.node_names()[p]))
-    });
     Some(FingerNodes {
         finger,
-        metacarpal: metacarpal.filter(|m| !joints.contains(m)),
+        metacarpal: slots
+            .get(&Slot::Carpal)
+            .copied()
+            .filter(|m| !joints.contains(m)),
         joints,
         tip: slots.get(&Slot::Tip).copied(),
     })
 }
 
-/// A name that is a wrist or a hand as a whole: `wrist`, `hand`, `RightHand`,
-/// `mixamorig:LeftHand`, `hand.R`, `DEF-hand.L`, `hand_l`.
-fn is_wrist_name(name: &str) -> bool {
-    let mut n: String = name
-        .to_ascii_lowercase()
-        .chars()
-        .filter(char::is_ascii_alphanumeric)
+/// Gives each finger without a named metacarpal its MCP's parent, unless that
+/// parent is the wrist, a scene root, a node of a finger, or the parent of
+/// another finger's MCP (the hand bone every finger of a VRM hangs from).
+fn parent_metacarpals(file: &GltfFile, wrist: Option<usize>, fingers: &mut [FingerNodes]) {
+    let parent_of_mcp = |f: &FingerNodes| file.parent[f.joints[0]];
+    let used: Vec<usize> = fingers
+        .iter()
+        .flat_map(|f| f.finger_nodes().into_iter().chain(f.metacarpal))
         .collect();
-    for prefix in ["mixamorig", "def"] {
-        if let Some(rest) = n.strip_prefix(prefix) {
-            n = rest.to_string();
+    let parents: Vec<Option<usize>> = fingers.iter().map(parent_of_mcp).collect();
+    for (k, f) in fingers.iter_mut().enumerate() {
+        if f.metacarpal.is_some() {
+            continue;
         }
+        f.metacarpal = parents[k].filter(|&p| {
+            file.parent[p].is_some()
+                && Some(p) != wrist
+                && !used.contains(&p)
+                && parents.iter().filter(|&&q| q == Some(p)).count() == 1
+        });
     }
-    for side in ["left", "right"] {
-        if let Some(rest) = n.strip_prefix(side).or_else(|| n.strip_suffix(side)) {
-            n = rest.to_string();
-        }
-    }
-    if n.len() == 5 && (n.ends_with('l') || n.ends_with('r')) && n.starts_with("hand") {
-        n.truncate(4);
-    }
-    n == "wrist" || n == "hand"
 }
 
-/// The wrist node of a hand (see the module doc), if one is found.
-fn wrist_of(
-    file: &GltfFile,
-    names: &[String],
-    side: Side,
-    fingers: &[FingerNodes],
-) -> Option<usize> {
-    let named: Vec<usize> = (0..names.len())
-        .filter(|&i| is_wrist_name(&names[i]))
-        .collect();
-    let sided = |i: &&usize| {
-        let n = names[**i].to_ascii_lowercase();
-        let other = match side {
-            Side::Left => ["right", ".r", "_r"],
-            Side::Right => ["left", ".l", "_l"],
-        };
-        !other.iter().any(|o| n.contains(o))
-    };
-    if let Some(&w) = named.iter().find(sided) {
-        return Some(w);
-    }
-    // The nearest common ancestor of the MCPs.
+/// The nearest common ancestor of the fingers' MCPs, when it is not a scene root.
+fn common_ancestor(file: &GltfFile, fingers: &[FingerNodes]) -> Option<usize> {
     let ancestors = |mut n: usize| {
         let mut up = Vec::new();
         let mut steps = 0;
@@ -244,21 +228,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn wrist_names() {
-        for yes in [
-            "wrist",
-            "hand",
-            "RightHand",
-            "mixamorig:LeftHand",
-            "hand.R",
-            "DEF-hand.L",
-            "hand_l",
-        ] {
-            assert!(is_wrist_name(yes), "{yes}");
-        }
-        for no in ["handle", "RightHandIndex1", "forearm", "palm.01.R"] {
-            assert!(!is_wrist_name(no), "{no}");
-        }
+    fn sides_from_file_names() {
         assert_eq!(side_from_label("rigs/left.glb"), Some(Side::Left));
         assert_eq!(side_from_label("Right-Hand.glb"), Some(Side::Right));
         assert_eq!(side_from_label("hands.glb"), None);

@@ -50,6 +50,9 @@ impl GltfFile {
     /// Reads a .gltf or .glb file (external buffers are not needed to audit).
     pub fn load(path: &Path) -> Result<GltfFile, DataError> {
         let label = path.display().to_string();
+        if path.is_dir() {
+            return Err(DataError::whole_file(&label, directory_given(path)));
+        }
         let bytes = crate::dataset::csvinput::read_input(path)?;
         let mut file = GltfFile::from_bytes(&label, &bytes)?;
         file.dir = Some(path.parent().unwrap_or(Path::new(".")).to_path_buf());
@@ -85,12 +88,31 @@ impl GltfFile {
         } else {
             (bytes, None)
         };
-        let json: serde_json::Value = serde_json::from_slice(json_bytes).map_err(|e| {
-            fail(format!(
-                "is not a valid glTF 2.0 file (its JSON is unreadable: {e}); export it as glTF 2.0 (.glb or .gltf)"
-            ))
-        })?;
-        precheck(&json).map_err(|e| fail(format!("is not a valid glTF 2.0 file ({e})")))?;
+        let json: serde_json::Value = match serde_json::from_slice(json_bytes) {
+            Ok(v) => v,
+            Err(e) => {
+                return Err(fail(super::sniff::not_gltf(bytes, None).unwrap_or_else(|| {
+                    format!(
+                        "is not a valid glTF 2.0 file (its JSON is unreadable: {e}); export it as glTF 2.0 (.glb or .gltf)"
+                    )
+                })));
+            }
+        };
+        if !bytes.starts_with(b"glTF")
+            && let Some(what) = super::sniff::not_gltf(bytes, Some(&json))
+        {
+            return Err(fail(what));
+        }
+        let problems = precheck(&json);
+        if !problems.is_empty() {
+            return Err(DataError {
+                file: label.to_string(),
+                problems: problems
+                    .into_iter()
+                    .map(|e| crate::dataset::Problem::file(format!("is not valid glTF 2.0: {e}")))
+                    .collect(),
+            });
+        }
         let mut for_document = json.clone();
         if let Some(o) = for_document.as_object_mut() {
             o.remove("extensionsRequired");
@@ -161,6 +183,42 @@ impl GltfFile {
                     .map_or_else(|| format!("#{}", n.index()), str::to_string)
             })
             .collect()
+    }
+}
+
+/// What to say of a directory given as a rig: the rig files it holds (the
+/// first 8, by name), or that it holds none.
+fn directory_given(dir: &Path) -> String {
+    let mut rigs: Vec<String> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .filter(|e| e.path().is_file())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| {
+            let n = n.to_ascii_lowercase();
+            [".glb", ".gltf", ".vrm"].iter().any(|x| n.ends_with(x))
+        })
+        .collect();
+    rigs.sort();
+    let n = rigs.len();
+    match n {
+        0 => "is a directory, not a rig file, and holds no .glb, .gltf or .vrm file; give the \
+              path of the rig file itself"
+            .to_string(),
+        _ => {
+            let shown: Vec<String> = rigs
+                .iter()
+                .take(8)
+                .map(|r| dir.join(r).display().to_string())
+                .collect();
+            format!(
+                "is a directory, not a rig file; it holds {n} rig file{}: {}{}; give one of them",
+                if n == 1 { "" } else { "s" },
+                shown.join(", "),
+                if n > 8 { ", ..." } else { "" }
+            )
+        }
     }
 }
 
@@ -351,9 +409,14 @@ fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), String> {
     }
 }
 
-/// Refuses what is known to panic inside the gltf crate's validation: a mesh
-/// attribute naming an accessor that does not exist.
-fn precheck(json: &serde_json::Value) -> Result<(), String> {
+/// What is known to panic inside the gltf crate, each with its JSON path: a
+/// mesh attribute naming an accessor that does not exist (its validation
+/// indexes it), and an image with neither `uri` nor `bufferView`, with both,
+/// or with a `bufferView` and no `mimeType` (`Image::source` unwraps them;
+/// the glTF 2.0 specification requires exactly one source, and the MIME type
+/// with a buffer view). Every problem is listed. O(JSON size).
+fn precheck(json: &serde_json::Value) -> Vec<String> {
+    let mut problems = Vec::new();
     let accessors = json["accessors"].as_array().map_or(0, Vec::len);
     for (m, mesh) in json["meshes"].as_array().into_iter().flatten().enumerate() {
         for (p, prim) in mesh["primitives"]
@@ -366,15 +429,36 @@ fn precheck(json: &serde_json::Value) -> Result<(), String> {
             for attrs in std::iter::once(&prim["attributes"]).chain(targets) {
                 for (name, v) in attrs.as_object().into_iter().flatten() {
                     if v.as_u64().is_none_or(|i| i >= accessors as u64) {
-                        return Err(format!(
-                            "mesh {m} primitive {p} attribute {name} names accessor {v}, which does not exist"
+                        problems.push(format!(
+                            "/meshes/{m}/primitives/{p}: attribute {name} names accessor {v}, which does not exist"
                         ));
                     }
                 }
             }
         }
     }
-    Ok(())
+    for (i, image) in json["images"].as_array().into_iter().flatten().enumerate() {
+        let has = |k: &str| image.get(k).is_some_and(|v| !v.is_null());
+        let (uri, view, mime) = (has("uri"), has("bufferView"), has("mimeType"));
+        let problem = match (uri, view) {
+            (false, false) => Some(
+                "has neither uri nor bufferView (a misspelt key?); give the image file's uri or \
+                 its bufferView and mimeType"
+                    .to_string(),
+            ),
+            (true, true) => Some("has both a uri and a bufferView; keep one".to_string()),
+            (false, true) if !mime => Some(
+                "has a bufferView but no mimeType; glTF requires it: add \"mimeType\": \
+                 \"image/png\" (or image/jpeg)"
+                    .to_string(),
+            ),
+            _ => None,
+        };
+        if let Some(what) = problem {
+            problems.push(format!("/images/{i} {what}"));
+        }
+    }
+    problems
 }
 
 /// `json` and `bin` as the bytes of a GLB file (the binary chunk left out when `bin` is

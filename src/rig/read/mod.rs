@@ -13,6 +13,7 @@
 //! its weights, read from glTF accessors) and `anim` (animation channels).
 //! The types here, [`RigJoint`], [`RigNode`], [`FingerChain`] and [`Rig`], are
 //! what the rest of `rig` reads: positions and node indices, no format.
+//! [`sniff`] names what a file that is not glTF really is.
 //! [`reference`](mod@reference) reads another format into the same chains: the reference
 //! rigs of `data/rigs`. Nothing here judges, and nothing writes but
 //! [`gltf`]'s GLB container, shared by the fix and the synthetic hands.
@@ -24,6 +25,7 @@ pub mod naming;
 pub mod recognise;
 pub mod reference;
 pub mod skin;
+pub mod sniff;
 pub mod weights;
 
 pub use gltf::GltfFile;

@@ -21,6 +21,11 @@
 //! (`Character1_`, `b_`, `Armature/`); a name with a word like MCH, IK, CTRL,
 //! target, pole or twist is a control or helper and never a joint.
 //!
+//! Blender's duplicate names give the first bone of a finger no number
+//! (`Index.L`, then `Index.L.001`, `Index.L.002`: a cartoon robot's hand);
+//! [`parse_bare`] reads their side and finger, and [`super::recognise`] their
+//! part from their place in the chain.
+//!
 //! The wrist (hand) bone of each convention is read by [`parse_hand`]:
 //! Mixamo `mixamorig:RightHand`, Rigify `hand.R` / `DEF-hand.R`, VRM
 //! `rightHand`, Unreal `hand_r`, WebXR `wrist`; its origin is the wrist joint.
@@ -224,10 +229,16 @@ pub(crate) fn parse(name: &str) -> Option<Parsed> {
         side,
         finger,
         part,
-        deform: m
-            .name("prefix")
-            .is_some_and(|p| p.as_str().starts_with("def")),
+        deform: deform_bone(&m),
     })
+}
+
+/// True when the name matched by `m` (the finger pattern or the bare one)
+/// begins with Rigify's `DEF` before its finger word: `DEF-f_index.01.R`, and
+/// `DEF-thumb.02.R`, whose `f` the pattern's optional `f_` takes from the prefix.
+fn deform_bone(m: &regex::Captures<'_>) -> bool {
+    m.get(0).is_some_and(|all| all.as_str().starts_with("def"))
+        && m.name("finger").is_some_and(|f| f.start() >= 3)
 }
 
 /// The one side the captured side words name; `Some(None)` when none does,
@@ -259,6 +270,67 @@ fn parse_palm(c: &str) -> Option<Parsed> {
         finger,
         part: Part::Metacarpal,
         deform: prefix.starts_with("def"),
+    })
+}
+
+/// A finger bone named without its part (`Index.L`, `Thumb.L.001`,
+/// `IndexFinger.R`): Blender's duplicate names, where the first bone of a
+/// finger has no number and the bones extruded from it get `.001`, `.002`.
+/// Those numbers are no ordinals (Blender counts on across fingers:
+/// `middle.L.004`), so the part is the bone's place in its chain
+/// ([`super::recognise`] reads it from the hierarchy). `mid` is not read
+/// here (`Spine_Mid`): only whole finger words. Single-letter sides
+/// before the finger allowed or not, as in [`pattern`].
+fn bare_pattern(sides: &str) -> Regex {
+    Regex::new(&format!(
+        r"(?x)^
+        (?P<prefix>.*?)
+        (?:hand)?
+        (?P<s1>{sides})?
+        (?:hand)?
+        (?:f)?
+        (?P<finger>thumb|index|middle|ring|pinky|little)
+        (?:finger)?
+        (?P<s2>right|left|r|l)?
+        (?:[0-9]{{1,4}})?
+        (?P<end>end|nub|leaf)?
+        $"
+    ))
+    .expect("the bare pattern is valid")
+}
+
+static BARE: LazyLock<Regex> = LazyLock::new(|| bare_pattern("right|left|r|l"));
+static BARE_WORDS: LazyLock<Regex> = LazyLock::new(|| bare_pattern("right|left"));
+
+/// What a finger bone's name without a part says: side, finger, whether it is
+/// a Rigify deform bone, and whether it is a leaf (`_end`: the tail of the bone above).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Bare {
+    pub side: Option<Side>,
+    pub finger: Finger,
+    pub deform: bool,
+    pub leaf: bool,
+}
+
+/// Reads a name that gives a finger and a side but no part (see [`bare_pattern`]);
+/// `None` for names [`parse`] reads, and for controls and helpers.
+pub(crate) fn parse_bare(name: &str) -> Option<Bare> {
+    if parse(name).is_some() {
+        return None;
+    }
+    let (c, before) = compared(name)?;
+    let m = sided_captures(name, &c, &before, &BARE, &BARE_WORDS)?;
+    bare_of(&m)
+}
+
+/// The [`Bare`] of a match of the bare pattern.
+fn bare_of(m: &regex::Captures<'_>) -> Option<Bare> {
+    let finger = Finger::parse(&m["finger"])?;
+    Some(Bare {
+        side: one_side(&[m.name("s1"), m.name("s2")])?,
+        finger,
+        deform: deform_bone(m),
+        leaf: m.name("end").is_some(),
     })
 }
 
@@ -411,11 +483,55 @@ mod tests {
     }
 
     #[test]
+    fn names_without_a_part_read_side_and_finger_only() {
+        let bare = |n: &str| parse_bare(n).map(|b| (b.side, b.finger, b.leaf));
+        assert_eq!(
+            bare("Index.L"),
+            Some((Some(Side::Left), Finger::Index, false))
+        );
+        assert_eq!(
+            bare("Thumb.R.001"),
+            Some((Some(Side::Right), Finger::Thumb, false))
+        );
+        assert_eq!(
+            bare("IndexFinger.L.002"),
+            Some((Some(Side::Left), Finger::Index, false))
+        );
+        assert_eq!(
+            bare("middle.L.004"),
+            Some((Some(Side::Left), Finger::Middle, false))
+        );
+        assert_eq!(
+            bare("Pinky.R.002_end"),
+            Some((Some(Side::Right), Finger::Little, true))
+        );
+        assert_eq!(bare("DEF-ring.R").map(|b| b.1), Some(Finger::Ring));
+        assert!(parse_bare("DEF-ring.R").unwrap().deform);
+        // A numbered name is read by `parse`, never here; controls and words
+        // that are not fingers are nothing.
+        for no in [
+            "Index2.L",
+            "mixamorig:RightHandIndex1",
+            "MCH-index.L",
+            "Index.L_ik",
+            "Spine_Mid",
+            "Hand.L",
+            "Finger.L",
+        ] {
+            assert_eq!(bare(no), None, "{no}");
+        }
+        // `Finger` ends in r: no side there.
+        assert_eq!(bare("Finger_Index"), Some((None, Finger::Index, false)));
+    }
+
+    #[test]
     fn vrm0_thumb_shifts_by_one() {
         let p = parse("rightThumbProximal").unwrap();
         assert_eq!(slot(p.finger, p.part, true), Some(Slot::Carpal));
         let p = parse("rightThumbIntermediate").unwrap();
         assert_eq!(slot(p.finger, p.part, true), Some(Slot::Mcp));
         assert!(parse("DEF-f_middle.01.L").unwrap().deform);
+        assert!(parse("DEF-thumb.02.R").unwrap().deform);
+        assert!(!parse("f_index.01.R").unwrap().deform);
     }
 }

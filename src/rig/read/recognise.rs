@@ -104,6 +104,9 @@ pub(crate) fn recognise(
             parsed[i] = naming::parse(name).map(|p| (p, None));
         }
     }
+    for (i, p) in bare_chains(&file.parent, names, &candidate, &parsed) {
+        parsed[i] = Some((p, None));
+    }
     let vrm0_thumb: Vec<Option<Side>> = parsed
         .iter()
         .flatten()
@@ -127,6 +130,82 @@ pub(crate) fn recognise(
         }
     }
     Ok(found)
+}
+
+/// The parts of finger bones named without one (`Index.L`, `Index.L.001`,
+/// `Index.L.002`; [`naming::parse_bare`]), read from their place in the
+/// hierarchy: a chain of such bones of one side and finger, each the only
+/// child of its kind of the one above, numbers 1, 2, 3 from its top (the
+/// thumb's 1 is its CMC, as in every numbered convention). A bare bone whose
+/// child of the same finger is numbered 2 (`Index.L` above `Index2.L`) is 1.
+/// A lone bare bone is nothing. O(n).
+fn bare_chains(
+    parent: &[Option<usize>],
+    names: &[String],
+    candidate: &[bool],
+    parsed: &[Option<(naming::Parsed, Option<bool>)>],
+) -> Vec<(usize, naming::Parsed)> {
+    let n = names.len();
+    let bare: Vec<Option<naming::Bare>> = (0..n)
+        .map(|i| {
+            (candidate[i] && parsed[i].is_none())
+                .then(|| naming::parse_bare(&names[i]))
+                .flatten()
+        })
+        .collect();
+    let key = |b: &naming::Bare| (b.side, b.finger);
+    let mut children = vec![Vec::new(); n];
+    for (i, p) in parent.iter().enumerate() {
+        if let Some(p) = *p {
+            children[p].push(i);
+        }
+    }
+    let numbered = |i: usize, side: Option<Side>, finger: Finger, k: u8| {
+        parsed[i]
+            .is_some_and(|(p, _)| p.side == side && p.finger == finger && p.part == Part::Number(k))
+    };
+    let mut out = Vec::new();
+    for head in 0..n {
+        let Some(b) = bare[head] else { continue };
+        if b.leaf
+            || parent[head]
+                .and_then(|p| bare[p])
+                .is_some_and(|a| key(&a) == key(&b))
+        {
+            continue;
+        }
+        let parsed_as = |k: u8, deform: bool| naming::Parsed {
+            side: b.side,
+            finger: b.finger,
+            part: Part::Number(k),
+            deform,
+        };
+        let mut chain = vec![head];
+        loop {
+            let last = chain[chain.len() - 1];
+            let next: Vec<usize> = children[last]
+                .iter()
+                .copied()
+                .filter(|&c| bare[c].is_some_and(|x| key(&x) == key(&b)))
+                .collect();
+            match next[..] {
+                [c] if chain.len() < 5 => chain.push(c),
+                _ => break,
+            }
+        }
+        if chain.len() >= 2 {
+            for (k, &i) in chain.iter().enumerate() {
+                let deform = bare[i].is_some_and(|x| x.deform);
+                out.push((i, parsed_as(k as u8 + 1, deform)));
+            }
+        } else if children[head]
+            .iter()
+            .any(|&c| numbered(c, b.side, b.finger, 2))
+        {
+            out.push((head, parsed_as(1, b.deform)));
+        }
+    }
+    out
 }
 
 impl Rig {
@@ -230,27 +309,45 @@ struct FingerFound<'a> {
     unambiguous: bool,
 }
 
-/// The wrist (hand) bones recognised: (side, priority, node), best first per side.
-fn wrists(file: &GltfFile, names: &[String], weighted: &[bool]) -> Vec<(Option<Side>, u8, usize)> {
+/// The wrist (hand) bones recognised: (side, priority, node), best first per
+/// side; a VRM humanoid table's `rightHand`/`leftHand` first, then names.
+pub(crate) fn wrists(
+    file: &GltfFile,
+    names: &[String],
+    weighted: &[bool],
+) -> Vec<(Option<Side>, u8, usize)> {
     let (candidate, skinned) = candidates(file);
-    let mut out: Vec<(Option<Side>, u8, usize)> = names
-        .iter()
-        .enumerate()
-        .filter(|&(i, _)| candidate[i] || skinned[i])
-        .filter_map(|(i, name)| {
-            naming::parse_hand(name).map(|h| {
-                let p = priority::of(h.deform, weighted.get(i) == Some(&true), skinned[i]);
-                (h.side, p, i)
-            })
+    let mut out: Vec<(Option<Side>, u8, usize)> = vrm_bones(&file.json)
+        .into_iter()
+        .filter(|&(node, _, _)| node < names.len())
+        .filter_map(|(node, bone, _)| {
+            let side = match bone.as_str() {
+                "rightHand" => Side::Right,
+                "leftHand" => Side::Left,
+                _ => return None,
+            };
+            Some((Some(side), priority::VRM, node))
         })
         .collect();
+    out.extend(
+        names
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| candidate[i] || skinned[i])
+            .filter_map(|(i, name)| {
+                naming::parse_hand(name).map(|h| {
+                    let p = priority::of(h.deform, weighted.get(i) == Some(&true), skinned[i]);
+                    (h.side, p, i)
+                })
+            }),
+    );
     out.sort();
     out
 }
 
 /// The wrist of the hand on `side`: the best of that side; for a finger
 /// without a side, the only hand bone of the file.
-fn wrist_of(hands: &[(Option<Side>, u8, usize)], side: Option<Side>) -> Option<usize> {
+pub(crate) fn wrist_of(hands: &[(Option<Side>, u8, usize)], side: Option<Side>) -> Option<usize> {
     if let Some(&(_, _, i)) = hands.iter().find(|h| h.0 == side) {
         return Some(i);
     }
@@ -477,7 +574,8 @@ fn no_hand(label: &str, names: &[String], notes: Vec<String>) -> DataError {
         format!(
             "has no recognisable hand: no finger chain (MCP and its inner joints) was found among its {seen}. \
              Known conventions: Mixamo (mixamorig:RightHandIndex1..4), Rigify (f_index.01.R, DEF-f_index.01.R, thumb.01.R), \
-             VRM (rightIndexProximal), Unreal (index_01_r), WebXR (index-finger-phalanx-proximal); \
+             VRM (rightIndexProximal), Unreal (index_01_r), WebXR (index-finger-phalanx-proximal), \
+             Blender (Index.R, Index.R.001); \
              for other names give --map FILE (columns node,side,finger,joint)"
         ),
     );
