@@ -1,9 +1,14 @@
-//! The tracking workflow's file operations: adding X-rays and taking snapshots.
+//! The tracking workflow's file operations: adding and removing X-rays, taking snapshots.
 //!
-//! `add` holds the dataset's lock from reading to replacing the file, so two
-//! additions at the same time both land; the dataset is replaced atomically,
-//! so a killed run leaves the old or the new file, never a torn one; on any
-//! problem nothing is written.
+//! `add` and `remove` hold the dataset's lock from reading to replacing the file, so two
+//! changes at the same time both land; the dataset is replaced atomically, so a killed
+//! run leaves the old or the new file, never a torn one; on any problem nothing is
+//! written. Each change appends a record to the history that says what changed
+//! ([`ChangeRecord`]).
+//!
+//! Rows that the outlier or typo rules of [`outliers`] flag are refused unless the
+//! request accepts them (`--accept-flagged`); accepted, each keeps why in its `flagged`
+//! column and in the history record.
 //!
 //! The settings are used as given: build them with
 //! [`Settings::new`](crate::analysis::Settings::new) (the command line does).
@@ -13,10 +18,11 @@ use crate::analysis::tracking;
 use crate::analysis::{self, Settings};
 use crate::atomic;
 use crate::dataset::append::{self, DatasetLock};
-use crate::dataset::history::{self, Event, Snapshot};
-use crate::dataset::{DataError, Dataset, Problem, csvinput};
+use crate::dataset::history::{self, ChangeRecord, Event, FlaggedRow, Snapshot};
+use crate::dataset::{DataError, Dataset, Finger, Problem, Row, csvinput};
 use crate::error::Error;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// Where new rows come from.
 pub(crate) enum NewRows {
@@ -34,8 +40,11 @@ pub(crate) struct AddRequest {
     pub data: PathBuf,
     pub history: PathBuf,
     pub rows: NewRows,
-    /// Refuse rows flagged by [`outliers::flag_rows`].
-    pub strict: bool,
+    /// Add rows flagged by [`outliers::flag_rows`] (recorded as flagged) instead of
+    /// refusing them.
+    pub accept_flagged: bool,
+    /// The user's note for the history record.
+    pub note: Option<String>,
     /// Pool new rows whose fingertips differ from the dataset's (bone with skin).
     pub mixed_tips: bool,
     pub settings: Settings,
@@ -47,17 +56,30 @@ pub(crate) struct AddOutcome {
     pub added: usize,
     pub xrays_before: usize,
     pub xrays_after: usize,
-    /// Rows that look wrong, one flag per row (warnings unless strict).
+    /// Rows added though flagged (with `accept_flagged`), one flag per row.
     pub flags: Vec<Flag>,
-    /// Fingers whose new rows could not be checked fully (too few current X-rays).
+    /// Warnings to show, each starting with the file and line it is about
+    /// (`new.csv:24: ...`, or the file alone for rows without a line of their own).
+    pub warnings: Vec<String>,
+    /// Fingers whose new rows could not be checked fully (too few current X-rays, or
+    /// none in the new rows' unit).
     pub notes: Vec<String>,
-    /// Implausible data in the resulting dataset (e.g. swapped columns).
-    pub implausible: Vec<String>,
+    /// Header columns the dataset gained (the new rows fill them).
+    pub added_columns: Vec<&'static str>,
 }
 
 /// The current UTC time, RFC 3339, for history records.
 pub(crate) fn now() -> String {
     humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
+}
+
+/// Where a message about one new row points: `FILE:LINE` for a row of a file the user
+/// wrote, the file alone for rows given as options or made by the program.
+fn place(new: &Dataset, line: Option<u64>) -> String {
+    match line {
+        Some(l) => format!("{}:{l}", new.path),
+        None => new.path.clone(),
+    }
 }
 
 /// The tip rule of `add`: new rows whose fingertips are at the bone do not join rows at
@@ -94,6 +116,8 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         }
         NewRows::Rows(rows) => (rows, append::Typed::default()),
     };
+    let from_file = matches!(req.rows, NewRows::File(_));
+    let line_of = |r: &Row| from_file.then_some(r.line);
     csvinput::open_input(&req.data)?; // a missing dataset is reported before any lock file is made
     let _lock = DatasetLock::acquire(&req.data).map_err(Error::write(&req.data))?;
     let current_bytes = csvinput::read_input(&req.data)?;
@@ -102,16 +126,20 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     refuse_mixed_tips(&current, new, req.mixed_tips)?;
     let n = current.xray_count() + new.xray_count();
     analysis::budget::check_bootstrap(n, req.settings.resamples).map_err(Error::Usage)?;
-    let from_options = !matches!(req.rows, NewRows::File(_));
-    let (bytes, after) = append::appended_bytes_typed(&current_bytes, &current, new, &typed)
-        .map_err(|mut e| {
-            if from_options {
-                e.problems.iter_mut().for_each(|p| p.line = None);
-            }
-            e
-        })?;
+    // Conflicting metadata is refused before anything else is said about the rows.
+    append::check_fits(&current, new).map_err(|mut e| {
+        if !from_file {
+            e.problems.iter_mut().for_each(|p| p.line = None);
+        }
+        e
+    })?;
+    let filled = append::with_defaults(new, &current);
+    let new = &filled;
     let before = analysis::analyse(&current, &req.settings);
     let flags = outliers::flag_rows(&before, &new.rows);
+    if !flags.is_empty() && !req.accept_flagged {
+        return Err(refusal(new, &flags, from_file).into());
+    }
     let mut notes: Vec<String> = Vec::new();
     for r in &new.rows {
         if let Some(note) = outliers::limits(&before, r.finger)
@@ -120,70 +148,315 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
             notes.push(note);
         }
     }
-    if req.strict && !flags.is_empty() {
-        return Err(refusal(new, &flags, from_options).into());
-    }
+    notes.extend(outliers::unit_limits(&before, &new.rows));
+    // Accepted flags are recorded in the rows themselves.
+    let marked;
+    let new = if flags.is_empty() {
+        new
+    } else {
+        let mut m = new.clone();
+        for r in &mut m.rows {
+            if let Some(f) = flag_of(&flags, r) {
+                r.meta.flagged = Some(Arc::from(f.finding.as_str()));
+            }
+        }
+        marked = m;
+        &marked
+    };
+    let (bytes, after) = append::appended_bytes_typed(&current_bytes, &current, new, &typed)
+        .map_err(|mut e| {
+            if !from_file {
+                e.problems.iter_mut().for_each(|p| p.line = None);
+            }
+            e
+        })?;
+    let added_columns = append::added_columns(&current, new);
     let a = analysis::analyse(&after, &req.settings);
-    let snapshot = tracking::snapshot(&a, now(), Event::Add);
-    // Stage both files in full before replacing either: a history that cannot be
-    // written stops the add with the dataset untouched. Between the two renames
-    // a crash can only lose the snapshot ('phalanx snapshot' records it again).
-    let history_bytes =
-        history::appended_bytes(&req.history, &snapshot).map_err(Error::write(&req.history))?;
-    let staged_data = atomic::stage(&req.data, &bytes).map_err(Error::write(&req.data))?;
-    let staged_history =
-        atomic::stage(&req.history, &history_bytes).map_err(Error::write(&req.history))?;
-    atomic::commit(staged_data, &req.data).map_err(Error::write(&req.data))?;
-    atomic::commit(staged_history, &req.history).map_err(Error::write(&req.history))?;
+    let mut warnings: Vec<String> = new
+        .rows
+        .iter()
+        .filter_map(|r| {
+            let f = flag_of(&flags, r)?;
+            Some(format!(
+                "{}: added though flagged (--accept-flagged): {}",
+                place(new, line_of(r)),
+                f.reason
+            ))
+        })
+        .collect();
+    for f in &a.fingers {
+        if let Some(w) = analysis::plausible::swapped_segments(f) {
+            let lines: Vec<String> = new
+                .rows
+                .iter()
+                .filter(|r| r.finger == f.finger)
+                .filter_map(|r| line_of(r).map(|l| l.to_string()))
+                .collect();
+            let at = if lines.is_empty() {
+                new.path.clone()
+            } else {
+                format!("{}:{}", new.path, lines.join(","))
+            };
+            warnings.push(format!("{at}: {w}"));
+        }
+    }
+    let mut snapshot = tracking::snapshot(&a, now(), Event::Add);
+    snapshot.change = Some(ChangeRecord {
+        file: match &req.rows {
+            NewRows::Fields(_) => None,
+            _ => Some(new.path.clone()),
+        },
+        xrays: xray_ids(&new.rows),
+        rows: new.rows.len(),
+        flagged: new
+            .rows
+            .iter()
+            .filter_map(|r| {
+                let f = flag_of(&flags, r)?;
+                Some(FlaggedRow {
+                    xray: r.xray.to_string(),
+                    finger: r.finger,
+                    reason: f.finding.clone(),
+                })
+            })
+            .collect(),
+    });
+    snapshot.note.clone_from(&req.note);
+    commit(&req.data, &bytes, &req.history, &snapshot)?;
     Ok(AddOutcome {
         added: new.rows.len(),
         xrays_before: current.xray_count(),
         xrays_after: after.xray_count(),
         flags,
+        warnings,
         notes,
-        implausible: analysis::plausible::warnings(&a),
+        added_columns,
     })
 }
 
-/// The error of `add --strict`: one problem per flagged value, at the new row's
-/// line (no line for a row given as options).
-fn refusal(new: &Dataset, flags: &[Flag], from_options: bool) -> DataError {
-    let problems = new
+/// The flag of a new row, if the rules flagged it.
+fn flag_of<'f>(flags: &'f [Flag], r: &Row) -> Option<&'f Flag> {
+    flags
+        .iter()
+        .find(|f| f.xray == *r.xray && f.finger == r.finger.name())
+}
+
+/// The distinct X-ray ids of rows, in order of first appearance.
+fn xray_ids(rows: &[Row]) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for r in rows {
+        if !out.iter().any(|x| *x == *r.xray) {
+            out.push(r.xray.to_string());
+        }
+    }
+    out
+}
+
+/// Stages the dataset and the history in full before replacing either: a history that
+/// cannot be written stops the change with the dataset untouched. Between the two
+/// renames a crash can only lose the record ('phalanx snapshot' records it again).
+fn commit(
+    data: &Path,
+    bytes: &[u8],
+    history_path: &Path,
+    snapshot: &Snapshot,
+) -> Result<(), Error> {
+    let history_bytes =
+        history::appended_bytes(history_path, snapshot).map_err(Error::write(history_path))?;
+    let staged_data = atomic::stage(data, bytes).map_err(Error::write(data))?;
+    let staged_history =
+        atomic::stage(history_path, &history_bytes).map_err(Error::write(history_path))?;
+    atomic::commit(staged_data, data).map_err(Error::write(data))?;
+    atomic::commit(staged_history, history_path).map_err(Error::write(history_path))?;
+    Ok(())
+}
+
+/// The error of an `add` whose rows the rules flag: one problem per flagged row, at its
+/// line in the user's file, then what to do.
+fn refusal(new: &Dataset, flags: &[Flag], from_file: bool) -> DataError {
+    let mut problems: Vec<Problem> = new
         .rows
         .iter()
-        .flat_map(|r| {
-            flags
-                .iter()
-                .filter(move |f| f.xray == *r.xray && f.finger == r.finger.name())
-                .map(move |f| Problem::line(r.line, format!("refused (--strict): {}", f.reason)))
-        })
-        .map(|mut p| {
-            if from_options {
-                p.line = None;
-            }
-            p
+        .filter_map(|r| {
+            let f = flag_of(flags, r)?;
+            let message = format!("flagged as a likely error: {}", f.reason);
+            Some(if from_file {
+                Problem::line(r.line, message)
+            } else {
+                Problem::file(message)
+            })
         })
         .collect();
+    problems.push(Problem::file(format!(
+        "nothing was added. Correct the {} and add again, or, if {} right as measured, add with --accept-flagged: {} then recorded as flagged in the dataset's 'flagged' column and in the history, and listed by 'phalanx stats' and the report",
+        if flags.len() == 1 { "row" } else { "rows" },
+        if flags.len() == 1 { "it is" } else { "they are" },
+        if flags.len() == 1 { "it is" } else { "they are" },
+    )));
     DataError {
         file: new.path.clone(),
         problems,
     }
 }
 
-/// Appends a snapshot of the dataset's current statistics to its history
-/// (for data edited by hand). Holds the dataset's lock while it reads.
+/// What `remove` is asked to do.
+pub(crate) struct RemoveRequest {
+    pub data: PathBuf,
+    pub history: PathBuf,
+    /// The X-rays whose rows go.
+    pub xrays: Vec<String>,
+    /// Only this finger of them (all their rows when `None`).
+    pub finger: Option<Finger>,
+    /// The user's note for the history record.
+    pub note: Option<String>,
+    pub settings: Settings,
+}
+
+/// What `remove` did.
+#[derive(Debug)]
+pub(crate) struct RemoveOutcome {
+    /// The rows removed (as they were in the dataset, with their lines).
+    pub removed: Vec<Row>,
+    pub xrays_before: usize,
+    pub xrays_after: usize,
+}
+
+/// Takes the rows of some X-rays (of one finger, or all) out of a dataset, under its
+/// lock, and appends a record of the removal to its history. Every other byte of the
+/// file is kept, so removing what an `add` appended (without new header columns)
+/// restores the file, and its statistics, bit for bit. An X-ray without such rows is
+/// refused, with the X-rays the dataset has; removing every row is refused too (a
+/// dataset needs one).
+pub(crate) fn remove(req: &RemoveRequest) -> Result<RemoveOutcome, Error> {
+    csvinput::open_input(&req.data)?;
+    let _lock = DatasetLock::acquire(&req.data).map_err(Error::write(&req.data))?;
+    let current_bytes = csvinput::read_input(&req.data)?;
+    let label = req.data.display().to_string();
+    let current = Dataset::from_bytes(&label, &current_bytes)?;
+    let selected = |r: &Row| {
+        req.xrays.iter().any(|x| *x == *r.xray) && req.finger.is_none_or(|f| f == r.finger)
+    };
+    let mut problems = Vec::new();
+    for x in &req.xrays {
+        if !current.rows.iter().any(|r| *x == *r.xray && selected(r)) {
+            let what = req
+                .finger
+                .map_or("no rows".to_string(), |f| format!("no {f} row"));
+            let has = current.rows.iter().filter(|r| *x == *r.xray).count();
+            problems.push(Problem::file(if has > 0 {
+                format!(
+                    "X-ray {} has {what} (it has {has} row{} of other fingers); nothing was removed",
+                    csvinput::quote(x),
+                    if has == 1 { "" } else { "s" }
+                )
+            } else {
+                format!(
+                    "has no X-ray {}; nothing was removed. Its X-rays are {}",
+                    csvinput::quote(x),
+                    some_ids(&current)
+                )
+            }));
+        }
+    }
+    let removed: Vec<Row> = current
+        .rows
+        .iter()
+        .filter(|r| selected(r))
+        .cloned()
+        .collect();
+    if problems.is_empty() && removed.len() == current.rows.len() {
+        problems.push(Problem::file(
+            "removing these rows would leave no row; a dataset needs at least one, so nothing was removed",
+        ));
+    }
+    if !problems.is_empty() {
+        return Err(DataError {
+            file: label,
+            problems,
+        }
+        .into());
+    }
+    let lines: Vec<u64> = removed.iter().map(|r| r.line).collect();
+    let bytes = append::removed_bytes(&current_bytes, &label, &lines)?;
+    let after = Dataset::from_bytes(&label, &bytes)?;
+    analysis::budget::check_bootstrap(after.xray_count(), req.settings.resamples)
+        .map_err(Error::Usage)?;
+    let a = analysis::analyse(&after, &req.settings);
+    let mut snapshot = tracking::snapshot(&a, now(), Event::Remove);
+    snapshot.change = Some(ChangeRecord {
+        file: None,
+        xrays: xray_ids(&removed),
+        rows: removed.len(),
+        flagged: removed
+            .iter()
+            .filter_map(|r| {
+                Some(FlaggedRow {
+                    xray: r.xray.to_string(),
+                    finger: r.finger,
+                    reason: r.meta.flagged.as_deref()?.to_string(),
+                })
+            })
+            .collect(),
+    });
+    snapshot.note.clone_from(&req.note);
+    commit(&req.data, &bytes, &req.history, &snapshot)?;
+    Ok(RemoveOutcome {
+        removed,
+        xrays_before: current.xray_count(),
+        xrays_after: after.xray_count(),
+    })
+}
+
+/// The first X-ray ids of a dataset, for a message: at most 10, then how many more.
+fn some_ids(d: &Dataset) -> String {
+    let ids = xray_ids(&d.rows);
+    let shown: Vec<String> = ids.iter().take(10).map(|x| csvinput::quote(x)).collect();
+    if ids.len() > shown.len() {
+        format!("{} and {} more", shown.join(", "), ids.len() - shown.len())
+    } else {
+        shown.join(", ")
+    }
+}
+
+/// What `snapshot` did.
+#[derive(Debug)]
+pub(crate) enum SnapshotOutcome {
+    /// A record was appended.
+    Written(Snapshot),
+    /// The data and settings are those of the history's last record (number `record`,
+    /// 1-based): nothing was written.
+    Unchanged { record: usize, last: Snapshot },
+}
+
+/// Appends a snapshot of the dataset's current statistics to its history (for data
+/// edited by hand), unless nothing changed since the last record: the same file
+/// (SHA-256) and the same settings. Holds the dataset's lock while it reads.
 pub(crate) fn snapshot(
     data: &Path,
     history_path: &Path,
     settings: &Settings,
-) -> Result<Snapshot, Error> {
+    note: Option<String>,
+) -> Result<SnapshotOutcome, Error> {
     csvinput::open_input(data)?; // a missing dataset is reported before any lock file is made
     let _lock = DatasetLock::acquire(data).map_err(Error::write(data))?;
     let dataset = Dataset::load(data)?;
+    let snaps = history::read(history_path)?;
+    if let Some(last) = snaps.last()
+        && last.sha256 == dataset.sha256
+        && last.settings.resamples == settings.resamples
+        && last.settings.seed == settings.seed
+        && last.settings.confidence == settings.confidence
+    {
+        return Ok(SnapshotOutcome::Unchanged {
+            record: snaps.len(),
+            last: last.clone(),
+        });
+    }
     analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)
         .map_err(Error::Usage)?;
     let a = analysis::analyse(&dataset, settings);
-    let snap = tracking::snapshot(&a, now(), Event::Snapshot);
+    let mut snap = tracking::snapshot(&a, now(), Event::Snapshot);
+    snap.note = note;
     history::append(history_path, &snap).map_err(Error::write(history_path))?;
-    Ok(snap)
+    Ok(SnapshotOutcome::Written(snap))
 }

@@ -92,7 +92,9 @@ fn numbers_are_kept_as_typed() {
     ])
     .ok();
     assert!(
-        text(&wd, DATA).ends_with("2a,thumb,275.00,231.10,,,,,,,\n"),
+        // The dataset names one unit, so the new row is written in it; its tip, not
+        // given, is left unknown (it pools with either kind).
+        text(&wd, DATA).ends_with("2a,thumb,275.00,231.10,,,,,,image units,\n"),
         "{}",
         text(&wd, DATA)
     );
@@ -102,7 +104,7 @@ fn numbers_are_kept_as_typed() {
     );
     wd.run(&["add", "new.csv"]).ok();
     assert!(
-        text(&wd, DATA).ends_with("2b,index,352.10,201.40,1.78e2,,,,,,\n"),
+        text(&wd, DATA).ends_with("2b,index,352.10,201.40,1.78e2,,,,,image units,\n"),
         "{}",
         text(&wd, DATA)
     );
@@ -231,9 +233,10 @@ fn one_warning_per_flagged_row_consistent_with_its_interval() {
     ]);
     run.ok();
     assert!(run.stderr.is_empty(), "{}", run.stderr);
-    // A misplaced decimal point: exactly one warning, naming each value with the
-    // interval it is outside, and the length to fix.
-    let run = wd.run(&[
+    // A misplaced decimal point: refused, with exactly one problem naming each value
+    // with the interval it is outside, and the length to fix; accepted on demand, with
+    // the same words as one warning.
+    let typo = [
         "add",
         "--xray",
         "2b",
@@ -241,7 +244,18 @@ fn one_warning_per_flagged_row_consistent_with_its_interval() {
         "ring",
         "--lengths",
         "3584.0,226.5,191.1",
-    ]);
+    ];
+    let refused = wd.run(&typo);
+    refused.data_error();
+    let flagged: Vec<&str> = refused
+        .problem_lines()
+        .into_iter()
+        .filter(|l| l.contains("flagged as a likely error"))
+        .collect();
+    assert_eq!(flagged.len(), 1, "{}", refused.stderr);
+    let mut accept = typo.to_vec();
+    accept.push("--accept-flagged");
+    let run = wd.run(&accept);
     run.ok();
     let warnings: Vec<&str> = run
         .stderr
@@ -251,7 +265,12 @@ fn one_warning_per_flagged_row_consistent_with_its_interval() {
     assert_eq!(warnings.len(), 1, "{}", run.stderr);
     let w = warnings[0];
     assert!(
-        w.starts_with("warning: ring X-ray '2b': J~1 = 0.8956 is outside ["),
+        flagged[0].ends_with(&w[w.find("ring X-ray").unwrap()..]),
+        "{}\n{w}",
+        flagged[0]
+    );
+    assert!(
+        w.starts_with("warning: <command line>: added though flagged (--accept-flagged): ring X-ray '2b': J~1 = 0.8956 is outside ["),
         "{w}"
     );
     assert!(
@@ -276,6 +295,6 @@ fn one_warning_per_flagged_row_consistent_with_its_interval() {
         "3729.8,226.7,212.1",
     ])
     .data_error()
-    .stderr_has("refused (--strict): ring X-ray '2c'")
+    .stderr_has("flagged as a likely error: ring X-ray '2c'")
     .stderr_has("j1 looks 10 times too large");
 }

@@ -403,12 +403,13 @@ fn every_bad_annotation_exits_2_with_its_place_and_writes_nothing() {
 #[test]
 fn import_into_a_dataset_goes_through_add() {
     let wd = Workdir::new();
-    let header = "xray,finger,j1,j2,j3,mc,sex,age,side,source,unit,tip\n";
+    // The lab's file has a 'flagged' column already, so accepted rows leave its bytes be.
+    let header = "xray,finger,j1,j2,j3,mc,sex,age,side,source,unit,tip,flagged\n";
     let base: String = (0..6)
         .map(|i| {
             let j1 = 300.0 + 3.0 * i as f64;
             format!(
-                "{header_free}x{i},thumb,{},{},,{},,,right,lab,px,skin\nx{i},index,{j1},{},{},,,,right,lab,px,skin\n",
+                "{header_free}x{i},thumb,{},{},,{},,,right,lab,px,skin,\nx{i},index,{j1},{},{},,,,right,lab,px,skin,\n",
                 250.0 + i as f64,
                 230.0 - i as f64,
                 430.0 + i as f64,
@@ -421,32 +422,47 @@ fn import_into_a_dataset_goes_through_add() {
     wd.write("lab.csv", format!("{header}{base}"));
     let hand = format!("image,landmark,x,y\n{}", long_hand("new", &INDEX));
     wd.write("marks.csv", &hand);
-    let import = |extra: &[&str]| {
+    wd.write("lab-mm.csv", format!("{header}{base}"));
+    // The new hand's proportions are far from the lab's near-identical ones: flagged, and
+    // let in on purpose (the refusal itself is tested with 'add').
+    let import_into = |into: &str, extra: &[&str]| {
         let mut args = vec![
             "import",
             "marks.csv",
             "--layout",
             "long",
             "--into",
-            "lab.csv",
+            into,
+            "--accept-flagged",
         ];
         args.extend_from_slice(extra);
         args.extend(["--side", "right", "--tip", "skin", "--source", "lab"]);
         wd.run(&args)
     };
-    // The lab's rows are in px: lengths in mm are refused.
+    let import = |extra: &[&str]| import_into("lab.csv", extra);
+    // The lab's rows are in px: lengths in mm go in beside them, their relative values
+    // pooled, their lengths never averaged with the px ones (nor checked against them).
     let before = wd.read("lab.csv");
-    import(&["--unit", "mm"])
-        .data_error()
-        .stderr_has("unit is 'mm' but the rows of lab.csv are in 'px' (line 2)");
-    assert_eq!(wd.read("lab.csv"), before);
+    import_into("lab-mm.csv", &["--unit", "mm"])
+        .ok()
+        .stdout_has("6 -> 7 X-rays")
+        .stderr_has("no current X-ray gives thumb and index lengths in 'mm', so the new rows in 'mm' are checked on their relative values only");
+    let mm = String::from_utf8(wd.read("lab-mm.csv")).unwrap();
+    let last = mm.lines().last().unwrap();
+    assert!(
+        last.starts_with("new,index,300,180.069431,100.04499,,,,right,lab,mm,skin,\"J~1 = "),
+        "{mm}"
+    );
     let run = import(&[]);
     run.ok()
         .stdout_has("imported 2 rows from 1 hand in marks.csv into lab.csv: 6 -> 7 X-rays");
     let text = String::from_utf8(wd.read("lab.csv")).unwrap();
     assert!(text.starts_with(std::str::from_utf8(&before).unwrap()));
     assert!(
-        text.ends_with("new,index,300,180.069431,100.04499,,,,right,lab,px,skin\n"),
+        text.lines()
+            .last()
+            .unwrap()
+            .starts_with("new,index,300,180.069431,100.04499,,,,right,lab,px,skin,\"J~1 = "),
         "{text}"
     );
     // A snapshot of the statistics is appended, as for 'add'.

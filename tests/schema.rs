@@ -372,18 +372,25 @@ fn history_documents_and_records_satisfy_their_schemas() {
         "361.2,199.9,181.3",
     ])
     .ok();
+    // A snapshot of unchanged data writes nothing; one with a note and another seed does.
     wd.run(&["snapshot"]).ok();
+    wd.run(&["snapshot", "--seed", "3", "--note", "re-seeded"])
+        .ok();
+    wd.run(&["remove", "--xray", "2c"]).ok();
 
-    // The history file's lines: one per snapshot (an add, then a snapshot).
+    // The history file's lines: one per snapshot (an add, a snapshot, a removal).
     let v = validator("history-record");
     let history = String::from_utf8(wd.read("data/history.jsonl")).unwrap();
     let records: Vec<Value> = history
         .lines()
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
-    assert_eq!(records.len(), 2, "{history}");
+    assert_eq!(records.len(), 3, "{history}");
     assert_eq!(records[0]["event"], "add");
+    assert_eq!(records[0]["change"]["xrays"], json!(["2c"]));
     assert_eq!(records[1]["event"], "snapshot");
+    assert_eq!(records[1]["note"], "re-seeded");
+    assert_eq!(records[2]["event"], "remove");
     for r in &records {
         assert_valid(&v, "history-record", r);
     }
@@ -407,10 +414,17 @@ fn history_documents_and_records_satisfy_their_schemas() {
 
     let v = validator("history");
     let doc = wd.run(&["history", "--format", "json"]).ok().json();
-    assert_eq!(doc["snapshots"], 2);
-    assert_eq!(doc["series"][0]["points"].as_array().unwrap().len(), 2);
+    assert_eq!(doc["snapshots"], 3);
+    assert_eq!(doc["series"][0]["points"].as_array().unwrap().len(), 3);
+    assert_eq!(doc["records"][2]["change"]["rows"], 1);
     assert_valid(&v, "history", &doc);
     assert_version_pinned(&v, "history", &doc);
+    assert_refused(&v, "history", &doc, "a change without its rows", |d| {
+        d["records"][0]["change"]
+            .as_object_mut()
+            .unwrap()
+            .remove("rows");
+    });
     assert_refused(&v, "history", &doc, "a point without its record", |d| {
         d["series"][0]["points"][0]
             .as_object_mut()

@@ -15,6 +15,7 @@ mod deform;
 mod everyday;
 mod fbx;
 mod import;
+mod lab;
 mod literature;
 mod option_ranges;
 mod options;

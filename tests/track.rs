@@ -132,15 +132,16 @@ const NEW_FILE: &str = "xray,finger,j1,j2,j3\n\
     2b,index,345.9,193.3,176.2\n\
     2b,thumb,262.7,240.5,\n";
 
-/// The same rows as the dataset's columns would hold them, typed by hand.
-const NEW_ROWS_IN_DATASET: &str = "2a,index,352.1,201.4,178.0,,,,,,\n\
-    2a,middle,391.5,250.2,190.7,,,,,,\n\
-    2a,ring,370.3,230.9,205.4,,,,,,\n\
-    2a,little,290.2,170.4,175.8,,,,,,\n\
-    2a,thumb,268.4,236.1,,,,,,,\n\
-    2b,index,345.9,193.3,176.2,,,,,,\n\
-    2b,thumb,262.7,240.5,,,,,,,\n\
-    2c,index,361.2,199.9,181.3,female,34,left,,,\n";
+/// The same rows as the dataset's columns would hold them, typed by hand (in the
+/// dataset's one unit, which rows without one take; the tip, not given, left unknown).
+const NEW_ROWS_IN_DATASET: &str = "2a,index,352.1,201.4,178.0,,,,,image units,\n\
+    2a,middle,391.5,250.2,190.7,,,,,image units,\n\
+    2a,ring,370.3,230.9,205.4,,,,,image units,\n\
+    2a,little,290.2,170.4,175.8,,,,,image units,\n\
+    2a,thumb,268.4,236.1,,,,,,image units,\n\
+    2b,index,345.9,193.3,176.2,,,,,image units,\n\
+    2b,thumb,262.7,240.5,,,,,,image units,\n\
+    2c,index,361.2,199.9,181.3,female,34,left,,image units,\n";
 
 #[test]
 fn add_then_stats_equals_stats_of_the_concatenated_file() {
@@ -439,7 +440,26 @@ const REFUSALS: &[Refusal] = &[
         problems: Some(2),
     },
     Refusal {
-        what: "strict with a tenfold typo",
+        what: "a tenfold typo",
+        file: None,
+        args: &[
+            "--xray",
+            "9a",
+            "--finger",
+            "index",
+            "--lengths",
+            "3399.6,188.83,169.67",
+        ],
+        says: &[
+            "<command line>: flagged as a likely error: index",
+            "X-ray '9a'",
+            "j1 looks 10 times too large",
+            "<command line>: nothing was added",
+        ],
+        problems: Some(2),
+    },
+    Refusal {
+        what: "a tenfold typo with the old --strict",
         file: None,
         args: &[
             "--strict",
@@ -450,12 +470,8 @@ const REFUSALS: &[Refusal] = &[
             "--lengths",
             "3399.6,188.83,169.67",
         ],
-        says: &[
-            "<command line>: refused (--strict): index",
-            "X-ray '9a'",
-            "j1 looks 10 times too large",
-        ],
-        problems: None,
+        says: &["<command line>: flagged as a likely error: index"],
+        problems: Some(2),
     },
     Refusal {
         what: "one bad length among several good rows",
@@ -490,26 +506,27 @@ const REFUSALS: &[Refusal] = &[
         problems: Some(1),
     },
     Refusal {
-        what: "a file row whose side conflicts with the X-ray's added row",
-        file: Some("xray,finger,j1,j2,j3,side\n9a,index,350,190,170,\n2a,ring,370,230,205,left\n"),
+        what: "a file row whose unit conflicts with the X-ray's added row",
+        file: Some("xray,finger,j1,j2,j3,unit\n9a,index,350,190,170,\n2a,ring,37.0,23.0,20.5,mm\n"),
         args: &["new.csv"],
         says: &[
-            "new.csv:3: side is 'left' but data/measurements.csv line 27 gives empty for the same X-ray '2a'",
+            "new.csv:3: unit is 'mm' but data/measurements.csv line 27 gives 'image units' for the same X-ray '2a'",
         ],
         problems: Some(1),
     },
     Refusal {
-        what: "a file with a tenfold typo, strict",
+        what: "a file with a tenfold typo",
         file: Some(
             "xray,finger,j1,j2,j3\n9a,index,350,190,170\n9b,index,350,190,170\n9b,middle,380.2,2551.1,190.5\n",
         ),
-        args: &["--strict", "new.csv"],
+        args: &["new.csv"],
         says: &[
-            "new.csv:4: refused (--strict): middle",
+            "new.csv:4: flagged as a likely error: middle",
             "X-ray '9b'",
             "j2 looks 10 times too large",
+            "new.csv: nothing was added",
         ],
-        problems: None,
+        problems: Some(2),
     },
 ];
 
@@ -550,7 +567,7 @@ fn a_refused_add_leaves_dataset_and_history_byte_identical() {
         if let Some(n) = r.problems {
             assert_eq!(run.problem_lines().len(), n, "{}:\n{}", r.what, run.stderr);
         }
-        if r.file.is_some() || r.args.contains(&"--strict") {
+        if r.file.is_some() || r.says.iter().any(|s| s.contains("flagged")) {
             // Every problem names its row: FILE:LINE or <command line>.
             let place = if r.file.is_some() {
                 "new.csv:"
@@ -612,7 +629,7 @@ fn eight_concurrent_adds_all_land_exactly_once() {
     let text = String::from_utf8(wd.read(DATA)).unwrap();
     assert!(text.as_bytes().starts_with(&paper_data()));
     for i in 0..8 {
-        let row = format!("c{i},index,{},190.5,171.25,,,,,,", 345 + i);
+        let row = format!("c{i},index,{},190.5,171.25,,,,,image units,", 345 + i);
         let n = text.lines().filter(|l| *l == row).count();
         assert_eq!(n, 1, "row {row} appears {n} times:\n{text}");
     }
@@ -826,7 +843,7 @@ fn warnings(run: &Run) -> Vec<&str> {
 }
 
 #[test]
-fn a_tenfold_typo_is_flagged_and_refused_only_with_strict() {
+fn a_tenfold_typo_is_refused_unless_accepted() {
     let wd = Workdir::new();
     wd.copy_paper_data();
     // A plausible row: no warning at all.
@@ -859,41 +876,49 @@ fn a_tenfold_typo_is_flagged_and_refused_only_with_strict() {
             "--lengths",
             lengths,
         ];
-        let mut strict = vec!["add", "--strict"];
-        strict.extend(&args[1..]);
-        let run = wd.run(&strict);
+        let run = wd.run(&args);
         run.data_error()
-            .stderr_has("refused (--strict)")
+            .stderr_has("flagged as a likely error")
             .stderr_has(&format!("X-ray '{xray}'"))
             .stderr_has(&format!("{segment} looks 10 times too large"));
         assert!(wd.read(DATA) == data, "{xray}: the dataset changed");
         assert!(wd.read(HISTORY) == hist, "{xray}: the history changed");
 
-        let run = wd.run(&args);
+        let mut accept = args.to_vec();
+        accept.push("--accept-flagged");
+        let run = wd.run(&accept);
         run.ok();
         let w = warnings(&run);
-        assert!(!w.is_empty(), "{xray}: no warning:\n{}", run.stderr);
-        for line in &w {
-            assert!(line.contains(&format!("X-ray '{xray}'")), "{line}");
-            assert!(line.starts_with(&format!("warning: {finger} ")), "{line}");
-            assert!(
-                line.contains(&format!("{segment} looks 10 times too large")),
-                "{line}"
-            );
-        }
+        assert_eq!(w.len(), 1, "{xray}: not one warning:\n{}", run.stderr);
+        let line = w[0];
+        assert!(line.contains(&format!("X-ray '{xray}'")), "{line}");
+        assert!(
+            line.starts_with(&format!(
+                "warning: <command line>: added though flagged (--accept-flagged): {finger} "
+            )),
+            "{line}"
+        );
+        assert!(
+            line.contains(&format!("{segment} looks 10 times too large")),
+            "{line}"
+        );
         let text = String::from_utf8(wd.read(DATA)).unwrap();
-        // Kept as typed.
+        // Kept as typed, in the dataset's unit, with why it was flagged.
         let j: Vec<String> = lengths.split(',').map(str::to_string).collect();
         let j3 = j.get(2).cloned().unwrap_or_default();
-        let row = format!("{xray},{finger},{},{},{j3},,,,,,\n", j[0], j[1]);
-        assert!(text.ends_with(&row), "{row:?} not added:\n{text}");
+        let row = format!("{xray},{finger},{},{},{j3},,,,,image units,,", j[0], j[1]);
+        let last = text.lines().last().unwrap();
+        assert!(last.starts_with(&row), "{row:?} not added:\n{text}");
+        assert!(
+            last.contains(&format!("{segment} looks 10 times too large")),
+            "{last}"
+        );
     }
 }
 
 /// For a two-segment finger, J1 ten times too small and J2 ten times too
 /// large give the same relative values; only the total tells them apart.
 #[test]
-
 fn a_thumb_j2_tenfold_typo_is_hinted_as_j2_too_large() {
     let wd = Workdir::new();
     wd.copy_paper_data();
@@ -906,12 +931,8 @@ fn a_thumb_j2_tenfold_typo_is_hinted_as_j2_too_large() {
         "--lengths",
         "270.5,2310.2",
     ]);
-    run.ok();
-    let w = warnings(&run);
-    assert!(!w.is_empty(), "{}", run.stderr);
-    for line in w {
-        assert!(line.contains("j2 looks 10 times too large"), "{line}");
-    }
+    run.data_error().stderr_has("j2 looks 10 times too large");
+    assert!(!run.stderr.contains("j1 looks"), "{}", run.stderr);
 }
 
 // ---------------------------------------------------------------------------
@@ -970,7 +991,13 @@ fn history_has_one_snapshot_per_add_and_per_snapshot_command() {
             .unwrap();
         assert_eq!(index["n"].as_u64(), Some(6 + i as u64));
     }
+    // Nothing changed since the last add: a snapshot says so and writes nothing.
     wd.run(&["snapshot"])
+        .ok()
+        .stdout_has("no change since snapshot 3");
+    assert_eq!(history(&wd).len(), 3);
+    // Another seed is another setting (the bootstraps here are exact, so the same numbers).
+    wd.run(&["snapshot", "--seed", "7"])
         .ok()
         .stdout_has("snapshot of data/measurements.csv (8 X-rays");
     let h = history(&wd);
@@ -1091,7 +1118,7 @@ fn add_through_a_symlinked_dataset_updates_its_target() {
     let link = std::fs::symlink_metadata(wd.path().join(DATA)).unwrap();
     let target = String::from_utf8(wd.read("real/m.csv")).unwrap();
     assert!(
-        target.ends_with("z,index,350,190,170,,,,,,\n"),
+        target.ends_with("z,index,350,190,170,,,,,image units,\n"),
         "the link's target was not updated"
     );
     assert!(link.file_type().is_symlink(), "the link was replaced");
@@ -1160,8 +1187,57 @@ fn group_by_gives_the_right_n_per_group() {
         ]
     );
     let groups = doc["groups"]["groups"].as_array().unwrap();
-    assert!(groups[0]["note"].is_null());
-    assert!(groups[1]["note"].is_null());
+    // Under 5 X-rays a group carries the small-sample note.
+    for (g, n) in [(0, 3), (1, 2)] {
+        let note = groups[g]["note"].as_str().unwrap();
+        assert!(
+            note.contains(&format!("only {n} X-rays, fewer than 5")),
+            "{note}"
+        );
+    }
+    // Male against female, as 'compare' puts two cohorts: the difference of the means
+    // (computed here from the rows) inside its Welch and bootstrap intervals.
+    let d = &doc["groups"]["differences"][0];
+    assert_eq!(
+        (d["a"].as_str(), d["b"].as_str()),
+        (Some("female"), Some("male"))
+    );
+    assert_eq!(doc["groups"]["differences"].as_array().unwrap().len(), 1);
+    let rel = |rows: &[[f64; 3]]| {
+        rows.iter()
+            .map(|r| r[0] / (r[0] + r[1] + r[2]))
+            .sum::<f64>()
+            / rows.len() as f64
+    };
+    let expect = rel(&[[417.0, 226.0, 184.0], [345.0, 200.0, 180.0]])
+        - rel(&[
+            [340.0, 189.0, 170.0],
+            [342.0, 195.0, 187.0],
+            [360.0, 207.0, 174.0],
+        ]);
+    let index = d["fingers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["finger"] == "index")
+        .unwrap();
+    let j1 = index["quantities"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|q| q["quantity"] == "rel_j1")
+        .unwrap();
+    assert_close(num(&j1["difference"]), expect, 1e-12, "male - female J~1");
+    for k in ["welch", "bootstrap"] {
+        let iv = if k == "welch" {
+            &j1[k]["interval"]
+        } else {
+            &j1[k]
+        };
+        let (lo, hi) = interval(iv);
+        assert!(lo < expect && expect < hi, "{k}: [{lo}, {hi}]");
+    }
+    assert!(num(&j1["hedges_g"]["g"]) > 0.0);
     // The one-X-ray group: present, with a note and no intervals.
     let unknown = &groups[2];
     assert!(
@@ -1285,4 +1361,386 @@ fn group_by_gives_the_right_n_per_group() {
 /// `quantity` helper applies.
 fn json_wrap(group: &Value) -> Value {
     serde_json::json!({ "fingers": group["fingers"] })
+}
+
+// ---------------------------------------------------------------------------
+// 8. Flagged rows, removal, filled metadata, units, the compact history
+// ---------------------------------------------------------------------------
+
+/// Two plausible X-rays in the dataset's columns and unit (index and ring of each).
+const TWO_XRAYS: &str = "xray,finger,j1,j2,j3,sex,age,side,source,unit\n\
+    4a,index,352.1,201.4,178.0,,,right,lab,image units\n\
+    4a,ring,370.2,231.0,205.9,,,right,lab,image units\n\
+    4b,index,345.9,193.3,176.2,,,right,lab,image units\n\
+    4b,ring,366.0,240.1,210.3,,,right,lab,image units\n";
+
+#[test]
+fn add_then_remove_restores_the_dataset_and_its_statistics_bit_for_bit() {
+    let wd = Workdir::with_paper_data();
+    let stats = || {
+        wd.run(&["stats", "--format", "json"])
+            .ok()
+            .stdout_bytes
+            .clone()
+    };
+    let before = stats();
+    wd.write("new.csv", TWO_XRAYS);
+    wd.run(&["add", "new.csv"]).ok();
+    assert_ne!(stats(), before, "the add changed nothing");
+    wd.run(&["remove", "--xray", "4a,4b", "--note", "back to the paper"])
+        .ok()
+        .stdout_has("removed 4 rows from data/measurements.csv: 4a index (line 27), 4a ring (line 28), 4b index (line 29), 4b ring (line 30); 7 -> 5 X-rays");
+    assert_eq!(
+        wd.read(DATA),
+        paper_data(),
+        "the file is not the paper's again"
+    );
+    // Every byte of the statistics document, the dataset's SHA-256 included.
+    assert_eq!(stats(), before);
+    let h = history(&wd);
+    assert_eq!(h.len(), 2);
+    assert_eq!(h[1]["event"], "remove");
+    assert_eq!(h[1]["change"]["xrays"], serde_json::json!(["4a", "4b"]));
+    assert_eq!(h[1]["change"]["rows"], 4);
+    assert_eq!(h[1]["note"], "back to the paper");
+    assert_eq!(h[1]["sha256"], sha256sum(&wd.path().join(DATA)));
+    // One finger of one X-ray.
+    wd.run(&["add", "new.csv"]).ok();
+    wd.run(&["remove", "--xray", "4b", "--finger", "ring"])
+        .ok()
+        .stdout_has("removed 1 row from data/measurements.csv: 4b ring (line 30); 7 -> 7 X-rays");
+    let text = String::from_utf8(wd.read(DATA)).unwrap();
+    assert!(
+        text.ends_with("4b,index,345.9,193.3,176.2,,,right,lab,image units,\n"),
+        "{text}"
+    );
+}
+
+#[test]
+fn remove_refuses_what_is_not_there_and_changes_nothing() {
+    let wd = Workdir::with_paper_data();
+    wd.run(&["snapshot"]).ok();
+    let (data, hist) = (wd.read(DATA), wd.read(HISTORY));
+    let run = wd.run(&["remove", "--xray", "1a,9z"]);
+    run.data_error()
+        .stderr_has("data/measurements.csv: has no X-ray '9z'; nothing was removed. Its X-rays are '1a', '1b', '1c', '1d', '1e'");
+    wd.run(&["remove", "--xray", "1a", "--finger", "pinky"])
+        .ok();
+    let run = wd.run(&["remove", "--xray", "1a", "--finger", "little"]);
+    run.data_error()
+        .stderr_has("X-ray '1a' has no little row (it has 4 rows of other fingers)");
+    let run = wd.run(&["remove", "--xray", "1b,1c,1d,1e"]);
+    run.ok();
+    wd.run(&["remove", "--xray", "1a"])
+        .data_error()
+        .stderr_has("would leave no row");
+    wd.run(&["remove"]).expect_code(2).stderr_has("--xray");
+    // The refusals wrote nothing: the history has the snapshot and the two removals.
+    assert_eq!(history(&wd).len(), 3);
+    assert_ne!(wd.read(DATA), data);
+    assert_ne!(wd.read(HISTORY), hist);
+}
+
+#[test]
+fn flagged_rows_of_a_batch_are_refused_with_their_lines_and_a_swap_is_named() {
+    let wd = Workdir::with_paper_data();
+    // Line 3: a tenfold typo; line 4: J1 and J3 swapped (measured from the tip).
+    wd.write(
+        "batch.csv",
+        "xray,finger,j1,j2,j3\n5a,index,352.1,201.4,178.0\n5b,middle,38.02,255.1,190.5\n5c,ring,201.3,231.0,370.2\n",
+    );
+    let (data, hist) = (wd.read(DATA), read_opt(&wd, HISTORY));
+    let run = wd.run(&["add", "batch.csv"]);
+    run.data_error();
+    assert_eq!(
+        run.problem_lines().len(),
+        3,
+        "two rows and what to do:\n{}",
+        run.stderr
+    );
+    run.stderr_has("batch.csv:3: flagged as a likely error: middle X-ray '5b'")
+        .stderr_has("j1 looks 10 times too small")
+        .stderr_has("batch.csv:4: flagged as a likely error: ring X-ray '5c'")
+        .stderr_has("j1 and j3 look swapped (J3 = 370.2 is longer than J1 = 201.3")
+        .stderr_has("batch.csv: nothing was added");
+    assert!(!run.stderr.contains("batch.csv:2"), "{}", run.stderr);
+    assert_eq!(wd.read(DATA), data);
+    assert_eq!(read_opt(&wd, HISTORY), hist);
+    // Accepted: each warning names its line; the rows carry why they were flagged.
+    let run = wd.run(&["add", "batch.csv", "--accept-flagged"]);
+    run.ok().stdout_has(
+        "added 3 rows to data/measurements.csv: 5 -> 8 X-rays, 2 of them recorded as flagged",
+    );
+    let w = warnings(&run);
+    assert_eq!(w.len(), 2, "{}", run.stderr);
+    assert!(
+        w[0].starts_with("warning: batch.csv:3: added though flagged"),
+        "{}",
+        w[0]
+    );
+    assert!(
+        w[1].starts_with("warning: batch.csv:4: added though flagged"),
+        "{}",
+        w[1]
+    );
+    let text = String::from_utf8(wd.read(DATA)).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].ends_with(",unit,tip,flagged"), "{}", lines[0]);
+    assert!(lines[1].ends_with(",image units,skin,"), "{}", lines[1]);
+    assert!(lines[26].starts_with("5a,index,352.1,201.4,178.0,") && lines[26].ends_with(','));
+    assert!(
+        lines[28].contains("j1 and j3 look swapped"),
+        "{}",
+        lines[28]
+    );
+    let h = history(&wd);
+    let flagged = h[0]["change"]["flagged"].as_array().unwrap();
+    assert_eq!(flagged.len(), 2);
+    assert_eq!(
+        (&flagged[0]["xray"], &flagged[1]["xray"]),
+        (&"5b".into(), &"5c".into())
+    );
+    // --strict, the old spelling of the default, still refuses.
+    wd.write(
+        "more.csv",
+        "xray,finger,j1,j2,j3\n6a,index,35.21,201.4,178.0\n",
+    );
+    wd.run(&["add", "--strict", "more.csv"]).data_error();
+}
+
+#[test]
+fn filling_an_empty_sex_age_or_side_is_no_conflict() {
+    let wd = Workdir::with_paper_data();
+    let add = |finger: &str, lengths: &str, extra: &[&str]| {
+        let mut args = vec![
+            "add",
+            "--xray",
+            "7a",
+            "--finger",
+            finger,
+            "--lengths",
+            lengths,
+        ];
+        args.extend(extra);
+        wd.run(&args)
+    };
+    add("index", "352.1,201.4,178.0", &[]).ok();
+    add(
+        "middle",
+        "390.0,250.1,200.2",
+        &["--sex", "F", "--age", "41"],
+    )
+    .ok();
+    add("ring", "370.2,231.0,205.9", &["--side", "left"]).ok();
+    // The hand's values, once given, hold for its other rows.
+    let run = add("little", "290.1,170.2,175.3", &["--sex", "male"]);
+    run.data_error().stderr_has(
+        "sex is 'male' but data/measurements.csv line 28 gives 'female' for the same X-ray '7a'",
+    );
+    add("little", "290.1,170.2,175.3", &[]).ok();
+    let text = String::from_utf8(wd.read(DATA)).unwrap();
+    let rows: Vec<&str> = text.lines().skip(26).collect();
+    assert_eq!(
+        rows,
+        [
+            "7a,index,352.1,201.4,178.0,,,,,image units,",
+            "7a,middle,390.0,250.1,200.2,female,41,,,image units,",
+            "7a,ring,370.2,231.0,205.9,female,41,left,,image units,",
+            "7a,little,290.1,170.2,175.3,female,41,left,,image units,",
+        ]
+    );
+    // Grouped, 7a is one female hand (its index row leaves sex empty).
+    let doc = wd
+        .run(&["stats", "--format", "json", "--group-by", "sex"])
+        .ok()
+        .json();
+    let groups = doc["groups"]["groups"].as_array().unwrap();
+    assert_eq!(groups[0]["group"], "female");
+    assert_eq!(groups[0]["xrays"], 1);
+    assert_eq!(groups[0]["fingers"][0]["finger"], "index");
+}
+
+#[test]
+fn rows_in_another_unit_pool_their_relative_values_and_gain_columns() {
+    let wd = Workdir::with_paper_data();
+    // The paper's X-ray 1a again, in mm (a tenth), with its metacarpal (a column the
+    // dataset lacks) and its tip (at the skin, as the paper's rows record).
+    wd.write(
+        "mm.csv",
+        "xray,finger,j1,j2,j3,mc,unit,tip\nmm1,index,33.996,18.883,16.967,60.1,mm,skin\n",
+    );
+    let run = wd.run(&["add", "mm.csv"]);
+    run.ok()
+        .stderr_has("the dataset's header gained the column mc (empty on its existing rows)")
+        .stderr_has("no current X-ray gives index lengths in 'mm', so the new rows in 'mm' are checked on their relative values only");
+    let text = String::from_utf8(wd.read(DATA)).unwrap();
+    assert!(text.starts_with("xray,finger,j1,j2,j3,sex,age,side,source,unit,tip,mc\n1a,index,339.96,188.83,169.67,,,right,\"Figure 1a, Table 1; tip at the skin inferred from Buryanov & Kotiuk 2010 (phalanx compare), not stated by the paper\",image units,skin,\n"), "{text}");
+    assert!(
+        text.ends_with("mm1,index,33.996,18.883,16.967,,,,,mm,skin,60.1\n"),
+        "{text}"
+    );
+    let doc = wd.run(&["stats", "--format", "json"]).ok().json();
+    // J~1 of the index: the paper's five and 1a's again (the same proportions in mm).
+    let rel: Vec<f64> = paper_rows()
+        .iter()
+        .filter(|r| r.finger == "index")
+        .map(|r| r.lengths[0] / r.lengths.iter().sum::<f64>())
+        .collect();
+    let expect = (rel.iter().sum::<f64>() + rel[0]) / 6.0;
+    assert_close(
+        num(&quantity(&doc, "index", "rel_j1")["mean"]),
+        expect,
+        1e-12,
+        "J~1",
+    );
+    let names = |f: &str| -> Vec<String> {
+        finger(&doc, f)["quantities"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|q| q["name"].as_str().unwrap().to_string())
+            .collect()
+    };
+    // The index mixes units: no J; the thumb does not: J as before.
+    assert!(
+        !names("index").contains(&"total".to_string()),
+        "{:?}",
+        names("index")
+    );
+    assert!(names("thumb").contains(&"total".to_string()));
+    // A row without a unit cannot say which of the two it is in.
+    let run = wd.run(&[
+        "add",
+        "--xray",
+        "u1",
+        "--finger",
+        "index",
+        "--lengths",
+        "35.2,20.1,17.8",
+    ]);
+    run.data_error().stderr_has(
+        "names no unit, but the rows of data/measurements.csv are in 2 units ('image units', 'mm')",
+    );
+}
+
+#[test]
+fn a_snapshot_without_a_change_writes_nothing_and_notes_are_recorded() {
+    let wd = Workdir::with_paper_data();
+    wd.run(&["snapshot", "--note", "the paper as printed"])
+        .ok()
+        .stdout_has("snapshot of data/measurements.csv (5 X-rays");
+    let hist = wd.read(HISTORY);
+    wd.run(&["snapshot", "--note", "again"])
+        .ok()
+        .stdout_has("no change since snapshot 1 of data/history.jsonl (snapshot, ")
+        .stdout_has("nothing written (nor the note)");
+    assert_eq!(wd.read(HISTORY), hist);
+    // Other settings are another snapshot.
+    wd.run(&["snapshot", "--seed", "7"])
+        .ok()
+        .stdout_has("snapshot of data/measurements.csv");
+    let h = history(&wd);
+    assert_eq!(h.len(), 2);
+    assert_eq!(h[0]["note"], "the paper as printed");
+    assert!(h[1].get("note").is_none());
+}
+
+#[test]
+fn history_is_one_compact_table_by_default() {
+    let wd = Workdir::with_paper_data();
+    wd.run(&["snapshot"]).ok();
+    wd.write("new.csv", TWO_XRAYS);
+    wd.run(&["add", "new.csv", "--note", "batch 1"]).ok();
+    wd.run(&["remove", "--xray", "4b"]).ok();
+    let run = wd.run_env(&["history"], &[("COLUMNS", "300")]);
+    run.ok()
+        .stdout_has("3 snapshots in data/history.jsonl")
+        .stdout_has("add, 7 X-rays: +4 rows (2 X-rays: 4a, 4b) from new.csv; note: batch 1")
+        .stdout_has("remove, 6 X-rays: -2 rows (X-ray 4b)")
+        .stdout_has(&format!(
+            "The {} quantities that moved most from snapshot 1 to 3",
+            6
+        ));
+    let tables = |out: &str| out.lines().filter(|l| l.starts_with("|---")).count();
+    assert_eq!(tables(&run.stdout), 1, "{}", run.stdout);
+    // The rows: 6 quantities, ranked by the shift in SDs, largest first.
+    let shifts: Vec<f64> = run
+        .stdout
+        .lines()
+        .filter(|l| l.starts_with("| index") || l.starts_with("| ring"))
+        .map(|l| {
+            let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+            cells[6].parse::<f64>().unwrap().abs()
+        })
+        .collect();
+    assert_eq!(shifts.len(), 6, "{}", run.stdout);
+    assert!(shifts.windows(2).all(|w| w[0] >= w[1]), "{shifts:?}");
+    // --all: every quantity, record by record (28 quantities of the paper's fingers).
+    let all = wd.run_env(&["history", "--all"], &[("COLUMNS", "300")]);
+    all.ok();
+    assert_eq!(tables(&all.stdout), 28, "{}", all.stdout);
+    // One quantity picked: its table record by record, then the records.
+    let one = wd.run(&["history", "--finger", "ring", "--quantity", "rel_j1"]);
+    one.ok();
+    assert_eq!(tables(&one.stdout), 1, "{}", one.stdout);
+    assert!(
+        one.stdout.contains("| 3 |") && one.stdout.contains("remove"),
+        "{}",
+        one.stdout
+    );
+}
+
+#[test]
+fn the_report_says_what_changed_since_any_record() {
+    let wd = Workdir::with_paper_data();
+    wd.run(&["snapshot"]).ok();
+    wd.write("new.csv", TWO_XRAYS);
+    wd.run(&["add", "new.csv"]).ok();
+    wd.run(&[
+        "add",
+        "--xray",
+        "4c",
+        "--finger",
+        "index",
+        "--lengths",
+        "349.0,197.2,177.1",
+    ])
+    .ok();
+    let md = |extra: &[&str]| {
+        let mut args = vec![
+            "report",
+            "--out",
+            "rep",
+            "--format",
+            "md",
+            "--resamples",
+            "200",
+            "--sims",
+            "20",
+        ];
+        args.extend(extra);
+        wd.run(&args).ok();
+        String::from_utf8(wd.read("rep/report.md")).unwrap()
+    };
+    // By default since the first record: the batch is not hidden behind the last row.
+    let all = md(&[]);
+    assert!(all.contains("What changed: snapshot 3 ("), "{all}");
+    assert!(all.contains("against snapshot 1 ("), "{all}");
+    assert!(
+        all.contains("| index (the paper's 'grooming' finger) | J\\~1 = J1/J | 5 -> 8 |"),
+        "{all}"
+    );
+    assert!(
+        all.contains("+4 rows (2 X-rays: 4a, 4b) from new.csv"),
+        "{all}"
+    );
+    let since = md(&["--since", "2"]);
+    assert!(since.contains("against snapshot 2 ("), "{since}");
+    assert!(
+        since.contains("| index (the paper's 'grooming' finger) | J\\~1 = J1/J | 7 -> 8 |"),
+        "{since}"
+    );
+    wd.run(&["report", "--out", "rep", "--since", "3"])
+        .expect_code(2)
+        .stderr_has("--since 3: data/history.jsonl has 3 snapshots");
 }

@@ -9,6 +9,9 @@
 //! Where the metacarpal is measured, mc/J and J1/mc join the quantities of the X-rays
 //! that have it. Lengths in per-image pixels ([`is_pixel_unit`]) are not comparable
 //! across X-rays, so their total J is not averaged: such an analysis has no `total`.
+//! Neither is a finger's J whose X-rays give their lengths in different units (mm and
+//! image units, say): the relative values and ratios, which have no unit, pool across
+//! units; the total is left out ([`totals_comparable`]) and the reports say why.
 
 pub(crate) mod budget;
 pub mod claims;
@@ -107,6 +110,10 @@ pub struct XrayValues {
     /// The metacarpal (CMC to MCP) in data units, when measured.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mc: Option<f64>,
+    /// The unit of the lengths, when the row names one (not in the JSON documents, which
+    /// hold the statistics; the dataset holds the units).
+    #[serde(skip)]
+    pub unit: Option<Arc<str>>,
 }
 
 impl XrayValues {
@@ -212,13 +219,36 @@ pub struct Analysis {
     pub settings: Settings,
     /// Fingers present in the data, thumb first.
     pub fingers: Vec<FingerAnalysis>,
-    /// The unit the rows name, if any.
+    /// The one unit every row names, if they all name the same ([`Dataset::unit`]).
     pub unit: Option<String>,
+    /// Every unit the rows give (`None`: not named) with its number of rows, in order
+    /// of first appearance; more than one when the dataset mixes units.
+    pub units: Vec<(Option<String>, usize)>,
     /// Where the rows put their fingertips.
     pub tips: TipCounts,
+    /// Rows added though flagged as likely errors (`add --accept-flagged`), file order.
+    pub flagged: Vec<FlaggedRow>,
+}
+
+/// A row of the data that `add` flagged as a likely error and was told to add anyway.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct FlaggedRow {
+    #[schemars(with = "String")]
+    pub xray: Arc<str>,
+    pub finger: Finger,
+    /// Line of the row in the dataset.
+    pub line: u64,
+    /// Why it was flagged (the dataset's `flagged` column).
+    pub reason: String,
 }
 
 impl Analysis {
+    /// True when the rows give their lengths in more than one unit: relative values
+    /// and ratios pool across them, lengths and totals are not averaged across them.
+    pub fn mixed_units(&self) -> bool {
+        self.units.len() > 1
+    }
+
     /// The analysis of one finger, if the data has it.
     pub fn finger(&self, f: Finger) -> Option<&FingerAnalysis> {
         self.fingers.iter().find(|a| a.finger == f)
@@ -231,13 +261,26 @@ impl Analysis {
     }
 }
 
+/// True when the total length J of these X-rays may be averaged: every one gives its
+/// lengths in the same unit (or none names one), and that unit is not per-image pixels.
+pub(crate) fn totals_comparable(xrays: &[XrayValues]) -> bool {
+    let one_unit = xrays.windows(2).all(|w| w[0].unit == w[1].unit);
+    let pixels = xrays
+        .first()
+        .and_then(|x| x.unit.as_deref())
+        .is_some_and(is_pixel_unit);
+    one_unit && !pixels
+}
+
 /// The quantities of a finger measured on all its X-rays: [`Quantity::of`], without
-/// the total for pixel lengths, and with the metacarpal's when every X-ray has it.
-fn quantities(finger: Finger, xrays: &[XrayValues], pixels: bool) -> Vec<Quantity> {
+/// the total when its lengths are pixels or in more than one unit
+/// ([`totals_comparable`]), and with the metacarpal's when every X-ray has it.
+fn quantities(finger: Finger, xrays: &[XrayValues]) -> Vec<Quantity> {
+    let total = totals_comparable(xrays);
     let mut qs: Vec<Quantity> = Quantity::of(finger)
         .iter()
         .copied()
-        .filter(|&q| !(pixels && q == Quantity::Total))
+        .filter(|&q| total || q != Quantity::Total)
         .collect();
     if xrays.iter().all(|x| x.mc.is_some()) {
         qs.extend(Quantity::METACARPAL);
@@ -260,7 +303,6 @@ pub(crate) struct Block {
 /// measured on all of them, then, when only some of them measure the metacarpal, those
 /// with the metacarpal's quantities. O(rows log rows).
 pub(crate) fn blocks(data: &Dataset) -> Vec<Block> {
-    let pixels = data.unit().is_some_and(is_pixel_unit);
     let mut order: HashMap<&str, usize> = HashMap::new();
     for r in &data.rows {
         let next = order.len();
@@ -274,7 +316,7 @@ pub(crate) fn blocks(data: &Dataset) -> Vec<Block> {
         }
         rows.sort_by_key(|r| order[&*r.xray]);
         let xrays: Vec<XrayValues> = rows.iter().map(|r| xray_values(r)).collect();
-        let quantities = quantities(f, &xrays, pixels);
+        let quantities = quantities(f, &xrays);
         let partial: Vec<XrayValues> = xrays.iter().filter(|x| x.mc.is_some()).cloned().collect();
         let subset = !partial.is_empty() && partial.len() < xrays.len();
         blocks.push(Block {
@@ -405,7 +447,21 @@ pub fn analyse_with(
         settings: *settings,
         fingers,
         unit,
+        units: data
+            .units()
+            .into_iter()
+            .map(|(u, n)| (u.map(str::to_string), n))
+            .collect(),
         tips: data.tips(),
+        flagged: data
+            .flagged()
+            .map(|r| FlaggedRow {
+                xray: r.xray.clone(),
+                finger: r.finger,
+                line: r.line,
+                reason: r.meta.flagged.as_deref().unwrap_or_default().to_string(),
+            })
+            .collect(),
     }
 }
 
@@ -420,6 +476,7 @@ pub(crate) fn xray_values(row: &Row) -> XrayValues {
         total,
         relative,
         mc: row.mc,
+        unit: row.meta.unit.clone(),
     }
 }
 

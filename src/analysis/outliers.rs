@@ -53,6 +53,15 @@
 //! [`limits`] says so. Lengths are positive (the loader checks), so the median
 //! is positive.
 //!
+//! **Units.** Relative values have no unit, so the prediction rule uses every current
+//! X-ray whatever its unit; the typo rule compares a length only with the lengths of
+//! the current X-rays in the same unit (`unit` column; rows that name none count as one
+//! unit). With none in that unit it does not apply, and [`unit_limits`] says so.
+//!
+//! **Swapped J1 and J3.** A flagged row of a three-segment finger whose J3 is longer
+//! than its J1 and that both rules would pass with the two exchanged is said to have
+//! them swapped (measured from the tip), instead of a bare "likely error".
+//!
 //! One [`Flag`] per row: the quantities outside, each with its interval, and
 //! the lengths that look like typos, in one message.
 //! Cost per row: O(k); building the reference of a finger: O(n log n).
@@ -62,6 +71,7 @@ use crate::dataset::{Finger, Row};
 use crate::format::{num, trimmed};
 use crate::stats::describe;
 use serde::Serialize;
+use std::sync::Arc;
 
 /// Family-wise false-alarm rate of the prediction rule per genuine row.
 pub(crate) const ROW_ALPHA: f64 = 0.01;
@@ -88,8 +98,12 @@ pub(crate) struct Reference {
     pub relative: Vec<(f64, Option<Interval>)>,
     /// Per segment: true when every current X-ray has the same J~j.
     pub constant: Vec<bool>,
-    /// Per segment: the median length.
+    /// Per segment: the median length (of the X-rays in the new row's unit, see
+    /// [`Reference::with_medians_of`]); empty when no current X-ray is in that unit,
+    /// and the typo rule then does not apply.
     pub medians: Vec<f64>,
+    /// True when the medians are of the X-rays in one unit only (others left out).
+    pub one_unit: bool,
 }
 
 /// One relative value outside its interval.
@@ -163,14 +177,33 @@ impl Reference {
             relative,
             constant,
             medians,
+            one_unit: false,
         })
+    }
+
+    /// The same reference with the typo rule's medians taken from `rows` only (the
+    /// current X-rays in the new row's unit); none leaves the typo rule out. O(k n log n).
+    pub(crate) fn with_medians_of(mut self, rows: &[&[f64]]) -> Reference {
+        let k = self.relative.len();
+        self.one_unit = rows.len() < self.n;
+        self.medians = if rows.is_empty() || rows.iter().any(|r| r.len() != k) {
+            Vec::new()
+        } else {
+            (0..k)
+                .filter_map(|j| {
+                    let lengths: Vec<f64> = rows.iter().map(|r| r[j]).collect();
+                    describe::median(&lengths)
+                })
+                .collect()
+        };
+        self
     }
 
     /// Applies both rules to a new row's segment lengths (k of them). O(k).
     pub(crate) fn check(&self, lengths: &[f64]) -> Findings {
         let total: f64 = lengths.iter().sum();
         let mut found = Findings::default();
-        for (j, &len) in lengths.iter().enumerate().take(self.medians.len()) {
+        for (j, &len) in lengths.iter().enumerate().take(self.relative.len()) {
             let x = len / total;
             if let Some((mean, Some(pi))) = self.relative.get(j).copied() {
                 let inside = if self.constant[j] {
@@ -187,7 +220,9 @@ impl Reference {
                     });
                 }
             }
-            let median = self.medians[j];
+            let Some(&median) = self.medians.get(j) else {
+                continue;
+            };
             let ratio = len / median;
             if !(ratio < TYPO_RATIO && ratio > 1.0 / TYPO_RATIO) {
                 found.typos.push(Typo {
@@ -235,34 +270,98 @@ pub(crate) struct Flag {
     pub level: f64,
     pub outside: Vec<OutsideValue>,
     pub typos: Vec<TypoLength>,
-    /// Everything above in one sentence, with the likely fix.
+    /// True when the row fits with J1 and J3 exchanged (measured from the tip).
+    pub swapped: bool,
+    /// What the rules found, with the likely fix (the reason without the row's name).
+    pub finding: String,
+    /// Everything above in one sentence: the row, what was found, the likely fix.
     pub reason: String,
 }
 
-/// The reference of one finger of an analysis. `None` when the data lacks the finger.
+/// The reference of one finger of an analysis: relative values from all its X-rays,
+/// the typo rule's medians from all of them too. `None` when the data lacks the finger.
 pub(crate) fn reference(a: &Analysis, finger: Finger) -> Option<Reference> {
     let fa = a.finger(finger)?;
     let rows: Vec<&[f64]> = fa.xrays.iter().map(|x| x.lengths.as_slice()).collect();
     Reference::new(&rows)
 }
 
+/// The reference of one finger for new rows in `unit`: relative values from all its
+/// X-rays, the typo rule's medians from those in `unit` only (none: no typo rule). A row
+/// that names no unit is compared with every X-ray (`add` gives such rows the dataset's
+/// unit first, and refuses them when the dataset names several).
+fn reference_in(a: &Analysis, finger: Finger, unit: Option<&str>) -> Option<Reference> {
+    if unit.is_none() {
+        return reference(a, finger);
+    }
+    let fa = a.finger(finger)?;
+    let same: Vec<&[f64]> = fa
+        .xrays
+        .iter()
+        .filter(|x| x.unit.as_deref() == unit)
+        .map(|x| x.lengths.as_slice())
+        .collect();
+    Some(reference(a, finger)?.with_medians_of(&same))
+}
+
 /// Flags every new row that either rule finds unusual, one [`Flag`] per row,
 /// in the order of `rows`. Rows of a finger the data lacks are not flagged
-/// (see [`limits`]). Cost: O(n log n) per finger plus O(k) per row.
+/// (see [`limits`]); the typo rule compares lengths within one unit ([`unit_limits`]).
+/// Cost: O(n log n) per finger and unit plus O(k) per row.
 pub(crate) fn flag_rows(a: &Analysis, rows: &[Row]) -> Vec<Flag> {
-    let references: Vec<(Finger, Option<Reference>)> = Finger::ALL
-        .into_iter()
-        .map(|f| (f, reference(a, f)))
-        .collect();
+    let mut references: Vec<(Finger, Option<Arc<str>>, Option<Reference>)> = Vec::new();
     rows.iter()
         .filter_map(|row| {
-            let r = references
+            let unit = row.meta.unit.clone();
+            let i = match references
                 .iter()
-                .find(|(f, _)| *f == row.finger)?
-                .1
-                .as_ref()?;
+                .position(|(f, u, _)| *f == row.finger && *u == unit)
+            {
+                Some(i) => i,
+                None => {
+                    let r = reference_in(a, row.finger, unit.as_deref());
+                    references.push((row.finger, unit, r));
+                    references.len() - 1
+                }
+            };
+            let r = references[i].2.as_ref()?;
             let found = r.check(row.segments());
             (!found.is_empty()).then(|| flag(row, r, &found))
+        })
+        .collect()
+}
+
+/// Why the typo rule cannot check some new rows, if it cannot: no current X-ray of their
+/// finger gives lengths in their unit (their relative values are still checked). One
+/// note per unit, naming the fingers, in order of first appearance.
+pub(crate) fn unit_limits(a: &Analysis, rows: &[Row]) -> Vec<String> {
+    let mut by_unit: Vec<(Option<&str>, Vec<Finger>)> = Vec::new();
+    for r in rows {
+        let unit = r.meta.unit.as_deref();
+        let Some(fa) = a.finger(r.finger).filter(|_| unit.is_some()) else {
+            continue;
+        };
+        if fa.xrays.iter().any(|x| x.unit.as_deref() == unit) {
+            continue;
+        }
+        match by_unit.iter_mut().find(|(u, _)| *u == unit) {
+            Some((_, fs)) if !fs.contains(&r.finger) => fs.push(r.finger),
+            Some(_) => {}
+            None => by_unit.push((unit, vec![r.finger])),
+        }
+    }
+    by_unit
+        .into_iter()
+        .map(|(unit, fingers)| {
+            let named = format!("'{}'", unit.unwrap_or_default());
+            let names: Vec<&str> = fingers.iter().map(|f| f.name()).collect();
+            let names = match names.split_last() {
+                Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+                _ => names.join(""),
+            };
+            format!(
+                "no current X-ray gives {names} lengths in {named}, so the new rows in {named} are checked on their relative values only (the tenfold-typo rule compares lengths of one unit)"
+            )
         })
         .collect()
 }
@@ -286,7 +385,22 @@ pub(crate) fn limits(a: &Analysis, finger: Finger) -> Option<String> {
 /// The flag of one row, with its message.
 fn flag(row: &Row, r: &Reference, found: &Findings) -> Flag {
     let mut parts = outside_parts(r, &found.outside);
-    parts.extend(found.typos.iter().map(typo_part));
+    parts.extend(found.typos.iter().map(|t| typo_part(t, r.one_unit)));
+    let segs = row.segments();
+    let swapped =
+        segs.len() == 3 && segs[2] > segs[0] && r.check(&[segs[2], segs[1], segs[0]]).is_empty();
+    let finding = format!(
+        "{}{}",
+        parts.join("; "),
+        if swapped {
+            format!(
+                ": j1 and j3 look swapped (J3 = {} is longer than J1 = {}, but the proximal phalanx is the longest; measured from the tip?), and exchanged they fit",
+                segs[2], segs[0]
+            )
+        } else {
+            hint(&found.typos)
+        }
+    );
     Flag {
         xray: row.xray.to_string(),
         finger: row.finger.name().to_string(),
@@ -311,13 +425,9 @@ fn flag(row: &Row, r: &Reference, found: &Findings) -> Flag {
                 ratio: t.ratio,
             })
             .collect(),
-        reason: format!(
-            "{} X-ray '{}': {}{}",
-            row.finger,
-            row.xray,
-            parts.join("; "),
-            hint(&found.typos)
-        ),
+        swapped,
+        reason: format!("{} X-ray '{}': {finding}", row.finger, row.xray),
+        finding,
     }
 }
 
@@ -365,14 +475,16 @@ fn outside_parts(r: &Reference, outside: &[Outside]) -> Vec<String> {
     parts
 }
 
-/// The message part of one length that looks mistyped.
-fn typo_part(t: &Typo) -> String {
+/// The message part of one length that looks mistyped; `one_unit` when the median is of
+/// the current X-rays in the row's unit only.
+fn typo_part(t: &Typo, one_unit: bool) -> String {
     format!(
-        "j{} = {} is {} times the median j{} of the current X-rays ({})",
+        "j{} = {} is {} times the median j{} of the current X-rays{} ({})",
         t.segment + 1,
         t.value,
         ratio_text(t.ratio),
         t.segment + 1,
+        if one_unit { " in its unit" } else { "" },
         t.median
     )
 }

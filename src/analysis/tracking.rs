@@ -42,6 +42,8 @@ pub(crate) fn snapshot(a: &Analysis, time: String, event: Event) -> Snapshot {
                 })
             })
             .collect(),
+        change: None,
+        note: None,
     }
 }
 
@@ -85,6 +87,63 @@ pub(crate) fn changes(before: &Snapshot, after: &Snapshot) -> Vec<Change> {
             })
         })
         .collect()
+}
+
+/// How far one quantity moved between two records, for ranking what moved most.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Moved<'s> {
+    pub finger: Finger,
+    pub quantity: Quantity,
+    pub before: &'s QuantityRecord,
+    pub after: &'s QuantityRecord,
+    /// (mean after - mean before) / SD before; `None` when the SD before is unknown or 0.
+    pub standardised: Option<f64>,
+}
+
+/// The quantities in both records (narrowed to `finger` and `quantity` when given), the
+/// ones that moved most first: by |shift| / SD before (the shift in SDs of the earlier
+/// record, so relative values and lengths rank together), then by |shift| relative to
+/// the mean for those without an SD. O(q log q).
+pub(crate) fn moved<'s>(
+    before: &'s Snapshot,
+    after: &'s Snapshot,
+    finger: Option<Finger>,
+    quantity: Option<Quantity>,
+) -> Vec<Moved<'s>> {
+    let mut out: Vec<Moved<'s>> = after
+        .quantities
+        .iter()
+        .filter(|q| {
+            finger.is_none_or(|f| f == q.finger) && quantity.is_none_or(|k| k == q.quantity)
+        })
+        .filter_map(|q| {
+            let b = before
+                .quantities
+                .iter()
+                .find(|p| p.finger == q.finger && p.quantity == q.quantity)?;
+            let standardised = b.sd.filter(|&sd| sd > 0.0).map(|sd| (q.mean - b.mean) / sd);
+            Some(Moved {
+                finger: q.finger,
+                quantity: q.quantity,
+                before: b,
+                after: q,
+                standardised,
+            })
+        })
+        .collect();
+    let key = |m: &Moved<'_>| {
+        let relative =
+            (m.after.mean - m.before.mean).abs() / m.before.mean.abs().max(f64::MIN_POSITIVE);
+        (
+            m.standardised.is_some(),
+            m.standardised.map_or(relative, f64::abs),
+        )
+    };
+    out.sort_by(|x, y| {
+        let (kx, ky) = (key(x), key(y));
+        ky.0.cmp(&kx.0).then(ky.1.total_cmp(&kx.1))
+    });
+    out
 }
 
 /// One quantity's history: (X-rays, mean, t interval) per snapshot, in order.
@@ -330,8 +389,11 @@ mod tests {
         assert_eq!(s1.quantities.len(), 28); // thumb 4 + 4 fingers x 6
         assert_eq!(s1.xrays, 5);
         let mut d2 = d.clone();
-        let extra =
-            Dataset::from_bytes("n.csv", b"xray,finger,j1,j2,j3\nz,index,350,190,170\n").unwrap();
+        let extra = Dataset::from_bytes(
+            "n.csv",
+            b"xray,finger,j1,j2,j3,unit\nz,index,350,190,170,image units\n",
+        )
+        .unwrap();
         d2.rows.extend(extra.rows);
         let s2 = snapshot(&analyse(&d2, &Settings::default()), "t2".into(), Event::Add);
         let c = changes(&s1, &s2);

@@ -13,8 +13,12 @@ use std::path::PathBuf;
                   on any problem nothing is added. A row is flagged as a likely measurement or typing error \
                   when a relative value J~k lies outside its prediction interval at level 1 - 0.01/k (k segments; a genuine row \
                   is flagged at most 1% of the time), or a length is over 3.16 (sqrt 10) times or under 1/3.16 times the median \
-                  of that length (a misplaced decimal point): one warning per row, or a refusal with --strict.\n\n\
-                  Examples:\n  phalanx add new_xrays.csv\n  phalanx add --xray 2a --finger index --lengths 352.1,201.4,178.0 --sex female --age 34\n  phalanx add --strict --xray 2a --finger thumb --lengths 270.1,233.9"
+                  of that length in the same unit (a misplaced decimal point). Flagged rows are refused, each with its line \
+                  and why (exit 2, nothing added); --accept-flagged adds them, recorded as flagged in the dataset's \
+                  'flagged' column and in the history. 'phalanx remove' takes rows out again.\n\n\
+                  Rows may give their lengths in another unit than the dataset's (relative values pool across units), \
+                  and columns the dataset lacks (mc, tip, unit, ...): they are added to its header.\n\n\
+                  Examples:\n  phalanx add new_xrays.csv --note \"batch 2 from the March session\"\n  phalanx add --xray 2a --finger index --lengths 352.1,201.4,178.0 --sex female --age 34\n  phalanx add --accept-flagged --xray 2a --finger thumb --lengths 270.1,233.9"
 )]
 pub(crate) struct Args {
     /// CSV file of new rows, in the dataset's format (with a header)
@@ -41,12 +45,21 @@ pub(crate) struct Args {
     /// Where the measurement comes from
     #[arg(long)]
     source: Option<String>,
-    /// Unit of the lengths
+    /// Unit of the lengths (e.g. mm; another than the dataset's is fine)
     #[arg(long)]
     unit: Option<String>,
-    /// Refuse rows flagged as likely errors instead of warning
+    /// Where the fingertip landmark is: bone or skin
     #[arg(long)]
+    tip: Option<String>,
+    /// Add rows flagged as likely errors too (refused otherwise); they are recorded as flagged
+    #[arg(long)]
+    accept_flagged: bool,
+    /// Refuse rows flagged as likely errors (the default; kept for scripts)
+    #[arg(long, hide = true, conflicts_with = "accept_flagged")]
     strict: bool,
+    /// A note for the history record (e.g. where the X-rays come from)
+    #[arg(long, value_name = "TEXT")]
+    note: Option<String>,
     /// Add rows whose fingertips differ from the dataset's (bone with skin), which is refused otherwise
     #[arg(long)]
     mixed_tips: bool,
@@ -65,32 +78,60 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
         data: args.data.data.clone(),
         history: history.clone(),
         rows,
-        strict: args.strict,
+        accept_flagged: args.accept_flagged && !args.strict,
+        note: args.note.clone(),
         mixed_tips: args.mixed_tips,
         settings: args.boot.settings()?,
     })?;
-    for f in &outcome.flags {
-        eprintln!("warning: {}", f.reason);
-    }
-    for w in &outcome.implausible {
-        eprintln!("warning: {w}");
-    }
-    for n in &outcome.notes {
-        eprintln!("note: {n}");
-    }
+    print_outcome(&outcome);
     out::print(
         format!(
-            "added {} row{} to {}: {} -> {} X-rays; snapshot appended to {}\n",
-            outcome.added,
-            if outcome.added == 1 { "" } else { "s" },
+            "added {} to {}: {} -> {} X-rays{}; snapshot appended to {}\n",
+            rows_text(outcome.added),
             args.data.data.display(),
             outcome.xrays_before,
             outcome.xrays_after,
+            flagged_text(outcome.flags.len()),
             history.display()
         )
         .as_bytes(),
     )?;
     Ok(0)
+}
+
+/// The warnings and notes of an addition, on standard error.
+pub(crate) fn print_outcome(outcome: &track::AddOutcome) {
+    for w in &outcome.warnings {
+        eprintln!("warning: {w}");
+    }
+    for n in &outcome.notes {
+        eprintln!("note: {n}");
+    }
+    if !outcome.added_columns.is_empty() {
+        eprintln!(
+            "note: the dataset's header gained the column{} {} (empty on its existing rows)",
+            if outcome.added_columns.len() == 1 {
+                ""
+            } else {
+                "s"
+            },
+            outcome.added_columns.join(", ")
+        );
+    }
+}
+
+/// "1 row", "50 rows".
+pub(crate) fn rows_text(n: usize) -> String {
+    format!("{n} row{}", if n == 1 { "" } else { "s" })
+}
+
+/// ", 1 of them recorded as flagged", or nothing.
+pub(crate) fn flagged_text(n: usize) -> String {
+    match n {
+        0 => String::new(),
+        1 => ", 1 of them recorded as flagged".to_string(),
+        n => format!(", {n} of them recorded as flagged"),
+    }
 }
 
 /// The new rows: a file, or one row from the options.
@@ -131,6 +172,7 @@ fn row_fields(
         ("side", &args.side),
         ("source", &args.source),
         ("unit", &args.unit),
+        ("tip", &args.tip),
     ] {
         if let Some(v) = v {
             fields.push((name, v.clone()));

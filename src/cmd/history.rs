@@ -12,7 +12,11 @@ use crate::report::layout::Width;
 /// Show how the statistics moved, snapshot by snapshot
 #[derive(clap::Args, Debug)]
 #[command(
-    after_help = "Examples:\n  phalanx history\n  phalanx history --finger index --quantity rel_j1\n  phalanx history --format json"
+    after_help = "By default: the snapshots (each with the X-rays it added or removed, the file, the rows let in \
+                  flagged, the note) and one table of the quantities that moved most from the first snapshot to the \
+                  last; --finger and --quantity pick the quantities (both: that one, snapshot by snapshot); --all \
+                  shows every quantity snapshot by snapshot.\n\n\
+                  Examples:\n  phalanx history\n  phalanx history --finger index --quantity rel_j1\n  phalanx history --all --finger ring\n  phalanx history --format json"
 )]
 pub(crate) struct Args {
     #[command(flatten)]
@@ -25,6 +29,9 @@ pub(crate) struct Args {
     /// Only this quantity: rel_j1, rel_j2, rel_j3 (not the thumb), ratio_j2_j1, ratio_j3_j2 (not the thumb) or total
     #[arg(long, value_parser = parse_quantity)]
     quantity: Option<Quantity>,
+    /// Every selected quantity's table, snapshot by snapshot
+    #[arg(long)]
+    all: bool,
     /// Output format
     #[arg(long, value_enum, default_value_t = TextFormat::Table)]
     format: TextFormat,
@@ -98,7 +105,8 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     }
     let bytes = match args.format {
         TextFormat::Table => {
-            report::text::history(&path, &snaps, args.finger, args.quantity, width).into_bytes()
+            report::text::history(&path, &snaps, args.finger, args.quantity, args.all, width)
+                .into_bytes()
         }
         TextFormat::Json => report::json::history(&snaps, args.finger, args.quantity)?,
     };

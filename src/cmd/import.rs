@@ -59,9 +59,20 @@ pub struct Args {
     /// Append the rows to this dataset, as 'phalanx add' does (validated, locked, atomic, with a snapshot)
     #[arg(long, value_name = "DATASET")]
     into: Option<PathBuf>,
-    /// With --into: refuse rows flagged as likely errors instead of warning
+    /// With --into: add rows flagged as likely errors too (refused otherwise), recorded as flagged
     #[arg(long, requires = "into")]
+    accept_flagged: bool,
+    /// With --into: refuse flagged rows (the default; kept for scripts)
+    #[arg(
+        long,
+        requires = "into",
+        hide = true,
+        conflicts_with = "accept_flagged"
+    )]
     strict: bool,
+    /// With --into: a note for the history record
+    #[arg(long, value_name = "TEXT", requires = "into")]
+    note: Option<String>,
     #[command(flatten)]
     history: HistoryArgs,
     #[command(flatten)]
@@ -152,19 +163,19 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
                 data: data.clone(),
                 history: history.clone(),
                 rows: NewRows::Rows(rows),
-                strict: args.strict,
+                accept_flagged: args.accept_flagged && !args.strict,
+                note: args.note.clone(),
                 mixed_tips: false,
                 settings,
             })?;
-            for f in &outcome.flags {
-                eprintln!("warning: {}", f.reason);
-            }
+            super::add::print_outcome(&outcome);
             out::print(
                 format!(
-                    "imported {summary} into {}: {} -> {} X-rays; snapshot appended to {}\n",
+                    "imported {summary} into {}: {} -> {} X-rays{}; snapshot appended to {}\n",
                     data.display(),
                     outcome.xrays_before,
                     outcome.xrays_after,
+                    super::add::flagged_text(outcome.flags.len()),
                     history.display()
                 )
                 .as_bytes(),

@@ -17,6 +17,7 @@ pub(crate) mod history;
 pub(crate) mod import;
 pub(crate) mod man;
 pub(crate) mod place;
+pub(crate) mod remove;
 pub(crate) mod report;
 pub(crate) mod schema;
 pub(crate) mod snapshot;
@@ -51,15 +52,13 @@ pub(crate) fn groups_of(
     dataset: &Dataset,
     by: Option<&analysis::groups::GroupBy>,
     settings: &Settings,
-) -> Vec<analysis::groups::Group> {
-    let Some(by) = by else {
-        return Vec::new();
-    };
+) -> Option<analysis::groups::Groups> {
+    let by = by?;
     if let Some(note) = analysis::groups::nothing_to_group(dataset, by) {
         eprintln!("note: {note}");
-        return Vec::new();
+        return None;
     }
-    analysis::groups::analyse_groups(dataset, by, settings)
+    Some(analysis::groups::analyse_groups(dataset, by, settings))
 }
 
 /// Prints the warnings about implausible data (e.g. swapped columns) on standard error.

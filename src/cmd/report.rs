@@ -92,6 +92,9 @@ pub(crate) struct Args {
     /// Target half-width of the confidence interval of a relative mean, for "X-rays needed": greater than 0, at most 1
     #[arg(long, value_name = "W", default_value_t = 0.005, value_parser = parse_target, allow_negative_numbers = true)]
     target: f64,
+    /// "What changed" in the Tracking section runs from this snapshot of the history (1 is the first, the default) to the last
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..), allow_negative_numbers = true)]
+    since: Option<u64>,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -122,6 +125,17 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let groups = super::groups_of(&dataset, by.as_ref(), &settings);
     let history_path = args.history.resolve(&args.data.data);
     let history = crate::dataset::history::read(&history_path)?;
+    if let Some(n) = args.since
+        && (history.len() < 2 || n as usize >= history.len())
+    {
+        return Err(Error::Usage(format!(
+            "--since {n}: {} has {} snapshot{}; 'What changed' runs from a snapshot before the last, so give 1 to {}",
+            history_path.display(),
+            history.len(),
+            if history.len() == 1 { "" } else { "s" },
+            history.len().saturating_sub(1).max(1)
+        )));
+    }
     let claims = Claims::load(&args.claims)?;
     let (results, claims_note) = check_claims(&claims, &dataset);
     let paper_xrays = claims.named_in(&dataset);
@@ -217,8 +231,9 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         timestamp,
         history_file: &history_path.display().to_string(),
         history: &history,
+        since: args.since.map(|n| n as usize),
         target: args.target,
-        groups: &groups,
+        groups: groups.as_ref(),
         rigs: &rigs,
         paper_xrays,
         atlas: atlas.as_ref(),

@@ -3,11 +3,15 @@
 use super::args::{BootArgs, DataArgs, HistoryArgs};
 use super::out;
 use crate::error::Error;
-use crate::track;
+use crate::track::{self, SnapshotOutcome};
 
 /// Record a snapshot of the current statistics in the history (after editing the data by hand)
 #[derive(clap::Args, Debug)]
-#[command(after_help = "Examples:\n  phalanx snapshot\n  phalanx snapshot --data lab/hands.csv")]
+#[command(
+    after_help = "A snapshot is written only when the data (its SHA-256) or the settings differ from the \
+                  history's last snapshot; otherwise it says so and writes nothing.\n\n\
+                  Examples:\n  phalanx snapshot --note \"corrected 2b's ring by hand\"\n  phalanx snapshot --data lab/hands.csv"
+)]
 pub(crate) struct Args {
     #[command(flatten)]
     data: DataArgs,
@@ -15,20 +19,40 @@ pub(crate) struct Args {
     history: HistoryArgs,
     #[command(flatten)]
     boot: BootArgs,
+    /// A note for the history record (e.g. what was edited by hand)
+    #[arg(long, value_name = "TEXT")]
+    note: Option<String>,
 }
 
 pub(crate) fn run(args: &Args) -> Result<i32, Error> {
     let path = args.history.resolve(&args.data.data);
-    let snap = track::snapshot(&args.data.data, &path, &args.boot.settings()?)?;
-    out::print(
-        format!(
+    let outcome = track::snapshot(
+        &args.data.data,
+        &path,
+        &args.boot.settings()?,
+        args.note.clone(),
+    )?;
+    let text = match outcome {
+        SnapshotOutcome::Written(snap) => format!(
             "snapshot of {} ({} X-rays, sha256 {}) appended to {}\n",
             snap.dataset,
             snap.xrays,
             &snap.sha256[..12.min(snap.sha256.len())],
             path.display()
-        )
-        .as_bytes(),
-    )?;
+        ),
+        SnapshotOutcome::Unchanged { record, last } => format!(
+            "no change since snapshot {record} of {} ({}, {}): the same data (sha256 {}) and settings; nothing written{}\n",
+            path.display(),
+            last.event,
+            last.time,
+            &last.sha256[..12.min(last.sha256.len())],
+            if args.note.is_some() {
+                " (nor the note)"
+            } else {
+                ""
+            }
+        ),
+    };
+    out::print(text.as_bytes())?;
     Ok(0)
 }

@@ -45,11 +45,11 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
     drop(dataset);
     match args.format {
         Format::Table => {
-            out::print(report::text::stats_with_groups(&a, &groups, width).as_bytes())?
+            out::print(report::text::stats_with_groups(&a, groups.as_ref(), width).as_bytes())?
         }
         // Streamed: the document of a large dataset is not held in memory.
-        Format::Json => out::stream(|w| report::json::write_stats(w, &a, &groups))?,
-        Format::Csv => out::print(&report::csv_out::stats(&a, &groups)?)?,
+        Format::Json => out::stream(|w| report::json::write_stats(w, &a, groups.as_ref()))?,
+        Format::Csv => out::print(&report::csv_out::stats(&a, groups.as_ref())?)?,
     }
     Ok(0)
 }

@@ -135,36 +135,154 @@ fn field_of(row: &Row, column: &str) -> String {
         "source" => s(&row.meta.source),
         "unit" => s(&row.meta.unit),
         "tip" => row.meta.tip.map_or(String::new(), |t| t.name().to_string()),
+        "flagged" => s(&row.meta.flagged),
         _ => String::new(),
     }
 }
 
 /// The bytes of the dataset with `new` appended, after checking that the new rows
-/// fit it: no (X-ray, finger) already present, the same sex/age/side/unit/tip as
-/// existing rows of the same X-ray, the dataset's unit (when both name one), and no
-/// metadata (or metacarpal) for a column the file lacks.
-/// Problems name the new rows' lines in `new.path`. Returns the new bytes and
-/// the dataset they hold (validated once). Numbers are written as `typed` holds
-/// them (see [`Typed`]; with `Typed::default()`, in their shortest exact form).
-/// A new row that leaves sex, age, side or unit empty takes the value of the
-/// X-ray's existing rows (one hand has one value).
+/// fit it: no (X-ray, finger) already present, and no sex, age, side, unit or tip that
+/// differs from what the X-ray's existing rows give (filling one they leave empty is no
+/// conflict for sex, age and side). Problems name the new rows' lines in `new.path`.
+///
+/// Optional columns that the new rows fill and the dataset lacks (`mc`, `tip`, `unit`,
+/// `flagged`, ...) are added to its header, in the format's order after its own columns,
+/// with every existing row left empty there: the file is then written anew from the
+/// fields as they are typed (see [`with_columns`]). Otherwise the existing bytes are kept
+/// as they are (only a missing final line end is added). Returns the new bytes and the
+/// dataset they hold (validated once). Numbers are written as `typed` holds them (see
+/// [`Typed`]; with `Typed::default()`, in their shortest exact form). A new row that
+/// leaves sex, age, side, unit or tip empty takes the value of the X-ray's existing
+/// rows (one hand has one value).
 pub(crate) fn appended_bytes_typed(
     current_bytes: &[u8],
     current: &Dataset,
     new: &Dataset,
     typed: &Typed,
 ) -> Result<(Vec<u8>, Dataset), DataError> {
-    let problems = check_new_rows(current, new);
-    if !problems.is_empty() {
-        return Err(DataError {
-            file: new.path.clone(),
-            problems,
-        });
-    }
-    let out = append_rows(current_bytes, current, new, typed)?;
+    check_fits(current, new)?;
+    let added = added_columns(current, new);
+    let base = if added.is_empty() {
+        current_bytes.to_vec()
+    } else {
+        with_columns(current_bytes, &current.path, &current.columns, &added)?
+    };
+    let mut columns = current.columns.clone();
+    columns.extend(added.iter().map(|c| c.to_string()));
+    let out = append_rows(&base, &columns, current, new, typed)?;
     // The result must load as a valid dataset; that dataset is returned with it.
     let appended = Dataset::from_bytes(&current.path, &out)?;
     Ok((out, appended))
+}
+
+/// The optional columns some new row fills that the dataset's header lacks, in the
+/// format's column order.
+pub(crate) fn added_columns(current: &Dataset, new: &Dataset) -> Vec<&'static str> {
+    Column::ALL
+        .iter()
+        .filter(|c| !c.required())
+        .map(|c| c.name())
+        .filter(|name| !current.columns.iter().any(|c| c == name))
+        .filter(|name| new.rows.iter().any(|r| !field_of(r, name).is_empty()))
+        .collect()
+}
+
+/// The dataset's bytes with `added` columns at the end of its header and an empty field
+/// for each in every row: the header and the fields as typed (trimmed), written anew
+/// with the file's line ends and byte-order mark. O(bytes).
+fn with_columns(
+    bytes: &[u8],
+    label: &str,
+    names: &[String],
+    added: &[&str],
+) -> Result<Vec<u8>, DataError> {
+    let columns: Vec<Option<Column>> = names
+        .iter()
+        .map(|n| Column::ALL.iter().copied().find(|c| c.name() == n))
+        .collect();
+    let mut records: Vec<Vec<String>> = Vec::new();
+    super::csvinput::read_table::<Column>(label, bytes, |cells| {
+        records.push(
+            columns
+                .iter()
+                .map(|c| {
+                    c.and_then(|c| cells.text(c))
+                        .unwrap_or_default()
+                        .to_string()
+                })
+                .collect(),
+        );
+    })?;
+    let mut out = Vec::new();
+    if bytes.starts_with(b"\xEF\xBB\xBF") {
+        out.extend_from_slice(b"\xEF\xBB\xBF");
+    }
+    let mut w = writer(bytes, out);
+    let header: Vec<&str> = names
+        .iter()
+        .map(String::as_str)
+        .chain(added.iter().copied())
+        .collect();
+    let fail = |e: csv::Error| DataError::whole_file(label, e.to_string());
+    w.write_record(&header).map_err(fail)?;
+    for mut r in records {
+        r.extend(added.iter().map(|_| String::new()));
+        w.write_record(&r).map_err(fail)?;
+    }
+    w.into_inner()
+        .map_err(|e| DataError::whole_file(label, e.to_string()))
+}
+
+/// A CSV writer onto `out` with the line ends of `like` (CRLF when it has them).
+fn writer(like: &[u8], out: Vec<u8>) -> csv::Writer<Vec<u8>> {
+    csv::WriterBuilder::new()
+        .terminator(if like.windows(2).any(|p| p == b"\r\n") {
+            csv::Terminator::CRLF
+        } else {
+            csv::Terminator::Any(b'\n')
+        })
+        .from_writer(out)
+}
+
+/// New rows with what they leave empty filled in: sex, age, side, unit and tip from the
+/// X-ray's existing rows (one hand has one value), and a unit no row of the X-ray gives
+/// from the dataset's, when every row of it names the same one. So rows typed without a
+/// unit are written in the dataset's unit, and are checked and averaged as such.
+pub(crate) fn with_defaults(new: &Dataset, current: &Dataset) -> Dataset {
+    let hands = current.hands();
+    let unit = current.unit().map(std::sync::Arc::<str>::from);
+    let mut out = new.clone();
+    for r in &mut out.rows {
+        if let Some(hand) = hands.get(&*r.xray) {
+            let m = &mut r.meta;
+            m.sex = m.sex.take().or_else(|| hand.sex.clone());
+            m.age = m.age.or(hand.age);
+            m.side = m.side.take().or_else(|| hand.side.clone());
+            m.unit = m.unit.take().or_else(|| hand.unit.clone());
+            m.tip = m.tip.or(hand.tip);
+        }
+        if r.meta.unit.is_none() {
+            r.meta.unit.clone_from(&unit);
+        }
+    }
+    out
+}
+
+/// The metadata a new row must agree with: one hand has one value.
+const HAND_FIELDS: [&str; 5] = ["sex", "age", "side", "unit", "tip"];
+
+/// Checks that new rows fit the current dataset (see [`appended_bytes_typed`]): every
+/// problem, at the new rows' lines in `new.path`.
+pub(crate) fn check_fits(current: &Dataset, new: &Dataset) -> Result<(), DataError> {
+    let problems = check_new_rows(current, new);
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(DataError {
+            file: new.path.clone(),
+            problems,
+        })
+    }
 }
 
 /// The problems of new rows against the current dataset (see [`appended_bytes_typed`]).
@@ -175,26 +293,21 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
         .iter()
         .map(|r| ((&*r.xray, r.finger), r))
         .collect();
-    let mut by_xray: HashMap<&str, &Row> = HashMap::new();
+    let mut by_xray: HashMap<&str, Vec<&Row>> = HashMap::new();
     for r in &current.rows {
-        by_xray.entry(&r.xray).or_insert(r);
+        by_xray.entry(&r.xray).or_default().push(r);
     }
-    let unit = current
-        .rows
-        .iter()
-        .find_map(|r| r.meta.unit.as_deref().map(|u| (u, r.line)));
+    let named: Vec<&str> = current.units().into_iter().filter_map(|(u, _)| u).collect();
     for r in &new.rows {
-        if let (Some((unit, line)), Some(ours)) = (unit, r.meta.unit.as_deref())
-            && ours != unit
-        {
+        if r.meta.unit.is_none() && named.len() > 1 && !by_xray.contains_key(&*r.xray) {
+            let list: Vec<String> = named.iter().map(|u| quote(u)).collect();
             problems.push(Problem::line(
                 r.line,
                 format!(
-                    "unit is {} but the rows of {} are in {} (line {line}); lengths in different units cannot be averaged: convert the new lengths to {}, or give them the dataset's unit",
-                    quote(ours),
+                    "names no unit, but the rows of {} are in {} units ({}), so the new lengths' unit cannot be taken from them; give it (--unit, or the unit column)",
                     current.path,
-                    quote(unit),
-                    quote(unit)
+                    named.len(),
+                    list.join(", ")
                 ),
             ));
         }
@@ -213,99 +326,76 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
         if let Some(old) = by_xray.get(&*r.xray) {
             metadata_conflicts(r, old, &current.path, &mut problems);
         }
-        missing_columns(r, current, &mut problems);
     }
     problems
 }
 
-/// A new row's metadata (sex, age, side, unit, tip) that differs from the same X-ray's
-/// existing row `old` (in file `path`): one hand has one value.
-fn metadata_conflicts(r: &Row, old: &Row, path: &str, problems: &mut Vec<Problem>) {
-    for name in ["sex", "age", "side", "unit", "tip"] {
-        let (ours, theirs) = (field_of(r, name), field_of(old, name));
-        // An empty field takes the X-ray's value (see append_rows).
-        if !ours.is_empty() && ours != theirs {
-            let theirs = if theirs.is_empty() {
-                "empty".into()
-            } else {
-                quote(&theirs)
-            };
-            problems.push(Problem::line(
-                r.line,
-                format!(
-                    "{name} is {} but {} line {} gives {theirs} for the same X-ray {}; one hand has one value. \
-                     Leave {name} out (omit --{name}, or leave the field empty) and the row takes {theirs}, \
-                     or, if {theirs} is wrong, edit line {} of {} first",
-                    quote(&ours),
-                    path,
-                    old.line,
-                    quote(&r.xray),
-                    old.line,
-                    path,
-                ),
-            ));
+/// A new row's metadata that differs from what the same X-ray's existing rows `old` (in
+/// file `path`) give: one hand has one value. For sex, age and side only a value given on
+/// both sides can differ (an empty one is unknown, and filling it is no conflict); unit
+/// and tip are the same on every row of a hand, so a new value differs from an empty one.
+fn metadata_conflicts(r: &Row, old: &[&Row], path: &str, problems: &mut Vec<Problem>) {
+    for name in HAND_FIELDS {
+        let ours = field_of(r, name);
+        if ours.is_empty() {
+            continue; // an empty field takes the X-ray's value (see append_rows)
         }
+        let given = old.iter().find(|o| !field_of(o, name).is_empty());
+        let (theirs, line) = match given {
+            Some(o) => (field_of(o, name), o.line),
+            None if matches!(name, "unit" | "tip") => (String::new(), old[0].line),
+            None => continue,
+        };
+        if ours == theirs {
+            continue;
+        }
+        let theirs = if theirs.is_empty() {
+            "empty".into()
+        } else {
+            quote(&theirs)
+        };
+        problems.push(Problem::line(
+            r.line,
+            format!(
+                "{name} is {} but {} line {line} gives {theirs} for the same X-ray {}; one hand has one value. \
+                 Leave {name} out (omit --{name}, or leave the field empty) and the row takes {theirs}, \
+                 or, if {theirs} is wrong, edit line {line} of {} first",
+                quote(&ours),
+                path,
+                quote(&r.xray),
+                path,
+            ),
+        ));
     }
 }
 
-/// An optional field the new row gives that the current dataset has no column for.
-fn missing_columns(r: &Row, current: &Dataset, problems: &mut Vec<Problem>) {
-    for col in Column::ALL
-        .iter()
-        .filter(|c| !c.required())
-        .map(|c| c.name())
-    {
-        if !current.columns.iter().any(|c| c == col) && !field_of(r, col).is_empty() {
-            problems.push(Problem::line(
-                r.line,
-                format!(
-                    "gives a {col}, but {} has no '{col}' column; add the column to its header first or leave {col} empty",
-                    current.path
-                ),
-            ));
-        }
-    }
-}
-
-/// The current bytes with the new rows written after them, in the file's own
-/// column order and line ends.
+/// `base` (the dataset's bytes, with any added columns) with the new rows written after
+/// it, in the order of `columns` and with its line ends.
 fn append_rows(
-    current_bytes: &[u8],
+    base: &[u8],
+    columns: &[String],
     current: &Dataset,
     new: &Dataset,
     typed: &Typed,
 ) -> Result<Vec<u8>, DataError> {
-    let mut by_xray: HashMap<&str, &Row> = HashMap::new();
-    for r in &current.rows {
-        by_xray.entry(&r.xray).or_insert(r);
-    }
-    let mut out = current_bytes.to_vec();
+    let hands = current.hands();
+    let mut out = base.to_vec();
     if !out.is_empty() && !out.ends_with(b"\n") {
-        out.extend_from_slice(if current_bytes.contains(&b'\r') {
+        out.extend_from_slice(if base.contains(&b'\r') {
             b"\r\n"
         } else {
             b"\n"
         });
     }
-    let mut w = csv::WriterBuilder::new()
-        .terminator(if current_bytes.windows(2).any(|p| p == b"\r\n") {
-            csv::Terminator::CRLF
-        } else {
-            csv::Terminator::Any(b'\n')
-        })
-        .from_writer(Vec::new());
+    let mut w = writer(base, Vec::new());
     for r in &new.rows {
-        let rec: Vec<String> = current
-            .columns
+        let rec: Vec<String> = columns
             .iter()
             .map(|c| {
                 let ours = typed_field_of(r, c, typed);
-                match by_xray.get(&*r.xray) {
-                    Some(old)
-                        if ours.is_empty()
-                            && ["sex", "age", "side", "unit"].contains(&c.as_str()) =>
-                    {
-                        field_of(old, c)
+                match hands.get(&*r.xray) {
+                    Some(hand) if ours.is_empty() && HAND_FIELDS.contains(&c.as_str()) => {
+                        meta_field(hand, c)
                     }
                     _ => ours,
                 }
@@ -318,6 +408,43 @@ fn append_rows(
         .into_inner()
         .map_err(|e| DataError::whole_file(&new.path, e.to_string()))?;
     out.extend_from_slice(&tail);
+    Ok(out)
+}
+
+/// One metadata field of a hand (see [`Dataset::hand`]), by column name.
+fn meta_field(m: &super::Meta, column: &str) -> String {
+    let s = |v: &Option<std::sync::Arc<str>>| v.as_deref().unwrap_or("").to_string();
+    match column {
+        "sex" => s(&m.sex),
+        "age" => crate::format::full(m.age),
+        "side" => s(&m.side),
+        "unit" => s(&m.unit),
+        "tip" => m.tip.map_or(String::new(), |t| t.name().to_string()),
+        _ => String::new(),
+    }
+}
+
+/// The dataset's bytes without the rows at `lines` (their records and the line ends and
+/// blank lines after them; every other byte is kept). `lines` must be rows of `bytes`,
+/// which must load as a dataset. O(bytes).
+pub(crate) fn removed_bytes(
+    bytes: &[u8],
+    label: &str,
+    lines: &[u64],
+) -> Result<Vec<u8>, DataError> {
+    let mut starts: Vec<(u64, usize)> = Vec::new();
+    super::csvinput::read_table::<Column>(label, bytes, |cells| {
+        starts.push((cells.line(), cells.start() as usize));
+    })?;
+    let mut out = Vec::with_capacity(bytes.len());
+    let first = starts.first().map_or(bytes.len(), |s| s.1);
+    out.extend_from_slice(&bytes[..first]);
+    for (i, &(line, start)) in starts.iter().enumerate() {
+        let end = starts.get(i + 1).map_or(bytes.len(), |s| s.1);
+        if !lines.contains(&line) {
+            out.extend_from_slice(&bytes[start..end]);
+        }
+    }
     Ok(out)
 }
 
@@ -358,7 +485,7 @@ mod tests {
     }
 
     #[test]
-    fn refuses_duplicates_conflicts_and_unknown_columns_naming_the_new_line() {
+    fn refuses_duplicates_and_conflicts_naming_the_new_line() {
         let cur = ds("d.csv", OLD);
         let new = ds(
             "n.csv",
@@ -367,13 +494,12 @@ mod tests {
         let e = appended_bytes_typed(OLD.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
         assert_eq!(e.file, "n.csv");
         let lines: Vec<u64> = e.problems.iter().filter_map(|p| p.line).collect();
-        assert_eq!(lines, vec![2, 3], "{e}");
+        assert_eq!(lines, vec![2], "{e}");
         assert!(
             e.problems[0]
                 .message
                 .contains("already has an index row in d.csv (line 2)")
         );
-        assert!(e.problems[1].message.contains("no 'age' column"));
         let new = ds(
             "n.csv",
             "xray,finger,j1,j2,j3,sex\nb,ring,1,2,3,f\na,ring,1,2,3,m\n",
@@ -389,22 +515,75 @@ mod tests {
     }
 
     #[test]
-    fn a_unit_other_than_the_datasets_is_refused() {
+    fn a_column_the_dataset_lacks_is_added_to_its_header() {
+        // c gives an age: the header gains 'age', every old row an empty field there (its
+        // other fields as typed).
+        let cur = ds("d.csv", OLD);
+        let new = ds("n.csv", "xray,finger,j1,j2,j3,age\nc,ring,1,2,3,40\n");
+        assert_eq!(added_columns(&cur, &new), ["age"]);
+        let (out, d) = appended_bytes_typed(OLD.as_bytes(), &cur, &new, &Typed::default()).unwrap();
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "xray,finger,j1,j2,j3,sex,age\na,index,4,3,3,f,\na,thumb,4,3,,f,\nc,ring,1,2,3,,40\n"
+        );
+        assert_eq!(d.columns.last().map(String::as_str), Some("age"));
+        // A column only named, never filled, is not added.
+        let new = ds("n.csv", "xray,finger,j1,j2,j3,mc\nc,ring,1,2,3,\n");
+        assert!(added_columns(&cur, &new).is_empty());
+        // CRLF and a byte-order mark survive the rewrite; quoted fields stay quoted.
+        let old = "\u{feff}xray,finger,j1,j2,j3,source\r\na,index,4,3,3,\"Fig. 1, left\"\r\n";
+        let cur = ds("d.csv", old);
+        let new = ds("n.csv", "xray,finger,j1,j2,j3,unit\nb,index,4,3,3,mm\n");
+        let (out, _) = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap();
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "\u{feff}xray,finger,j1,j2,j3,source,unit\r\na,index,4,3,3,\"Fig. 1, left\",\r\nb,index,4,3,3,,mm\r\n"
+        );
+    }
+
+    #[test]
+    fn rows_in_another_unit_are_appended_and_one_hand_keeps_one_unit() {
         let old = "xray,finger,j1,j2,j3,unit\na,index,4,3,3,image units\n";
         let cur = ds("d.csv", old);
         let new = ds(
             "n.csv",
             "xray,finger,j1,j2,j3,unit\nb,index,4,3,3,mm\nc,index,4,3,3,\n",
         );
-        let e = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
-        assert_eq!(e.problems.len(), 1, "{e}");
-        assert_eq!(e.problems[0].line, Some(2));
+        let (out, d) = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap();
         assert!(
-            e.problems[0]
-                .message
-                .contains("unit is 'mm' but the rows of d.csv are in 'image units' (line 2)"),
+            String::from_utf8(out)
+                .unwrap()
+                .ends_with("b,index,4,3,3,mm\nc,index,4,3,3,\n")
+        );
+        assert_eq!(
+            d.units(),
+            [(Some("image units"), 1), (Some("mm"), 1), (None, 1)]
+        );
+        // The same X-ray in another unit than its rows: refused.
+        let new = ds("n.csv", "xray,finger,j1,j2,j3,unit\na,ring,4,3,3,mm\n");
+        let e = appended_bytes_typed(old.as_bytes(), &cur, &new, &Typed::default()).unwrap_err();
+        assert!(
+            e.to_string().contains(
+                "unit is 'mm' but d.csv line 2 gives 'image units' for the same X-ray 'a'"
+            ),
             "{e}"
         );
+        // A row without a unit takes the dataset's (one named unit), its X-ray's first.
+        let filled = with_defaults(&ds("n.csv", "xray,finger,j1,j2,j3\nz,index,4,3,3\n"), &cur);
+        assert_eq!(filled.rows[0].meta.unit.as_deref(), Some("image units"));
+        // With two units named, it must say which.
+        let two = ds(
+            "d.csv",
+            "xray,finger,j1,j2,j3,unit\na,index,4,3,3,px\nb,index,4,3,3,mm\n",
+        );
+        let e =
+            check_fits(&two, &ds("n.csv", "xray,finger,j1,j2,j3\nz,index,4,3,3\n")).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("names no unit, but the rows of d.csv are in 2 units ('px', 'mm')"),
+            "{e}"
+        );
+        assert!(check_fits(&two, &ds("n.csv", "xray,finger,j1,j2,j3\na,ring,4,3,3\n")).is_ok());
         // The metacarpal and the tip are appended where the file has their columns.
         let old = "xray,finger,j1,j2,j3,mc,unit,tip\na,index,4,3,3,9,px,bone\n";
         let cur = ds("d.csv", old);
@@ -418,12 +597,34 @@ mod tests {
                 .unwrap()
                 .ends_with("b,index,4,3,3,8.5,px,bone\n")
         );
-        let e = appended_bytes_typed(OLD.as_bytes(), &ds("d.csv", OLD), &new, &Typed::default())
-            .unwrap_err();
-        assert!(
-            e.to_string()
-                .contains("gives a mc, but d.csv has no 'mc' column"),
-            "{e}"
+    }
+
+    #[test]
+    fn removing_rows_keeps_every_other_byte() {
+        let old = "xray,finger,j1,j2,j3\r\na,index,4,3,3\r\n\r\nb,index,5,3,3\r\nc,index,6,3,3";
+        let out = |lines: &[u64]| {
+            String::from_utf8(removed_bytes(old.as_bytes(), "d.csv", lines).unwrap()).unwrap()
+        };
+        assert_eq!(out(&[]), old);
+        assert_eq!(
+            out(&[2]),
+            "xray,finger,j1,j2,j3\r\nb,index,5,3,3\r\nc,index,6,3,3"
+        );
+        assert_eq!(
+            out(&[4]),
+            "xray,finger,j1,j2,j3\r\na,index,4,3,3\r\n\r\nc,index,6,3,3"
+        );
+        assert_eq!(
+            out(&[5]),
+            "xray,finger,j1,j2,j3\r\na,index,4,3,3\r\n\r\nb,index,5,3,3\r\n"
+        );
+        // A byte-order mark stays; a quoted field over two lines goes with its row.
+        let bom =
+            "\u{feff}xray,finger,j1,j2,j3,source\na,index,4,3,3,\"two\nlines\"\nb,index,5,3,3,x\n";
+        let got = String::from_utf8(removed_bytes(bom.as_bytes(), "d.csv", &[2]).unwrap()).unwrap();
+        assert_eq!(
+            got,
+            "\u{feff}xray,finger,j1,j2,j3,source\nb,index,5,3,3,x\n"
         );
     }
 

@@ -145,6 +145,17 @@ mod tests {
             assert_eq!(n.tip, Some(tip), "{data}");
             assert!(n.name.is_some() && n.age.is_some() && n.landmarks.is_some());
         }
+        // One statement of the atlas's landmark type: its notes say what the report's
+        // other sections say (crate::dataset::landmarks::ATLAS_LANDMARKS).
+        let atlas = CohortNotes::beside(Path::new("data/atlas/measurements.csv"))
+            .unwrap()
+            .unwrap();
+        let said = crate::dataset::landmarks::ATLAS_LANDMARKS
+            .replace(" and at the tips", ", and the tips");
+        assert_eq!(
+            atlas.landmarks.as_deref().map(|l| format!("landmarks {l}")),
+            Some(said)
+        );
         assert_eq!(
             notes_path(Path::new("a/b.csv")),
             PathBuf::from("a/b.cohort.csv")

@@ -54,15 +54,40 @@ fn io_problem(label: &str, e: &std::io::Error) -> DataError {
 
 /// The problem of a record whose field count differs from the header's: most
 /// often a quote left open (the field then runs on over commas and line ends),
-/// else fields missing or extra.
-fn field_count_problem(rec: &Record<'_>, width: usize) -> Problem {
+/// a number written with an unquoted decimal comma (`346,65`, read as two fields:
+/// [`decimal_commas`]), else fields missing or extra.
+fn field_count_problem<C: Columns>(rec: &Record<'_>, header: &Header<C>) -> Problem {
+    let width = header.names.len();
     let runaway = (0..rec.len()).any(|i| rec.get(i).is_some_and(|f| f.contains([',', '\n', '\r'])));
+    let field = |i: usize| rec.get(i).unwrap_or("");
+    let commas = decimal_commas(rec, header);
     let hint = if runaway {
-        "a quoted field is not closed, so it runs on over commas or line ends; close the quote (\") or remove it"
+        "a quoted field is not closed, so it runs on over commas or line ends; close the quote (\") or remove it".to_string()
+    } else if !commas.is_empty() {
+        let each: Vec<String> = commas
+            .iter()
+            .enumerate()
+            .map(|(k, &i)| {
+                format!(
+                    "{} {} looks like a number with a decimal comma",
+                    header.names[i - k],
+                    quote(&format!("{},{}", field(i), field(i + 1)))
+                )
+            })
+            .collect();
+        let fixed: Vec<String> = commas
+            .iter()
+            .map(|&i| format!("{}.{}", field(i), field(i + 1)))
+            .collect();
+        format!(
+            "{}: unquoted, the comma splits it in two fields; write it with a point ({})",
+            each.join(", "),
+            fixed.join(", ")
+        )
     } else if rec.len() > width {
-        "remove the extra fields, or quote a value that contains a comma"
+        "remove the extra fields, or quote a value that contains a comma".to_string()
     } else {
-        "add the missing fields (an empty value still needs its comma)"
+        "add the missing fields (an empty value still needs its comma)".to_string()
     };
     Problem::line(
         rec.line,
@@ -71,6 +96,87 @@ fn field_count_problem(rec: &Record<'_>, width: usize) -> Problem {
             rec.len()
         ),
     )
+}
+
+/// Where a record with k more fields than the header holds k numbers written with an
+/// unquoted decimal comma: the positions i of the fields (i, i + 1) that join into one
+/// (a whole number, then digits only: `346` and `65` from `346,65`). Such a reading
+/// counts only when it is the one way to join k pairs (none overlapping) so that every
+/// joined number lands in a numeric column ([`Columns::numeric`]) and every numeric
+/// column then holds a number or nothing; otherwise (several ways, or none) the record
+/// is not said to hold a decimal comma. Empty for none. Cost: O(C(p, k)) for p
+/// candidate pairs, at most 3 joins tried.
+fn decimal_commas<C: Columns>(rec: &Record<'_>, header: &Header<C>) -> Vec<usize> {
+    let width = header.names.len();
+    let extra = rec.len().saturating_sub(width);
+    if extra == 0 || extra > 3 {
+        return Vec::new();
+    }
+    let field = |i: usize| rec.get(i).unwrap_or("");
+    let digits = |f: &str| !f.is_empty() && f.bytes().all(|b| b.is_ascii_digit());
+    let whole = |f: &str| digits(f.strip_prefix('-').unwrap_or(f));
+    let candidates: Vec<usize> = (0..rec.len().saturating_sub(1))
+        .filter(|&i| whole(field(i)) && digits(field(i + 1)))
+        .collect();
+    let numeric: Vec<bool> = header
+        .names
+        .iter()
+        .map(|n| C::ALL.iter().any(|c| c.name() == n && c.numeric()))
+        .collect();
+    // The record's fields with the pairs at `joins` (ascending) joined.
+    let reads = |joins: &[usize]| -> bool {
+        let mut out: Vec<String> = Vec::with_capacity(width);
+        let mut i = 0;
+        while i < rec.len() {
+            if joins.contains(&i) {
+                if !numeric.get(out.len()).copied().unwrap_or(false) {
+                    return false;
+                }
+                out.push(format!("{}.{}", field(i), field(i + 1)));
+                i += 2;
+            } else {
+                out.push(field(i).to_string());
+                i += 1;
+            }
+        }
+        out.len() == width
+            && out
+                .iter()
+                .zip(&numeric)
+                .all(|(v, &num)| !num || v.is_empty() || v.parse::<f64>().is_ok())
+    };
+    let mut found: Vec<Vec<usize>> = Vec::new();
+    let mut pick: Vec<usize> = Vec::new();
+    fn choose(
+        candidates: &[usize],
+        k: usize,
+        pick: &mut Vec<usize>,
+        found: &mut Vec<Vec<usize>>,
+        reads: &dyn Fn(&[usize]) -> bool,
+    ) {
+        if found.len() > 1 {
+            return;
+        }
+        if pick.len() == k {
+            if reads(pick) {
+                found.push(pick.clone());
+            }
+            return;
+        }
+        for (n, &c) in candidates.iter().enumerate() {
+            if pick.last().is_some_and(|&p| c < p + 2) {
+                continue;
+            }
+            pick.push(c);
+            choose(&candidates[n + 1..], k, pick, found, reads);
+            pick.pop();
+        }
+    }
+    choose(&candidates, extra, &mut pick, &mut found, &reads);
+    match found.as_slice() {
+        [one] => one.clone(),
+        _ => Vec::new(),
+    }
 }
 
 /// Quotes a value for an error message, shortened when long.
@@ -87,6 +193,8 @@ pub(crate) fn quote(value: &str) -> String {
 /// valid text; that problem is already reported).
 struct Record<'s> {
     pub line: u64,
+    /// Byte offset of the record's first byte in the file (a byte-order mark counted).
+    pub start: u64,
     fields: Vec<Option<&'s str>>,
 }
 
@@ -143,6 +251,8 @@ struct CsvScan<R: std::io::Read> {
     /// Byte offset and 1-based line number reached so far, for line counting:
     /// the `csv` crate's own line numbers drift over blank lines and CRLF.
     cursor: (u64, u64),
+    /// Length of the byte-order mark dropped before the CSV reader (0 or 3).
+    bom: u64,
 }
 
 impl<R: std::io::Read> CsvScan<R> {
@@ -159,7 +269,8 @@ impl<R: std::io::Read> CsvScan<R> {
                 "is UTF-16 text; save it as UTF-8 (e.g. 'CSV UTF-8' in a spreadsheet)",
             ));
         }
-        if head.starts_with(b"\xEF\xBB\xBF") {
+        let bom = head.starts_with(b"\xEF\xBB\xBF");
+        if bom {
             sha2::Digest::update(&mut hasher, &head[..3]);
             std::io::BufRead::consume(&mut inner, 3);
         }
@@ -178,6 +289,7 @@ impl<R: std::io::Read> CsvScan<R> {
             reader,
             record: csv::ByteRecord::new(),
             cursor: (0, 1),
+            bom: if bom { 3 } else { 0 },
         })
     }
 
@@ -294,7 +406,12 @@ impl<R: std::io::Read> CsvScan<R> {
                 Ok(text) => fields.push(Some(text)),
             }
         }
-        Some(Record { line, fields })
+        let start = self.cursor.0 + self.bom;
+        Some(Record {
+            line,
+            start,
+            fields,
+        })
     }
 }
 
@@ -315,6 +432,11 @@ pub(crate) trait Columns: Copy + 'static {
     fn name(self) -> &'static str;
     /// True when every file must have the column (its cells may still be empty).
     fn required(self) -> bool;
+    /// True when the column holds numbers (so a number split at an unquoted decimal
+    /// comma can be recognised in it).
+    fn numeric(self) -> bool {
+        false
+    }
     /// The column's position in [`Columns::ALL`].
     fn index(self) -> usize;
 }
@@ -426,6 +548,11 @@ impl<'s, C: Columns> Cells<'_, 's, C> {
     /// The record's line.
     pub(crate) fn line(&self) -> u64 {
         self.record.line
+    }
+
+    /// Byte offset of the record's first byte in the file (a byte-order mark counted).
+    pub(crate) fn start(&self) -> u64 {
+        self.record.start
     }
 
     /// The 1-based column of `c` in the file, 0 when the file lacks it.
@@ -624,7 +751,7 @@ pub(crate) fn read_table<C: Columns>(
             continue; // column meanings are unknown; the header problems say why
         }
         if record.len() != width {
-            problems.push(field_count_problem(&record, width));
+            problems.push(field_count_problem(&record, &header));
             continue;
         }
         let before = problems.len();

@@ -1,7 +1,9 @@
 //! The history file: one JSON line per snapshot of the statistics (`data/history.jsonl`).
 //!
-//! Appended by `phalanx add` and `phalanx snapshot`, read by `phalanx history`
-//! and the report's Tracking section. Lines are never rewritten.
+//! Appended by `phalanx add`, `phalanx remove` and `phalanx snapshot`, read by
+//! `phalanx history` and the report's Tracking section. Lines are never rewritten.
+//! A record of an addition or removal says what changed ([`ChangeRecord`]: the X-rays,
+//! the file, the rows let in though flagged); any record may carry the user's note.
 
 use super::csvinput::read_input;
 use super::{DataError, Finger, Problem, Quantity};
@@ -43,20 +45,49 @@ pub struct SnapshotSettings {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Event {
-    /// `phalanx add`: rows were added to the dataset.
+    /// `phalanx add` (or `import --into`): rows were added to the dataset.
     Add,
+    /// `phalanx remove`: rows were taken out of the dataset.
+    Remove,
     /// `phalanx snapshot`: recorded on demand.
     Snapshot,
 }
 
 impl Event {
-    /// The name written to the history file: `add` or `snapshot`.
+    /// The name written to the history file: `add`, `remove` or `snapshot`.
     pub fn name(self) -> &'static str {
         match self {
             Event::Add => "add",
+            Event::Remove => "remove",
             Event::Snapshot => "snapshot",
         }
     }
+}
+
+/// A row that a rule flagged as a likely error, let in with `--accept-flagged`.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, JsonSchema, Deserialize)]
+pub struct FlaggedRow {
+    pub xray: String,
+    pub finger: Finger,
+    /// Why it was flagged, as `add` said it.
+    pub reason: String,
+}
+
+/// What an addition or a removal changed.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, JsonSchema, Deserialize)]
+pub struct ChangeRecord {
+    /// The file the rows came from (`add FILE`, `import FILE --into`); absent for a row
+    /// given as options and for a removal.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// The X-rays whose rows were added or removed, in file order.
+    pub xrays: Vec<String>,
+    /// Rows added or removed.
+    pub rows: usize,
+    /// Added: the rows let in though flagged. Removed: the rows removed that had been
+    /// let in flagged.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub flagged: Vec<FlaggedRow>,
 }
 
 impl fmt::Display for Event {
@@ -80,6 +111,13 @@ pub struct Snapshot {
     pub fingers: Vec<FingerCount>,
     pub settings: SnapshotSettings,
     pub quantities: Vec<QuantityRecord>,
+    /// What an `add` or `remove` changed (absent for a `snapshot`, and in records
+    /// written before phalanx recorded it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub change: Option<ChangeRecord>,
+    /// The user's note (`--note`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
 /// The history file that goes with a dataset: `history.jsonl` in its directory.
@@ -184,6 +222,8 @@ mod tests {
                     ..Intervals::NONE
                 },
             }],
+            change: None,
+            note: None,
         }
     }
 

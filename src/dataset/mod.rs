@@ -1,14 +1,20 @@
 //! Ingest and validate measurement tables (Table 1 of the paper and its successors).
 //!
 //! A measurement file has one row per X-ray and finger:
-//! `xray,finger,j1,j2,j3[,mc,sex,age,side,source,unit,tip]`, with `j3` empty for
+//! `xray,finger,j1,j2,j3[,mc,sex,age,side,source,unit,tip,flagged]`, with `j3` empty for
 //! the thumb. [`Dataset::load`] reads a whole file and either returns every row or
 //! a [`DataError`] listing every problem in the file with its line and column.
 //!
 //! The optional `mc` is the metacarpal's length (CMC to MCP) in the row's unit, and
-//! `tip` says where the fingertips are (`bone`, `skin`, or empty: unknown). Every row
-//! that names a unit names the same one: lengths in different units are refused, not
-//! averaged.
+//! `tip` says where the fingertips are (`bone`, `skin`, or empty: unknown). The unit is
+//! per row (the rows of one X-ray share it): relative values and ratios have no unit and
+//! pool across units, while lengths in different units are never averaged together (the
+//! analysis leaves the total out, with a note). `flagged` holds why `phalanx add
+//! --accept-flagged` let in a row its outlier or typo rules flagged (empty: not flagged).
+//!
+//! One hand has one sex, age and side: rows of one X-ray may leave them empty (unknown),
+//! but two rows that give different values conflict. [`Dataset::hand`] gives the hand's
+//! values.
 
 pub(crate) mod append;
 pub mod claims;
@@ -57,6 +63,7 @@ pub(crate) enum Column {
     Source,
     Unit,
     Tip,
+    Flagged,
 }
 
 impl Column {
@@ -78,6 +85,7 @@ impl Columns for Column {
         Column::Source,
         Column::Unit,
         Column::Tip,
+        Column::Flagged,
     ];
     const EMPTY: &'static str = "is empty; it needs a header line and at least one data row";
     const NO_ROWS: Option<&'static str> =
@@ -97,6 +105,7 @@ impl Columns for Column {
             Column::Source => "source",
             Column::Unit => "unit",
             Column::Tip => "tip",
+            Column::Flagged => "flagged",
         }
     }
 
@@ -104,6 +113,13 @@ impl Columns for Column {
         matches!(
             self,
             Column::Xray | Column::Finger | Column::J1 | Column::J2 | Column::J3
+        )
+    }
+
+    fn numeric(self) -> bool {
+        matches!(
+            self,
+            Column::J1 | Column::J2 | Column::J3 | Column::Mc | Column::Age
         )
     }
 
@@ -127,6 +143,27 @@ pub struct Meta {
     pub unit: Option<Arc<str>>,
     /// Where the fingertips are; `None` when unknown.
     pub tip: Option<TipKind>,
+    /// Why the row was flagged as a likely error when it was added anyway
+    /// (`phalanx add --accept-flagged`); `None` for a row nobody flagged.
+    pub flagged: Option<Arc<str>>,
+}
+
+impl Meta {
+    /// Fills this hand's empty sex, age, side, unit and tip from another row of it
+    /// (source and flag are the row's own and are not copied).
+    fn fill_from(&mut self, row: &Meta) {
+        if self.sex.is_none() {
+            self.sex.clone_from(&row.sex);
+        }
+        self.age = self.age.or(row.age);
+        if self.side.is_none() {
+            self.side.clone_from(&row.side);
+        }
+        if self.unit.is_none() {
+            self.unit.clone_from(&row.unit);
+        }
+        self.tip = self.tip.or(row.tip);
+    }
 }
 
 /// One validated measurement row.
@@ -206,10 +243,53 @@ impl Dataset {
         self.rows.iter().filter(move |r| r.finger == finger)
     }
 
-    /// The unit the rows name (every row that names one names this one, [`Dataset::load`]
-    /// checks), or `None` when no row names a unit.
+    /// The one unit every row names, or `None` when no row names a unit or the rows
+    /// name different ones (or some name none): see [`Dataset::units`].
     pub fn unit(&self) -> Option<&str> {
-        self.rows.iter().find_map(|r| r.meta.unit.as_deref())
+        match self.units().as_slice() {
+            [(Some(u), _)] => Some(u),
+            _ => None,
+        }
+    }
+
+    /// Every unit the rows give (`None`: not named), with its number of rows, in order
+    /// of first appearance. O(rows x units).
+    pub fn units(&self) -> Vec<(Option<&str>, usize)> {
+        let mut out: Vec<(Option<&str>, usize)> = Vec::new();
+        for r in &self.rows {
+            let u = r.meta.unit.as_deref();
+            match out.iter_mut().find(|(v, _)| *v == u) {
+                Some((_, n)) => *n += 1,
+                None => out.push((u, 1)),
+            }
+        }
+        out
+    }
+
+    /// The hand of one X-ray: the sex, age, side, unit and tip its rows give (rows may
+    /// leave sex, age and side empty; [`Dataset::load`] refuses rows of one X-ray that
+    /// give different values). `Meta::default()` for an X-ray the dataset lacks. O(rows).
+    pub fn hand(&self, xray: &str) -> Meta {
+        let mut meta = Meta::default();
+        for r in self.rows.iter().filter(|r| &*r.xray == xray) {
+            meta.fill_from(&r.meta);
+        }
+        meta
+    }
+
+    /// The hands of every X-ray ([`Dataset::hand`]) at once, by X-ray id. O(rows).
+    pub fn hands(&self) -> HashMap<&str, Meta> {
+        let mut out: HashMap<&str, Meta> = HashMap::new();
+        for r in &self.rows {
+            out.entry(&r.xray).or_default().fill_from(&r.meta);
+        }
+        out
+    }
+
+    /// The rows flagged as likely errors that were added anyway (`flagged` column), in
+    /// file order.
+    pub fn flagged(&self) -> impl Iterator<Item = &Row> {
+        self.rows.iter().filter(|r| r.meta.flagged.is_some())
     }
 
     /// Where the rows put their fingertips.
@@ -300,12 +380,14 @@ impl Interner {
     }
 }
 
-/// Per-X-ray metadata seen so far, to catch rows of one X-ray that disagree.
+/// Per-X-ray metadata seen so far, to catch rows of one X-ray that disagree: the first
+/// row's line, unit and tip (every row must give the same, empty included), and the first
+/// sex, age and side given, each with its line (a row may leave them empty).
 struct XrayMeta {
     line: u64,
-    sex: Option<Arc<str>>,
-    age: Option<f64>,
-    side: Option<Arc<str>>,
+    sex: Option<(Arc<str>, u64)>,
+    age: Option<(f64, u64)>,
+    side: Option<(Arc<str>, u64)>,
     unit: Option<Arc<str>>,
     tip: Option<TipKind>,
 }
@@ -320,7 +402,6 @@ fn parse_rows(
     let mut seen: HashMap<(Arc<str>, Finger), u64> = HashMap::new();
     let mut xray_meta: HashMap<Arc<str>, XrayMeta> = HashMap::new();
     let mut rows = Vec::new();
-    let mut units = UnitCheck::default();
     let read = csvinput::read_table(label, input, |cells| {
         let Some(row) = parse_row(cells, &mut interner) else {
             return;
@@ -343,72 +424,10 @@ fn parse_rows(
             }
         }
         check_xray_meta(&row, cells, &mut xray_meta);
-        if !cells.has_problems() {
-            units.see(&row, cells.column(Column::Unit));
-        }
         rows.push(row);
     });
-    // The file's other problems and its mixed units are reported together.
-    let mixed = units.problems();
-    match read {
-        Ok((header, sha256)) if mixed.is_empty() => Ok((header.names, rows, sha256)),
-        Ok(_) => Err(DataError {
-            file: label.to_string(),
-            problems: mixed,
-        }),
-        Err(mut e) => {
-            e.problems.extend(mixed);
-            e.problems
-                .sort_by_key(|p| (p.line.unwrap_or(0), p.column.unwrap_or(0)));
-            Err(e)
-        }
-    }
-}
-
-/// The units the rows of a file name, to refuse a file that mixes them.
-#[derive(Default)]
-struct UnitCheck {
-    /// Each distinct unit named: its first line, the column, and how many rows name it.
-    seen: Vec<(Arc<str>, u64, usize, usize)>,
-}
-
-impl UnitCheck {
-    fn see(&mut self, row: &Row, column: usize) {
-        let Some(unit) = &row.meta.unit else { return };
-        match self.seen.iter_mut().find(|(u, ..)| u == unit) {
-            Some((_, _, _, count)) => *count += 1,
-            None => self.seen.push((unit.clone(), row.line, column, 1)),
-        }
-    }
-
-    /// One problem per unit other than the first named, at its first line: averaging
-    /// lengths in different units means nothing (the paper's image units and
-    /// millimetres would give a thumb interval of [-214, 1065]).
-    fn problems(self) -> Vec<Problem> {
-        let Some(((first, first_line, ..), others)) = self.seen.split_first() else {
-            return Vec::new();
-        };
-        others
-            .iter()
-            .map(|(unit, line, column, count)| {
-                let more = match count - 1 {
-                    0 => String::new(),
-                    1 => " (and on 1 more row)".to_string(),
-                    k => format!(" (and on {k} more rows)"),
-                };
-                Problem::field(
-                    *line,
-                    *column,
-                    Column::Unit.name(),
-                    format!(
-                        "is {}{more}, but line {first_line} gives {}: the rows of one dataset have one unit, and lengths in different units cannot be averaged; convert them to one unit or keep them in separate files (compare them with 'phalanx compare')",
-                        quote(unit),
-                        quote(first)
-                    ),
-                )
-            })
-            .collect()
-    }
+    let (header, sha256) = read?;
+    Ok((header.names, rows, sha256))
 }
 
 /// Validates one record; reports its problems and returns the row when it has none.
@@ -462,6 +481,7 @@ fn check_formulas(cells: &mut Cells<'_, '_, Column>) {
         Column::Side,
         Column::Source,
         Column::Unit,
+        Column::Flagged,
     ] {
         if let Some(t) = cells.text(c).filter(|t| looks_like_formula(t)) {
             cells.bad(
@@ -552,6 +572,9 @@ fn read_meta(cells: &mut Cells<'_, '_, Column>, interner: &mut Interner) -> Meta
         meta.unit = interner.opt(t);
     }
     meta.tip = cells.parse(Column::Tip, parse_tip).flatten();
+    if let Some(t) = cells.text(Column::Flagged) {
+        meta.flagged = interner.opt(t);
+    }
     meta
 }
 
@@ -637,47 +660,66 @@ fn normalise_sex(text: &str) -> String {
     }
 }
 
-/// Rows of one X-ray describe one hand: their sex, age, side and unit must agree.
+/// Rows of one X-ray describe one hand. Sex, age and side may be left empty on some of
+/// its rows (unknown there, so filling one in conflicts with nothing), but two rows that
+/// give different values conflict; unit and tip must be the same on every row, empty
+/// included (lengths of one hand are measured one way).
 fn check_xray_meta(
     row: &Row,
     cells: &mut Cells<'_, '_, Column>,
     seen: &mut HashMap<Arc<str>, XrayMeta>,
 ) {
+    let line = row.line;
     let entry = seen.entry(row.xray.clone()).or_insert_with(|| XrayMeta {
-        line: row.line,
-        sex: row.meta.sex.clone(),
-        age: row.meta.age,
-        side: row.meta.side.clone(),
+        line,
+        sex: None,
+        age: None,
+        side: None,
         unit: row.meta.unit.clone(),
         tip: row.meta.tip,
     });
-    let mut conflict = |c: Column, ours: String, theirs: String| {
+    let xray = quote(&row.xray);
+    let mut conflict = |c: Column, ours: String, theirs: String, at: u64| {
         cells.bad(
             c,
             format!(
-                "is {ours}, but line {} gives {theirs} for the same X-ray {}; one hand has one value",
-                entry.line,
-                quote(&row.xray)
+                "is {ours}, but line {at} gives {theirs} for the same X-ray {xray}; one hand has one value"
             ),
         );
     };
     let show = |v: &Option<Arc<str>>| v.as_deref().map_or("empty".to_string(), quote);
-    if row.meta.sex != entry.sex {
-        conflict(Column::Sex, show(&row.meta.sex), show(&entry.sex));
+    match (&row.meta.sex, &entry.sex) {
+        (Some(ours), Some((theirs, at))) if ours != theirs => {
+            conflict(Column::Sex, quote(ours), quote(theirs), *at);
+        }
+        (Some(ours), None) => entry.sex = Some((ours.clone(), line)),
+        _ => {}
     }
-    if row.meta.age != entry.age {
-        let f = |a: Option<f64>| a.map_or("empty".to_string(), |a| a.to_string());
-        conflict(Column::Age, f(row.meta.age), f(entry.age));
+    match (row.meta.age, entry.age) {
+        (Some(ours), Some((theirs, at))) if ours != theirs => {
+            conflict(Column::Age, ours.to_string(), theirs.to_string(), at);
+        }
+        (Some(ours), None) => entry.age = Some((ours, line)),
+        _ => {}
     }
-    if row.meta.side != entry.side {
-        conflict(Column::Side, show(&row.meta.side), show(&entry.side));
+    match (&row.meta.side, &entry.side) {
+        (Some(ours), Some((theirs, at))) if ours != theirs => {
+            conflict(Column::Side, quote(ours), quote(theirs), *at);
+        }
+        (Some(ours), None) => entry.side = Some((ours.clone(), line)),
+        _ => {}
     }
     if row.meta.unit != entry.unit {
-        conflict(Column::Unit, show(&row.meta.unit), show(&entry.unit));
+        conflict(
+            Column::Unit,
+            show(&row.meta.unit),
+            show(&entry.unit),
+            entry.line,
+        );
     }
     if row.meta.tip != entry.tip {
         let t = |t: Option<TipKind>| t.map_or("empty".to_string(), |t| quote(t.name()));
-        conflict(Column::Tip, t(row.meta.tip), t(entry.tip));
+        conflict(Column::Tip, t(row.meta.tip), t(entry.tip), entry.line);
     }
 }
 

@@ -338,29 +338,102 @@ fn metacarpal_and_tip_columns() {
 }
 
 #[test]
-fn mixed_units_are_refused_with_their_lines() {
+fn units_are_per_row_and_one_hand_has_one() {
     let h = "xray,finger,j1,j2,j3,unit\n";
-    // Rows of different X-rays in different units: not averaged.
-    let p = problems(&format!(
+    // Rows of different X-rays in different units load; the dataset then has no one unit.
+    let d = load(&format!(
         "{h}a,index,1,2,3,image units\nb,index,1,2,3,mm\nc,index,1,2,3,mm\nd,index,1,2,3,\n"
+    ))
+    .unwrap();
+    assert_eq!(
+        d.units(),
+        [(Some("image units"), 1), (Some("mm"), 2), (None, 1)]
+    );
+    assert_eq!(d.unit(), None);
+    assert_eq!(
+        load(&format!("{h}a,index,1,2,3,mm\nb,ring,1,2,3,mm\n"))
+            .unwrap()
+            .unit(),
+        Some("mm")
+    );
+    // The rows of one X-ray: one unit.
+    let p = problems(&format!(
+        "{h}a,index,1,2,3,mm\na,ring,1,2,3,px\nb,toe,1,2,3,mm\n"
     ));
-    assert_eq!(p.len(), 1, "{p:#?}");
+    assert_eq!(p.len(), 2, "{p:#?}");
     assert_eq!((p[0].line, p[0].column), (Some(3), Some(6)));
     assert!(
-        p[0].message.contains(
-            "is 'mm' (and on 1 more row), but line 2 gives 'image units': the rows of one dataset have one unit"
-        ),
+        p[0].message
+            .contains("is 'px', but line 2 gives 'mm' for the same X-ray 'a'"),
         "{}",
         p[0].message
     );
-    // Reported with the file's other problems.
+    assert_eq!(p[1].line, Some(4));
+    assert!(is_pixel_unit("px") && is_pixel_unit(" Pixels ") && !is_pixel_unit("image units"));
+}
+
+#[test]
+fn sex_age_and_side_may_be_left_empty_on_some_rows_of_a_hand() {
+    let h = "xray,finger,j1,j2,j3,sex,age,side\n";
+    let d = load(&format!(
+        "{h}a,index,4,3,3,,,\na,ring,4,3,3,f,30,\na,thumb,4,3,,,30,left\nb,index,5,3,3,m,,\n"
+    ))
+    .unwrap();
+    let hand = d.hand("a");
+    assert_eq!(
+        (hand.sex.as_deref(), hand.age, hand.side.as_deref()),
+        (Some("female"), Some(30.0), Some("left"))
+    );
+    assert_eq!(d.hands()["b"].sex.as_deref(), Some("male"));
+    assert_eq!(d.hand("zz"), Meta::default());
+    // Two values given for one hand conflict, naming the line that gave the first.
     let p = problems(&format!(
-        "{h}a,index,1,2,3,mm\nb,toe,1,2,3,mm\nc,index,1,2,3,px\n"
+        "{h}a,index,4,3,3,,,\na,ring,4,3,3,f,30,\na,thumb,4,3,,m,31,\n"
     ));
     assert_eq!(p.len(), 2, "{p:#?}");
-    assert_eq!(p[0].line, Some(3));
-    assert_eq!(p[1].line, Some(4));
-    // An empty unit is not stated: it goes with the named one.
-    assert!(load(&format!("{h}a,index,1,2,3,mm\nb,index,1,2,3,\n")).is_ok());
-    assert!(is_pixel_unit("px") && is_pixel_unit(" Pixels ") && !is_pixel_unit("image units"));
+    assert!(
+        p[0].message
+            .contains("is 'male', but line 3 gives 'female' for the same X-ray 'a'"),
+        "{}",
+        p[0].message
+    );
+    assert!(
+        p[1].message.contains("is 31, but line 3 gives 30"),
+        "{}",
+        p[1].message
+    );
+}
+
+#[test]
+fn an_unquoted_decimal_comma_is_named_as_one() {
+    let h = "xray,finger,j1,j2,j3,sex,age,side,source,unit\n";
+    let p = problems(&format!(
+        "{h}D1,index,346,65,201.4,178.0,,,right,lab,image units\n"
+    ));
+    assert_eq!(p.len(), 1, "{p:#?}");
+    assert_eq!(
+        p[0].message,
+        "has 11 fields but the header has 10; j1 '346,65' looks like a number with a decimal comma: unquoted, the comma splits it in two fields; write it with a point (346.65)"
+    );
+    // Two of them, in j2 and j3.
+    let p = problems(&format!(
+        "{h}D1,index,346.6,201,4,178,0,,,right,lab,image units\n"
+    ));
+    assert!(
+        p[0].message
+            .contains("j2 '201,4' looks like a number with a decimal comma, j3 '178,0' looks like"),
+        "{}",
+        p[0].message
+    );
+    // Integers only and an extra field: more than one way to join them, so no such claim.
+    let p = problems("xray,finger,j1,j2,j3\n9a,index,350,190,170,\n");
+    assert!(
+        p[0].message
+            .ends_with("remove the extra fields, or quote a value that contains a comma"),
+        "{}",
+        p[0].message
+    );
+    // A join that leaves a non-number in a numeric column is no reading either.
+    let p = problems("xray,finger,j1,j2,j3\n9a,index,350,190,170,x\n");
+    assert!(!p[0].message.contains("decimal comma"), "{}", p[0].message);
 }

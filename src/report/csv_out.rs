@@ -2,7 +2,7 @@
 //! to 15 significant digits ([`crate::format::readable`]).
 
 use crate::analysis::Analysis;
-use crate::analysis::groups::Group;
+use crate::analysis::groups::Groups;
 use crate::error::Error;
 use crate::format::{interval_bounds, readable};
 
@@ -64,10 +64,11 @@ pub(crate) fn moves(moves: &[crate::rig::fix::moves::Move]) -> Result<Vec<u8>, E
 /// The statistics as CSV bytes; empty cells where a value is null. With groups
 /// (`--group-by`), two leading columns `group_by` and `group` name each row's
 /// group (`all` for the whole dataset).
-pub(crate) fn stats(a: &Analysis, groups: &[Group]) -> Result<Vec<u8>, Error> {
+pub(crate) fn stats(a: &Analysis, groups: Option<&Groups>) -> Result<Vec<u8>, Error> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let err = |e| Error::render("cannot write CSV", e);
-    let by = groups.first().map(|g| g.by);
+    let by = groups.map(|g| g.by);
+    let groups = groups.map_or(&[][..], |g| &g.groups);
     let mut header: Vec<&str> = Vec::new();
     if by.is_some() {
         header.extend(["group_by", "group"]);

@@ -2,7 +2,7 @@
 
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
-use crate::analysis::groups::{Group, GroupSummary};
+use crate::analysis::groups::{Group, GroupSummary, Groups};
 use crate::analysis::{Analysis, DatasetInfo, FingerAnalysis, Quantity, Settings};
 use crate::dataset::Finger;
 use crate::dataset::history::{Event, QuantityRecord, Snapshot};
@@ -45,6 +45,9 @@ pub(crate) struct StatsDocument<'a> {
     dataset: &'a DatasetInfo,
     settings: SettingsView<'static>,
     fingers: &'a [FingerAnalysis],
+    /// Rows added though flagged as likely errors (`add --accept-flagged`), in file order.
+    #[serde(skip_serializing_if = "<[_]>::is_empty")]
+    flagged: &'a [crate::analysis::FlaggedRow],
     #[serde(skip_serializing_if = "Option::is_none")]
     groups: Option<GroupsDocument<'a>>,
 }
@@ -53,7 +56,22 @@ pub(crate) struct StatsDocument<'a> {
 #[derive(Serialize, JsonSchema)]
 struct GroupsDocument<'a> {
     by: &'a str,
+    /// Known groups first, "unknown" last.
     groups: Vec<GroupSummary<'a>>,
+    /// Each known group after the first against the first (differences b - a), as
+    /// `phalanx compare` compares two cohorts.
+    differences: Vec<GroupDifferenceDocument<'a>>,
+}
+
+/// One known group against the reference group.
+#[derive(Serialize, JsonSchema)]
+struct GroupDifferenceDocument<'a> {
+    /// The reference group.
+    a: &'a str,
+    /// The group compared with it.
+    b: &'a str,
+    fingers: &'a [crate::analysis::compare::FingerComparison],
+    notes: &'a [String],
 }
 
 fn to_bytes(value: &impl Serialize) -> Result<Vec<u8>, Error> {
@@ -65,7 +83,7 @@ fn to_bytes(value: &impl Serialize) -> Result<Vec<u8>, Error> {
 
 /// The statistics document of `phalanx stats --format json` and `reports/stats.json`;
 /// with `groups` (from `--group-by`) it gains a `groups` key.
-pub fn stats(a: &Analysis, groups: &[Group]) -> Result<Vec<u8>, Error> {
+pub fn stats(a: &Analysis, groups: Option<&Groups>) -> Result<Vec<u8>, Error> {
     let mut out = Vec::new();
     write_stats(&mut out, a, groups)?;
     Ok(out)
@@ -73,16 +91,31 @@ pub fn stats(a: &Analysis, groups: &[Group]) -> Result<Vec<u8>, Error> {
 
 /// Writes the statistics document to `w` as it is serialised (no copy in
 /// memory: the document of 100,000 X-rays is over 100 MB).
-pub fn write_stats(w: impl std::io::Write, a: &Analysis, groups: &[Group]) -> Result<(), Error> {
+pub fn write_stats(
+    w: impl std::io::Write,
+    a: &Analysis,
+    groups: Option<&Groups>,
+) -> Result<(), Error> {
     let mut w = std::io::BufWriter::new(w);
     let doc = StatsDocument {
         schema_version: SCHEMA_VERSION,
         dataset: &a.dataset,
         settings: SettingsView::of(&a.settings),
         fingers: &a.fingers,
-        groups: groups.first().map(|g| GroupsDocument {
+        flagged: &a.flagged,
+        groups: groups.map(|g| GroupsDocument {
             by: g.by,
-            groups: groups.iter().map(Group::summary).collect(),
+            groups: g.groups.iter().map(Group::summary).collect(),
+            differences: g
+                .differences
+                .iter()
+                .map(|d| GroupDifferenceDocument {
+                    a: &d.a,
+                    b: &d.b,
+                    fingers: &d.cohorts.fingers,
+                    notes: &d.cohorts.notes,
+                })
+                .collect(),
         }),
     };
     serde_json::to_writer_pretty(&mut w, &doc)
@@ -174,8 +207,25 @@ pub(crate) struct HistoryDocument<'a> {
     schema_version: u32,
     /// Snapshots in the history file.
     snapshots: usize,
+    /// Every record: what made it and what it changed.
+    records: Vec<HistoryRecordView<'a>>,
     /// One series per finger and quantity.
     series: Vec<HistorySeries<'a>>,
+}
+
+/// One record of the history, without its statistics (those are in the series).
+#[derive(Serialize, JsonSchema)]
+pub(crate) struct HistoryRecordView<'a> {
+    /// 1-based position in the history file.
+    record: usize,
+    time: &'a str,
+    event: Event,
+    sha256: &'a str,
+    xrays: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    change: Option<&'a crate::dataset::history::ChangeRecord>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    note: Option<&'a str>,
 }
 
 /// The document of `phalanx history --format json`: one series per finger and quantity.
@@ -212,6 +262,19 @@ pub fn history(
     to_bytes(&HistoryDocument {
         schema_version: SCHEMA_VERSION,
         snapshots: snaps.len(),
+        records: snaps
+            .iter()
+            .enumerate()
+            .map(|(i, s)| HistoryRecordView {
+                record: i + 1,
+                time: &s.time,
+                event: s.event,
+                sha256: &s.sha256,
+                xrays: s.xrays,
+                change: s.change.as_ref(),
+                note: s.note.as_deref(),
+            })
+            .collect(),
         series,
     })
 }

@@ -53,7 +53,7 @@ pub fn render(
 ) -> Result<Vec<OutputFile>, Error> {
     let mut files = Vec::new();
     if formats.html || formats.markdown {
-        let mut plots = plots::all(inputs.analysis, inputs.placements)?;
+        let mut plots = plots::all_named(inputs.analysis, inputs.placements, &named(inputs))?;
         plots.extend(tracking_plots(inputs)?);
         if !inputs.rigs.is_empty() {
             plots.push(plots::rigs_plot(inputs.analysis, &rig_ratios(inputs.rigs))?);
@@ -100,6 +100,38 @@ pub fn render(
         ));
     }
     Ok(files)
+}
+
+/// The X-rays worth naming in the plots: the rows added though flagged, and the X-rays of
+/// the history's last addition (when they are still in the data).
+fn named(inputs: &ReportInputs<'_>) -> plots::Named {
+    let a = inputs.analysis;
+    let newest = inputs
+        .history
+        .iter()
+        .rev()
+        .find(|s| s.event == crate::dataset::history::Event::Add)
+        .and_then(|s| s.change.as_ref())
+        .map(|c| {
+            c.xrays
+                .iter()
+                .filter(|x| {
+                    a.fingers
+                        .iter()
+                        .any(|f| f.xrays.iter().any(|v| *v.xray == ***x))
+                })
+                .cloned()
+                .collect()
+        })
+        .unwrap_or_default();
+    plots::Named {
+        flagged: a
+            .flagged
+            .iter()
+            .map(|f| (f.xray.to_string(), f.finger))
+            .collect(),
+        newest,
+    }
 }
 
 /// The ratios of each reference rig, for the rig plot.

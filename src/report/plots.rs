@@ -71,9 +71,21 @@ pub struct Plot {
 /// One panel per relative quantity (J~1, J~2[, J~3]) with its own x axis. Up to
 /// 12 X-rays each point is labelled with its X-ray id; up to 2000 the points are
 /// spread vertically by a fixed sequence; beyond, a histogram keeps the SVG small.
-/// Id `finger-<name>`.
+/// Beyond 12, only the X-rays worth naming are labelled ([`Named`]: none here, so
+/// only those outside the prediction interval). Id `finger-<name>`.
 pub fn finger_plot(f: &FingerAnalysis, confidence: f64) -> Result<Plot, Error> {
-    finger::plot(f, confidence)
+    finger::plot(f, confidence, &Named::default())
+}
+
+/// The X-rays worth naming in the plots: labels stay legible at any n because only
+/// these are labelled once there are more than a dozen X-rays (with the X-rays whose
+/// value lies outside the prediction interval).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Named {
+    /// Rows added though flagged as likely errors: (X-ray, finger).
+    pub flagged: Vec<(String, Finger)>,
+    /// The X-rays of the newest addition (the history's last `add`).
+    pub newest: Vec<String>,
 }
 
 /// Hand diagram: the fingers as segments, each joint's mean position with range and prediction band.
@@ -147,9 +159,18 @@ pub(crate) fn atlas_plot(
 
 /// Every plot of a report, in display order: one per finger, the hand diagram, the forest plot.
 pub fn all(a: &Analysis, placements: &[FingerPlacement]) -> Result<Vec<Plot>, Error> {
+    all_named(a, placements, &Named::default())
+}
+
+/// [`all`], the finger plots naming the X-rays of `named` (and their outliers).
+pub fn all_named(
+    a: &Analysis,
+    placements: &[FingerPlacement],
+    named: &Named,
+) -> Result<Vec<Plot>, Error> {
     let mut plots = Vec::new();
     for f in &a.fingers {
-        plots.push(finger_plot(f, a.settings.confidence)?);
+        plots.push(finger::plot(f, a.settings.confidence, named)?);
     }
     plots.push(hand_diagram(placements, a.settings.confidence)?);
     plots.push(forest_plot(a)?);

@@ -17,17 +17,21 @@ use crate::format::{
 /// Too wide for `width`, the percentile and BCa intervals go first, then the
 /// range, the SE and the t interval, then (below about 75 columns) the min
 /// and max: the mean, SD and prediction interval stay.
-fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden) -> String {
+fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden, head: bool) -> String {
     let c = level(a.settings.confidence);
-    let mut out = format!(
-        "phalanx statistics of {} ({}, {} rows); confidence {c}, seed {}\n",
-        a.dataset.path,
-        xrays(a.dataset.xrays),
-        a.dataset.rows,
-        a.settings.seed
-    );
-    for line in dataset_notes(a) {
-        out.push_str(&format!("note: {line}\n"));
+    let mut out = String::new();
+    if head {
+        out.push_str(&format!(
+            "phalanx statistics of {} ({}, {} rows); confidence {c}, seed {}\n",
+            a.dataset.path,
+            xrays(a.dataset.xrays),
+            a.dataset.rows,
+            a.settings.seed
+        ));
+        for line in dataset_notes(a) {
+            out.push_str(&format!("note: {line}\n"));
+        }
+        out.push_str(&flagged_text(a));
     }
     for f in &a.fingers {
         out.push_str(&format!(
@@ -79,24 +83,92 @@ pub fn dataset_notes(a: &Analysis) -> Vec<String> {
     if a.pixel_lengths() {
         notes.push(PIXEL_NOTE.to_string());
     }
+    if let Some(n) = units_note(a) {
+        notes.push(n);
+    }
     if a.tips.bone + a.tips.skin > 0 {
         notes.push(format!("fingertips: {}", a.tips.describe()));
     }
     notes
 }
 
+/// What a dataset whose rows are in several units means for its statistics, when it is:
+/// the rows per unit, that relative values and ratios pool, and which fingers lose their
+/// total J.
+pub fn units_note(a: &Analysis) -> Option<String> {
+    if !a.mixed_units() {
+        return None;
+    }
+    let units: Vec<String> = a
+        .units
+        .iter()
+        .map(|(u, n)| {
+            format!(
+                "{} ({n} row{})",
+                u.as_deref().map_or("no unit named", |u| u),
+                if *n == 1 { "" } else { "s" }
+            )
+        })
+        .collect();
+    let without: Vec<&str> = a
+        .fingers
+        .iter()
+        .filter(|f| f.quantity(Quantity::Total).is_none())
+        .map(|f| f.finger.name())
+        .collect();
+    Some(format!(
+        "the rows give their lengths in {} units: {}. The relative values and ratios have no unit and pool across them; lengths in different units are never averaged, so the total length J is left out for {} (measured in more than one unit). For J in one unit, run phalanx on a file of that unit's rows",
+        a.units.len(),
+        units.join(", "),
+        if without.is_empty() {
+            "no finger".to_string()
+        } else {
+            without.join(", ")
+        }
+    ))
+}
+
 /// Why a dataset in pixels has no total length J.
 pub const PIXEL_NOTE: &str = "lengths are in pixels (px) of images whose scale differs, so the total length J and the metacarpal are not comparable across X-rays and are not averaged; the relative values and ratios are. Import with --pixel-spacing MM for lengths in millimetres";
 
-/// The statistics of the whole dataset, then of each group (`--group-by`).
+/// The rows of the data added though flagged as likely errors, when there are: each
+/// with its line and why, and how to take it out.
+pub(crate) fn flagged_text(a: &Analysis) -> String {
+    if a.flagged.is_empty() {
+        return String::new();
+    }
+    let mut out = format!(
+        "flagged: {} of the data {} added though flagged as a likely error (add --accept-flagged); check {}, and take out a wrong one with 'phalanx remove --xray ID --finger F':\n",
+        if a.flagged.len() == 1 {
+            "1 row".to_string()
+        } else {
+            format!("{} rows", a.flagged.len())
+        },
+        if a.flagged.len() == 1 { "was" } else { "were" },
+        if a.flagged.len() == 1 { "it" } else { "them" },
+    );
+    for f in &a.flagged {
+        out.push_str(&format!(
+            "  - X-ray {} {} (line {}): {}\n",
+            f.xray,
+            f.finger.name(),
+            f.line,
+            f.reason
+        ));
+    }
+    out
+}
+
+/// The statistics of the whole dataset, then of each group (`--group-by`), known groups
+/// first, then the differences between the known groups.
 pub(crate) fn stats_with_groups(
     a: &Analysis,
-    groups: &[crate::analysis::groups::Group],
+    groups: Option<&crate::analysis::groups::Groups>,
     width: Width,
 ) -> String {
     let mut hidden = Hidden::new();
-    let mut out = stats_body(a, width, &mut hidden);
-    for g in groups {
+    let mut out = stats_body(a, width, &mut hidden, true);
+    for g in groups.map_or(&[][..], |g| &g.groups) {
         out.push_str(&format!(
             "\n==== {} = {} ({}) ====\n",
             g.by,
@@ -106,15 +178,72 @@ pub(crate) fn stats_with_groups(
         if let Some(n) = &g.note {
             out.push_str(&format!("note: {n}\n"));
         }
-        // Skip the group's own title line (the dataset line repeats the overall one).
-        let body = stats_body(&g.analysis, width, &mut hidden);
-        out.push_str(
-            body.split_once('\n')
-                .map_or(body.as_str(), |(_, rest)| rest),
-        );
+        out.push_str(&stats_body(&g.analysis, width, &mut hidden, false));
+    }
+    for d in groups.map_or(&[][..], |g| &g.differences) {
+        out.push_str(&group_difference(
+            groups.map_or("", |g| g.by),
+            d,
+            width,
+            &mut hidden,
+        ));
     }
     hidden.append_to(&mut out, width);
     fit_text(&out, width)
+}
+
+/// One known group against the reference group, per finger: a sentence (as `compare`
+/// says it), then per quantity each group's mean (SD), the difference with its Welch and
+/// bootstrap intervals, and Hedges' g.
+fn group_difference(
+    by: &str,
+    d: &crate::analysis::groups::GroupDifference,
+    width: Width,
+    hidden: &mut Hidden,
+) -> String {
+    use super::compare as cmp;
+    let c = &d.cohorts;
+    let lv = level(c.settings.confidence);
+    let mut out = format!(
+        "\n==== {by}: {} against {} (differences {} - {}) ====\n",
+        d.b, d.a, d.b, d.a
+    );
+    let names = cmp::Names {
+        a: d.a.as_str(),
+        b: d.b.as_str(),
+    };
+    for f in &c.fingers {
+        out.push_str(&format!(
+            "\n{} ({}: {}, {}: {})\n",
+            cmp::finger_sentence(f, names, c.settings.confidence),
+            d.a,
+            xrays(f.n_a),
+            d.b,
+            xrays(f.n_b)
+        ));
+        // Each group's means are in its own tables above.
+        let mut t = Grid::new()
+            .col("quantity", Align::Left, Give::Keep)
+            .col(format!("{} - {}", d.b, d.a), Align::Right, Give::Keep)
+            .col(format!("Welch {lv}"), Align::Right, Give::Keep)
+            .col(format!("bootstrap {lv}"), Align::Right, Give::Drop(2))
+            .col("Hedges' g", Align::Right, Give::Drop(1));
+        for q in &f.quantities {
+            let (k, cmpn) = (q.quantity, &q.comparison);
+            t.row(vec![
+                cmp::short(k).to_string(),
+                cmp::difference_cell(cmpn, k),
+                cmp::welch_cell(cmpn, k),
+                cmp::bootstrap_cell(cmpn, k),
+                cmp::hedges_cell(cmpn),
+            ]);
+        }
+        out.push_str(&t.render(width, 0, hidden));
+    }
+    for n in &c.notes {
+        out.push_str(&format!("note: {n}\n"));
+    }
+    out
 }
 
 /// The claim-by-claim check, then a summary line. Too wide for `width`, the
@@ -228,66 +357,249 @@ pub(crate) fn coverage(
     fit_text(&out, width)
 }
 
-/// The history of each selected quantity, snapshot by snapshot. Too wide for
-/// `width`, the CI width goes first, then the SD, the event and the shift.
+/// How many quantities the compact history shows when the user picks none.
+pub(crate) const MOVED_SHOWN: usize = 6;
+
+/// How many records the compact history lists (the latest), before saying how many more.
+pub(crate) const RECORDS_SHOWN: usize = 12;
+
+/// What one history record changed, in words: the rows and X-rays added or removed, the
+/// file, the rows let in flagged, the note. Empty for a snapshot without a note.
+pub(crate) fn record_change(s: &Snapshot) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    if let Some(c) = &s.change {
+        let ids = if c.xrays.len() <= 4 {
+            c.xrays.join(", ")
+        } else {
+            format!(
+                "{} ... {}",
+                c.xrays[..2].join(", "),
+                c.xrays[c.xrays.len() - 1]
+            )
+        };
+        let sign = match s.event {
+            crate::dataset::history::Event::Remove => "-",
+            _ => "+",
+        };
+        let of = match c.xrays.len() {
+            1 => format!("X-ray {ids}"),
+            n => format!("{n} X-rays: {ids}"),
+        };
+        let what = format!(
+            "{sign}{} row{} ({of})",
+            c.rows,
+            if c.rows == 1 { "" } else { "s" }
+        );
+        parts.push(match (&c.file, s.event) {
+            (Some(f), _) => format!("{what} from {f}"),
+            (None, crate::dataset::history::Event::Remove) => what,
+            (None, _) => format!("{what} typed as options"),
+        });
+        if !c.flagged.is_empty() {
+            let rows: Vec<String> = c
+                .flagged
+                .iter()
+                .map(|f| format!("{} {}", f.xray, f.finger.name()))
+                .collect();
+            parts.push(match s.event {
+                crate::dataset::history::Event::Remove => {
+                    format!("had been added flagged: {}", rows.join(", "))
+                }
+                _ => format!("added though flagged: {}", rows.join(", ")),
+            });
+        }
+    }
+    if let Some(n) = &s.note {
+        parts.push(format!("note: {n}"));
+    }
+    parts.join("; ")
+}
+
+/// The history: by default the records (the latest [`RECORDS_SHOWN`], each with what it
+/// changed) and one table of the quantities that moved most from the first record to
+/// the last ([`MOVED_SHOWN`] of them), or of the ones `finger` and `quantity` pick; one
+/// quantity picked, its table record by record. `all` gives every selected quantity's
+/// table, record by record. Too wide for `width`, the CI width goes first, then the SD,
+/// the event and the shift.
 pub(crate) fn history(
     path: &std::path::Path,
     snaps: &[Snapshot],
     finger: Option<Finger>,
     quantity: Option<Quantity>,
+    all: bool,
     width: Width,
 ) -> String {
     if snaps.is_empty() {
         return fit_text(
             &format!(
-                "No snapshots in {} yet: 'phalanx add' records one per addition, 'phalanx snapshot' one on demand.\n",
+                "No snapshots in {} yet: 'phalanx add' and 'phalanx remove' record one per change, 'phalanx snapshot' one on demand.\n",
                 path.display()
             ),
             width,
         );
     }
     let mut hidden = Hidden::new();
-    let mut out = format!("{} snapshots in {}\n", snaps.len(), path.display());
-    for (f, q) in crate::analysis::tracking::selected(snaps, finger, quantity) {
-        let d = decimals(q.is_unitless());
-        out.push_str(&format!("\n{f} {}\n", q.label()));
-        let mut t = Grid::new()
-            .col("#", Align::Right, Give::Keep)
-            .col("time", Align::Left, Give::Keep)
-            .col("event", Align::Left, Give::Drop(3))
-            .col("n", Align::Right, Give::Keep)
-            .col("mean", Align::Right, Give::Keep)
-            .col("sd", Align::Right, Give::Drop(2))
-            .col("t CI", Align::Right, Give::Keep)
-            .col("CI width", Align::Right, Give::Drop(1))
-            .col("mean shift", Align::Right, Give::Drop(4));
-        let mut previous: Option<f64> = None;
-        for (i, s) in snaps.iter().enumerate() {
-            let Some(r) = s
-                .quantities
-                .iter()
-                .find(|r| r.finger == f && r.quantity == q)
-            else {
-                continue;
-            };
-            let ci = r.intervals.ci_t;
-            t.row(vec![
-                (i + 1).to_string(),
-                s.time.clone(),
-                s.event.to_string(),
-                r.n.to_string(),
-                num(r.mean, d),
-                opt(r.sd, d),
-                interval(ci, d),
-                opt(ci.map(|c| c.width()), d),
-                previous.map_or_else(|| "-".to_string(), |p| signed(r.mean - p, d)),
-            ]);
-            previous = Some(r.mean);
+    let mut out = format!(
+        "{} snapshot{} in {}, {} to {}\n",
+        snaps.len(),
+        if snaps.len() == 1 { "" } else { "s" },
+        path.display(),
+        snaps[0].time,
+        snaps[snaps.len() - 1].time
+    );
+    let one = finger.is_some() && quantity.is_some();
+    if all || one {
+        for (f, q) in crate::analysis::tracking::selected(snaps, finger, quantity) {
+            out.push_str(&format!("\n{f} {}\n", q.label()));
+            out.push_str(&quantity_table(snaps, f, q, width, &mut hidden));
         }
-        out.push_str(&t.render(width, 0, &mut hidden));
+        if one {
+            out.push_str(&records_list(snaps, width));
+        }
+    } else {
+        out.push_str(&records_list(snaps, width));
+        out.push_str(&moved_table(snaps, finger, quantity, width, &mut hidden));
     }
     hidden.append_to(&mut out, width);
     fit_text(&out, width)
+}
+
+/// The records, one line each (the latest [`RECORDS_SHOWN`]): number, time, event,
+/// X-rays, what changed.
+fn records_list(snaps: &[Snapshot], width: Width) -> String {
+    let skip = snaps.len().saturating_sub(RECORDS_SHOWN);
+    let mut out = String::from("\n");
+    if skip > 0 {
+        out.push_str(&format!(
+            "(snapshots 1 to {skip} not listed; --all shows every one)\n"
+        ));
+    }
+    for (i, s) in snaps.iter().enumerate().skip(skip) {
+        let change = record_change(s);
+        out.push_str(&format!(
+            "#{} {} {}, {}{}\n",
+            i + 1,
+            s.time,
+            s.event,
+            xrays(s.xrays),
+            if change.is_empty() {
+                String::new()
+            } else {
+                format!(": {change}")
+            }
+        ));
+    }
+    fit_text(&out, width)
+}
+
+/// One quantity record by record: mean, SD, t interval, its width, the shift from the
+/// record before.
+fn quantity_table(
+    snaps: &[Snapshot],
+    f: Finger,
+    q: Quantity,
+    width: Width,
+    hidden: &mut Hidden,
+) -> String {
+    let d = decimals(q.is_unitless());
+    let mut t = Grid::new()
+        .col("#", Align::Right, Give::Keep)
+        .col("time", Align::Left, Give::Keep)
+        .col("event", Align::Left, Give::Drop(3))
+        .col("n", Align::Right, Give::Keep)
+        .col("mean", Align::Right, Give::Keep)
+        .col("sd", Align::Right, Give::Drop(2))
+        .col("t CI", Align::Right, Give::Keep)
+        .col("CI width", Align::Right, Give::Drop(1))
+        .col("mean shift", Align::Right, Give::Drop(4));
+    let mut previous: Option<f64> = None;
+    for (i, s) in snaps.iter().enumerate() {
+        let Some(r) = s
+            .quantities
+            .iter()
+            .find(|r| r.finger == f && r.quantity == q)
+        else {
+            continue;
+        };
+        let ci = r.intervals.ci_t;
+        t.row(vec![
+            (i + 1).to_string(),
+            s.time.clone(),
+            s.event.to_string(),
+            r.n.to_string(),
+            num(r.mean, d),
+            opt(r.sd, d),
+            interval(ci, d),
+            opt(ci.map(|c| c.width()), d),
+            previous.map_or_else(|| "-".to_string(), |p| signed(r.mean - p, d)),
+        ]);
+        previous = Some(r.mean);
+    }
+    t.render(width, 0, hidden)
+}
+
+/// The quantities that moved most from the first record to the last (or those picked),
+/// one row each: X-rays, mean, shift, shift in SDs, t interval, first and last.
+fn moved_table(
+    snaps: &[Snapshot],
+    finger: Option<Finger>,
+    quantity: Option<Quantity>,
+    width: Width,
+    hidden: &mut Hidden,
+) -> String {
+    let (first, last) = (&snaps[0], &snaps[snaps.len() - 1]);
+    let moved = crate::analysis::tracking::moved(first, last, finger, quantity);
+    let picked = finger.is_some() || quantity.is_some();
+    let shown = if picked {
+        moved.len()
+    } else {
+        moved.len().min(MOVED_SHOWN)
+    };
+    let mut out = if picked {
+        format!(
+            "\nFrom snapshot 1 to {} ({}; shift in SDs of snapshot 1):\n",
+            snaps.len(),
+            match (finger, quantity) {
+                (Some(f), None) => format!("the {f}'s quantities"),
+                (None, Some(q)) => format!("{} of every finger", q.label()),
+                _ => "the quantities picked".to_string(),
+            }
+        )
+    } else {
+        format!(
+            "\nThe {shown} quantities that moved most from snapshot 1 to {} (shift in SDs of snapshot 1; \
+             --finger and --quantity pick others, --all shows every quantity snapshot by snapshot):\n",
+            snaps.len()
+        )
+    };
+    let mut t = Grid::new()
+        .col("finger", Align::Left, Give::Keep)
+        .col("quantity", Align::Left, Give::Keep)
+        .col("n", Align::Right, Give::Keep)
+        .col("mean", Align::Right, Give::Keep)
+        .col("shift", Align::Right, Give::Keep)
+        .col("SDs", Align::Right, Give::Drop(2))
+        .col("t CI first", Align::Right, Give::Drop(1))
+        .col("t CI last", Align::Right, Give::Keep);
+    for m in moved.iter().take(shown) {
+        let d = decimals(m.quantity.is_unitless());
+        t.row(vec![
+            m.finger.name().to_string(),
+            m.quantity.label().to_string(),
+            format!("{} -> {}", m.before.n, m.after.n),
+            format!("{} -> {}", num(m.before.mean, d), num(m.after.mean, d)),
+            signed(m.after.mean - m.before.mean, d),
+            m.standardised
+                .map_or_else(|| "-".to_string(), |z| signed(z, 1)),
+            interval(m.before.intervals.ci_t, d),
+            interval(m.after.intervals.ci_t, d),
+        ]);
+    }
+    if snaps.len() == 1 {
+        out.push_str("(one snapshot: nothing has moved yet)\n");
+    }
+    out.push_str(&t.render(width, 0, hidden));
+    out
 }
 
 /// Joint positions and segment lengths of model fingers, one table each. Too

@@ -6,7 +6,7 @@
 use super::plots::{Plot, PlotKind};
 use crate::analysis::claims::{CheckSummary, ClaimResult, Verdict};
 use crate::analysis::coverage::{CoverageSettings, CurvePoint, MethodCoverage, holds};
-use crate::analysis::groups::Group;
+use crate::analysis::groups::{GroupDifference, Groups};
 use crate::analysis::placement::FingerPlacement;
 use crate::analysis::population::PopulationStudy;
 use crate::analysis::{Analysis, Quantity};
@@ -35,6 +35,10 @@ pub struct ReportView {
     pub table1: Table1View,
     pub derived: Vec<DerivedFinger>,
     pub stats: Vec<StatsFinger>,
+    /// Rows added though flagged as likely errors, listed with the statistics.
+    pub flagged: Vec<FlaggedView>,
+    /// What the statistics section says about units (and why a total is missing).
+    pub units_note: Option<String>,
     pub claims: ClaimsView,
     pub placement: PlacementView,
     pub coverage: CoverageView,
@@ -53,12 +57,60 @@ pub struct ReportView {
     pub plots: Vec<PlotView>,
 }
 
+/// A row of the data added though flagged as a likely error.
+#[derive(Debug, Clone, Serialize)]
+pub struct FlaggedView {
+    pub xray: String,
+    pub finger: String,
+    pub line: String,
+    pub reason: String,
+    /// The command that takes it out.
+    pub remove: String,
+}
+
 /// Statistics per group of X-rays.
 #[derive(Debug, Clone, Serialize)]
 pub struct GroupsView {
     /// The column grouped on.
     pub by: String,
+    /// Known groups first, "unknown" last.
     pub groups: Vec<GroupView>,
+    /// Each known group after the first against the first.
+    pub differences: Vec<GroupDifferenceView>,
+    /// The confidence level, e.g. "95%".
+    pub confidence: String,
+}
+
+/// One known group against the reference group, as `compare` puts two cohorts.
+#[derive(Debug, Clone, Serialize)]
+pub struct GroupDifferenceView {
+    /// "male against female".
+    pub title: String,
+    pub id: String,
+    pub a: String,
+    pub b: String,
+    pub fingers: Vec<GroupDifferenceFinger>,
+    pub notes: Vec<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct GroupDifferenceFinger {
+    pub finger: String,
+    /// What differs, as `compare` says it.
+    pub sentence: String,
+    pub counts: String,
+    pub rows: Vec<GroupDifferenceRow>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct GroupDifferenceRow {
+    pub quantity: String,
+    pub a: String,
+    pub b: String,
+    pub difference: String,
+    pub welch: String,
+    pub bootstrap: String,
+    pub hedges: String,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -74,14 +126,27 @@ pub struct GroupView {
 #[derive(Debug, Clone, Serialize)]
 pub struct TrackingView {
     pub file: String,
+    /// "7 records".
     pub snapshots: String,
     /// Set when there is nothing to compare yet.
     pub note: Option<String>,
-    /// The two snapshots compared, e.g. "snapshot 3 (2026-..., 6 X-rays) against snapshot 2 (...)".
+    /// The two records compared, e.g. "record 7 (..., 16 X-rays) against record 1 (...)".
     pub compared: String,
+    /// The records from the one compared against to the last, with what each changed.
+    pub records: Vec<RecordView>,
     pub changes: Vec<ChangeRow>,
     pub target: String,
     pub needed: Vec<NeededRow>,
+}
+
+/// One record of the history: what made it and what it changed.
+#[derive(Debug, Clone, Serialize)]
+pub struct RecordView {
+    pub number: String,
+    pub time: String,
+    pub event: String,
+    pub xrays: String,
+    pub change: String,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -141,6 +206,8 @@ pub struct SettingsText {
     pub model_length: String,
     /// Why the intervals are wide at this n (the t quantile against the normal one).
     pub width_reason: String,
+    /// What unit the totals J are in, as a sentence ending the statistics intro.
+    pub length_unit: String,
 }
 
 /// Table 1 of the paper: one row per X-ray, J1..J3 per finger.
@@ -152,6 +219,8 @@ pub struct Table1View {
     /// Set when only the first [`MAX_LISTED_XRAYS`] X-rays are listed.
     pub truncated: Option<String>,
     pub unit: String,
+    /// True when the rows give different units: each row then names its own.
+    pub units: bool,
     /// "Table 1: the measurements" over the paper's X-rays, "The measurements" otherwise.
     pub heading: String,
     /// Where the lengths come from, ending the section's first sentence.
@@ -169,6 +238,8 @@ pub struct Table1Group {
 #[derive(Debug, Clone, Serialize)]
 pub struct Table1Row {
     pub xray: String,
+    /// The row's unit, when the dataset mixes units (else empty: the unit is `Table1View::unit`).
+    pub unit: String,
     /// Every length, group by group; "-" where the X-ray lacks that finger.
     pub cells: Vec<String>,
 }
@@ -335,8 +406,10 @@ pub struct RealCoverageView {
 /// The "Key results" box at the top of the report.
 #[derive(Debug, Clone, Serialize)]
 pub struct KeyResults {
-    /// "5 X-rays".
+    /// What the X-rays count: "16 X-rays; 15 for the thumb, index, middle and little".
     pub xrays: String,
+    /// Set when rows flagged as likely errors are in the data: which, and where listed.
+    pub flagged: Option<String>,
     /// The confidence level, e.g. "95%".
     pub confidence: String,
     /// Each finger's inner joints as shares of the finger's length.
@@ -404,6 +477,10 @@ pub struct PlotView {
     /// Path relative to the report directory, e.g. `plots/hand.svg`.
     pub file: String,
     pub svg: String,
+    /// The description's first sentence, shown under the plot.
+    pub caption: String,
+    /// The rest of the description (every value in words), folded away in HTML.
+    pub details: String,
 }
 
 /// Everything a report is built from.
@@ -423,10 +500,12 @@ pub struct ReportInputs<'a> {
     /// The history file and its snapshots, for the Tracking section.
     pub history_file: &'a str,
     pub history: &'a [Snapshot],
+    /// The record "What changed" runs from (1-based); `None`: the first.
+    pub since: Option<usize>,
     /// Target half-width of the confidence interval of a relative mean.
     pub target: f64,
-    /// Statistics per group (`--group-by`); empty when not grouped.
-    pub groups: &'a [Group],
+    /// Statistics per group (`--group-by`); `None` when not grouped.
+    pub groups: Option<&'a Groups>,
     /// Popular rigs judged against the statistics (`data/rigs`).
     pub rigs: &'a [ReferenceAudit],
     /// How many of the dataset's X-rays the claims name (the paper's), and how many it
@@ -605,16 +684,111 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         table1: table1(a, inputs.paper_xrays),
         derived: a.fingers.iter().map(derived).collect(),
         stats: a.fingers.iter().map(stats).collect(),
+        flagged: flagged_rows(a),
+        units_note: super::text::units_note(a).map(|n| sentence(&n)),
         claims,
-        placement: placement(inputs.placements, inputs.model_length, inputs.paper_xrays),
+        placement: placement(
+            inputs.placements,
+            inputs.model_length,
+            inputs.paper_xrays,
+            &counted(a),
+        ),
         coverage: coverage(inputs),
         tracking: tracking(inputs),
-        groups: groups_view(inputs.groups),
+        groups: groups_view(inputs.groups, a.settings.confidence),
         rigs: rigs_view(inputs.rigs),
         atlas: inputs.atlas.map(|x| atlas_view(a, x)),
         literature: inputs.literature.map(literature_view),
         deform: inputs.deform.map(|d| d.view.clone()),
         plots: plots.iter().map(plot).collect(),
+    }
+}
+
+/// A note as a sentence: capitalised, ending in a full stop.
+fn sentence(note: &str) -> String {
+    let mut c = note.chars();
+    let mut s: String = match c.next() {
+        Some(f) => f.to_uppercase().chain(c).collect(),
+        None => String::new(),
+    };
+    if !s.ends_with('.') {
+        s.push('.');
+    }
+    s
+}
+
+/// "a", "a and b", "a, b and c".
+fn and_list(items: &[&str]) -> String {
+    match items.split_last() {
+        None => String::new(),
+        Some((last, [])) => last.to_string(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+/// What the X-rays count, said once for the report: "16 X-rays" when every finger has
+/// them all, else "16 X-rays; 15 for the thumb, index, middle and little" (each smaller
+/// count with its fingers).
+pub fn counted(a: &Analysis) -> String {
+    let total = a.dataset.xrays;
+    let mut out = xrays(total);
+    let mut sizes: Vec<usize> = a
+        .fingers
+        .iter()
+        .map(|f| f.n)
+        .filter(|&n| n != total)
+        .collect();
+    sizes.sort_unstable_by(|x, y| y.cmp(x));
+    sizes.dedup();
+    let parts: Vec<String> = sizes
+        .iter()
+        .map(|&n| {
+            let names: Vec<&str> = a
+                .fingers
+                .iter()
+                .filter(|f| f.n == n)
+                .map(|f| f.finger.name())
+                .collect();
+            format!("{n} for the {}", and_list(&names))
+        })
+        .collect();
+    if !parts.is_empty() {
+        out.push_str("; ");
+        out.push_str(&parts.join(", "));
+    }
+    out
+}
+
+/// The rows added though flagged, for the statistics section.
+fn flagged_rows(a: &Analysis) -> Vec<FlaggedView> {
+    a.flagged
+        .iter()
+        .map(|f| FlaggedView {
+            xray: f.xray.to_string(),
+            finger: f.finger.name().to_string(),
+            line: f.line.to_string(),
+            reason: f.reason.clone(),
+            remove: format!(
+                "phalanx remove --xray {} --finger {}",
+                f.xray,
+                f.finger.name()
+            ),
+        })
+        .collect()
+}
+
+/// What unit the totals J are in, as the statistics section says it.
+fn length_unit(a: &Analysis) -> String {
+    if a.mixed_units() {
+        "The rows give their lengths in more than one unit: J is shown only for a finger whose X-rays share one.".to_string()
+    } else if a.pixel_lengths() {
+        "The lengths are per-image pixels, so J is not averaged.".to_string()
+    } else {
+        match &a.unit {
+            Some(u) if u == "image units" => "J is in image units.".to_string(),
+            Some(u) => format!("J is in {u}."),
+            None => "J is in the dataset's unit (the rows name none).".to_string(),
+        }
     }
 }
 
@@ -631,6 +805,7 @@ fn settings_text(inputs: &ReportInputs<'_>) -> SettingsText {
         bootstrap: plans.join("; "),
         model_length: exact(inputs.model_length),
         width_reason: width_reason(a),
+        length_unit: length_unit(a),
     }
 }
 
@@ -726,11 +901,22 @@ fn table1(a: &Analysis, paper_xrays: (usize, usize)) -> Table1View {
                 .collect()
         })
         .collect();
+    let units: std::collections::HashMap<&str, &str> = fingers
+        .iter()
+        .flat_map(|f| f.xrays.iter())
+        .filter_map(|x| Some((&*x.xray, x.unit.as_deref()?)))
+        .collect();
+    let mixed = a.mixed_units();
     let rows = ids
         .iter()
         .take(MAX_LISTED_XRAYS)
         .map(|id| Table1Row {
             xray: id.to_string(),
+            unit: if mixed {
+                units.get(id).map_or("none named", |u| u).to_string()
+            } else {
+                String::new()
+            },
             cells: fingers
                 .iter()
                 .zip(&lookup)
@@ -745,7 +931,15 @@ fn table1(a: &Analysis, paper_xrays: (usize, usize)) -> Table1View {
         groups,
         rows,
         truncated: truncation(ids.len()),
-        unit: "image units (pixels of the X-ray images, not millimetres)".into(),
+        unit: match (&a.unit, mixed) {
+            (_, true) => "the unit each row names (its column 'unit')".to_string(),
+            (Some(u), _) if u == "image units" => {
+                "image units (pixels of the X-ray images, not millimetres)".to_string()
+            }
+            (Some(u), _) => u.clone(),
+            (None, _) => "the dataset's unit (its rows name none)".to_string(),
+        },
+        units: mixed,
         anchor: format!(
             "2-{}",
             heading
@@ -872,18 +1066,22 @@ fn claims(file: &str, results: &[ClaimResult], note: Option<&str>) -> ClaimsView
     }
 }
 
-fn placement(ps: &[FingerPlacement], length: f64, paper_xrays: (usize, usize)) -> PlacementView {
+fn placement(
+    ps: &[FingerPlacement],
+    length: f64,
+    paper_xrays: (usize, usize),
+    counts: &str,
+) -> PlacementView {
     let d = length_decimals(length);
     let origin = if is_paper(paper_xrays) {
-        "This is the paper's worked example, with the corrected mean.".to_string()
+        "This is the paper's worked example, with the corrected mean. (The index is the paper's 'grooming' finger.)".to_string()
     } else {
         format!(
-            "The paper works this example with its own X-rays; here the means are over the dataset's {} X-rays.",
-            paper_xrays.1
+            "The paper works this example with its own X-rays; here the means are over the dataset's {counts}. (The index is the paper's 'grooming' finger.)"
         )
     };
     let row = |finger: Finger, what: &str, p: &crate::analysis::placement::Placed| PlacementRow {
-        finger: finger.display_name().to_string(),
+        finger: finger.name().to_string(),
         what: what.to_string(),
         mean: num(p.mean, d),
         min: num(p.min, d),
@@ -927,7 +1125,42 @@ fn coverage_cell(p: &CurvePoint, name: &str) -> String {
 /// which methods hold their nominal level there ([`holds`]) and which fall
 /// short. `None` when the data's n was not simulated.
 pub fn interval_advice(points: &[CurvePoint]) -> Option<String> {
+    interval_advice_of(points, None)
+}
+
+/// [`interval_advice`], naming the fingers whose n it is when `a` says some fingers
+/// have more X-rays ("At n = 15 X-rays (the thumb, index, middle and little; the ring
+/// has 16)").
+pub fn interval_advice_of(points: &[CurvePoint], a: Option<&Analysis>) -> Option<String> {
     let p = points.iter().filter(|p| p.in_data).min_by_key(|p| p.n)?;
+    let whose = a
+        .filter(|a| a.fingers.iter().any(|f| f.n != p.n))
+        .map(|a| {
+            let at: Vec<&str> = a
+                .fingers
+                .iter()
+                .filter(|f| f.n == p.n)
+                .map(|f| f.finger.name())
+                .collect();
+            let mut others: Vec<usize> = a
+                .fingers
+                .iter()
+                .map(|f| f.n)
+                .filter(|&n| n != p.n)
+                .collect();
+            others.sort_unstable();
+            others.dedup();
+            let more = match others.as_slice() {
+                [one] => format!("{one}"),
+                [lo, .., hi] => format!("{lo} to {hi}"),
+                [] => String::new(),
+            };
+            format!(
+                " (the n of the {}; the other fingers have {more})",
+                and_list(&at)
+            )
+        })
+        .unwrap_or_default();
     let t = method(p, "t")?;
     let pi = method(p, "prediction")?;
     let name = |m: &str| match m {
@@ -944,7 +1177,7 @@ pub fn interval_advice(points: &[CurvePoint]) -> Option<String> {
         .map(|m| format!("{} ({})", name(m.method), percent(m.coverage)))
         .collect();
     let mut s = format!(
-        "At n = {}, the t interval covers the mean {} of the time and the prediction interval holds {} of new hands, against a nominal {}",
+        "At n = {}{whose}, the t interval covers the mean {} of the time and the prediction interval holds {} of new hands, against a nominal {}",
         xrays(p.n),
         percent(t.coverage),
         percent(pi.coverage),
@@ -1014,7 +1247,7 @@ fn coverage(inputs: &ReportInputs<'_>) -> CoverageView {
         .map(|p| xrays(p.n))
         .collect();
     let notes = crate::analysis::coverage::not_simulated(inputs.analysis, s);
-    let summary = interval_advice(points).unwrap_or_else(|| {
+    let summary = interval_advice_of(points, Some(inputs.analysis)).unwrap_or_else(|| {
         "Coverage could not be simulated at this data's size (fewer than 2 X-rays, or more than the report simulates).".to_string()
     });
     CoverageView {
@@ -1160,12 +1393,34 @@ fn key_results(inputs: &ReportInputs<'_>, claims: &ClaimsView) -> KeyResults {
             })
             .collect(),
     };
+    let flagged = match a.flagged.as_slice() {
+        [] => None,
+        rows => {
+            let list: Vec<String> = rows
+                .iter()
+                .map(|f| format!("{} {}", f.xray, f.finger.name()))
+                .collect();
+            Some(format!(
+                "{} of the data {} added though flagged as a likely measurement or typing error: {}. The numbers below include {}; check {} (section 4 lists why each was flagged, and how to take it out).",
+                if rows.len() == 1 {
+                    "1 row".to_string()
+                } else {
+                    format!("{} rows", rows.len())
+                },
+                if rows.len() == 1 { "was" } else { "were" },
+                list.join(", "),
+                if rows.len() == 1 { "it" } else { "them" },
+                if rows.len() == 1 { "it" } else { "them" },
+            ))
+        }
+    };
     KeyResults {
-        xrays: xrays(a.dataset.xrays),
+        xrays: counted(a),
+        flagged,
         confidence: c,
         placements,
         misprints,
-        intervals: interval_advice(inputs.coverage).unwrap_or_else(|| {
+        intervals: interval_advice_of(inputs.coverage, Some(a)).unwrap_or_else(|| {
             "The coverage of the intervals could not be simulated at this data's size.".to_string()
         }),
         fingertips: inputs.literature.and_then(key_fingertips),
@@ -1223,7 +1478,13 @@ fn citation() -> CitationView {
 }
 
 fn plot(p: &Plot) -> PlotView {
+    let (caption, details) = match p.description.split_once(". ") {
+        Some((first, rest)) => (format!("{first}."), rest.to_string()),
+        None => (p.description.clone(), String::new()),
+    };
     PlotView {
+        caption,
+        details,
         id: p.id.clone(),
         kind: p.kind,
         title: p.title.clone(),
@@ -1235,46 +1496,71 @@ fn plot(p: &Plot) -> PlotView {
 
 fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
     let snaps = inputs.history;
-    let (note, compared, changes) = if snaps.len() < 2 {
+    let records = |from: usize| -> Vec<RecordView> {
+        snaps
+            .iter()
+            .enumerate()
+            .skip(from)
+            .map(|(i, s)| RecordView {
+                number: (i + 1).to_string(),
+                time: s.time.clone(),
+                event: s.event.to_string(),
+                xrays: s.xrays.to_string(),
+                change: super::text::record_change(s),
+            })
+            .collect()
+    };
+    let (note, compared, changes, listed) = if snaps.len() < 2 {
         let count = match snaps.len() {
             0 => "No snapshot yet".to_string(),
             1 => "One snapshot".to_string(),
             k => format!("{k} snapshots"),
         };
         let note = format!(
-            "{count} in {}: changes and plots appear once there are two. 'phalanx add' records one per addition; 'phalanx snapshot' one on demand.",
+            "{count} in {}: changes and plots appear once there are two. 'phalanx add' and 'phalanx remove' append one per change; 'phalanx snapshot' one on demand.",
             inputs.history_file
         );
-        (Some(note), String::new(), Vec::new())
+        (Some(note), String::new(), Vec::new(), records(0))
     } else {
-        let (b, e) = (snaps.len() - 2, snaps.len() - 1);
+        let e = snaps.len() - 1;
+        // --since is checked against the history before the report is built.
+        let b = inputs.since.map_or(0, |n| n.saturating_sub(1)).min(e - 1);
         let compared = format!(
             "{} against {}",
             describe_snapshot(snaps, e),
             describe_snapshot(snaps, b)
         );
-        (None, compared, change_rows(&snaps[b], &snaps[e]))
+        (
+            None,
+            compared,
+            change_rows(&snaps[b], &snaps[e]),
+            records(b),
+        )
     };
     TrackingView {
         file: inputs.history_file.to_string(),
-        snapshots: snaps.len().to_string(),
+        snapshots: match snaps.len() {
+            1 => "1 snapshot".to_string(),
+            k => format!("{k} snapshots"),
+        },
         note,
         compared,
+        records: listed,
         changes,
         target: num(inputs.target, 4),
         needed: needed_rows(inputs.analysis, inputs.target),
     }
 }
 
-/// "snapshot 3 (time, event, 7 X-rays)" for snapshot `i` of `snaps`.
+/// "record 3 (time, event, 7 X-rays)" for record `i` of `snaps`.
 fn describe_snapshot(snaps: &[Snapshot], i: usize) -> String {
     let s = &snaps[i];
     format!(
-        "snapshot {} ({}, {}, {} X-rays)",
+        "snapshot {} ({}, {}, {})",
         i + 1,
         s.time,
         s.event,
-        s.xrays
+        xrays(s.xrays)
     )
 }
 
@@ -1338,11 +1624,19 @@ fn needed_rows(a: &Analysis, target: f64) -> Vec<NeededRow> {
         .collect()
 }
 
-fn groups_view(groups: &[Group]) -> Option<GroupsView> {
-    let by = groups.first()?.by;
+fn groups_view(groups: Option<&Groups>, confidence: f64) -> Option<GroupsView> {
+    let all = groups?;
     Some(GroupsView {
-        by: by.to_string(),
-        groups: groups
+        by: all.by.to_string(),
+        confidence: level(confidence),
+        differences: all
+            .differences
+            .iter()
+            .enumerate()
+            .map(|(i, d)| group_difference(d, i))
+            .collect(),
+        groups: all
+            .groups
             .iter()
             .enumerate()
             .map(|(i, g)| GroupView {
@@ -1363,6 +1657,45 @@ fn groups_view(groups: &[Group]) -> Option<GroupsView> {
             })
             .collect(),
     })
+}
+
+/// The view of one group difference: per finger `compare`'s sentence and its table.
+fn group_difference(d: &GroupDifference, i: usize) -> GroupDifferenceView {
+    use super::compare as cmp;
+    let c = &d.cohorts;
+    let names = cmp::Names { a: &d.a, b: &d.b };
+    GroupDifferenceView {
+        title: format!("{} against {}", d.b, d.a),
+        id: format!("group-difference-{}", i + 1),
+        a: d.a.clone(),
+        b: d.b.clone(),
+        fingers: c
+            .fingers
+            .iter()
+            .map(|f| GroupDifferenceFinger {
+                finger: f.finger.display_name().to_string(),
+                sentence: cmp::finger_sentence(f, names, c.settings.confidence),
+                counts: format!("{}: {}, {}: {}", d.a, xrays(f.n_a), d.b, xrays(f.n_b)),
+                rows: f
+                    .quantities
+                    .iter()
+                    .map(|q| {
+                        let (k, x) = (q.quantity, &q.comparison);
+                        GroupDifferenceRow {
+                            quantity: k.label().to_string(),
+                            a: cmp::mean_sd(x.a.mean, x.a.sd, k),
+                            b: cmp::mean_sd(x.b.mean, x.b.sd, k),
+                            difference: cmp::difference_cell(x, k),
+                            welch: cmp::welch_cell(x, k),
+                            bootstrap: cmp::bootstrap_cell(x, k),
+                            hedges: cmp::hedges_cell(x),
+                        }
+                    })
+                    .collect(),
+            })
+            .collect(),
+        notes: c.notes.clone(),
+    }
 }
 
 fn rigs_view(rigs: &[ReferenceAudit]) -> Option<RigsView> {
@@ -1528,15 +1861,17 @@ fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
     );
     let title = format!("The paper against {} atlas radiographs", c.b.xrays);
     AtlasView {
-        anchor: format!("12-{}", title.to_ascii_lowercase().replace(' ', "-")),
+        anchor: format!("11-{}", title.to_ascii_lowercase().replace(' ', "-")),
         title,
         cohorts: vec![
             format!("The paper: {}", cohort_line(&c.a)),
             format!("The atlas: {}", cohort_line(&c.b)),
         ],
         differs: format!(
-            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with landmarks at the joint centres and at the tips of the bones; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin, and its data record them at the skin, inferred from published adult measurements (section 13). A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
-            c.b.xrays, c.a.xrays
+            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with {}; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin, and its data record them at the skin, inferred from published adult measurements (section 12). A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
+            c.b.xrays,
+            crate::dataset::landmarks::ATLAS_LANDMARKS,
+            c.a.xrays
         ),
         comparison,
         sentences: atlas_sentences(c, confidence),
@@ -1713,7 +2048,7 @@ fn literature_view(l: &LiteratureInputs) -> LiteratureView {
         .map(|t| format!("{} {}", t.finger.name(), percent(t.soft_share)))
         .collect();
     let audit = format!(
-        "What it changes for a rig audit: the paper's last segment ends at the skin, so a rig's last segment is compared with it as it is when the rig's tips are at the skin (the end of the finger's mesh), and no soft tissue is to be trimmed off. A rig whose tips sit at the end of the bone needs the fingertip's soft tissue added before it is compared: {name} measures it at {} of a finger measured to the skin, a share that scales with the rig's finger in any unit. A fixed offset in millimetres does not: a rig in the wrong unit would lose most of a segment to it. The audits of section 7 follow this: they read each dataset's tips from its tip column, compare skin tips with skin tips as they are, and where one side's tips are at the bone (the atlas's, for the MCP judged from its CMC or the wrist) correct the last segment by that finger's share.",
+        "What it changes for a rig audit: the paper's last segment ends at the skin, so a rig's last segment is compared with it as it is when the rig's tips are at the skin (the end of the finger's mesh), and no soft tissue is to be trimmed off. A rig whose tips sit at the end of the bone needs the fingertip's soft tissue added before it is compared: {name} measures it at {} of a finger measured to the skin, a share that scales with the rig's finger in any unit. A fixed offset in millimetres does not: a rig in the wrong unit would lose most of a segment to it. The audits of section 13 follow this: they read each dataset's tips from its tip column, compare skin tips with skin tips as they are, and where one side's tips are at the bone (the atlas's, for the MCP judged from its CMC or the wrist) correct the last segment by that finger's share.",
         soft.join(", ")
     );
     let mut side = Vec::new();
@@ -1747,7 +2082,7 @@ fn literature_view(l: &LiteratureInputs) -> LiteratureView {
     );
     LiteratureView {
         title: "The paper against published measurements".to_string(),
-        anchor: "13-the-paper-against-published-measurements".to_string(),
+        anchor: "12-the-paper-against-published-measurements".to_string(),
         source,
         cohorts,
         tips,

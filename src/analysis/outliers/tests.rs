@@ -355,3 +355,76 @@ fn percent_and_ratio_texts() {
     assert_eq!(ratio_text(10.04), "10.0");
     assert_eq!(ratio_text(0.1), "0.10");
 }
+
+/// A row of `text` with the given unit.
+fn row_in(text: &str, unit: &str) -> Row {
+    let csv = format!("xray,finger,j1,j2,j3,unit\n{text},{unit}\n");
+    Dataset::from_bytes("n.csv", csv.as_bytes()).unwrap().rows[0].clone()
+}
+
+#[test]
+fn swapped_j1_and_j3_are_named() {
+    let a = analyse(&paper(), &Settings::default());
+    // The paper's 1a ring measured from the tip: J3, J2, J1.
+    let flags = flag_rows(&a, &[one_row("s,ring,191.09,226.47,358.40")]);
+    assert_eq!(flags.len(), 1);
+    assert!(flags[0].swapped);
+    assert!(
+        flags[0].finding.ends_with(
+            ": j1 and j3 look swapped (J3 = 358.4 is longer than J1 = 191.09, but the proximal phalanx is the longest; measured from the tip?), and exchanged they fit"
+        ),
+        "{}",
+        flags[0].finding
+    );
+    assert!(
+        flags[0].reason.starts_with("ring X-ray 's': J~1 = "),
+        "{}",
+        flags[0].reason
+    );
+    // J3 longer than J1 but a typo in J2 besides: no claim of a swap.
+    let flags = flag_rows(&a, &[one_row("t,ring,191.09,2264.7,358.40")]);
+    assert!(!flags[0].swapped, "{}", flags[0].reason);
+    assert!(
+        flags[0].reason.contains("j2 looks 10 times too large"),
+        "{}",
+        flags[0].reason
+    );
+}
+
+#[test]
+fn the_typo_rule_compares_lengths_of_one_unit_and_proportions_pool() {
+    let mut mixed = paper();
+    // The paper's 1a and 1b index fingers again, in mm (a tenth).
+    for text in [
+        "m1,index,33.996,18.883,16.967",
+        "m2,index,34.247,19.524,18.670",
+    ] {
+        mixed.rows.push(row_in(text, "mm"));
+    }
+    let a = analyse(&mixed, &Settings::default());
+    // A genuine row in mm: no flag, though a tenth of the image-unit lengths.
+    assert!(flag_rows(&a, &[row_in("m3,index,35.967,20.658,17.353", "mm")]).is_empty());
+    // A tenfold typo in mm, against the mm rows: j1 ten times too large.
+    let flags = flag_rows(&a, &[row_in("m4,index,359.67,20.658,17.353", "mm")]);
+    assert!(
+        flags[0]
+            .reason
+            .contains("the median j1 of the current X-rays in its unit (34.1215)"),
+        "{}",
+        flags[0].reason
+    );
+    assert!(
+        flags[0].reason.contains("j1 looks 10 times too large"),
+        "{}",
+        flags[0].reason
+    );
+    // In a unit no current X-ray has: the proportions only, and a note says so.
+    let cm = row_in("c1,index,3.5967,2.0658,1.7353", "cm");
+    assert!(flag_rows(&a, std::slice::from_ref(&cm)).is_empty());
+    assert_eq!(
+        unit_limits(&a, &[cm]),
+        [
+            "no current X-ray gives index lengths in 'cm', so the new rows in 'cm' are checked on their relative values only (the tenfold-typo rule compares lengths of one unit)"
+        ]
+    );
+}

@@ -20,6 +20,10 @@
 //! cannot be a finger ([`checks`]). A finger the file does not annotate at all (or marks as
 //! not labelled) is left out with a note; the notes are returned, not printed.
 
+/// Where the Digital Hand Atlas's landmarks sit, said once for every text that names them
+/// (audit, report): at the joints where one bone meets the next, and at the bone tips.
+pub(crate) const ATLAS_LANDMARKS: &str = "landmarks where one bone meets the next (the middle of each joint as the X-ray shows it, not the rotation centre a rig's joint is) and at the tips of the distal phalanges (bone tips, no soft tissue)";
+
 mod atlas37;
 mod checks;
 mod coco;

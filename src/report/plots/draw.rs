@@ -48,6 +48,8 @@ pub(super) const GRID: RGBColor = RGBColor(0xE0, 0xE0, 0xE0);
 pub(super) const SHADE: RGBColor = RGBColor(0xF2, 0xF2, 0xF2);
 /// One X-ray's value.
 pub(super) const POINT: RGBColor = RGBColor(0x3A, 0x3A, 0x3A);
+/// A point worth naming: flagged, outside the prediction interval, or of the newest batch.
+pub(super) const NAMED: RGBColor = RGBColor(0xC2, 0x18, 0x5B);
 /// The observed range (min..max) band (Okabe-Ito orange).
 pub(super) const RANGE: RGBColor = RGBColor(0xE6, 0x9F, 0x00);
 /// A model finger's bone.
@@ -343,6 +345,8 @@ impl<'r, 'a> Pen<'r, 'a> {
 pub(super) enum Swatch {
     /// One X-ray's value.
     Point,
+    /// An X-ray worth naming (flagged, outside the prediction interval, newest).
+    Named,
     /// X-rays binned into a histogram.
     Histogram,
     /// The mean.
@@ -429,6 +433,7 @@ fn draw_swatch(pen: &Pen, left: Px, swatch: Swatch) -> DrawResult {
     let mid = (x + SWATCH_W / 2, y);
     match swatch {
         Swatch::Point => pen.dot(mid, 4, POINT, 0.85),
+        Swatch::Named => pen.dot(mid, 5, NAMED, 1.0),
         Swatch::Histogram => {
             for (i, h) in [4, 9, 6].into_iter().enumerate() {
                 let x0 = x + 6 + 6 * i as i32;

@@ -3,14 +3,18 @@
 //!
 //! X-rays are drawn one by one while there are few (labelled with their ids up
 //! to [`LABELLED_MAX`], deterministically jittered up to [`POINTS_MAX`]) and as a
-//! histogram beyond, so the SVG stays small whatever the number of X-rays.
+//! histogram beyond, so the SVG stays small whatever the number of X-rays. Beyond
+//! [`LABELLED_MAX`] only the X-rays worth naming carry their id, at most
+//! [`NAMED_MAX`] per panel, each on a lane of its own so the labels stay legible:
+//! rows added though flagged, X-rays outside the panel's prediction interval (the
+//! farthest first), and the newest addition when it has at most [`NEWEST_NAMED`] X-rays.
 
 use super::draw::{
     Axes, Categories, Chart, Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, Linear, MARGIN,
-    MUTED, POINT, Pen, Px, Root, Swatch, WIDTH, clip, draw_axes, extent, finish, padded, render,
-    stats_values, text_width, tick_format,
+    MUTED, NAMED, POINT, Pen, Px, Root, Swatch, WIDTH, clip, draw_axes, extent, finish, padded,
+    render, stats_values, text_width, tick_format,
 };
-use super::{Plot, PlotKind, finger_phrase};
+use super::{Named, Plot, PlotKind, finger_phrase};
 use crate::analysis::{FingerAnalysis, Quantity, QuantityStats};
 use crate::error::Error;
 use crate::format;
@@ -19,6 +23,12 @@ use plotters::style::text_anchor::{HPos, VPos};
 
 /// Up to this many X-rays, each point carries its X-ray's id.
 pub(super) const LABELLED_MAX: usize = 12;
+/// Beyond [`LABELLED_MAX`], at most this many X-rays per panel carry their id.
+pub(super) const NAMED_MAX: usize = 8;
+/// The newest addition is named when it has at most this many X-rays.
+pub(super) const NEWEST_NAMED: usize = 4;
+/// Rows of the strip per named X-ray (its lane).
+const NAMED_LANE: f64 = 0.6;
 /// Beyond this many X-rays, values are binned instead of drawn one by one.
 pub(super) const POINTS_MAX: usize = 2000;
 /// Up to this many X-rays, the description lists every value.
@@ -70,11 +80,11 @@ struct Rows {
 }
 
 impl Rows {
-    /// The layout for `n` X-rays drawn as `strip`.
-    fn new(strip: Strip, n: usize) -> Rows {
+    /// The layout for `n` X-rays drawn as `strip`, `named` of them on lanes of their own.
+    fn new(strip: Strip, n: usize, named: usize) -> Rows {
         let height = match strip {
             Strip::Labelled => (0.55 * n as f64).max(1.2),
-            Strip::Jittered | Strip::Binned => 2.5,
+            Strip::Jittered | Strip::Binned => 2.5 + NAMED_LANE * named as f64,
         };
         let strip_high = STRIP_LOW + height;
         Rows {
@@ -123,26 +133,46 @@ impl Rows {
     }
 }
 
+/// Why an X-ray is named in a panel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Why {
+    Flagged,
+    Outside,
+    Newest,
+}
+
 /// One relative quantity of the finger with its per-X-ray values.
 struct Panel<'f> {
     stats: &'f QuantityStats,
     /// `(X-ray id, value)` in X-ray order.
     values: Vec<(&'f str, f64)>,
+    /// Indices into `values` of the X-rays worth naming (beyond [`LABELLED_MAX`]),
+    /// ordered by value, at most [`NAMED_MAX`].
+    named: Vec<usize>,
 }
 
 impl<'f> Panel<'f> {
     /// The panels of a finger: its relative quantities, in order.
-    fn all(f: &'f FingerAnalysis) -> Vec<Panel<'f>> {
+    fn all(f: &'f FingerAnalysis, named: &Named) -> Vec<Panel<'f>> {
         f.quantities
             .iter()
             .filter_map(|s| {
                 let k = segment_index(s.name)?;
-                let values = f
+                let values: Vec<(&str, f64)> = f
                     .xrays
                     .iter()
                     .filter_map(|x| x.relative.get(k).map(|&v| (&*x.xray, v)))
                     .collect();
-                Some(Panel { stats: s, values })
+                let named = if values.len() > LABELLED_MAX {
+                    worth_naming(&values, s, f.finger, named)
+                } else {
+                    Vec::new()
+                };
+                Some(Panel {
+                    stats: s,
+                    values,
+                    named,
+                })
             })
             .collect()
     }
@@ -161,6 +191,42 @@ impl<'f> Panel<'f> {
     }
 }
 
+/// The X-rays of a panel worth naming, by index into `values`, ordered by value: the
+/// flagged rows of the finger, then those outside the prediction interval (farthest
+/// first), then the newest addition if it is small, at most [`NAMED_MAX`] in all. O(n log n).
+fn worth_naming(
+    values: &[(&str, f64)],
+    s: &QuantityStats,
+    finger: crate::dataset::Finger,
+    named: &Named,
+) -> Vec<usize> {
+    let small_newest = named.newest.len() <= NEWEST_NAMED;
+    let mut picks: Vec<(Why, f64, usize)> = values
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &(id, v))| {
+            let beyond = s
+                .intervals
+                .pi
+                .map_or(0.0, |pi| (pi.low - v).max(v - pi.high).max(0.0));
+            let why = if named.flagged.iter().any(|(x, f)| x == id && *f == finger) {
+                Why::Flagged
+            } else if beyond > 0.0 {
+                Why::Outside
+            } else if small_newest && named.newest.iter().any(|x| x == id) {
+                Why::Newest
+            } else {
+                return None;
+            };
+            Some((why, -beyond, i))
+        })
+        .collect();
+    picks.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
+    let mut out: Vec<usize> = picks.into_iter().take(NAMED_MAX).map(|p| p.2).collect();
+    out.sort_by(|&a, &b| values[a].1.total_cmp(&values[b].1).then(a.cmp(&b)));
+    out
+}
+
 /// The index into `XrayValues::relative` of a relative quantity.
 fn segment_index(q: Quantity) -> Option<usize> {
     match q {
@@ -176,12 +242,13 @@ fn segment_index(q: Quantity) -> Option<usize> {
 }
 
 /// Draws the plot of one finger.
-pub(super) fn plot(f: &FingerAnalysis, confidence: f64) -> Result<Plot, Error> {
+pub(super) fn plot(f: &FingerAnalysis, confidence: f64, named: &Named) -> Result<Plot, Error> {
     let n = f.xrays.len();
     let strip = Strip::for_count(n);
-    let rows = Rows::new(strip, n);
-    let panels = Panel::all(f);
-    let legend = legend(strip, confidence);
+    let panels = Panel::all(f, named);
+    let most_named = panels.iter().map(|p| p.named.len()).max().unwrap_or(0);
+    let rows = Rows::new(strip, n, most_named);
+    let legend = legend(strip, confidence, most_named > 0);
     let panel_px = rows.panel_px();
     let body = panel_px * panels.len() as u32;
     let title = format!("Relative segment lengths of {}", finger_phrase(f.finger));
@@ -209,13 +276,20 @@ pub(super) fn plot(f: &FingerAnalysis, confidence: f64) -> Result<Plot, Error> {
     )
 }
 
-/// The legend: how X-rays are drawn, the mean, the four intervals.
-fn legend(strip: Strip, confidence: f64) -> Vec<LegendItem> {
+/// The legend: how X-rays are drawn, the named ones, the mean, the four intervals.
+fn legend(strip: Strip, confidence: f64, named: bool) -> Vec<LegendItem> {
     let xray = match strip {
         Strip::Binned => LegendItem::new(Swatch::Histogram, "X-rays per bin (histogram)"),
         Strip::Labelled | Strip::Jittered => LegendItem::new(Swatch::Point, "one X-ray"),
     };
-    let mut items = vec![xray, LegendItem::new(Swatch::Mean, "mean")];
+    let mut items = vec![xray];
+    if named {
+        items.push(LegendItem::new(
+            Swatch::Named,
+            "named: flagged, outside the prediction interval, or newest",
+        ));
+    }
+    items.push(LegendItem::new(Swatch::Mean, "mean"));
     items.extend(LegendItem::intervals(confidence, "X-ray"));
     items
 }
@@ -270,6 +344,7 @@ fn draw_panel(pen: &Pen, area: &Root<'_>, panel: &Panel, strip: Strip, rows: Row
         Strip::Jittered => draw_jittered(pen, &at, panel, rows)?,
         Strip::Binned => draw_binned(pen, &at, panel, rows, (x0, x1))?,
     }
+    draw_named(pen, &at, panel, rows, at(x1, 0.0).0)?;
     draw_intervals(pen, &at, s, x0)
 }
 
@@ -327,10 +402,57 @@ fn draw_labelled(
     Ok(())
 }
 
-/// One point per X-ray, spread vertically over the strip by the golden-ratio sequence.
+/// A label beside point `p`, on its right or, near the right edge `right_px`, its left.
+fn label_at(pen: &Pen, p: Px, label: &str, font: Font, right_px: i32) -> DrawResult {
+    if p.0 + 8 + text_width(label, 11.0) > right_px {
+        pen.text(
+            (p.0 - 8, p.1),
+            label,
+            font.anchor(HPos::Right, VPos::Center),
+        )
+    } else {
+        pen.text((p.0 + 8, p.1), label, font)
+    }
+}
+
+/// The named X-rays (beyond [`LABELLED_MAX`]), each on a lane of its own above the
+/// other points, by value, highlighted and labelled with its id.
+fn draw_named(
+    pen: &Pen,
+    at: &dyn Fn(f64, f64) -> Px,
+    panel: &Panel,
+    rows: Rows,
+    right_px: i32,
+) -> DrawResult {
+    for (lane, &i) in panel.named.iter().enumerate() {
+        let (id, v) = panel.values[i];
+        let y = rows.strip_high - NAMED_LANE * (lane as f64 + 0.5);
+        let p = at(v, y);
+        pen.dot(p, 5, NAMED, 1.0)?;
+        label_at(
+            pen,
+            p,
+            &clip(id, 16),
+            Font::new(11.0).colour(NAMED),
+            right_px,
+        )?;
+    }
+    Ok(())
+}
+
+/// The height of the strip left to the unnamed points (below the named lanes).
+fn unnamed_height(panel: &Panel, rows: Rows) -> f64 {
+    rows.strip_high - STRIP_LOW - NAMED_LANE * panel.named.len() as f64
+}
+
+/// One point per X-ray, spread vertically over the strip (below the named lanes) by
+/// the golden-ratio sequence; the named ones are drawn by [`draw_named`].
 fn draw_jittered(pen: &Pen, at: &dyn Fn(f64, f64) -> Px, panel: &Panel, rows: Rows) -> DrawResult {
-    let height = rows.strip_high - STRIP_LOW;
+    let height = unnamed_height(panel, rows);
     for (i, &(_, v)) in panel.values.iter().enumerate() {
+        if panel.named.contains(&i) {
+            continue;
+        }
         let jitter = ((i as f64 + 1.0) * GOLDEN).fract();
         let y = STRIP_LOW + height * (0.08 + 0.84 * jitter);
         pen.dot(at(v, y), 3, POINT, 0.45)?;
@@ -349,7 +471,7 @@ fn draw_binned(
     let counts = histogram(panel.values.iter().map(|&(_, v)| v), x0, x1, BINS);
     let most = counts.iter().copied().max().unwrap_or(0).max(1) as f64;
     let width = (x1 - x0) / BINS as f64;
-    let height = rows.strip_high - STRIP_LOW;
+    let height = unnamed_height(panel, rows);
     for (b, &c) in counts.iter().enumerate().filter(|(_, c)| **c > 0) {
         let left = x0 + b as f64 * width;
         let top = STRIP_LOW + height * c as f64 / most;
@@ -385,6 +507,18 @@ fn description(f: &FingerAnalysis, panels: &[Panel], confidence: f64) -> String 
     for p in panels {
         d.push(' ');
         d.push_str(&quantity_sentence(p.stats, confidence));
+    }
+    for p in panels.iter().filter(|p| !p.named.is_empty()) {
+        let names: Vec<String> = p
+            .named
+            .iter()
+            .map(|&i| format!("{} {}", p.values[i].0, format::num(p.values[i].1, 4)))
+            .collect();
+        d.push_str(&format!(
+            " Named in the {} panel: {}.",
+            p.stats.name.symbol(),
+            names.join(", ")
+        ));
     }
     if n <= LISTED_MAX {
         d.push_str(" Values per X-ray: ");
@@ -449,7 +583,7 @@ mod tests {
 
     #[test]
     fn row_labels_name_every_tick() {
-        let rows = Rows::new(Strip::Labelled, 5);
+        let rows = Rows::new(Strip::Labelled, 5, 0);
         let labels: Vec<String> = rows.keys().iter().map(|&y| rows.label(y)).collect();
         assert_eq!(
             labels,

@@ -334,6 +334,7 @@ fn synthetic(n: usize) -> FingerAnalysis {
                 lengths,
                 total,
                 mc: None,
+                unit: None,
             }
         })
         .collect();
@@ -367,7 +368,9 @@ fn a_hundred_thousand_xrays_give_a_small_histogram() {
     let p = finger_plot(&f, 0.95).unwrap();
     assert_accessible(&p);
     assert!(p.svg.len() < 200_000, "{} bytes", p.svg.len());
-    assert_eq!(count(&p.svg, "<circle"), 0);
+    // Binned: no point of its own but the few worth naming (thousands lie outside the
+    // prediction interval; each panel names the farthest NAMED_MAX) and their legend entry.
+    assert_eq!(count(&p.svg, "<circle"), 3 * finger::NAMED_MAX + 1);
     assert!(p.svg.contains("X-rays per bin (histogram)"));
     assert!(p.svg.contains("n = 100000 X-rays."));
     assert!(!p.description.contains("x99999"));
@@ -379,11 +382,20 @@ fn points_are_drawn_one_by_one_up_to_the_limit() {
     let f = synthetic(finger::POINTS_MAX);
     let p = finger_plot(&f, 0.9).unwrap();
     assert_accessible(&p);
-    assert_eq!(count(&p.svg, "<circle"), 3 * finger::POINTS_MAX + 1);
+    // Every point once (a named one drawn as such), the legend's point and named entry.
+    assert_eq!(count(&p.svg, "<circle"), 3 * finger::POINTS_MAX + 2);
     assert!(p.svg.len() < 1_000_000, "{} bytes", p.svg.len());
     assert!(p.svg.contains("90% CI (bootstrap BCa)"));
-    // Past the labelled limit, points carry no ids.
-    assert!(!p.svg.contains("\nx7\n</text>"));
+    // Past the labelled limit, only the X-rays worth naming carry their ids: here those
+    // outside the prediction interval, at most NAMED_MAX per panel.
+    let ids = (0..finger::POINTS_MAX)
+        .filter(|i| p.svg.contains(&format!("\nx{i}\n</text>")))
+        .count();
+    assert!((1..=3 * finger::NAMED_MAX).contains(&ids), "{ids} ids");
+    assert!(
+        p.svg
+            .contains("named: flagged, outside the prediction interval, or newest")
+    );
 }
 
 #[test]
@@ -573,4 +585,63 @@ fn tracking_labels_are_escaped_exactly_once() {
     assert!(p.description.contains(SCRIPT));
     // In the panel heading and in the description.
     assert_eq!(count(&p.svg, "&lt;script&gt;alert(1)&lt;/script&gt;"), 2);
+}
+
+#[test]
+fn beyond_a_dozen_only_the_xrays_worth_naming_are_labelled() {
+    let f = synthetic(30);
+    // Without names: only X-rays outside a prediction interval (none in this smooth set).
+    let plain = finger::plot(&f, 0.95, &Named::default()).unwrap();
+    let labelled = |svg: &str| -> Vec<usize> {
+        (0..30)
+            .filter(|i| svg.contains(&format!("\n{}\n</text>", format_args!("x{i}"))))
+            .collect()
+    };
+    let outside: Vec<usize> = (0..30)
+        .filter(|&i| {
+            f.quantities
+                .iter()
+                .filter(|q| q.name.is_relative())
+                .any(|q| {
+                    let k = match q.name {
+                        Quantity::RelJ1 => 0,
+                        Quantity::RelJ2 => 1,
+                        _ => 2,
+                    };
+                    q.intervals
+                        .pi
+                        .is_some_and(|pi| !pi.contains(f.xrays[i].relative[k]))
+                })
+        })
+        .collect();
+    assert_eq!(labelled(&plain.svg), outside);
+    // A flagged row and a small newest batch are named in every panel, highlighted.
+    let named = Named {
+        flagged: vec![("x3".to_string(), Finger::Middle)],
+        newest: vec!["x5".to_string(), "x6".to_string()],
+    };
+    let p = finger::plot(&f, 0.95, &named).unwrap();
+    let mut expect = outside.clone();
+    expect.extend([3, 5, 6]);
+    expect.sort_unstable();
+    expect.dedup();
+    assert_eq!(labelled(&p.svg), expect);
+    assert!(
+        p.svg
+            .contains("named: flagged, outside the prediction interval, or newest")
+    );
+    assert!(
+        p.description.contains("Named in the J~1 panel: "),
+        "{}",
+        p.description
+    );
+    // A flag of another finger names nothing here; a large newest batch is not named.
+    let other = Named {
+        flagged: vec![("x3".to_string(), Finger::Index)],
+        newest: (0..10).map(|i| format!("x{i}")).collect(),
+    };
+    assert_eq!(
+        labelled(&finger::plot(&f, 0.95, &other).unwrap().svg),
+        outside
+    );
 }

@@ -24,7 +24,7 @@ use plotters::style::text_anchor::{HPos, VPos};
 /// Pixels above a panel's plotting area (its heading).
 const PANEL_TOP_PX: u32 = 30;
 /// Height of a panel's plotting area in pixels.
-const CHART_PX: u32 = 200;
+const CHART_PX: u32 = 140;
 /// Pixels below a panel's plotting area (tick labels and axis description).
 const X_AXIS_PX: u32 = 46;
 /// Height of the legend block in pixels.
@@ -244,10 +244,22 @@ fn draw_heading(pen: &Pen, top: i32, panel: &Panel) -> DrawResult {
     pen.text((MARGIN, y), &label, Font::new(13.0).bold())?;
     let n = panel.points.len();
     let missing = panel.points.iter().filter(|p| ci(p).is_none()).count();
-    let mut info = match n {
-        0 => return Ok(()),
-        1 => "1 snapshot".to_string(),
-        n => format!("{n} snapshots"),
+    // Records of the same data (a removal undoing an addition, say) draw on one point.
+    let mut distinct: Vec<(usize, u64)> = panel
+        .points
+        .iter()
+        .map(|p| (p.xrays, p.mean.to_bits()))
+        .collect();
+    distinct.sort_unstable();
+    distinct.dedup();
+    let mut info = match (n, distinct.len()) {
+        (0, _) => return Ok(()),
+        (1, _) => "1 snapshot".to_string(),
+        (n, d) if d == n => format!("{n} snapshots"),
+        (n, 1) => format!("{n} snapshots, all on one point (the same statistics)"),
+        (n, d) => {
+            format!("{n} snapshots on {d} points (snapshots with the same statistics coincide)")
+        }
     };
     if missing > 0 {
         info.push_str(&format!(", {missing} without an interval"));

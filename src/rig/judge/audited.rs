@@ -175,10 +175,11 @@ fn metacarpal_note(
     };
     let mut out = format!(
         "Metacarpals: {judged} against {} ({} with the metacarpal measured), with the same \
-         settings. The Digital Hand Atlas (the default) is children's left hands with landmarks \
-         at bone ends, not joint centres: read this as a guide.",
+         settings. The Digital Hand Atlas (the default) is children's left hands with {}: read \
+         this as a guide.",
         atlas.dataset.path,
-        crate::format::xrays(n)
+        crate::format::xrays(n),
+        crate::dataset::landmarks::ATLAS_LANDMARKS
     );
     if from_wrist > 0 {
         out.push_str(&format!(
