@@ -144,6 +144,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         None => Some(PathBuf::from(DEFAULT_METACARPALS)).filter(|p| p.is_file()),
     };
     let options = options(args)?;
+    let no_tissue = options.soft_tissue == SoftTissue::Unknown;
     let mut audit = session::audit(&AuditRequest {
         rig: &args.rig,
         map: args.map.as_deref(),
@@ -167,6 +168,30 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
             "Metacarpals: the rig has them, but {DEFAULT_METACARPALS} (the Digital Hand Atlas) \
              was not found here, so its MCPs are not judged from their CMCs; give a dataset with \
              an mc column with --metacarpals DATASET"
+        ));
+    }
+    // The atlas's tips are at the bone: without the soft tissue that bridges them to a rig's
+    // skin tips, no MCP is judged from its CMC or wrist, and the reader is told why.
+    if let Some(dataset) = &metacarpals
+        && no_tissue
+        && audit
+            .rig
+            .fingers
+            .iter()
+            .all(|f| f.metacarpal_check.is_none())
+        && audit
+            .rig
+            .fingers
+            .iter()
+            .any(|f| f.chain.metacarpal.is_some() || f.chain.wrist.is_some())
+    {
+        audit.rig.notes.push(format!(
+            "Metacarpals: no MCP is judged from its CMC or the wrist against {}: where its tips \
+             and the rig's differ (the atlas's at the bone, a rig's at the skin), the fingertip's \
+             soft tissue bridges them, and its table ({}) was not found here; run from the phalanx \
+             checkout, or give --tip-soft-tissue MM",
+            dataset.display(),
+            crate::rig::judge::SOFT_TISSUE_TABLE
         ));
     }
     let bytes = match args.format {

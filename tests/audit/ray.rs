@@ -30,6 +30,25 @@ fn with_atlas() -> Option<Workdir> {
     Some(wd)
 }
 
+/// Without the soft tissue table that bridges the atlas's bone tips and a rig's
+/// skin tips, no MCP is judged from its base, and a note says why.
+#[test]
+fn without_the_soft_tissue_table_a_note_says_why_no_mcp_is_judged_from_its_base() {
+    let Some(wd) = with_atlas() else { return };
+    std::fs::remove_dir_all(wd.path().join("data/literature")).unwrap();
+    wd.write("hand.glb", build(&HandSpec::new(Naming::Mixamo)));
+    let doc = audit_json(&wd, "hand.glb");
+    assert!(
+        fingers(&doc)
+            .iter()
+            .all(|f| f["metacarpal_check"].is_null())
+    );
+    wd.run(&["audit", "hand.glb"])
+        .ok()
+        .stdout_has("no MCP is judged from its CMC or the wrist")
+        .stdout_has("--tip-soft-tissue MM");
+}
+
 fn point(v: &Value) -> [f64; 3] {
     [num(&v[0]), num(&v[1]), num(&v[2])]
 }
