@@ -170,8 +170,8 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
              an mc column with --metacarpals DATASET"
         ));
     }
-    // The atlas's tips are at the bone: without the soft tissue that bridges them to a rig's
-    // skin tips, no MCP is judged from its CMC or wrist, and the reader is told why.
+    // The judge says which MCPs went unjudged for want of a soft tissue figure; where that
+    // figure comes from (a file here, or an option) is the command's to say.
     if let Some(dataset) = &metacarpals
         && no_tissue
         && audit
@@ -186,10 +186,9 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
             .any(|f| f.chain.metacarpal.is_some() || f.chain.wrist.is_some())
     {
         audit.rig.notes.push(format!(
-            "Metacarpals: no MCP is judged from its CMC or the wrist against {}: where its tips \
-             and the rig's differ (the atlas's at the bone, a rig's at the skin), the fingertip's \
-             soft tissue bridges them, and its table ({}) was not found here; run from the phalanx \
-             checkout, or give --tip-soft-tissue MM",
+            "Metacarpals: no MCP is judged from its CMC or the wrist against {}: the fingertip's \
+             soft tissue table ({}) was not found here; run from the phalanx checkout, or give \
+             --tip-soft-tissue MM",
             dataset.display(),
             crate::rig::judge::SOFT_TISSUE_TABLE
         ));

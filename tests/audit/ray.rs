@@ -45,6 +45,7 @@ fn without_the_soft_tissue_table_a_note_says_why_no_mcp_is_judged_from_its_base(
     );
     wd.run(&["audit", "hand.glb"])
         .ok()
+        .stdout_has("4 MCPs are not judged from the wrist: the rig's tips are read as skin tips")
         .stdout_has("no MCP is judged from its CMC or the wrist")
         .stdout_has("--tip-soft-tissue MM");
 }

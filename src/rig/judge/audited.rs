@@ -304,7 +304,7 @@ impl AuditedRig {
     /// atlas's wrist-to-MCP over finger length, read from its landmark file) no MCP is
     /// judged from the wrist, and a rig that has one gets a note.
     pub fn judge_metacarpals(&mut self, atlas: &Analysis, wrist: Option<&WristRatios>) {
-        let (mut from_cmc, mut from_wrist, mut wrist_skipped) = (0, 0, 0);
+        let (mut from_cmc, mut from_wrist, mut wrist_skipped, mut wrist_unbridged) = (0, 0, 0, 0);
         for f in &mut self.fingers {
             let Some(mcp) = f.chain.joints.first() else {
                 continue;
@@ -362,6 +362,12 @@ impl AuditedRig {
                             mcp.position,
                         );
                         from_wrist += usize::from(f.metacarpal_check.is_some());
+                        wrist_unbridged += usize::from(
+                            f.metacarpal_check.is_none()
+                                && f.audit.length.is_some()
+                                && length.is_nan()
+                                && f.audit.finger != Finger::Thumb,
+                        );
                     }
                     None => wrist_skipped += usize::from(f.audit.finger != Finger::Thumb),
                 }
@@ -377,6 +383,16 @@ impl AuditedRig {
                  metacarpals, and the atlas's landmark file (landmarks.csv beside {}, which gives \
                  the wrist-to-MCP distance over the finger's length) was not found",
                 atlas.dataset.path
+            ));
+        }
+        if wrist_unbridged > 0 {
+            self.notes.push(format!(
+                "Metacarpals: {wrist_unbridged} MCPs are not judged from the wrist: the rig's tips \
+                 are read as {} tips and {}'s as {} tips, and no figure for the soft tissue \
+                 between the two is known",
+                self.tips.rig_tip.name(),
+                atlas.dataset.path,
+                super::standing::data_tip_of(&atlas.tips).name()
             ));
         }
     }
