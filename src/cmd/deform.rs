@@ -261,8 +261,11 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
         // Checked before the work: the figures' names are known from the side (both when
         // the side is not known yet).
         let names: Vec<String> = match side {
-            Some(s) => vec![format!("deform-{}.png", s.name())],
-            None => vec!["deform-left.png".into(), "deform-right.png".into()],
+            Some(s) => vec![view::figure_file(s)],
+            None => vec![
+                view::figure_file(Side::Left),
+                view::figure_file(Side::Right),
+            ],
         };
         check_output_dir("--out", dir, &names, args.force.force)?;
     }

@@ -68,6 +68,11 @@ pub(crate) struct RenderView {
 /// Pixels per panel of a figure.
 const PANEL: (u32, u32) = (420, 300);
 
+/// The name of the `side` hand's figure, as `deform --out DIR` writes it.
+pub(crate) fn figure_file(side: Side) -> String {
+    format!("deform-{}.png", side.name())
+}
+
 /// The figure of one hand: rig A (and B) posed, from the side and from above
 /// in A's palm frame; PNG bytes and where the fingertips are drawn.
 pub(crate) fn figure(
@@ -114,7 +119,7 @@ pub(crate) fn figure(
         }
     }
     let side = a.chains.side;
-    let file = format!("deform-{}.png", side.name());
+    let file = figure_file(side);
     Ok((
         OutputFile::new(&file, png),
         RenderView {
