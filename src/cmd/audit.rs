@@ -290,6 +290,17 @@ fn json(audit: &Audit) -> Result<Vec<u8>, Error> {
             })
             .collect(),
         warnings: &fix.warnings,
+        bends: fix
+            .bends
+            .iter()
+            .map(|b| report::json::MovedBendView {
+                node: &b.node,
+                joint: &b.joint,
+                before: b.before,
+                after: b.after,
+            })
+            .collect(),
+        new_bend_defects: &fix.new_defects,
     });
     report::json::audit(&audit.analysis, &audit.rig, audit.fbx.as_ref(), fix)
 }
@@ -317,7 +328,7 @@ fn fix_summary(fix: &FixOutcome) -> String {
     let mut line = format!(
         "wrote {}: {} joints moved; re-audited, {} of {} fingers outside the prediction interval",
         fix.output.display(),
-        fix.moved.iter().filter(|(_, d)| *d > 0.0).count(),
+        fix.moved.len(),
         fix.reaudit.outside(),
         fix.reaudit.fingers.len()
     );
@@ -333,5 +344,6 @@ fn fix_summary(fix: &FixOutcome) -> String {
             fix.reaudit.metacarpals_outside()
         ));
     }
+    line.push_str(&report::audit::fix_bend_words(fix));
     line
 }

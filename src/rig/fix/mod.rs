@@ -165,8 +165,9 @@ struct Plan {
 
 /// Where each chain node goes: the joints the explanation moves to their
 /// suggestions, and the chain's other nodes after a moved one pinned where
-/// they are. With `only_outside`, a joint moves only when its own standing
-/// is outside the prediction interval.
+/// they are. A joint the judge holds ([`crate::rig::judge::Held`]: at its
+/// skin bend, or a move under the tolerance) stays. With `only_outside`, a
+/// joint moves only when its own standing is outside the prediction interval.
 fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
     let mut plan = Plan {
         targets: Vec::new(),
@@ -176,9 +177,9 @@ fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
     for (i, f) in fingers.iter().enumerate() {
         let (chain, audit) = (&f.chain, &f.audit);
         let moves = |rj: &RigJoint| {
-            audit.joint(rj.joint).filter(|j| {
-                j.moves && j.shift > 0.0 && !(only_outside && j.standing.is_consistent())
-            })
+            audit
+                .joint(rj.joint)
+                .filter(|j| j.fix_moves() && !(only_outside && j.standing.is_consistent()))
         };
         if !chain.joints.iter().any(|rj| moves(rj).is_some()) {
             continue;

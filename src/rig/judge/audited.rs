@@ -6,8 +6,12 @@
 use super::bend;
 use super::finger;
 use super::ray_base::{self, MetacarpalCheck, WRIST_DEFINITION, WristRatios};
-use super::standing::{FingerAudit, JudgeOptions, SoftTissue, TipKind};
+use super::standing::{
+    BEND_GUARD, ChainInput, FingerAudit, Held, HoldReason, JudgeOptions, MOVE_TOLERANCE,
+    SoftTissue, TipKind, chain_kinds,
+};
 use crate::analysis::Analysis;
+use crate::analysis::placement::Joint;
 use crate::dataset::Finger;
 use crate::rig::read::FingerChain;
 use crate::rig::read::weights::SkinWeights;
@@ -74,6 +78,99 @@ pub struct AuditedFinger {
     /// the chain's metacarpal node.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub metacarpal_check: Option<MetacarpalCheck>,
+}
+
+/// The distances from `from` (the joint `joint` as the rig has it) and from
+/// `to` (where a move puts it) to where its skin bends, when a bend was found.
+fn bend_distances(
+    bends: &[bend::Bend],
+    joint: Joint,
+    from: DVec3,
+    to: DVec3,
+) -> Option<(f64, f64)> {
+    let at = bends.iter().find(|b| b.joint == joint)?.at?;
+    Some((from.distance(at), to.distance(at)))
+}
+
+/// Why a move of the joint at `from` to `to` is not made, if it is not: it
+/// would end more than [`BEND_GUARD`] farther from its bend, or it is
+/// shorter than [`MOVE_TOLERANCE`].
+pub(super) fn hold_reason(
+    bends: &[bend::Bend],
+    joint: Joint,
+    from: DVec3,
+    to: DVec3,
+) -> Option<Held> {
+    let shift = from.distance(to);
+    let bend = bend_distances(bends, joint, from, to);
+    if let Some((before, after)) = bend
+        && after > before + BEND_GUARD
+    {
+        return Some(Held::new(HoldReason::Bend, shift, bend));
+    }
+    (shift > 0.0 && shift < MOVE_TOLERANCE).then(|| Held::new(HoldReason::Small, shift, bend))
+}
+
+/// `audit` (of `input`, judged with `judge` against `a`) with the fix's two
+/// rules applied to its explanation: a joint the explanation would move more
+/// than [`BEND_GUARD`] farther from where its skin bends (`bends`, from the
+/// rig's weights) is held, and the explanation sought again among the other
+/// joints (and `pinned`), until no held joint remains to add; then a move
+/// shorter than [`MOVE_TOLERANCE`] is marked not made. Each held joint's
+/// check says why ([`super::standing::JointCheck::held`]). Without bends only the tolerance
+/// applies. At most 4 re-judgements (a finger has 3 movable joints).
+pub(super) fn guard(
+    a: &Analysis,
+    input: &ChainInput,
+    judge: &JudgeOptions,
+    mut audit: FingerAudit,
+    bends: &[bend::Bend],
+    pinned: &[Joint],
+) -> FingerAudit {
+    let kinds = chain_kinds(input.finger, input.has_tip);
+    let at = |joint: Joint| {
+        kinds
+            .iter()
+            .position(|&k| k == joint)
+            .and_then(|k| input.points.get(k).copied())
+    };
+    let mut held: Vec<(Joint, Held)> = Vec::new();
+    for _ in 0..4 {
+        let new: Vec<(Joint, Held)> = audit
+            .joints
+            .iter()
+            .filter(|j| j.moves)
+            .filter_map(|j| {
+                let from = at(j.joint)?;
+                let h = hold_reason(bends, j.joint, from, j.suggested)?;
+                (h.reason == HoldReason::Bend).then_some((j.joint, h))
+            })
+            .filter(|(joint, _)| !held.iter().any(|(k, _)| k == joint))
+            .collect();
+        if new.is_empty() {
+            break;
+        }
+        held.extend(new);
+        let hold: Vec<Joint> = pinned
+            .iter()
+            .copied()
+            .chain(held.iter().map(|h| h.0))
+            .collect();
+        match finger::audit_holding(a, input, judge, &hold) {
+            Some(again) => audit = again,
+            None => break,
+        }
+    }
+    for j in &mut audit.joints {
+        if let Some((_, h)) = held.iter().find(|(k, _)| *k == j.joint) {
+            j.held = Some(h.clone());
+        } else if j.moves
+            && let Some(from) = at(j.joint)
+        {
+            j.held = hold_reason(bends, j.joint, from, j.suggested);
+        }
+    }
+    audit
 }
 
 /// Every finger of a rig judged against the statistics.
@@ -248,6 +345,7 @@ impl AuditedRig {
                     let bends = weights
                         .map(|w| bend::bends(chain, w, opts.bend_tolerance))
                         .unwrap_or_default();
+                    let audit = guard(a, &input, &judge, audit, &bends, &[]);
                     fingers.push(AuditedFinger {
                         chain: chain.clone(),
                         audit,
