@@ -1,5 +1,6 @@
 //! `phalanx audit`: rigs built by the tests (tests/audit/hand.rs) judged against the paper's data.
 
+mod bend_guard;
 mod conventions;
 mod fixing;
 pub(crate) mod hand;

@@ -1,6 +1,7 @@
 //! `audit --fix`: a copy of a rig with the joints the audit's explanation
-//! moves (see [`crate::rig::judge`]) where it puts them, the skin weights moved
-//! with them, and everything else kept.
+//! moves (see [`crate::rig::judge`]) where it puts them, and everything else
+//! kept. Joints the judge holds (at their skin bend, or a move under 1 mm:
+//! [`crate::rig::judge::Held`]) stay.
 //!
 //! For each finger the explanation's joints (MCP, PIP, DIP: the fewest that
 //! bring the finger inside the X-rays' prediction intervals; with
@@ -15,9 +16,11 @@
 //!
 //! The mesh's rest shape is kept exactly: a joint whose world matrix goes from
 //! W to W' gets the inverse bind matrix B' = W'^-1 W B, so W' B' = W B and every
-//! skinned vertex is where it was (up to the f32 the file stores). The skin
-//! weights of each moved finger are moved with its joints so its skin bends
-//! where the joints now are (`remap`). Translation keys of moved
+//! skinned vertex is where it was (up to the f32 the file stores). `audit
+//! --fix` leaves the skin weights as painted (the judge keeps every moved
+//! joint within 1 mm of where they bend the skin); given `weights`,
+//! [`fix_with`] moves each moved finger's weights with its joints (`remap`).
+//! Translation keys of moved
 //! nodes are offset by their rest translation's change (`anim`);
 //! channels with paths glTF does not define are reported and left alone.
 //!
