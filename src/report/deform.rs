@@ -15,7 +15,7 @@ use super::view::{
 };
 use super::writer::OutputFile;
 use crate::error::Error;
-use crate::format::{num, percent, signed, trimmed};
+use crate::format::{count, num, percent, signed, trimmed};
 use crate::rig::AuditedRig;
 use crate::rig::deform::file::{FileDeformation, HandDeformation};
 use crate::rig::deform::measures::{HandMeasures, JointMeasures};
@@ -252,23 +252,54 @@ fn heading(pose: &Pose, method: Skinning) -> String {
     out
 }
 
-/// Pose and skinning in one line.
+/// Pose and skinning in one line; fingers bent alike share one group:
+/// "fingers MCP 60, PIP 90, DIP 60 degrees" when all four are, else each
+/// group named ("index MCP 0, PIP 0, DIP 0; middle, ring and little MCP 60,
+/// ...").
 fn pose_line(pose: &Pose, method: Skinning) -> String {
-    let f = &pose.fingers[1];
     let t = &pose.fingers[0];
+    let mut groups: Vec<(crate::rig::deform::pose::Angles, Vec<&str>)> = Vec::new();
+    for (k, a) in pose.fingers.iter().enumerate().skip(1) {
+        let name = crate::dataset::Finger::ALL[k].name();
+        match groups.iter_mut().find(|(g, _)| g == a) {
+            Some((_, names)) => names.push(name),
+            None => groups.push((*a, vec![name])),
+        }
+    }
+    let fingers: Vec<String> = groups
+        .iter()
+        .map(|(a, names)| {
+            let who = match names.len() {
+                4 => "fingers".to_string(),
+                1 => names[0].to_string(),
+                n => format!("{} and {}", names[..n - 1].join(", "), names[n - 1]),
+            };
+            format!(
+                "{who} MCP {}, PIP {}, DIP {}",
+                trimmed(a.mcp, 1),
+                trimmed(a.pip, 1),
+                trimmed(a.dip, 1)
+            )
+        })
+        .collect();
     format!(
-        "Pose {}: fingers MCP {}, PIP {}, DIP {} degrees; thumb MCP {}, IP {}. Skinning: {}.\n",
+        "Pose {}: {} degrees; thumb MCP {}, IP {}{}. Skinning: {}.\n",
         pose.name,
-        trimmed(f.mcp, 1),
-        trimmed(f.pip, 1),
-        trimmed(f.dip, 1),
+        fingers.join("; "),
         trimmed(t.mcp, 1),
         trimmed(t.pip, 1),
+        thumb_words(pose),
         match method {
             Skinning::Lbs => "linear blend (LBS)",
             Skinning::Dqs => "dual quaternion (DQS)",
         }
     )
+}
+
+/// Where the pose folds the thumb, as words after its angles ("" when it
+/// only bends).
+fn thumb_words(_pose: &Pose) -> String {
+    String::new()
 }
 
 const LEGEND_ONE: &str = "loss: cross-section area lost across the joint (worst section, `at` mm from the joint, + distal); \
@@ -291,10 +322,10 @@ pub(crate) fn text_one(
     let mut out = format!("{}\n{}", rig.label, heading(pose, method));
     for h in &rig.hands {
         out.push_str(&format!(
-            "\n{} hand: {} vertices, {} triangles\n",
+            "\n{} hand: {}, {}\n",
             h.chains.side.name(),
-            h.mesh.positions.len(),
-            h.mesh.triangles.len()
+            count(h.mesh.positions.len(), "vertex", "vertices"),
+            count(h.mesh.triangles.len(), "triangle", "triangles")
         ));
         let mut t = Grid::new()
             .col("finger", Align::Left, Give::Keep)
@@ -365,7 +396,15 @@ fn by_how_much(v: &JointVerdict, side: Better) -> String {
             let by = m.by.unwrap_or(0.0);
             let amount = match m.measure {
                 Measure::VolumeLoss => format!("{} points", num(by * 100.0, 1)),
-                Measure::SelfIntersections => format!("{} pairs", num(by, 0)),
+                Measure::SelfIntersections => {
+                    let n = by.round();
+                    let n = if n.is_finite() && n >= 0.0 {
+                        n as usize
+                    } else {
+                        0
+                    };
+                    count(n, "pair", "pairs")
+                }
                 Measure::StrainP95 => num(by, 3),
                 Measure::CreaseOffset => format!("{} mm", num(by * MM, 1)),
             };
@@ -574,13 +613,13 @@ fn joint_rows(
 
 /// "B deforms better at 4 joints, A at 1, ...".
 fn verdict_summary(joints: &[JointVerdict]) -> String {
-    let count = |b: Better| joints.iter().filter(|v| v.overall == b).count();
+    let n = |b: Better| joints.iter().filter(|v| v.overall == b).count();
     format!(
-        "B deforms better at {} joints, A at {}, mixed at {}, the same at {} (of {}).",
-        count(Better::B),
-        count(Better::A),
-        count(Better::Mixed),
-        count(Better::Same),
+        "B deforms better at {}, A at {}, mixed at {}, the same at {} (of {}).",
+        count(n(Better::B), "joint", "joints"),
+        n(Better::A),
+        n(Better::Mixed),
+        n(Better::Same),
         joints.len()
     )
 }
@@ -695,5 +734,41 @@ fn metacarpal_view(m: &MetacarpalCheck, c: &str) -> MetacarpalView {
                 mm2(p.high)
             ))
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_pose_line_names_each_group_of_fingers_at_its_own_angles() {
+        // The fist bends the four fingers alike (MCP 60, PIP 90, DIP 60; thumb 30, 45).
+        let fist = pose_line(&Pose::fist(), Skinning::Lbs);
+        assert!(
+            fist.starts_with(
+                "Pose fist: fingers MCP 60, PIP 90, DIP 60 degrees; thumb MCP 30, IP 45"
+            ),
+            "{fist}"
+        );
+        // Pointing: the index straight, the other three in the fist.
+        let point = pose_line(&Pose::point(), Skinning::Dqs);
+        assert!(
+            point.starts_with(
+                "Pose point: index MCP 0, PIP 0, DIP 0; middle, ring and little MCP 60, PIP 90, \
+                 DIP 60 degrees; thumb MCP 30, IP 45"
+            ),
+            "{point}"
+        );
+        assert!(!point.contains("fingers MCP 0"), "{point}");
+        // Two fingers bent one way, two another.
+        let mut p = Pose::fist();
+        p.fingers[2].mcp = 10.0;
+        p.fingers[4].mcp = 10.0;
+        let two = pose_line(&p, Skinning::Lbs);
+        assert!(
+            two.contains("index and ring MCP 60, PIP 90, DIP 60; middle and little MCP 10, PIP 90, DIP 60 degrees"),
+            "{two}"
+        );
     }
 }
