@@ -74,24 +74,30 @@ pub(crate) fn figure_file(side: Side) -> String {
 }
 
 /// The figure of one hand: rig A (and B) posed, from the side and from above
-/// in A's palm frame; PNG bytes and where the fingertips are drawn.
+/// in A's palm frame, each panel framed on the hand (the vertices its bones
+/// skin, [`HandDeformation::hand_vertices`]), its columns headed by `labels`
+/// (A's, then B's); PNG bytes and where the fingertips are drawn.
 pub(crate) fn figure(
     a: &HandDeformation,
     b: Option<&HandDeformation>,
+    labels: &[&str],
 ) -> Result<(OutputFile, RenderView), Error> {
     let rigs: Vec<&HandDeformation> = std::iter::once(a).chain(b).collect();
+    let focus: Vec<Vec<bool>> = rigs.iter().map(|h| h.hand_vertices()).collect();
     let meshes: Vec<MeshView<'_>> = rigs
         .iter()
-        .map(|h| MeshView {
+        .zip(&focus)
+        .map(|(h, focus)| MeshView {
             positions: &h.deformation.posed,
             triangles: &h.mesh.triangles,
             strain: &h.deformation.vertex_strain,
+            focus,
         })
         .collect();
     let views = [View::side(&a.posed.frame), View::above(&a.posed.frame)];
     let fig = Figure::layout(&meshes, &views, PANEL.0, PANEL.1);
     let png = fig
-        .render(&meshes)
+        .render(&meshes, labels)
         .map_err(|e| Error::render("cannot draw the deformation figure", e))?;
     let mut panels = Vec::new();
     for (row, view) in views.iter().enumerate() {
@@ -298,8 +304,10 @@ fn pose_line(pose: &Pose, method: Skinning) -> String {
 
 /// Where the pose folds the thumb, as words after its angles ("" when it
 /// only bends).
-fn thumb_words(_pose: &Pose) -> String {
-    String::new()
+fn thumb_words(pose: &Pose) -> String {
+    pose.thumb_across.map_or_else(String::new, |f| {
+        format!(", turned at its CMC to lie across the {f} finger's middle phalanx")
+    })
 }
 
 const LEGEND_ONE: &str = "loss: cross-section area lost across the joint (worst section, `at` mm from the joint, + distal); \
@@ -761,6 +769,12 @@ mod tests {
             "{point}"
         );
         assert!(!point.contains("fingers MCP 0"), "{point}");
+        assert!(
+            fist.contains(
+                "IP 45, turned at its CMC to lie across the index finger's middle phalanx."
+            ) && point.contains("across the middle finger's middle phalanx."),
+            "{fist}{point}"
+        );
         // Two fingers bent one way, two another.
         let mut p = Pose::fist();
         p.fingers[2].mcp = 10.0;
@@ -770,5 +784,111 @@ mod tests {
             two.contains("index and ring MCP 60, PIP 90, DIP 60; middle and little MCP 10, PIP 90, DIP 60 degrees"),
             "{two}"
         );
+    }
+}
+
+#[cfg(test)]
+mod figure_tests {
+    use super::*;
+    use crate::rig::deform::file::{DeformRequest, deform_file};
+    use std::path::Path;
+
+    /// The Mannequiny (`../shared/rigs/gdquest-mannequiny`, CC0): a whole
+    /// T-posed body; skipped, saying so, when it is not there.
+    fn mannequiny() -> Option<FileDeformation> {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../shared/rigs/gdquest-mannequiny/mannequiny.glb");
+        if !path.is_file() {
+            eprintln!("skipped: {} is not there", path.display());
+            return None;
+        }
+        let file = crate::rig::read::open(&path).unwrap();
+        let pose = Pose::fist();
+        let req = DeformRequest {
+            map: None,
+            side: None,
+            pose: &pose,
+            method: Skinning::Lbs,
+        };
+        Some(deform_file(&file, path.parent().unwrap(), &req).unwrap())
+    }
+
+    #[test]
+    fn a_whole_body_figure_frames_the_hand() {
+        let Some(rig) = mannequiny() else { return };
+        let file = crate::rig::read::open(
+            &Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../shared/rigs/gdquest-mannequiny/mannequiny.glb"),
+        )
+        .unwrap();
+        let names = file.node_names();
+        for h in &rig.hands {
+            // The hand's vertices by the file's own names, not by the code's
+            // chains: those whose largest weight is on hand.l (or .r) or one of
+            // its finger bones (thumb_, index_, middle_, ring_ 01-03).
+            let suffix = match h.chains.side {
+                Side::Left => ".l",
+                Side::Right => ".r",
+            };
+            let is_hand = |node: usize| {
+                let n = &names[node];
+                n.ends_with(suffix)
+                    && ["hand", "thumb_", "index_", "middle_", "ring_"]
+                        .iter()
+                        .any(|p| n.starts_with(p))
+            };
+            let hand: Vec<usize> = (0..h.mesh.positions.len())
+                .filter(|&v| {
+                    h.mesh
+                        .dominant(v)
+                        .is_some_and(|s| is_hand(h.mesh.joints[usize::from(s)]))
+                })
+                .collect();
+            assert!(hand.len() > 50, "{} hand vertices", hand.len());
+            assert!(
+                hand.len() * 5 < h.mesh.positions.len(),
+                "the body is more than its hand"
+            );
+            let (_, render) = figure(h, Some(h), &["A", "B"]).unwrap();
+            let fig = {
+                // The same layout as the figure's, to project with.
+                let focus = h.hand_vertices();
+                let m = MeshView {
+                    positions: &h.deformation.posed,
+                    triangles: &h.mesh.triangles,
+                    strain: &h.deformation.vertex_strain,
+                    focus: &focus,
+                };
+                let views = [View::side(&h.posed.frame), View::above(&h.posed.frame)];
+                Figure::layout(&[m, m], &views, PANEL.0, PANEL.1)
+            };
+            assert_eq!((render.width, render.height), (fig.width, fig.height));
+            for row in 0..2 {
+                let (mut lo, mut hi) = ((f64::MAX, f64::MAX), (f64::MIN, f64::MIN));
+                for &v in &hand {
+                    let (x, y) = fig.project(row, 0, h.deformation.posed[v]).unwrap();
+                    lo = (lo.0.min(x), lo.1.min(y));
+                    hi = (hi.0.max(x), hi.1.max(y));
+                }
+                let (px, py, pw, ph) = fig.panel_rect(row, 0);
+                let share_x = (hi.0 - lo.0) / f64::from(pw);
+                let share_y = (hi.1 - lo.1) / f64::from(ph);
+                // The whole body put each hand at about 15 px of a 420 x 300 panel
+                // (a share under 0.05); framed on the hand, its larger share is the
+                // panel less its margins (0.88), and the hand lies inside the panel.
+                assert!(
+                    share_x.max(share_y) > 0.8,
+                    "{} row {row}: the hand covers {share_x:.2} x {share_y:.2} of its panel",
+                    h.chains.side.name()
+                );
+                assert!(
+                    lo.0 >= f64::from(px) - 1.0
+                        && hi.0 <= f64::from(px + pw) + 1.0
+                        && lo.1 >= f64::from(py) - 1.0
+                        && hi.1 <= f64::from(py + ph) + 1.0,
+                    "row {row}: the hand leaves its panel: {lo:?} {hi:?}"
+                );
+            }
+        }
     }
 }
