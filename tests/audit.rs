@@ -575,7 +575,7 @@ fn a_map_file_also_drives_fix() {
         "out.glb",
     ])
     .ok()
-    .stderr_has("0 of 1 fingers outside");
+    .stderr_has("0 of 1 finger outside");
     assert!(worst_vertex_move(&input, &wd.read("out.glb")) < 1e-5);
 }
 
