@@ -224,13 +224,31 @@ pub(super) fn figures(
     let mut renders = Vec::new();
     let labels = column_labels(a, b, fixed);
     let labels: Vec<&str> = labels.iter().map(String::as_str).collect();
+    let font = label_font();
     for ha in &a.hands {
         let hb = b.and_then(|b| b.hands.iter().find(|h| h.chains.side == ha.chains.side));
-        let (f, r) = view::figure(ha, hb, &labels)?;
+        let (f, r) = view::figure(ha, hb, &labels, font.as_deref())?;
         files.push(f);
         renders.push(r);
     }
     Ok((files, renders))
+}
+
+/// The labels' font, read from the working directory
+/// ([`crate::report::render3d::FONT_FILE`]); without it the figures are drawn
+/// without their labels and scale numbers, and a note says so and what to do.
+fn label_font() -> Option<Vec<u8>> {
+    let path = crate::report::render3d::FONT_FILE;
+    match std::fs::read(path) {
+        Ok(bytes) => Some(bytes),
+        Err(e) => {
+            eprintln!(
+                "note: the figures are drawn without their labels and scale numbers: \
+                 {path}: {e}; run phalanx from its checkout, where data/fonts/ is"
+            );
+            None
+        }
+    }
 }
 
 /// The default request of a rig file: no map, the side its name says.

@@ -81,6 +81,7 @@ pub(crate) fn figure(
     a: &HandDeformation,
     b: Option<&HandDeformation>,
     labels: &[&str],
+    font: Option<&[u8]>,
 ) -> Result<(OutputFile, RenderView), Error> {
     let rigs: Vec<&HandDeformation> = std::iter::once(a).chain(b).collect();
     let focus: Vec<Vec<bool>> = rigs.iter().map(|h| h.hand_vertices()).collect();
@@ -97,7 +98,7 @@ pub(crate) fn figure(
     let views = [View::side(&a.posed.frame), View::above(&a.posed.frame)];
     let fig = Figure::layout(&meshes, &views, PANEL.0, PANEL.1);
     let png = fig
-        .render(&meshes, labels)
+        .render(&meshes, labels, font)
         .map_err(|e| Error::render("cannot draw the deformation figure", e))?;
     let mut panels = Vec::new();
     for (row, view) in views.iter().enumerate() {
@@ -849,7 +850,7 @@ mod figure_tests {
                 hand.len() * 5 < h.mesh.positions.len(),
                 "the body is more than its hand"
             );
-            let (_, render) = figure(h, Some(h), &["A", "B"]).unwrap();
+            let (_, render) = figure(h, Some(h), &["A", "B"], None).unwrap();
             let fig = {
                 // The same layout as the figure's, to project with.
                 let focus = h.hand_vertices();

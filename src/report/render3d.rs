@@ -160,14 +160,11 @@ pub const SCALE_CAPTION: [&str; 3] = [
     "edge strain |ln(posed/rest length)|",
 ];
 
-/// The font of the labels and the scale's numbers: Liberation Sans Regular
-/// (SIL Open Font License 1.1; `data/fonts/liberation-sans/`, with its
-/// licence and source). Embedded rather than read at run time because the
-/// labels are part of what the figure says: a picture without "the rig" and
-/// "the fixed rig" over its columns, or without its scale's numbers, is
-/// misread, and phalanx is run from any directory while `data/` is found
-/// from the working directory. The OFL allows embedding in software.
-const FONT: &[u8] = include_bytes!("../../data/fonts/liberation-sans/LiberationSans-Regular.ttf");
+/// The font of the labels and the scale's numbers, from the working directory:
+/// Liberation Sans Regular (SIL Open Font License 1.1), vendored with its
+/// licence and source in `data/fonts/liberation-sans/`. Read at run time, as
+/// all data from elsewhere is, never compiled in.
+pub const FONT_FILE: &str = "data/fonts/liberation-sans/LiberationSans-Regular.ttf";
 
 /// A grid of panels: one row per view, one column per mesh, under a band
 /// of column labels and above the colour scale.
@@ -256,7 +253,15 @@ impl Figure {
     /// Draws `meshes` (the ones given to [`Figure::layout`]) as PNG bytes,
     /// `labels[k]` over column k, each view's name in its panel's corner,
     /// and the colour scale with its numbers at the bottom.
-    pub fn render(&self, meshes: &[MeshView<'_>], labels: &[&str]) -> Result<Vec<u8>, String> {
+    /// `font`: the bytes of a TrueType font for the labels and the scale's
+    /// numbers (the caller reads `data/fonts/`, see [`FONT_FILE`]); without
+    /// one, or with bytes that are no font, the figure is drawn without text.
+    pub fn render(
+        &self,
+        meshes: &[MeshView<'_>],
+        labels: &[&str],
+        font: Option<&[u8]>,
+    ) -> Result<Vec<u8>, String> {
         let mut big = Pixmap::new(self.width * SS, self.height * SS).ok_or_else(|| {
             format!(
                 "an image of {} x {} pixels cannot be made",
@@ -326,7 +331,7 @@ impl Figure {
             }
         }
         let mut img = downsample(&big, self.width, self.height)?;
-        if let Ok(font) = ab_glyph::FontRef::try_from_slice(FONT) {
+        if let Some(font) = font.and_then(|f| ab_glyph::FontRef::try_from_slice(f).ok()) {
             let dark = [40, 40, 40];
             let grey = [110, 110, 110];
             for (col, label) in labels.iter().enumerate().take(meshes.len()) {

@@ -235,7 +235,7 @@ fn the_webxr_hands_curl_into_a_fist() {
             })
             .collect();
         let fig = Figure::layout(&meshes, &views, 360, 300);
-        let png = fig.render(&meshes, &["LBS", "DQS"]).unwrap();
+        let png = fig.render(&meshes, &["LBS", "DQS"], Some(&font())).unwrap();
         let path = out.join(format!("webxr-{name}-fist-lbs-dqs.png"));
         std::fs::write(&path, &png).unwrap();
         eprintln!("drawn: {}", path.display());
@@ -287,7 +287,7 @@ fn thirty_thousand_triangles() {
         .collect();
     let views = [View::side(&posed.frame), View::above(&posed.frame)];
     let fig = Figure::layout(&meshes, &views, 360, 300);
-    let png = fig.render(&meshes, &["LBS", "DQS"]).unwrap();
+    let png = fig.render(&meshes, &["LBS", "DQS"], Some(&font())).unwrap();
     let t_all = start.elapsed();
     eprintln!(
         "pose + LBS + measures: {:.3} s; + DQS + measures: {:.3} s; + figure ({} bytes): {:.3} s",
@@ -303,4 +303,11 @@ fn thirty_thousand_triangles() {
         .map(|f| f.self_intersections)
         .sum();
     eprintln!("LBS crossings: {crossings}");
+}
+
+/// The vendored label font, read as `phalanx` reads it (from the checkout).
+fn font() -> Vec<u8> {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(crate::report::render3d::FONT_FILE);
+    std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
