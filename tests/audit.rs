@@ -4,6 +4,7 @@ mod conventions;
 mod fixing;
 pub(crate) mod hand;
 mod ray;
+mod sanity;
 mod validator;
 mod webxr;
 

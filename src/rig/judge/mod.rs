@@ -17,6 +17,7 @@ mod explain;
 pub mod finger;
 pub mod ray;
 pub mod ray_base;
+pub(crate) mod sanity;
 pub mod standing;
 #[cfg(test)]
 mod tests;
