@@ -805,7 +805,8 @@ fn what_the_gltf_crate_would_unwrap_is_refused_at_the_door_with_every_json_path(
     // glTF does not define, an image in a view that does not exist, a
     // view in a buffer that does not exist, a buffer longer than the GLB's
     // binary chunk, and a sparse accessor whose indices run past their view.
-    let cases: [(&str, fn(&mut Value), &str); 6] = [
+    type Case = (&'static str, fn(&mut Value), &'static str);
+    let cases: [Case; 6] = [
         (
             "texture.glb",
             |j| j["textures"] = serde_json::json!([{"source": 5}]),
