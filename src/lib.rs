@@ -100,6 +100,6 @@ pub mod error;
 pub(crate) mod format;
 pub mod report;
 pub mod rig;
-pub mod stats;
+pub use phalanx_stats as stats;
 pub mod synth;
 pub(crate) mod track;

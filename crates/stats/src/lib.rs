@@ -9,10 +9,10 @@
 
 pub mod bootstrap;
 pub mod delta;
-pub(crate) mod describe;
-pub(crate) mod estimate;
-pub(crate) mod interval;
-pub(crate) mod rng;
+pub mod describe;
+pub mod estimate;
+pub mod interval;
+pub mod rng;
 
 pub use estimate::Intervals;
 pub use interval::Interval;

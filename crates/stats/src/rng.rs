@@ -11,12 +11,12 @@ use rand_chacha::ChaCha8Rng;
 use rand_core::{Rng, SeedableRng};
 
 /// The generator's name, as printed in outputs.
-pub(crate) const RNG_NAME: &str = "ChaCha8 (rand_chacha), key = (seed, group), one stream per chunk of 64 resamples, Lemire unbiased index draw";
+pub const RNG_NAME: &str = "ChaCha8 (rand_chacha), key = (seed, group), one stream per chunk of 64 resamples, Lemire unbiased index draw";
 
 /// A ChaCha8 generator for `(seed, key)` on stream `stream`.
 ///
 /// The 256-bit ChaCha key is `seed` (little-endian) || `key` (little-endian) || 16 zero bytes.
-pub(crate) fn stream(seed: u64, key: u64, stream: u64) -> ChaCha8Rng {
+pub fn stream(seed: u64, key: u64, stream: u64) -> ChaCha8Rng {
     let mut k = [0u8; 32];
     k[..8].copy_from_slice(&seed.to_le_bytes());
     k[8..16].copy_from_slice(&key.to_le_bytes());
@@ -28,7 +28,7 @@ pub(crate) fn stream(seed: u64, key: u64, stream: u64) -> ChaCha8Rng {
 /// A uniform integer in `0..n` (`n >= 1`, `n < 2^32`) by Lemire's
 /// multiply-and-reject method: unbiased, one `u32` per draw almost always.
 #[inline]
-pub(crate) fn index(rng: &mut ChaCha8Rng, n: u32) -> u32 {
+pub fn index(rng: &mut ChaCha8Rng, n: u32) -> u32 {
     debug_assert!(n > 0);
     let mut m = u64::from(rng.next_u32()) * u64::from(n);
     let mut low = m as u32;
@@ -44,12 +44,12 @@ pub(crate) fn index(rng: &mut ChaCha8Rng, n: u32) -> u32 {
 
 /// A uniform `f64` in the open interval (0, 1), from 53 random bits.
 #[inline]
-pub(crate) fn unit_open(rng: &mut ChaCha8Rng) -> f64 {
+pub fn unit_open(rng: &mut ChaCha8Rng) -> f64 {
     ((rng.next_u64() >> 11) as f64 + 0.5) * (1.0 / (1u64 << 53) as f64)
 }
 
 /// A standard normal draw by the Box-Muller transform (one value per two uniforms).
-pub(crate) fn standard_normal(rng: &mut ChaCha8Rng) -> f64 {
+pub fn standard_normal(rng: &mut ChaCha8Rng) -> f64 {
     let u1 = unit_open(rng);
     let u2 = unit_open(rng);
     (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()

@@ -105,7 +105,7 @@ pub fn pearson(xs: &[f64], ys: &[f64]) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::stats::rng;
+    use crate::rng;
 
     fn part(mean: f64, sd: f64, num: f64, den: f64) -> Part {
         Part {
@@ -186,7 +186,7 @@ mod tests {
                 }
                 ratios.push(sums[2] / (sums[0] + sums[1] + sums[2]));
             }
-            let sd = crate::stats::describe::sd(&ratios).unwrap();
+            let sd = crate::describe::sd(&ratios).unwrap();
             let mc = sd / (2.0 * (sims as f64 - 1.0)).sqrt();
             assert!(
                 (sd - want).abs() < 3.0 * mc,

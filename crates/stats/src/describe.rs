@@ -4,12 +4,12 @@ use super::Interval;
 use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
 
 /// Arithmetic mean, the paper's eq. (5): (1/M) sum x_m. `None` for no values. O(n).
-pub(crate) fn mean(xs: &[f64]) -> Option<f64> {
+pub fn mean(xs: &[f64]) -> Option<f64> {
     (!xs.is_empty()).then(|| xs.iter().sum::<f64>() / xs.len() as f64)
 }
 
 /// Sample standard deviation with n - 1 in the denominator (two-pass). `None` for n < 2. O(n).
-pub(crate) fn sd(xs: &[f64]) -> Option<f64> {
+pub fn sd(xs: &[f64]) -> Option<f64> {
     let n = xs.len();
     if n < 2 {
         return None;
@@ -20,7 +20,7 @@ pub(crate) fn sd(xs: &[f64]) -> Option<f64> {
 }
 
 /// Minimum and maximum, the paper's eq. (7). `None` for no values. O(n).
-pub(crate) fn min_max(xs: &[f64]) -> Option<(f64, f64)> {
+pub fn min_max(xs: &[f64]) -> Option<(f64, f64)> {
     let first = *xs.first()?;
     Some(
         xs.iter()
@@ -29,7 +29,7 @@ pub(crate) fn min_max(xs: &[f64]) -> Option<(f64, f64)> {
 }
 
 /// Median: the middle value, or the mean of the two middle values. O(n log n).
-pub(crate) fn median(xs: &[f64]) -> Option<f64> {
+pub fn median(xs: &[f64]) -> Option<f64> {
     if xs.is_empty() {
         return None;
     }
@@ -52,7 +52,7 @@ const T_EXPANSION_DF: usize = 1_000;
 /// expansion in 1/df (Abramowitz and Stegun 26.7.5), whose error there is below
 /// 1e-11. (`statrs`'s inverse loses accuracy for large df and does not terminate
 /// near 1e8.)
-pub(crate) fn t_quantile(confidence: f64, df: usize) -> Option<f64> {
+pub fn t_quantile(confidence: f64, df: usize) -> Option<f64> {
     if df == 0 {
         return None;
     }
@@ -104,12 +104,12 @@ fn t_expansion(p: f64, v: f64) -> f64 {
 }
 
 /// Standard normal quantile Phi^-1(p).
-pub(crate) fn normal_quantile(p: f64) -> f64 {
+pub fn normal_quantile(p: f64) -> f64 {
     standard_normal().inverse_cdf(p)
 }
 
 /// Standard normal distribution function Phi(z).
-pub(crate) fn normal_cdf(z: f64) -> f64 {
+pub fn normal_cdf(z: f64) -> f64 {
     standard_normal().cdf(z)
 }
 
@@ -119,7 +119,7 @@ fn standard_normal() -> Normal {
 
 /// Student-t confidence interval of the mean: mean +/- t * sd / sqrt(n).
 /// `None` for n < 2.
-pub(crate) fn t_interval(mean: f64, sd: f64, n: usize, confidence: f64) -> Option<Interval> {
+pub fn t_interval(mean: f64, sd: f64, n: usize, confidence: f64) -> Option<Interval> {
     let t = t_quantile(confidence, n.checked_sub(1)?)?;
     let half = t * sd / (n as f64).sqrt();
     Some(Interval::new(mean - half, mean + half))
@@ -127,12 +127,7 @@ pub(crate) fn t_interval(mean: f64, sd: f64, n: usize, confidence: f64) -> Optio
 
 /// Prediction interval for one new observation: mean +/- t * sd * sqrt(1 + 1/n).
 /// `None` for n < 2.
-pub(crate) fn prediction_interval(
-    mean: f64,
-    sd: f64,
-    n: usize,
-    confidence: f64,
-) -> Option<Interval> {
+pub fn prediction_interval(mean: f64, sd: f64, n: usize, confidence: f64) -> Option<Interval> {
     let t = t_quantile(confidence, n.checked_sub(1)?)?;
     let half = t * sd * (1.0 + 1.0 / n as f64).sqrt();
     Some(Interval::new(mean - half, mean + half))

@@ -17,7 +17,7 @@ use serde::Serialize;
 
 /// Resamples per random stream. Chunk `k` always holds resamples
 /// `64k .. 64k+63` and draws from stream `k`, whatever the thread count.
-pub(crate) const CHUNK: usize = 64;
+pub const CHUNK: usize = 64;
 
 /// How the bootstrap distribution was obtained.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
@@ -65,7 +65,7 @@ impl Plan {
 }
 
 /// C(2n-1, n), the number of distinct resamples of n units, when it is at most `limit`.
-pub(crate) fn distinct_resamples(n: usize, limit: usize) -> Option<usize> {
+pub fn distinct_resamples(n: usize, limit: usize) -> Option<usize> {
     if n == 0 {
         return None;
     }
@@ -159,7 +159,7 @@ fn weighted_means(columns: &[&[f64]], counts: &[u32], n: usize, out: &mut [f64])
 /// depends on n only, so it is built once and reused (e.g. by the coverage
 /// simulation, which bootstraps thousands of samples of the same size).
 #[derive(Debug, Clone)]
-pub(crate) struct Enumeration {
+pub struct Enumeration {
     n: usize,
     /// The count vectors, one after another (`distinct * n` counts).
     counts: Vec<u32>,
@@ -169,7 +169,7 @@ pub(crate) struct Enumeration {
 
 impl Enumeration {
     /// Enumerates the C(2n-1, n) resamples of n units (`distinct` of them).
-    pub(crate) fn new(n: usize, distinct: usize) -> Enumeration {
+    pub fn new(n: usize, distinct: usize) -> Enumeration {
         let ln_fact: Vec<f64> = (0..=n)
             .scan(0.0f64, |acc, k| {
                 if k > 0 {
@@ -194,7 +194,7 @@ impl Enumeration {
     }
 
     /// The bootstrap distribution of the means of `columns` (each of length n).
-    pub(crate) fn distribution(&self, columns: &[&[f64]]) -> Distribution {
+    pub fn distribution(&self, columns: &[&[f64]]) -> Distribution {
         let distinct = self.weights.len();
         let mut means = vec![Vec::with_capacity(distinct); columns.len()];
         let mut row = vec![0.0; columns.len()];
@@ -450,7 +450,7 @@ fn random(
 }
 
 /// A weighted bootstrap distribution of one statistic, sorted for quantiles.
-pub(crate) struct Sorted {
+pub struct Sorted {
     values: Vec<f64>,
     cumulative: Vec<f64>,
 }
@@ -459,7 +459,7 @@ impl Sorted {
     /// Sorts `values` (with `weights`) ascending; equal values keep their order, so the
     /// cumulative weights are summed in one fixed order. O(m log m); the pairs are sorted
     /// in place (a stable sort of contiguous pairs, not of indices into the values).
-    pub(crate) fn new(values: &[f64], weights: &[f64]) -> Sorted {
+    pub fn new(values: &[f64], weights: &[f64]) -> Sorted {
         // Equal weights (every random bootstrap): which of equal values comes first cannot
         // change the result (values equal under total_cmp are the same bits, and the
         // cumulative sums add the same weight each step), so the values alone are sorted,
@@ -505,14 +505,14 @@ impl Sorted {
 
     /// The weighted quantile: the smallest value whose cumulative weight reaches `p`
     /// (the inverse of the weighted empirical distribution function).
-    pub(crate) fn quantile(&self, p: f64) -> f64 {
+    pub fn quantile(&self, p: f64) -> f64 {
         let p = p.clamp(0.0, 1.0);
         let i = self.cumulative.partition_point(|&c| c < p - 1e-12);
         self.values[i.min(self.values.len() - 1)]
     }
 
     /// P*(value < x) + P*(value = x) / 2, ties within a relative 1e-12.
-    pub(crate) fn mid_rank(&self, x: f64) -> f64 {
+    pub fn mid_rank(&self, x: f64) -> f64 {
         let tol = 1e-12 * x.abs().max(1e-300);
         let below = self.values.partition_point(|&v| v < x - tol);
         let upto = self.values.partition_point(|&v| v <= x + tol);
@@ -522,7 +522,7 @@ impl Sorted {
 }
 
 /// Percentile interval: the (1-c)/2 and (1+c)/2 weighted quantiles.
-pub(crate) fn percentile_interval(dist: &Sorted, confidence: f64) -> Interval {
+pub fn percentile_interval(dist: &Sorted, confidence: f64) -> Interval {
     let alpha = 1.0 - confidence;
     Interval::new(dist.quantile(alpha / 2.0), dist.quantile(1.0 - alpha / 2.0))
 }
@@ -535,7 +535,7 @@ pub(crate) fn percentile_interval(dist: &Sorted, confidence: f64) -> Interval {
 /// proportional to x_i - mean: O(n), no refits. The interval is the weighted
 /// quantiles at Phi(z0 + (z0 + z)/(1 - a (z0 + z))) for z = -/+ z_{(1+c)/2}.
 /// Errs with a reason when the correction is undefined.
-pub(crate) fn bca_interval(
+pub fn bca_interval(
     dist: &Sorted,
     sample: &[f64],
     estimate: f64,

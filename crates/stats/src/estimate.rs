@@ -49,7 +49,7 @@ impl Intervals {
     /// level `confidence`, given its mean, its SD and the sorted bootstrap
     /// distribution of its mean. BCa may be undefined; the reason comes back
     /// with it. Cost: O(n) plus O(log m) per bootstrap quantile.
-    pub(crate) fn of_mean(
+    pub fn of_mean(
         sample: &[f64],
         mean: f64,
         sd: f64,
