@@ -559,6 +559,12 @@ fn downsample(big: &Pixmap, width: u32, height: u32) -> Result<Pixmap, String> {
 
 #[cfg(test)]
 mod tests {
+    /// The vendored label font, read as `phalanx` reads it (from the checkout).
+    fn font() -> Vec<u8> {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(super::FONT_FILE);
+        std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    }
+
     use super::*;
     use crate::dataset::Finger;
     use crate::rig::deform::synthetic::{HandSpec, tube_hand};
@@ -591,10 +597,13 @@ mod tests {
         };
         let views = [View::side(&frame), View::above(&frame)];
         let fig = Figure::layout(&[mesh, hot], &views, 240, 200);
-        let bytes = fig.render(&[mesh, hot], &["A", "B"]).unwrap();
+        let bytes = fig
+            .render(&[mesh, hot], &["A", "B"], Some(&font()))
+            .unwrap();
         assert_eq!(
             bytes,
-            fig.render(&[mesh, hot], &["A", "B"]).unwrap(),
+            fig.render(&[mesh, hot], &["A", "B"], Some(&font()))
+                .unwrap(),
             "not deterministic"
         );
         let img = Pixmap::decode_png(&bytes).unwrap();
@@ -710,7 +719,8 @@ mod tests {
         assert!(share < 0.1, "whole: {share}");
         // The words: dark pixels in the label band over the column, on the
         // ramp's row the ramp's colours, and numbers under the ticks.
-        let img = Pixmap::decode_png(&fig.render(&[framed], &["the rig"]).unwrap()).unwrap();
+        let img = Pixmap::decode_png(&fig.render(&[framed], &["the rig"], Some(&font())).unwrap())
+            .unwrap();
         let dark = |x0: u32, x1: u32, y0: u32, y1: u32| {
             (y0..y1)
                 .flat_map(|y| (x0..x1).map(move |x| (x, y)))
