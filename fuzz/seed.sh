@@ -17,8 +17,39 @@ cp ../docs/examples/*.glb ../docs/examples/*.vrm corpus/rig/
 # The real rigs: the WebXR generic hands (siblings, skin weights).
 cp ../data/rigs/webxr-generic-hand/left.glb corpus/rig/webxr-left.glb
 cp ../data/rigs/webxr-generic-hand/right.glb corpus/rig/webxr-right.glb
-# The FBX target: the SteamVR gloves (BSD-3-Clause), when ../shared has them.
-for f in ../../shared/rigs/steamvr-gloves/*.fbx; do
-    if [ -e "$f" ]; then cp "$f" corpus/fbx/; fi
+# Every rig in ../shared/rigs, when there (a worktree reaches it as ../../shared):
+# GLB and self-contained .gltf as they are, a .gltf whose buffer is a file beside
+# it packed with that file into one GLB (a fuzz input is one file), FBX for the
+# FBX target.
+shared=""
+for d in ../../shared/rigs ../../../shared/rigs; do
+    if [ -d "$d" ]; then shared="$d"; break; fi
 done
+if [ -n "$shared" ]; then
+    for f in "$shared"/*/*; do
+        dir=$(basename "$(dirname "$f")")
+        name="$dir-$(basename "$f")"
+        case "$f" in
+            *.glb|*.vrm) cp "$f" "corpus/rig/$name" ;;
+            *.fbx) cp "$f" "corpus/fbx/$name" ;;
+            *.gltf) python3 - "$f" "corpus/rig/${name%.gltf}.glb" <<'PY'
+import json, os, struct, sys
+src, out = sys.argv[1], sys.argv[2]
+doc = json.load(open(src))
+uri = doc["buffers"][0].get("uri", "")
+if uri.startswith("data:") or not uri:
+    open(out[:-4] + ".gltf", "wb").write(open(src, "rb").read())
+    sys.exit()
+bin = open(os.path.join(os.path.dirname(src), uri), "rb").read()
+del doc["buffers"][0]["uri"]
+text = json.dumps(doc).encode()
+text += b" " * (-len(text) % 4)
+bin += b"\0" * (-len(bin) % 4)
+body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(bin), 0x004E4942) + bin
+open(out, "wb").write(b"glTF" + struct.pack("<II", 2, 12 + len(body)) + body)
+PY
+            ;;
+        esac
+    done
+fi
 echo "seeded: $(ls corpus/measurements | wc -l) measurement inputs, $(ls corpus/claims | wc -l) claims inputs, $(ls corpus/rig | wc -l) rigs, $(ls corpus/fbx | wc -l) FBX rigs"

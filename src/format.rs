@@ -195,6 +195,17 @@ pub(crate) fn xrays(n: usize) -> String {
     }
 }
 
+/// A count with its noun, singular for one: `count(1, "joint", "joints")` is
+/// "1 joint", `count(0, ..)` "0 joints" (English takes the plural for zero).
+/// Every number-noun pair of the output goes through here.
+pub(crate) fn count(n: usize, one: &str, many: &str) -> String {
+    if n == 1 {
+        format!("1 {one}")
+    } else {
+        format!("{n} {many}")
+    }
+}
+
 /// A proportion as a percentage with one decimal: 0.8312 -> "83.1%" (coverage, CV).
 pub(crate) fn percent(p: f64) -> String {
     format!("{}%", num(100.0 * p, 1))
@@ -225,6 +236,14 @@ pub(crate) fn level(confidence: f64) -> String {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn counts_take_the_singular_for_one_only() {
+        assert_eq!(super::count(1, "joint", "joints"), "1 joint");
+        assert_eq!(super::count(0, "joint", "joints"), "0 joints");
+        assert_eq!(super::count(2, "vertex", "vertices"), "2 vertices");
+        assert_eq!(super::xrays(1), "1 X-ray");
+    }
+
     use super::*;
 
     #[test]

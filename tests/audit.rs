@@ -5,6 +5,7 @@ mod conventions;
 mod fixing;
 pub(crate) mod hand;
 mod ray;
+mod sanity;
 mod validator;
 mod webxr;
 
@@ -576,7 +577,7 @@ fn a_map_file_also_drives_fix() {
         "out.glb",
     ])
     .ok()
-    .stderr_has("0 of 1 fingers outside");
+    .stderr_has("0 of 1 finger outside");
     assert!(worst_vertex_move(&input, &wd.read("out.glb")) < 1e-5);
 }
 
@@ -749,6 +750,124 @@ fn the_readme_fix_example_is_current() {
 /// A file that is not a rig, or a directory, is named for what it is; an image
 /// the gltf crate would unwrap (found by fuzzing: `audit --fix` exited 101) is
 /// refused at the door with its JSON path, every problem listed, nothing written.
+/// What the gltf crate would unwrap or index out of range is refused at the
+/// door: images, textures, samplers, and accessors and buffer views that run
+/// past their views and buffers, each named by its JSON path, every problem
+/// of the file in one error (exit 2), with `--fix` writing nothing.
+#[test]
+fn what_the_gltf_crate_would_unwrap_is_refused_at_the_door_with_every_json_path() {
+    let wd = Workdir::with_paper_data();
+    let good = build(&HandSpec::new(Naming::Mixamo));
+    let (doc, bin) = read_glb(&good);
+    // The built hand's layout (tests/audit/hand.rs): accessor 0 is POSITION
+    // in view 0, view 3 holds the inverse bind matrices, one buffer of
+    // bin.len() bytes.
+    let positions = doc["accessors"][0]["count"].as_u64().unwrap();
+    let view0 = doc["bufferViews"][0]["byteLength"].as_u64().unwrap();
+    assert_eq!(view0, positions * 12);
+    let view3_offset = doc["bufferViews"][3]["byteOffset"].as_u64().unwrap();
+    let buffer = doc["buffers"][0]["byteLength"].as_u64().unwrap();
+    let chunk = bin.len();
+    // Four problems in one file: an image whose `uri` key is misspelt, a
+    // texture naming a sampler that does not exist, POSITION read from 4 bytes
+    // into its view (its last vertex runs 4 bytes past), and view 3 made
+    // longer than the buffer.
+    wd.write(
+        "four.glb",
+        edit(&good, |j| {
+            j["images"] = serde_json::json!([{"urii": "skin.png"}]);
+            j["textures"] = serde_json::json!([{"sampler": 2, "source": 0}]);
+            j["accessors"][0]["byteOffset"] = serde_json::json!(4);
+            j["bufferViews"][3]["byteLength"] = serde_json::json!(buffer);
+        }),
+    );
+    for args in [
+        &["audit", "four.glb"][..],
+        &["audit", "four.glb", "--fix", "out.glb"],
+    ] {
+        wd.run(args)
+            .data_error()
+            .stderr_has("4 problems in four.glb")
+            .stderr_has("four.glb: is not valid glTF 2.0: /images/0 has neither uri nor bufferView")
+            .stderr_has(&format!(
+                "/accessors/0: {positions} VEC3 elements need {view0} bytes from byteOffset 4 of \
+                 bufferView 0, which holds {view0}"
+            ))
+            .stderr_has(&format!(
+                "/bufferViews/3: its {buffer} bytes from byteOffset {view3_offset} run past the \
+                 end of buffer 0 ({buffer} bytes)"
+            ))
+            .stderr_has(
+                "/textures/0/sampler names an entry that does not exist (index out of range)",
+            );
+    }
+    assert!(!wd.path().join("out.glb").exists());
+    // One at a time: a texture naming a missing image, a sampler with a filter
+    // glTF does not define, an image in a view that does not exist, a
+    // view in a buffer that does not exist, a buffer longer than the GLB's
+    // binary chunk, and a sparse accessor whose indices run past their view.
+    type Case = (&'static str, fn(&mut Value), &'static str);
+    let cases: [Case; 6] = [
+        (
+            "texture.glb",
+            |j| j["textures"] = serde_json::json!([{"source": 5}]),
+            "/textures/0/source names an entry that does not exist",
+        ),
+        (
+            "sampler.glb",
+            |j| j["samplers"] = serde_json::json!([{"magFilter": 1}]),
+            "/samplers/0/magFilter has a value glTF 2.0 does not allow",
+        ),
+        (
+            "image.glb",
+            |j| j["images"] = serde_json::json!([{"bufferView": 40, "mimeType": "image/png"}]),
+            "/images/0/bufferView names an entry that does not exist",
+        ),
+        (
+            "view.glb",
+            |j| j["bufferViews"][1]["buffer"] = serde_json::json!(3),
+            "/bufferViews/1/buffer names an entry that does not exist",
+        ),
+        (
+            "buffer.glb",
+            |j| {
+                let n = j["buffers"][0]["byteLength"].as_u64().unwrap();
+                j["buffers"][0]["byteLength"] = serde_json::json!(n + 64);
+            },
+            "/buffers/0 declares",
+        ),
+        (
+            "sparse.glb",
+            |j| {
+                j["accessors"][0]["sparse"] = serde_json::json!({
+                    "count": 2,
+                    "indices": {"bufferView": 0, "byteOffset": 1_000_000, "componentType": 5123},
+                    "values": {"bufferView": 0}
+                });
+            },
+            "/accessors/0/sparse/indices: 2 indices need 4 bytes from byteOffset 1000000 of bufferView 0",
+        ),
+    ];
+    for (file, f, says) in cases {
+        wd.write(file, edit(&good, f));
+        wd.run(&["audit", file, "--fix", "out.glb"])
+            .data_error()
+            .stderr_has("1 problem in")
+            .stderr_has(says);
+        assert!(!wd.path().join("out.glb").exists(), "{file}");
+    }
+    // The buffer one in full: the declared and the held byte counts.
+    wd.run(&["audit", "buffer.glb"])
+        .data_error()
+        .stderr_has(&format!(
+            "/buffers/0 declares {} bytes, but the GLB binary chunk that holds it has {chunk}",
+            buffer + 64
+        ));
+    // The good hand still reads and fixes.
+    wd.write("good.glb", &good);
+    wd.run(&["audit", "good.glb", "--fix", "out.glb"]).ok();
+}
+
 #[test]
 fn what_is_not_a_rig_is_named_and_images_are_checked_at_the_door() {
     let wd = Workdir::with_paper_data();

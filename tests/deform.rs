@@ -695,3 +695,38 @@ fn a_vrm0_avatar_whose_fingers_hang_from_the_hand_bone_is_posed() {
         }
     }
 }
+
+/// A side-less copy of the WebXR right hand (`copy.glb`: neither its joint
+/// names nor its file name say which hand it is): audit and deform go by one
+/// rule, and say the same of its side.
+#[test]
+fn audit_and_deform_agree_on_the_side_of_a_sideless_copy() {
+    let Some(dir) = webxr_dir() else {
+        eprintln!("skipped: the WebXR generic hands are not there");
+        return;
+    };
+    let wd = Workdir::new();
+    wd.copy_paper_data();
+    wd.write("copy.glb", std::fs::read(dir.join("right.glb")).unwrap());
+    wd.write("right.glb", std::fs::read(dir.join("right.glb")).unwrap());
+    // No side known: the audit judges (proportions do not depend on it) and says
+    // deform needs --side; deform refuses, saying the same.
+    let audit = wd.run(&["audit", "copy.glb"]);
+    audit
+        .ok()
+        .stdout_has("neither the joint names nor the file name say which hand this is");
+    audit.stdout_has("but deform needs --side left or");
+    wd.run(&["deform", "copy.glb", "-q"])
+        .expect_code(2)
+        .stderr_has("give --side left or --side right");
+    // Given --side, deform curls it; named in the file name, both take that side.
+    wd.run(&["deform", "copy.glb", "-q", "--side", "right"])
+        .ok()
+        .stdout_has("right hand");
+    wd.run(&["audit", "right.glb"])
+        .ok()
+        .stdout_has("the file name says right");
+    wd.run(&["deform", "right.glb", "-q"])
+        .ok()
+        .stdout_has("right hand");
+}

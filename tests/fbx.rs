@@ -732,3 +732,38 @@ fn mutated_gloves_never_panic() {
     eprintln!("mutated gloves: {read} of 4000 read, {audited} audited");
     assert!(read > 0 && audited > 0);
 }
+
+/// An ASCII FBX 7.4 file of two bones, `Hand` and its child `Finger`, in
+/// metres (UnitScaleFactor 100 cm), with `Hand` at (`x`, 0, 0).
+fn two_bones_fbx(x: &str) -> String {
+    format!(
+        "; FBX 7.4.0 project file\nFBXHeaderExtension:  {{\n\tFBXHeaderVersion: 1003\n\tFBXVersion: 7400\n}}\n\
+         GlobalSettings:  {{\n\tVersion: 1000\n\tProperties70:  {{\n\t\tP: \"UnitScaleFactor\", \"double\", \"Number\", \"\",100\n\t}}\n}}\n\
+         Objects:  {{\n\tModel: 100, \"Model::Hand\", \"LimbNode\" {{\n\t\tVersion: 232\n\t\tProperties70:  {{\n\t\t\tP: \"Lcl Translation\", \"Lcl Translation\", \"\", \"A\",{x},0,0\n\t\t}}\n\t}}\n\
+         \tModel: 101, \"Model::Finger\", \"LimbNode\" {{\n\t\tVersion: 232\n\t\tProperties70:  {{\n\t\t\tP: \"Lcl Translation\", \"Lcl Translation\", \"\", \"A\",0,1,0\n\t\t}}\n\t}}\n}}\n\
+         Connections:  {{\n\tC: \"OO\",100,0\n\tC: \"OO\",101,100\n}}\n"
+    )
+}
+
+/// The regression test of a crash the fbx fuzz target found: a translation
+/// finite in f64 (1e39 m) but beyond f32 (3.4e38), as the glTF document made
+/// of the FBX file keeps it, read back as an infinite world matrix. It is
+/// refused, naming the node; the same file at 1 m is read with finite matrices.
+#[test]
+fn an_fbx_transform_beyond_32_bit_floats_is_refused_naming_the_node() {
+    let Err(e) = phalanx::rig::fbx::read("huge.fbx", two_bones_fbx("1e39").as_bytes()) else {
+        panic!("a 1e39 m translation was read");
+    };
+    let text = e.to_string();
+    assert!(
+        text.contains("node 'Hand' has a transform too large to hold (beyond 32-bit floats"),
+        "{text}"
+    );
+    let file = phalanx::rig::fbx::read("small.fbx", two_bones_fbx("1").as_bytes()).unwrap();
+    assert!(file.world.iter().all(|m| m.is_finite()));
+    let wd = Workdir::with_paper_data();
+    wd.write("huge.fbx", two_bones_fbx("1e39"));
+    audit(&wd, &["huge.fbx"])
+        .expect_code(2)
+        .stderr_has("huge.fbx: node 'Hand' has a transform too large to hold");
+}

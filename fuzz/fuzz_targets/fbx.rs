@@ -1,5 +1,6 @@
 //! Fuzzes the FBX rig reader (ufbx, then the glTF document it makes), the
-//! recognition of its hands and their audit, with bends from its skin weights.
+//! recognition of its hands and their audit, with bends from its skin weights,
+//! and the fix `--moves` lists, made in memory.
 //! Seeded with the SteamVR gloves (fuzz/seed.sh copies them from ../shared).
 #![no_main]
 
@@ -36,5 +37,18 @@ fuzz_target!(|data: &[u8]| {
         for j in &f.audit.joints {
             assert!(j.suggested.is_finite());
         }
+    }
+    // `--moves`: the fix made in memory on the glTF document read from the
+    // FBX file, and its moves read back. Nothing is written to disk.
+    if let Ok(fixed) = phalanx::rig::fix::fix_with(
+        &rig.file,
+        &audited.fingers,
+        rig.weights.as_ref(),
+        std::path::Path::new("/nonexistent-phalanx-fuzz"),
+        true,
+        &phalanx::rig::fix::FixOptions::default(),
+    ) && let Ok(copy) = phalanx::rig::GltfFile::from_bytes("fixed.glb", &fixed.bytes)
+    {
+        let _ = phalanx::rig::fix::moves::moves(&rig.file, &copy);
     }
 });

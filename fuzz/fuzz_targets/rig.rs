@@ -1,7 +1,8 @@
 //! Fuzzes the glTF rig reader, the audit of whatever it accepts (bends from
 //! its skin weights included; each MCP judged from its CMC or the wrist against
 //! the atlas in data/atlas, read at start-up), and `--fix` in memory (weights
-//! and keys moved).
+//! and keys moved; also with each MCP placed from its ray's base), the moves
+//! read back and the fixed copy audited again. Nothing is written to disk.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -54,14 +55,37 @@ fuzz_target!(|data: &[u8]| {
         }
     }
     // External buffers resolve in a folder that does not exist: never read.
-    if let Ok(fixed) = phalanx::rig::fix::fix_with(
-        &rig.file,
-        &audited.fingers,
-        rig.weights.as_ref(),
-        Path::new("/nonexistent-phalanx-fuzz"),
-        true,
-        &phalanx::rig::fix::FixOptions::default(),
-    ) {
-        let _ = GltfFile::from_bytes("fixed.glb", &fixed.bytes);
+    // The fix is made in memory (no file is written), with the finger's
+    // explanation and with each MCP placed from its ray's base
+    // (`--fix-mcp atlas`); its moves are read back and the fixed copy is
+    // audited again, as `audit --fix` and `--moves` do.
+    let placed = atlas
+        .as_ref()
+        .map(|_| phalanx::rig::judge::ray::mcp_from_base(&audited, a, &audited.tips));
+    for fingers in std::iter::once(&audited.fingers).chain(placed.as_ref()) {
+        let Ok(fixed) = phalanx::rig::fix::fix_with(
+            &rig.file,
+            fingers,
+            rig.weights.as_ref(),
+            Path::new("/nonexistent-phalanx-fuzz"),
+            true,
+            &phalanx::rig::fix::FixOptions::default(),
+        ) else {
+            continue;
+        };
+        let Ok(copy) = GltfFile::from_bytes("fixed.glb", &fixed.bytes) else {
+            continue;
+        };
+        let _ = phalanx::rig::fix::moves::moves(&rig.file, &copy);
+        if let Ok(again) = Rig::from_file(copy, None) {
+            let _ = AuditedRig::with(
+                "fixed.glb",
+                &again.chains,
+                &again.notes,
+                a,
+                &AuditOptions::default(),
+                again.weights.as_ref(),
+            );
+        }
     }
 });

@@ -3,6 +3,7 @@
 use super::args::{BootArgs, DataArgs, ForceArgs, TextFormat, check_output_file};
 use super::out;
 use crate::error::{EXIT_FAILURE, Error};
+use crate::format::count;
 use crate::report;
 use crate::report::layout::{Width, fit_text};
 use crate::rig::AuditOptions;
@@ -327,11 +328,15 @@ fn moves_summary(audit: &Audit, path: &std::path::Path, n: usize) -> String {
 /// The line on standard error saying what the fix wrote.
 fn fix_summary(fix: &FixOutcome) -> String {
     let mut line = format!(
-        "wrote {}: {} joints moved; re-audited, {} of {} fingers outside the prediction interval",
+        "wrote {}: {} moved; re-audited, {} of {} outside the prediction interval",
         fix.output.display(),
-        fix.moved.len(),
+        count(
+            fix.moved.iter().filter(|(_, d)| *d > 0.0).count(),
+            "joint",
+            "joints"
+        ),
         fix.reaudit.outside(),
-        fix.reaudit.fingers.len()
+        count(fix.reaudit.fingers.len(), "finger", "fingers")
     );
     let rays = fix
         .reaudit
@@ -341,8 +346,9 @@ fn fix_summary(fix: &FixOutcome) -> String {
         .count();
     if rays > 0 {
         line.push_str(&format!(
-            ", {} of {rays} MCPs outside it from their CMC or wrist",
-            fix.reaudit.metacarpals_outside()
+            ", {} of {} outside it from their CMC or wrist",
+            fix.reaudit.metacarpals_outside(),
+            count(rays, "MCP", "MCPs")
         ));
     }
     line.push_str(&report::audit::fix_bend_words(fix));

@@ -10,11 +10,11 @@ use crate::report::layout::Width;
 use crate::report::writer::{self, OutputFile};
 use crate::rig::GltfFile;
 use crate::rig::deform::file::{self, DeformRequest, FileDeformation};
-use crate::rig::deform::hand::side_from_label;
 use crate::rig::deform::verdict::JointVerdict;
 use crate::rig::deform::{Pose, Skinning};
 use crate::rig::map::NameMap;
 use crate::rig::naming::Side;
+use crate::rig::naming::hand_side;
 use crate::rig::session::{self, FixedInMemory};
 use clap::ValueEnum;
 use std::path::{Path, PathBuf};
@@ -31,14 +31,17 @@ use std::path::{Path, PathBuf};
                   Default pose: fist, MCP 60, PIP 90, DIP 60 degrees (about two thirds of each joint's active range, \
                   AAOS averages MCP 90, PIP 100, DIP 80: the fingertips reach the palm without pressing into it); the \
                   thumb bends half as far (MCP 30, IP 45: its MCP's range is about half the fingers', and a thumb bent \
-                  as far would pass through the index finger, which is not modelled). grip: 45, 60, 30 (a 4 cm bar). \
-                  point: the index straight, the rest in the fist. --angles MCP,PIP,DIP: degrees from -30 to 180 \
+                  as far would pass through the index finger, which is not modelled) and turns at its CMC, its \
+                  metacarpal with it, until its tip lies across the index's middle phalanx. grip: 45, 60, 30 (a 4 cm \
+                  bar; the thumb only bends). point: the index straight, the rest in the fist, the thumb across the \
+                  middle finger. --angles MCP,PIP,DIP: degrees from -30 to 180 \
                   (negative: hyperextension), the thumb at half the MCP and PIP angles.\n\n\
                   --fix compares the rig with the copy `phalanx audit RIG --fix OUT` would write (made in memory, \
                   judged against --data). Rigs whose joint names carry no side (WebXR) take --side, or the side \
                   the file name says.\n\n\
                   --out DIR writes deform-<side>.png per hand: the rig(s) posed, from the side and from above, one \
-                  column per rig (A left, B right), coloured by strain (grey 0, amber 0.1, red 0.25 and more).\n\n\
+                  column per rig (A left, B right, each labelled), framed on the hand (the vertices its bones skin), \
+                  coloured by strain (grey 0, amber 0.1, red 0.25 and more) with the scale and its numbers below.\n\n\
                   Examples:\n  phalanx deform hand.glb\n  phalanx deform hand.glb --fix --out renders\n  \
                   phalanx deform hand.glb --against hand-fixed.glb --skinning dqs\n  \
                   phalanx deform right.glb --angles 45,90,45 --format json"
@@ -183,28 +186,76 @@ fn compare(a: &FileDeformation, b: &FileDeformation) -> Result<Verdicts, Error> 
     Ok(verdicts)
 }
 
+/// The words over each column of a figure: the rig and its file name, and
+/// B's: "the fixed rig" when `fixed` (B is what `audit --fix` would write),
+/// else its file name.
+pub(super) fn column_labels(
+    a: &FileDeformation,
+    b: Option<&FileDeformation>,
+    fixed: bool,
+) -> Vec<String> {
+    let name = |label: &str| {
+        Path::new(label)
+            .file_name()
+            .map_or_else(|| label.to_string(), |n| n.to_string_lossy().into_owned())
+    };
+    match b {
+        None => vec![format!("the rig, {}", name(&a.label))],
+        Some(_) if fixed => vec![
+            format!("A: the rig, {}", name(&a.label)),
+            "B: the fixed rig (as audit --fix writes it)".to_string(),
+        ],
+        Some(b) => vec![
+            format!("A: the rig, {}", name(&a.label)),
+            format!("B: {}", name(&b.label)),
+        ],
+    }
+}
+
 /// The figure of each hand of `a`, beside the same side of `b`: the PNG files
-/// (`deform-<side>.png`) and where they draw the fingertips.
+/// (`deform-<side>.png`) and where they draw the fingertips. `fixed`: B is
+/// the fixed copy (see [`column_labels`]).
 pub(super) fn figures(
     a: &FileDeformation,
     b: Option<&FileDeformation>,
+    fixed: bool,
 ) -> Result<(Vec<OutputFile>, Vec<RenderView>), Error> {
     let mut files = Vec::new();
     let mut renders = Vec::new();
+    let labels = column_labels(a, b, fixed);
+    let labels: Vec<&str> = labels.iter().map(String::as_str).collect();
+    let font = label_font();
     for ha in &a.hands {
         let hb = b.and_then(|b| b.hands.iter().find(|h| h.chains.side == ha.chains.side));
-        let (f, r) = view::figure(ha, hb)?;
+        let (f, r) = view::figure(ha, hb, &labels, font.as_deref())?;
         files.push(f);
         renders.push(r);
     }
     Ok((files, renders))
 }
 
+/// The labels' font, read from the working directory
+/// ([`crate::report::render3d::FONT_FILE`]); without it the figures are drawn
+/// without their labels and scale numbers, and a note says so and what to do.
+fn label_font() -> Option<Vec<u8>> {
+    let path = crate::report::render3d::FONT_FILE;
+    match std::fs::read(path) {
+        Ok(bytes) => Some(bytes),
+        Err(e) => {
+            eprintln!(
+                "note: the figures are drawn without their labels and scale numbers: \
+                 {path}: {e}; run phalanx from its checkout, where data/fonts/ is"
+            );
+            None
+        }
+    }
+}
+
 /// The default request of a rig file: no map, the side its name says.
 pub(super) fn request<'a>(rig: &Path, pose: &'a Pose, method: Skinning) -> DeformRequest<'a> {
     DeformRequest {
         map: None,
-        side: side_from_label(&rig.display().to_string()),
+        side: hand_side(None, None, &rig.display().to_string()),
         pose,
         method,
     }
@@ -252,11 +303,11 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
         Method::Lbs => Skinning::Lbs,
         Method::Dqs => Skinning::Dqs,
     };
-    let side = match args.side {
-        Some(SideArg::Left) => Some(Side::Left),
-        Some(SideArg::Right) => Some(Side::Right),
-        None => side_from_label(&args.rig.display().to_string()),
-    };
+    let given = args.side.map(|s| match s {
+        SideArg::Left => Side::Left,
+        SideArg::Right => Side::Right,
+    });
+    let side = hand_side(None, given, &args.rig.display().to_string());
     if let Some(dir) = &args.out {
         // Checked before the work: the figures' names are known from the side (both when
         // the side is not known yet).
@@ -278,7 +329,7 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     // The figures first: nothing is printed when they cannot be written.
     let mut renders = Vec::new();
     if let Some(dir) = &args.out {
-        let (files, r) = figures(&a, b.as_ref())?;
+        let (files, r) = figures(&a, b.as_ref(), args.fix)?;
         writer::write_all(dir, &files)?;
         renders = r;
     }

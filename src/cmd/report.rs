@@ -389,7 +389,7 @@ fn deform_section(
         fixed.audited.judge_metacarpals(atlas, wrist);
     }
     let (da, db, verdicts) = super::deform::compare_fixed(&fixed, rig, &req)?;
-    let (files, renders) = super::deform::figures(&da, Some(&db))?;
+    let (files, renders) = super::deform::figures(&da, Some(&db), true)?;
     let slug: String = rig
         .parent()
         .and_then(|p| p.file_name())

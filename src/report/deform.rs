@@ -15,7 +15,7 @@ use super::view::{
 };
 use super::writer::OutputFile;
 use crate::error::Error;
-use crate::format::{num, percent, signed, trimmed};
+use crate::format::{count, num, percent, signed, trimmed};
 use crate::rig::AuditedRig;
 use crate::rig::deform::file::{FileDeformation, HandDeformation};
 use crate::rig::deform::measures::{HandMeasures, JointMeasures};
@@ -74,24 +74,31 @@ pub(crate) fn figure_file(side: Side) -> String {
 }
 
 /// The figure of one hand: rig A (and B) posed, from the side and from above
-/// in A's palm frame; PNG bytes and where the fingertips are drawn.
+/// in A's palm frame, each panel framed on the hand (the vertices its bones
+/// skin, [`HandDeformation::hand_vertices`]), its columns headed by `labels`
+/// (A's, then B's); PNG bytes and where the fingertips are drawn.
 pub(crate) fn figure(
     a: &HandDeformation,
     b: Option<&HandDeformation>,
+    labels: &[&str],
+    font: Option<&[u8]>,
 ) -> Result<(OutputFile, RenderView), Error> {
     let rigs: Vec<&HandDeformation> = std::iter::once(a).chain(b).collect();
+    let focus: Vec<Vec<bool>> = rigs.iter().map(|h| h.hand_vertices()).collect();
     let meshes: Vec<MeshView<'_>> = rigs
         .iter()
-        .map(|h| MeshView {
+        .zip(&focus)
+        .map(|(h, focus)| MeshView {
             positions: &h.deformation.posed,
             triangles: &h.mesh.triangles,
             strain: &h.deformation.vertex_strain,
+            focus,
         })
         .collect();
     let views = [View::side(&a.posed.frame), View::above(&a.posed.frame)];
     let fig = Figure::layout(&meshes, &views, PANEL.0, PANEL.1);
     let png = fig
-        .render(&meshes)
+        .render(&meshes, labels, font)
         .map_err(|e| Error::render("cannot draw the deformation figure", e))?;
     let mut panels = Vec::new();
     for (row, view) in views.iter().enumerate() {
@@ -252,23 +259,56 @@ fn heading(pose: &Pose, method: Skinning) -> String {
     out
 }
 
-/// Pose and skinning in one line.
+/// Pose and skinning in one line; fingers bent alike share one group:
+/// "fingers MCP 60, PIP 90, DIP 60 degrees" when all four are, else each
+/// group named ("index MCP 0, PIP 0, DIP 0; middle, ring and little MCP 60,
+/// ...").
 fn pose_line(pose: &Pose, method: Skinning) -> String {
-    let f = &pose.fingers[1];
     let t = &pose.fingers[0];
+    let mut groups: Vec<(crate::rig::deform::pose::Angles, Vec<&str>)> = Vec::new();
+    for (k, a) in pose.fingers.iter().enumerate().skip(1) {
+        let name = crate::dataset::Finger::ALL[k].name();
+        match groups.iter_mut().find(|(g, _)| g == a) {
+            Some((_, names)) => names.push(name),
+            None => groups.push((*a, vec![name])),
+        }
+    }
+    let fingers: Vec<String> = groups
+        .iter()
+        .map(|(a, names)| {
+            let who = match names.len() {
+                4 => "fingers".to_string(),
+                1 => names[0].to_string(),
+                n => format!("{} and {}", names[..n - 1].join(", "), names[n - 1]),
+            };
+            format!(
+                "{who} MCP {}, PIP {}, DIP {}",
+                trimmed(a.mcp, 1),
+                trimmed(a.pip, 1),
+                trimmed(a.dip, 1)
+            )
+        })
+        .collect();
     format!(
-        "Pose {}: fingers MCP {}, PIP {}, DIP {} degrees; thumb MCP {}, IP {}. Skinning: {}.\n",
+        "Pose {}: {} degrees; thumb MCP {}, IP {}{}. Skinning: {}.\n",
         pose.name,
-        trimmed(f.mcp, 1),
-        trimmed(f.pip, 1),
-        trimmed(f.dip, 1),
+        fingers.join("; "),
         trimmed(t.mcp, 1),
         trimmed(t.pip, 1),
+        thumb_words(pose),
         match method {
             Skinning::Lbs => "linear blend (LBS)",
             Skinning::Dqs => "dual quaternion (DQS)",
         }
     )
+}
+
+/// Where the pose folds the thumb, as words after its angles ("" when it
+/// only bends).
+fn thumb_words(pose: &Pose) -> String {
+    pose.thumb_across.map_or_else(String::new, |f| {
+        format!(", turned at its CMC to lie across the {f} finger's middle phalanx")
+    })
 }
 
 const LEGEND_ONE: &str = "loss: cross-section area lost across the joint (worst section, `at` mm from the joint, + distal); \
@@ -291,10 +331,10 @@ pub(crate) fn text_one(
     let mut out = format!("{}\n{}", rig.label, heading(pose, method));
     for h in &rig.hands {
         out.push_str(&format!(
-            "\n{} hand: {} vertices, {} triangles\n",
+            "\n{} hand: {}, {}\n",
             h.chains.side.name(),
-            h.mesh.positions.len(),
-            h.mesh.triangles.len()
+            count(h.mesh.positions.len(), "vertex", "vertices"),
+            count(h.mesh.triangles.len(), "triangle", "triangles")
         ));
         let mut t = Grid::new()
             .col("finger", Align::Left, Give::Keep)
@@ -365,7 +405,15 @@ fn by_how_much(v: &JointVerdict, side: Better) -> String {
             let by = m.by.unwrap_or(0.0);
             let amount = match m.measure {
                 Measure::VolumeLoss => format!("{} points", num(by * 100.0, 1)),
-                Measure::SelfIntersections => format!("{} pairs", num(by, 0)),
+                Measure::SelfIntersections => {
+                    let n = by.round();
+                    let n = if n.is_finite() && n >= 0.0 {
+                        n as usize
+                    } else {
+                        0
+                    };
+                    count(n, "pair", "pairs")
+                }
                 Measure::StrainP95 => num(by, 3),
                 Measure::CreaseOffset => format!("{} mm", num(by * MM, 1)),
             };
@@ -574,13 +622,13 @@ fn joint_rows(
 
 /// "B deforms better at 4 joints, A at 1, ...".
 fn verdict_summary(joints: &[JointVerdict]) -> String {
-    let count = |b: Better| joints.iter().filter(|v| v.overall == b).count();
+    let n = |b: Better| joints.iter().filter(|v| v.overall == b).count();
     format!(
-        "B deforms better at {} joints, A at {}, mixed at {}, the same at {} (of {}).",
-        count(Better::B),
-        count(Better::A),
-        count(Better::Mixed),
-        count(Better::Same),
+        "B deforms better at {}, A at {}, mixed at {}, the same at {} (of {}).",
+        count(n(Better::B), "joint", "joints"),
+        n(Better::A),
+        n(Better::Mixed),
+        n(Better::Same),
         joints.len()
     )
 }
@@ -695,5 +743,153 @@ fn metacarpal_view(m: &MetacarpalCheck, c: &str) -> MetacarpalView {
                 mm2(p.high)
             ))
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_pose_line_names_each_group_of_fingers_at_its_own_angles() {
+        // The fist bends the four fingers alike (MCP 60, PIP 90, DIP 60; thumb 30, 45).
+        let fist = pose_line(&Pose::fist(), Skinning::Lbs);
+        assert!(
+            fist.starts_with(
+                "Pose fist: fingers MCP 60, PIP 90, DIP 60 degrees; thumb MCP 30, IP 45"
+            ),
+            "{fist}"
+        );
+        // Pointing: the index straight, the other three in the fist.
+        let point = pose_line(&Pose::point(), Skinning::Dqs);
+        assert!(
+            point.starts_with(
+                "Pose point: index MCP 0, PIP 0, DIP 0; middle, ring and little MCP 60, PIP 90, \
+                 DIP 60 degrees; thumb MCP 30, IP 45"
+            ),
+            "{point}"
+        );
+        assert!(!point.contains("fingers MCP 0"), "{point}");
+        assert!(
+            fist.contains(
+                "IP 45, turned at its CMC to lie across the index finger's middle phalanx."
+            ) && point.contains("across the middle finger's middle phalanx."),
+            "{fist}{point}"
+        );
+        // Two fingers bent one way, two another.
+        let mut p = Pose::fist();
+        p.fingers[2].mcp = 10.0;
+        p.fingers[4].mcp = 10.0;
+        let two = pose_line(&p, Skinning::Lbs);
+        assert!(
+            two.contains("index and ring MCP 60, PIP 90, DIP 60; middle and little MCP 10, PIP 90, DIP 60 degrees"),
+            "{two}"
+        );
+    }
+}
+
+#[cfg(test)]
+mod figure_tests {
+    use super::*;
+    use crate::rig::deform::file::{DeformRequest, deform_file};
+    use std::path::Path;
+
+    /// The Mannequiny (`../shared/rigs/gdquest-mannequiny`, CC0): a whole
+    /// T-posed body; skipped, saying so, when it is not there.
+    fn mannequiny() -> Option<FileDeformation> {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../shared/rigs/gdquest-mannequiny/mannequiny.glb");
+        if !path.is_file() {
+            eprintln!("skipped: {} is not there", path.display());
+            return None;
+        }
+        let file = crate::rig::read::open(&path).unwrap();
+        let pose = Pose::fist();
+        let req = DeformRequest {
+            map: None,
+            side: None,
+            pose: &pose,
+            method: Skinning::Lbs,
+        };
+        Some(deform_file(&file, path.parent().unwrap(), &req).unwrap())
+    }
+
+    #[test]
+    fn a_whole_body_figure_frames_the_hand() {
+        let Some(rig) = mannequiny() else { return };
+        let file = crate::rig::read::open(
+            &Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../shared/rigs/gdquest-mannequiny/mannequiny.glb"),
+        )
+        .unwrap();
+        let names = file.node_names();
+        for h in &rig.hands {
+            // The hand's vertices by the file's own names, not by the code's
+            // chains: those whose largest weight is on hand.l (or .r) or one of
+            // its finger bones (thumb_, index_, middle_, ring_ 01-03).
+            let suffix = match h.chains.side {
+                Side::Left => ".l",
+                Side::Right => ".r",
+            };
+            let is_hand = |node: usize| {
+                let n = &names[node];
+                n.ends_with(suffix)
+                    && ["hand", "thumb_", "index_", "middle_", "ring_"]
+                        .iter()
+                        .any(|p| n.starts_with(p))
+            };
+            let hand: Vec<usize> = (0..h.mesh.positions.len())
+                .filter(|&v| {
+                    h.mesh
+                        .dominant(v)
+                        .is_some_and(|s| is_hand(h.mesh.joints[usize::from(s)]))
+                })
+                .collect();
+            assert!(hand.len() > 50, "{} hand vertices", hand.len());
+            assert!(
+                hand.len() * 5 < h.mesh.positions.len(),
+                "the body is more than its hand"
+            );
+            let (_, render) = figure(h, Some(h), &["A", "B"], None).unwrap();
+            let fig = {
+                // The same layout as the figure's, to project with.
+                let focus = h.hand_vertices();
+                let m = MeshView {
+                    positions: &h.deformation.posed,
+                    triangles: &h.mesh.triangles,
+                    strain: &h.deformation.vertex_strain,
+                    focus: &focus,
+                };
+                let views = [View::side(&h.posed.frame), View::above(&h.posed.frame)];
+                Figure::layout(&[m, m], &views, PANEL.0, PANEL.1)
+            };
+            assert_eq!((render.width, render.height), (fig.width, fig.height));
+            for row in 0..2 {
+                let (mut lo, mut hi) = ((f64::MAX, f64::MAX), (f64::MIN, f64::MIN));
+                for &v in &hand {
+                    let (x, y) = fig.project(row, 0, h.deformation.posed[v]).unwrap();
+                    lo = (lo.0.min(x), lo.1.min(y));
+                    hi = (hi.0.max(x), hi.1.max(y));
+                }
+                let (px, py, pw, ph) = fig.panel_rect(row, 0);
+                let share_x = (hi.0 - lo.0) / f64::from(pw);
+                let share_y = (hi.1 - lo.1) / f64::from(ph);
+                // The whole body put each hand at about 15 px of a 420 x 300 panel
+                // (a share under 0.05); framed on the hand, its larger share is the
+                // panel less its margins (0.88), and the hand lies inside the panel.
+                assert!(
+                    share_x.max(share_y) > 0.8,
+                    "{} row {row}: the hand covers {share_x:.2} x {share_y:.2} of its panel",
+                    h.chains.side.name()
+                );
+                assert!(
+                    lo.0 >= f64::from(px) - 1.0
+                        && hi.0 <= f64::from(px + pw) + 1.0
+                        && lo.1 >= f64::from(py) - 1.0
+                        && hi.1 <= f64::from(py + ph) + 1.0,
+                    "row {row}: the hand leaves its panel: {lo:?} {hi:?}"
+                );
+            }
+        }
     }
 }

@@ -92,6 +92,22 @@ pub struct MeshView<'a> {
     pub positions: &'a [DVec3],
     pub triangles: &'a [[u32; 3]],
     pub strain: &'a [f64],
+    /// The vertices a panel is framed on (a hand's, in a whole body's mesh),
+    /// one flag per vertex; empty, or none set: every vertex. The rest of
+    /// the mesh is drawn too, cut at the panel's edges.
+    pub focus: &'a [bool],
+}
+
+impl MeshView<'_> {
+    /// The vertices to frame: the focus, or every vertex without one.
+    fn framed(&self) -> impl Iterator<Item = &DVec3> + '_ {
+        let all = !self.focus.iter().any(|&f| f);
+        self.positions
+            .iter()
+            .enumerate()
+            .filter(move |(i, _)| all || self.focus.get(*i).copied().unwrap_or(false))
+            .map(|(_, p)| p)
+    }
 }
 
 /// Strain at and beyond which the ramp is fully red: |ln ratio| 0.25, an edge
@@ -122,23 +138,50 @@ pub fn strain_colour(s: f64) -> [u8; 3] {
 
 /// Supersampling factor: drawn at this many times the size, then averaged down.
 const SS: u32 = 2;
-/// Height of the colour-ramp strip at the bottom.
-const LEGEND: u32 = 18;
-/// Margin around each mesh in its panel, pixels.
-const MARGIN: f64 = 10.0;
+/// Height of the band above the panels that names each column's rig.
+pub const LABELS: u32 = 22;
+/// Height of the colour scale at the bottom: its caption, the ramp, the ticks
+/// and their numbers.
+pub const LEGEND: u32 = 52;
+/// Margin around the framed vertices in their panel, as a share of the
+/// panel's width and height on each side.
+const MARGIN: f64 = 0.06;
+/// The strain at the right end of the drawn ramp (the ramp is red from
+/// [`RAMP_MAX`] on).
+const SCALE_END: f64 = 0.3;
+/// The strains the scale marks with a tick and its number: the ends, the
+/// middle (0.15), the amber stop (0.1) and the red one ([`RAMP_MAX`]).
+pub const SCALE_TICKS: [f64; 7] = [0.0, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3];
+/// What the colour measures, in the caption above the ramp: the first of
+/// these that fits the figure's width (the shorter for one column).
+pub const SCALE_CAPTION: [&str; 3] = [
+    "colour: edge strain |ln(posed / rest edge length)|, no unit (0.1: about 10% longer or shorter)",
+    "colour: edge strain |ln(posed / rest edge length)|, no unit",
+    "edge strain |ln(posed/rest length)|",
+];
 
-/// A grid of panels: one row per view, one column per mesh.
+/// The font of the labels and the scale's numbers, from the working directory:
+/// Liberation Sans Regular (SIL Open Font License 1.1), vendored with its
+/// licence and source in `data/fonts/liberation-sans/`. Read at run time, as
+/// all data from elsewhere is, never compiled in.
+pub const FONT_FILE: &str = "data/fonts/liberation-sans/LiberationSans-Regular.ttf";
+
+/// A grid of panels: one row per view, one column per mesh, under a band
+/// of column labels and above the colour scale.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Figure {
     pub width: u32,
     pub height: u32,
+    /// Pixels of one panel.
+    pub panel: (u32, u32),
     /// `cameras[row][column]`.
     pub cameras: Vec<Vec<Camera>>,
 }
 
 impl Figure {
     /// Lays out `meshes` in `views`, each panel `panel_w` x `panel_h` pixels:
-    /// one scale per row, the largest at which every mesh of the row fits.
+    /// one scale per row, the largest at which the framed vertices
+    /// ([`MeshView::focus`]) of every mesh of the row fit within the margin.
     pub fn layout(meshes: &[MeshView<'_>], views: &[View], panel_w: u32, panel_h: u32) -> Figure {
         let cameras = views
             .iter()
@@ -147,7 +190,7 @@ impl Figure {
                 let bounds: Vec<(DVec2, DVec2)> = meshes
                     .iter()
                     .map(|m| {
-                        m.positions.iter().fold(
+                        m.framed().fold(
                             (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
                             |(lo, hi), p| {
                                 let v = DVec2::new(p.dot(view.right), p.dot(view.up));
@@ -156,7 +199,8 @@ impl Figure {
                         )
                     })
                     .collect();
-                let room = DVec2::new(f64::from(panel_w), f64::from(panel_h)) - 2.0 * MARGIN;
+                let panel = DVec2::new(f64::from(panel_w), f64::from(panel_h));
+                let room = panel * (1.0 - 2.0 * MARGIN);
                 let scale = bounds
                     .iter()
                     .filter(|(lo, hi)| lo.is_finite() && hi.is_finite())
@@ -178,8 +222,8 @@ impl Figure {
                             DVec2::ZERO
                         },
                         at: DVec2::new(
-                            (col as f64 + 0.5) * f64::from(panel_w),
-                            (row as f64 + 0.5) * f64::from(panel_h),
+                            (col as f64 + 0.5) * panel.x,
+                            f64::from(LABELS) + (row as f64 + 0.5) * panel.y,
                         ),
                     })
                     .collect()
@@ -187,7 +231,8 @@ impl Figure {
             .collect();
         Figure {
             width: panel_w * meshes.len().max(1) as u32,
-            height: panel_h * views.len().max(1) as u32 + LEGEND,
+            height: LABELS + panel_h * views.len().max(1) as u32 + LEGEND,
+            panel: (panel_w, panel_h),
             cameras,
         }
     }
@@ -199,8 +244,24 @@ impl Figure {
         Some((x, y))
     }
 
-    /// Draws `meshes` (the ones given to [`Figure::layout`]) as PNG bytes.
-    pub fn render(&self, meshes: &[MeshView<'_>]) -> Result<Vec<u8>, String> {
+    /// The rectangle of panel (`row`, `column`): x, y, width, height in pixels.
+    pub fn panel_rect(&self, row: usize, column: usize) -> (u32, u32, u32, u32) {
+        let (w, h) = self.panel;
+        (column as u32 * w, LABELS + row as u32 * h, w, h)
+    }
+
+    /// Draws `meshes` (the ones given to [`Figure::layout`]) as PNG bytes,
+    /// `labels[k]` over column k, each view's name in its panel's corner,
+    /// and the colour scale with its numbers at the bottom.
+    /// `font`: the bytes of a TrueType font for the labels and the scale's
+    /// numbers (the caller reads `data/fonts/`, see [`FONT_FILE`]); without
+    /// one, or with bytes that are no font, the figure is drawn without text.
+    pub fn render(
+        &self,
+        meshes: &[MeshView<'_>],
+        labels: &[&str],
+        font: Option<&[u8]>,
+    ) -> Result<Vec<u8>, String> {
         let mut big = Pixmap::new(self.width * SS, self.height * SS).ok_or_else(|| {
             format!(
                 "an image of {} x {} pixels cannot be made",
@@ -208,47 +269,216 @@ impl Figure {
             )
         })?;
         big.fill(tiny_skia::Color::WHITE);
-        let to_big = Transform::from_scale(SS as f32, SS as f32);
         let mut paint = Paint {
             anti_alias: false,
             ..Paint::default()
         };
-        for row in &self.cameras {
-            for (camera, mesh) in row.iter().zip(meshes) {
-                draw_mesh(&mut big, &mut paint, camera, mesh, to_big);
+        // Each panel drawn on its own pixmap, so a mesh framed on its hand is
+        // cut at the panel's edges.
+        for (row, cams) in self.cameras.iter().enumerate() {
+            for (col, (camera, mesh)) in cams.iter().zip(meshes).enumerate() {
+                let (x, y, w, h) = self.panel_rect(row, col);
+                let mut panel =
+                    Pixmap::new(w * SS, h * SS).ok_or("an empty panel cannot be made")?;
+                panel.fill(tiny_skia::Color::WHITE);
+                let to_panel = Transform::from_scale(SS as f32, SS as f32)
+                    .pre_translate(-(x as f32), -(y as f32));
+                draw_mesh(&mut panel, &mut paint, camera, mesh, to_panel);
+                big.draw_pixmap(
+                    (x * SS) as i32,
+                    (y * SS) as i32,
+                    panel.as_ref(),
+                    &tiny_skia::PixmapPaint::default(),
+                    Transform::identity(),
+                    None,
+                );
             }
         }
-        // Panel borders and the ramp.
-        let panel_h = (self.height - LEGEND) / self.cameras.len().max(1) as u32;
-        let panel_w = self.width / meshes.len().max(1) as u32;
+        let to_big = Transform::from_scale(SS as f32, SS as f32);
+        // Panel borders.
+        let (panel_w, panel_h) = self.panel;
+        let panels_h = panel_h * self.cameras.len() as u32;
         paint.set_color_rgba8(200, 200, 200, 255);
         for k in 1..meshes.len() as u32 {
-            if let Some(r) = Rect::from_xywh(
-                (k * panel_w) as f32,
-                0.0,
-                1.0,
-                (self.height - LEGEND) as f32,
-            ) {
+            if let Some(r) =
+                Rect::from_xywh((k * panel_w) as f32, 0.0, 1.0, (LABELS + panels_h) as f32)
+            {
                 big.fill_rect(r, &paint, to_big, None);
             }
         }
-        for k in 1..=self.cameras.len() as u32 {
-            if let Some(r) = Rect::from_xywh(0.0, (k * panel_h) as f32, self.width as f32, 1.0) {
+        for k in 0..=self.cameras.len() as u32 {
+            if let Some(r) =
+                Rect::from_xywh(0.0, (LABELS + k * panel_h) as f32, self.width as f32, 1.0)
+            {
                 big.fill_rect(r, &paint, to_big, None);
             }
         }
-        let y0 = (self.height - LEGEND + 5) as f32;
-        for x in 0..self.width {
-            let s = f64::from(x) / f64::from(self.width.max(2) - 1) * RAMP_MAX * 1.2;
-            let [r, g, b] = strain_colour(s);
+        // The ramp, from 0 to SCALE_END, between the scale's side margins.
+        let (x0, x1) = self.scale_span();
+        let ramp_y = (LABELS + panels_h + 20) as f32;
+        for x in x0..x1 {
+            let [r, g, b] = strain_colour(self.strain_at(f64::from(x) + 0.5));
             paint.set_color_rgba8(r, g, b, 255);
-            if let Some(rect) = Rect::from_xywh(x as f32, y0, 1.0, (LEGEND - 9) as f32) {
+            if let Some(rect) = Rect::from_xywh(x as f32, ramp_y, 1.0, 10.0) {
                 big.fill_rect(rect, &paint, to_big, None);
             }
         }
-        downsample(&big, self.width, self.height)?
-            .encode_png()
+        paint.set_color_rgba8(60, 60, 60, 255);
+        for t in SCALE_TICKS {
+            let x = self.scale_x(t).round() as f32;
+            if let Some(rect) = Rect::from_xywh(x - 0.5, ramp_y + 10.0, 1.0, 4.0) {
+                big.fill_rect(rect, &paint, to_big, None);
+            }
+        }
+        let mut img = downsample(&big, self.width, self.height)?;
+        if let Some(font) = font.and_then(|f| ab_glyph::FontRef::try_from_slice(f).ok()) {
+            let dark = [40, 40, 40];
+            let grey = [110, 110, 110];
+            for (col, label) in labels.iter().enumerate().take(meshes.len()) {
+                let centre = (col as f64 + 0.5) * f64::from(panel_w);
+                let fit = f64::from(panel_w) - 8.0;
+                draw_text(&mut img, &font, label, centre, 16.0, 14.0, fit, dark);
+            }
+            for (row, cams) in self.cameras.iter().enumerate() {
+                let name = match cams.first().map(|c| c.view.name) {
+                    Some("side") => "from the side",
+                    Some("above") => "from above (the back of the hand)",
+                    Some(other) => other,
+                    None => continue,
+                };
+                let y = f64::from(LABELS + row as u32 * panel_h) + 14.0;
+                for col in 0..meshes.len() {
+                    let left = f64::from(col as u32 * panel_w) + 6.0;
+                    let w = text_width(&font, name, 11.0);
+                    draw_text(&mut img, &font, name, left + w / 2.0, y, 11.0, 1e9, grey);
+                }
+            }
+            let caption_y = f64::from(LABELS + panels_h) + 15.0;
+            let fit = f64::from(self.width) - 8.0;
+            let caption = SCALE_CAPTION
+                .iter()
+                .find(|c| text_width(&font, c, 11.5) <= fit)
+                .unwrap_or(&SCALE_CAPTION[2]);
+            draw_text(
+                &mut img,
+                &font,
+                caption,
+                f64::from(self.width) / 2.0,
+                caption_y,
+                11.5,
+                fit,
+                dark,
+            );
+            for t in SCALE_TICKS {
+                let words = if t == RAMP_MAX {
+                    "0.25 red".to_string()
+                } else if t == SCALE_END {
+                    "0.3+".to_string()
+                } else {
+                    crate::format::trimmed(t, 2)
+                };
+                let y = f64::from(ramp_y) + 26.0;
+                draw_text(&mut img, &font, &words, self.scale_x(t), y, 11.0, 1e9, dark);
+            }
+        }
+        img.encode_png()
             .map_err(|e| format!("the PNG could not be encoded ({e})"))
+    }
+
+    /// The scale's ramp runs from x0 to x1 pixels (left and right margins of
+    /// a twelfth of the width, at least 30 px).
+    fn scale_span(&self) -> (u32, u32) {
+        let m = (self.width / 12).max(30).min(self.width / 3);
+        (m, self.width.saturating_sub(m).max(m + 1))
+    }
+
+    /// The pixel x of strain `s` on the ramp.
+    pub fn scale_x(&self, s: f64) -> f64 {
+        let (x0, x1) = self.scale_span();
+        f64::from(x0) + s / SCALE_END * f64::from(x1 - x0)
+    }
+
+    /// The strain drawn at pixel x of the ramp.
+    fn strain_at(&self, x: f64) -> f64 {
+        let (x0, x1) = self.scale_span();
+        (x - f64::from(x0)) / f64::from(x1 - x0) * SCALE_END
+    }
+
+    /// The pixel row through the middle of the ramp.
+    pub fn scale_y(&self) -> f64 {
+        f64::from(LABELS + self.panel.1 * self.cameras.len() as u32 + 20) + 5.0
+    }
+}
+
+/// The width of `text` at `px` pixels.
+fn text_width(font: &ab_glyph::FontRef<'_>, text: &str, px: f32) -> f64 {
+    use ab_glyph::{Font, ScaleFont};
+    let f = font.as_scaled(px);
+    let mut w = 0.0;
+    let mut prev = None;
+    for c in text.chars() {
+        let id = f.glyph_id(c);
+        if let Some(p) = prev {
+            w += f.kern(p, id);
+        }
+        w += f.h_advance(id);
+        prev = Some(id);
+    }
+    f64::from(w)
+}
+
+/// Writes `text` centred on `cx` with its baseline at `y`, at `px` pixels
+/// (smaller when it would be wider than `fit`), blending the glyphs'
+/// coverage into the opaque image.
+#[allow(clippy::too_many_arguments)]
+fn draw_text(
+    img: &mut Pixmap,
+    font: &ab_glyph::FontRef<'_>,
+    text: &str,
+    cx: f64,
+    y: f64,
+    px: f32,
+    fit: f64,
+    rgb: [u8; 3],
+) {
+    use ab_glyph::{Font, ScaleFont, point};
+    let wide = text_width(font, text, px);
+    let px = if wide > fit && wide > 0.0 {
+        (f64::from(px) * fit / wide).max(6.0) as f32
+    } else {
+        px
+    };
+    let f = font.as_scaled(px);
+    let mut x = (cx - text_width(font, text, px) / 2.0) as f32;
+    let (w, h) = (img.width() as i32, img.height() as i32);
+    let data = img.data_mut();
+    let mut prev = None;
+    for c in text.chars() {
+        let id = f.glyph_id(c);
+        if let Some(p) = prev {
+            x += f.kern(p, id);
+        }
+        let glyph = id.with_scale_and_position(px, point(x, y as f32));
+        x += f.h_advance(id);
+        prev = Some(id);
+        let Some(outline) = font.outline_glyph(glyph) else {
+            continue;
+        };
+        let b = outline.px_bounds();
+        outline.draw(|gx, gy, cov| {
+            let (px_x, px_y) = (b.min.x as i32 + gx as i32, b.min.y as i32 + gy as i32);
+            if px_x < 0 || px_y < 0 || px_x >= w || px_y >= h {
+                return;
+            }
+            let at = (px_y as usize * w as usize + px_x as usize) * 4;
+            let a = cov.clamp(0.0, 1.0);
+            for k in 0..3 {
+                let old = f32::from(data[at + k]);
+                data[at + k] = (old + (f32::from(rgb[k]) - old) * a)
+                    .round()
+                    .clamp(0.0, 255.0) as u8;
+            }
+        });
     }
 }
 
@@ -329,6 +559,12 @@ fn downsample(big: &Pixmap, width: u32, height: u32) -> Result<Pixmap, String> {
 
 #[cfg(test)]
 mod tests {
+    /// The vendored label font, read as `phalanx` reads it (from the checkout).
+    fn font() -> Vec<u8> {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(super::FONT_FILE);
+        std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    }
+
     use super::*;
     use crate::dataset::Finger;
     use crate::rig::deform::synthetic::{HandSpec, tube_hand};
@@ -351,6 +587,7 @@ mod tests {
             positions: &rig.mesh.positions,
             triangles: &rig.mesh.triangles,
             strain: &strain,
+            focus: &[],
         };
         // The same finger twice, the second one strained red everywhere.
         let red = vec![1.0; rig.mesh.positions.len()];
@@ -360,14 +597,17 @@ mod tests {
         };
         let views = [View::side(&frame), View::above(&frame)];
         let fig = Figure::layout(&[mesh, hot], &views, 240, 200);
-        let bytes = fig.render(&[mesh, hot]).unwrap();
+        let bytes = fig
+            .render(&[mesh, hot], &["A", "B"], Some(&font()))
+            .unwrap();
         assert_eq!(
             bytes,
-            fig.render(&[mesh, hot]).unwrap(),
+            fig.render(&[mesh, hot], &["A", "B"], Some(&font()))
+                .unwrap(),
             "not deterministic"
         );
         let img = Pixmap::decode_png(&bytes).unwrap();
-        assert_eq!((img.width(), img.height()), (480, 400 + LEGEND));
+        assert_eq!((img.width(), img.height()), (480, LABELS + 400 + LEGEND));
         // The middle finger runs along +y from (-5, 31, 0) mm to the tip at (-5, 157, 0) mm.
         let tip = rig
             .skeleton
@@ -424,6 +664,94 @@ mod tests {
         colours.sort_unstable();
         colours.dedup();
         assert!(colours.len() > 20, "{} colours", colours.len());
+    }
+
+    /// A finger framed inside a big body: its panel is framed on the finger,
+    /// and the labels and the scale's numbers are drawn where they belong.
+    #[test]
+    fn a_focus_frames_its_vertices_and_the_figure_carries_its_words() {
+        let rig = tube_hand(&HandSpec {
+            fingers: vec![Finger::Middle],
+            ..HandSpec::default()
+        });
+        let frame = PalmFrame::new(Side::Right, DVec3::ZERO, DVec3::NEG_Z, DVec3::Y).unwrap();
+        // The finger, and a "body": one triangle 2 m across, 1 m from it.
+        let mut positions = rig.mesh.positions.clone();
+        let n = positions.len() as u32;
+        positions.extend([
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(3.0, -1.0, 0.0),
+            DVec3::new(2.0, 1.0, 0.0),
+        ]);
+        let mut triangles = rig.mesh.triangles.clone();
+        triangles.push([n, n + 1, n + 2]);
+        let strain = vec![0.0; positions.len()];
+        let mut focus = vec![true; rig.mesh.positions.len()];
+        focus.extend([false; 3]);
+        let framed = MeshView {
+            positions: &positions,
+            triangles: &triangles,
+            strain: &strain,
+            focus: &focus,
+        };
+        let whole = MeshView {
+            focus: &[],
+            ..framed
+        };
+        let views = [View::above(&frame)];
+        // The finger's rest extent from above, by hand: x from -5 - r to -5 + r mm
+        // (r = its radius), y from its root to the tip at 157 mm.
+        let xs = |m: &MeshView<'_>, fig: &Figure| {
+            let mut lo = f64::MAX;
+            let mut hi = f64::MIN;
+            for p in &m.positions[..n as usize] {
+                let (_, y) = fig.project(0, 0, *p).unwrap();
+                lo = lo.min(y);
+                hi = hi.max(y);
+            }
+            (hi - lo) / f64::from(fig.panel.1)
+        };
+        let fig = Figure::layout(&[framed], &views, 300, 300);
+        let share = xs(&framed, &fig);
+        assert!((0.85..=0.8801).contains(&share), "framed: {share}");
+        let fig_whole = Figure::layout(&[whole], &views, 300, 300);
+        let share = xs(&whole, &fig_whole);
+        assert!(share < 0.1, "whole: {share}");
+        // The words: dark pixels in the label band over the column, on the
+        // ramp's row the ramp's colours, and numbers under the ticks.
+        let img = Pixmap::decode_png(&fig.render(&[framed], &["the rig"], Some(&font())).unwrap())
+            .unwrap();
+        let dark = |x0: u32, x1: u32, y0: u32, y1: u32| {
+            (y0..y1)
+                .flat_map(|y| (x0..x1).map(move |x| (x, y)))
+                .filter(|&(x, y)| {
+                    let p = img.pixel(x, y).unwrap();
+                    u32::from(p.red()) + u32::from(p.green()) + u32::from(p.blue()) < 300
+                })
+                .count()
+        };
+        assert!(dark(120, 180, 0, LABELS) > 20, "no label over the column");
+        assert_eq!(dark(0, 100, 0, LABELS), 0, "the label is not centred");
+        let ramp_y = fig.scale_y();
+        for t in [0.0, 0.1, RAMP_MAX] {
+            let x = fig.scale_x(t + 0.004);
+            let c = pixel(&img, x, ramp_y);
+            let want = strain_colour(t + 0.004);
+            assert!(
+                c.iter().zip(want).all(|(a, b)| a.abs_diff(b) <= 6),
+                "ramp at {t}: {c:?} against {want:?}"
+            );
+            let x = fig.scale_x(t).round() as u32;
+            let below = ramp_y as u32 + 12;
+            assert!(
+                dark(x - 8, x + 8, below, fig.height) > 5,
+                "no number under {t}"
+            );
+        }
+        assert!(
+            dark(0, fig.width, fig.height - LEGEND, ramp_y as u32 - 6) > 100,
+            "no caption"
+        );
     }
 
     #[test]

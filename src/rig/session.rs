@@ -151,6 +151,29 @@ pub const WRIST_LANDMARKS: &str = "landmarks.csv";
 /// extension names no glTF container. The fixed copy is read back from memory
 /// before it is written, so a copy that would not load is never left on disk;
 /// it is written atomically and the input is never modified.
+/// What the audit says of the side of fingers whose joint names carry none,
+/// by the rule `deform` curls by ([`crate::rig::read::naming::hand_side`]):
+/// the side the file name says, or that no side is known and what `deform`
+/// then needs. `None` when every finger's names say its side.
+pub fn side_note(label: &str, chains: &[crate::rig::read::FingerChain]) -> Option<String> {
+    if chains.iter().all(|c| c.side.is_some()) {
+        return None;
+    }
+    Some(
+        match crate::rig::read::naming::hand_side(None, None, label) {
+            Some(side) => format!(
+                "Side: the joint names do not say which hand this is; the file name says {}, and \
+             deform curls it as that",
+                side.name()
+            ),
+            None => "Side: neither the joint names nor the file name say which hand this is. The \
+                 fingers are judged all the same (their proportions do not depend on the side), \
+                 but deform needs --side left or --side right to curl them"
+                .to_string(),
+        },
+    )
+}
+
 pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     let map = req.map.map(NameMap::load).transpose()?;
     let fix_glb = req.fix.map(|out| fix_container(req.rig, out)).transpose()?;
@@ -210,6 +233,9 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     );
     if let Some(atlas) = &atlas {
         audited.judge_metacarpals(atlas, wrist.as_ref());
+    }
+    if let Some(note) = side_note(&rig.file.label, &rig.chains) {
+        audited.notes.push(note);
     }
     // One fix serves both --fix and --moves: the moves are read off the very
     // bytes --fix writes, so they follow whatever the fix decides.

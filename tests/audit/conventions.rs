@@ -91,7 +91,7 @@ fn sibling_joints_are_read_by_name_and_through_a_map() {
     );
     wd.run(&["audit", "xr.glb", "--fix", "fixed.glb"])
         .ok()
-        .stderr_has("1 joints moved; re-audited, 0 of 5 fingers outside");
+        .stderr_has("1 joint moved; re-audited, 0 of 5 fingers outside");
     assert!(worst_vertex_move(&input, &wd.read("fixed.glb")) < 1e-5);
     // Anonymous siblings, named by a map.
     let mut spec = HandSpec::new(Naming::Anonymous).moved("index", 1, 1.0);
@@ -111,7 +111,7 @@ fn sibling_joints_are_read_by_name_and_through_a_map() {
         "out.glb",
     ])
     .ok()
-    .stderr_has("0 of 1 fingers outside");
+    .stderr_has("0 of 1 finger outside");
     assert!(worst_vertex_move(&input, &wd.read("out.glb")) < 1e-5);
 }
 
@@ -154,7 +154,7 @@ fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
     // The fix moves the MCP alone, back into the range, and keeps the mesh.
     wd.run(&["audit", "web.glb", "--fix", "fixed.glb"])
         .ok()
-        .stderr_has("1 joints moved; re-audited, 0 of 5 fingers outside");
+        .stderr_has("1 joint moved; re-audited, 0 of 5 fingers outside");
     assert!(worst_vertex_move(&input, &wd.read("fixed.glb")) < 1e-5);
 }
 

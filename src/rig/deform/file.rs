@@ -20,6 +20,40 @@ pub struct HandDeformation {
     pub deformation: Deformation,
 }
 
+impl HandDeformation {
+    /// Per vertex of the mesh: whether the hand's bones skin it, that is,
+    /// whether its largest weight is on the wrist, a metacarpal, or a node
+    /// the pose moves (the fingers' joints and tips and whatever hangs from
+    /// them). A figure frames these; a whole body's other vertices are not
+    /// the hand.
+    pub fn hand_vertices(&self) -> Vec<bool> {
+        let n = self.posed.motion.len();
+        let mut hand = vec![false; n];
+        for (k, d) in self.posed.motion.iter().enumerate() {
+            hand[k] = *d != glam::DMat4::IDENTITY;
+        }
+        let fixed = self
+            .chains
+            .wrist
+            .into_iter()
+            .chain(self.chains.fingers.iter().filter_map(|f| f.metacarpal))
+            .chain(self.chains.fingers.iter().flat_map(|f| f.finger_nodes()));
+        for k in fixed {
+            if let Some(h) = hand.get_mut(k) {
+                *h = true;
+            }
+        }
+        (0..self.mesh.positions.len())
+            .map(|v| {
+                self.mesh
+                    .dominant(v)
+                    .and_then(|slot| self.mesh.joints.get(usize::from(slot)))
+                    .is_some_and(|&node| hand.get(node).copied().unwrap_or(false))
+            })
+            .collect()
+    }
+}
+
 /// Every hand of a file, deformed.
 #[derive(Debug, Clone)]
 pub struct FileDeformation {

@@ -18,7 +18,7 @@ use super::{FingerNodes, HandChains};
 use crate::analysis::placement::Joint;
 use crate::dataset::{DataError, Finger};
 use crate::rig::read::map::NameMap;
-use crate::rig::read::naming::{Side, Slot};
+use crate::rig::read::naming::{Side, Slot, hand_side};
 use crate::rig::read::recognise::{
     choose_nodes, recognise, skin_weights, weighted_nodes, wrist_of, wrists,
 };
@@ -60,7 +60,7 @@ pub fn hands(
         if fingers.is_empty() {
             continue;
         }
-        let side = match s.or(side).or_else(|| side_from_label(&file.label)) {
+        let side = match hand_side(s, side, &file.label) {
             Some(x) => x,
             None => {
                 return Err(DataError::whole_file(
@@ -98,19 +98,6 @@ pub fn hands(
     }
     out.sort_by_key(|h| h.side);
     Ok(out)
-}
-
-/// `left`/`right` in a file name, when exactly one of them is.
-pub(crate) fn side_from_label(label: &str) -> Option<Side> {
-    let stem = std::path::Path::new(label)
-        .file_stem()?
-        .to_string_lossy()
-        .to_ascii_lowercase();
-    match (stem.contains("left"), stem.contains("right")) {
-        (true, false) => Some(Side::Left),
-        (false, true) => Some(Side::Right),
-        _ => None,
-    }
 }
 
 /// A finger's nodes from its recognised slots, its metacarpal the one named
@@ -229,6 +216,7 @@ mod tests {
 
     #[test]
     fn sides_from_file_names() {
+        use crate::rig::read::naming::side_from_label;
         assert_eq!(side_from_label("rigs/left.glb"), Some(Side::Left));
         assert_eq!(side_from_label("Right-Hand.glb"), Some(Side::Right));
         assert_eq!(side_from_label("hands.glb"), None);

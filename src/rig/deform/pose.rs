@@ -72,6 +72,14 @@ pub struct Pose {
     pub name: String,
     /// Thumb, index, middle, ring, little ([`Finger::ALL`] order).
     pub fingers: [Angles; 5],
+    /// The finger the thumb folds across (see [`fold_thumb`]): its tip is
+    /// brought to that finger's posed middle phalanx by turning the whole
+    /// thumb about its CMC. `None`: the thumb only bends. Left out of the
+    /// JSON document, whose schema (version 1) holds the angles only; the
+    /// text's pose line says it.
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub thumb_across: Option<Finger>,
 }
 
 /// The thumb's angles are the fingers' MCP and PIP angles times this. The
@@ -104,6 +112,7 @@ impl Pose {
         Ok(Pose {
             name: name.to_string(),
             fingers: [thumb, f, f, f, f],
+            thumb_across: None,
         })
     }
 
@@ -160,8 +169,13 @@ impl Pose {
     /// The relaxed fist: MCP 60, PIP 90, DIP 60 degrees (about two thirds of
     /// each joint's active range, AAOS: MCP 90, PIP 100, DIP 80, so the
     /// fingertips come to the palm without pressing into it); thumb MCP 30, IP 45.
+    /// The thumb folded across the index's middle phalanx (a fist's thumb
+    /// lies over the index and middle fingers, not out of the palm).
     pub fn fist() -> Pose {
-        Self::fixed("fist", 60.0, 90.0, 60.0)
+        Pose {
+            thumb_across: Some(Finger::Index),
+            ..Self::fixed("fist", 60.0, 90.0, 60.0)
+        }
     }
 
     /// Holding a bar of about 4 cm: MCP 45, PIP 60, DIP 30; thumb MCP 22.5, IP 30.
@@ -169,9 +183,11 @@ impl Pose {
         Self::fixed("grip", 45.0, 60.0, 30.0)
     }
 
-    /// Pointing: the index finger straight, the others in the fist.
+    /// Pointing: the index finger straight, the others in the fist, the
+    /// thumb folded across the middle finger.
     pub fn point() -> Pose {
         let mut p = Self::fixed("point", 60.0, 90.0, 60.0);
+        p.thumb_across = Some(Finger::Middle);
         p.fingers[1] = Angles {
             mcp: 0.0,
             pip: 0.0,
@@ -204,6 +220,7 @@ impl Pose {
                 pip: 0.0,
                 dip: 0.0,
             }; 5],
+            thumb_across: None,
         })
     }
 
@@ -438,6 +455,8 @@ pub struct PosedFinger {
     pub tip: Option<DVec3>,
     /// The nodes of the finger proper (joints and tip, not the metacarpal).
     pub nodes: Vec<usize>,
+    /// Whether `root` is the finger's own metacarpal (else the wrist).
+    pub has_metacarpal: bool,
 }
 
 impl PosedFinger {
@@ -486,9 +505,16 @@ pub fn pose_in_frame(
     let n = skeleton.world.len();
     chains.check(n).map_err(|p| p.join("; "))?;
     let mut own: Vec<Option<DMat4>> = vec![None; n];
-    let mut fingers = Vec::new();
-    for chain in &chains.fingers {
-        let f = pose_finger(skeleton, chains, &frame, chain, pose)?;
+    let mut fingers = chains
+        .fingers
+        .iter()
+        .map(|chain| pose_finger(skeleton, chains, &frame, chain, pose))
+        .collect::<Result<Vec<_>, _>>()?;
+    // The turn of the thumb about its CMC, when the pose folds it.
+    let fold = pose
+        .thumb_across
+        .and_then(|to| fold_thumb(&mut fingers, &frame, to));
+    for (chain, f) in chains.fingers.iter().zip(&fingers) {
         for j in &f.joints {
             own[j.node] = Some(j.after);
         }
@@ -496,9 +522,13 @@ pub fn pose_in_frame(
             own[tip] = Some(last.after);
         }
         if let Some(m) = chain.metacarpal {
-            own[m] = Some(DMat4::IDENTITY);
+            let turn = if chain.finger == Finger::Thumb {
+                fold
+            } else {
+                None
+            };
+            own[m] = Some(turn.unwrap_or(DMat4::IDENTITY));
         }
-        fingers.push(f);
     }
     // Every other node moves with its nearest ancestor that has a motion.
     let mut motion = vec![DMat4::IDENTITY; n];
@@ -529,6 +559,52 @@ pub fn pose_in_frame(
         motion,
         world,
     })
+}
+
+/// How far from the axis of the finger it folds across the thumb's tip is
+/// put, in lengths of that finger's middle phalanx: the two fingers' radii,
+/// about 9 and 10 mm against a middle phalanx of about 25 mm in an adult
+/// hand, so the thumb lies on the finger's skin rather than in it.
+pub const THUMB_CLEARANCE: f64 = 0.75;
+
+/// Folds the posed thumb across finger `to`: turns the whole thumb (its
+/// metacarpal, joints and tip) about its CMC (the metacarpal's origin, or
+/// its MCP without one) by the smallest rotation that points the CMC-to-tip
+/// line at the target, the midpoint of `to`'s posed middle phalanx (PIP to
+/// DIP) moved [`THUMB_CLEARANCE`] of that phalanx's length off it on its
+/// back, which faces the thumb in a fist. The thumb's own MCP and IP angles
+/// are kept. Returns the turn, `None` (nothing changed) when the hand has
+/// no such finger or thumb, or the turn is not defined.
+fn fold_thumb(fingers: &mut [PosedFinger], frame: &PalmFrame, to: Finger) -> Option<DMat4> {
+    let target = {
+        let f = fingers.iter().find(|f| f.finger == to)?;
+        let (pip, dip) = (f.joints.get(1)?, f.joints.get(2)?);
+        let (a, b) = (pip.posed(), dip.posed());
+        let len = a.distance(b);
+        // The phalanx's back: the rest back of the hand (-normal) turned with it.
+        let back = pip.after.transform_vector3(-frame.normal).try_normalize()?;
+        (a + b) / 2.0 + back * (THUMB_CLEARANCE * len)
+    };
+    let thumb = fingers.iter_mut().find(|f| f.finger == Finger::Thumb)?;
+    let pivot = thumb
+        .root
+        .filter(|_| thumb.has_metacarpal)
+        .unwrap_or(thumb.joints.first()?.rest);
+    let last = thumb.joints.last()?;
+    let tip = last.after.transform_point3(thumb.tip.unwrap_or(last.rest));
+    let from = (tip - pivot).try_normalize()?;
+    let towards = (target - pivot).try_normalize()?;
+    let q = DQuat::from_rotation_arc(from, towards);
+    if !q.is_finite() {
+        return None;
+    }
+    let turn =
+        DMat4::from_translation(pivot) * DMat4::from_quat(q) * DMat4::from_translation(-pivot);
+    for j in &mut thumb.joints {
+        j.before = turn * j.before;
+        j.after = turn * j.after;
+    }
+    Some(turn)
 }
 
 fn pose_finger(
@@ -591,11 +667,12 @@ fn pose_finger(
         joints,
         tip,
         nodes: chain.finger_nodes(),
+        has_metacarpal: chain.metacarpal.is_some(),
     })
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::rig::deform::synthetic::{HandSpec, tube_hand};
 
@@ -758,6 +835,76 @@ mod tests {
                 assert!(rest.abs_diff_eq(posed, 1e-12), "node {i}");
             }
         }
+    }
+
+    /// Where the posed thumb's tip is, relative to the palm (height on its
+    /// palm side, from the wrist's plane) and to the posed middle phalanx of
+    /// the finger it folds across (the distance to that segment), in metres.
+    pub(crate) fn thumb_tip_place(posed: &PosedHand, across: Finger) -> (f64, f64, f64) {
+        let thumb = posed
+            .fingers
+            .iter()
+            .find(|f| f.finger == Finger::Thumb)
+            .unwrap();
+        let last = thumb.joints.last().unwrap();
+        let tip = last.after.transform_point3(thumb.tip.unwrap_or(last.rest));
+        let f = posed.fingers.iter().find(|f| f.finger == across).unwrap();
+        let (a, b) = (f.joints[1].posed(), f.joints[2].posed());
+        let t = ((tip - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+        let to_phalanx = tip.distance(a + (b - a) * t);
+        let height = (tip - posed.frame.origin).dot(posed.frame.normal);
+        // The fist's depth: how far the curled finger's DIP is from the palm plane.
+        let depth = (f.joints[2].posed() - posed.frame.origin).dot(posed.frame.normal);
+        (height, to_phalanx, depth)
+    }
+
+    #[test]
+    fn the_fist_folds_the_thumb_across_the_index() {
+        // The synthetic right hand (synthetic.rs): palm to -z, the thumb's MCP at
+        // (-30, 45, -8) mm with bones 40 (metacarpal), 32 and 28 mm, the index's
+        // middle phalanx 25 mm long (its radius 8 mm, the thumb's 9).
+        let rig = tube_hand(&HandSpec::default());
+        let fist = pose_hand(&rig.skeleton, &rig.chains, &Pose::fist()).unwrap();
+        let (height, to_index, depth) = thumb_tip_place(&fist, Finger::Index);
+        // The tip lies on the index's middle phalanx: within the two radii and a
+        // few mm more (17 mm + 8 mm) of its axis, on the palm side, no deeper
+        // than the fist itself.
+        assert!(
+            to_index < 0.025,
+            "the thumb's tip is {to_index} m from the index"
+        );
+        assert!(
+            height > 0.0 && height < depth + 0.01,
+            "{height} m deep, the fist {depth}"
+        );
+        // (The tube hand's thumb already passes the index when bent alone; the
+        // WebXR hands' test shows what the fold mends on a real rig.)
+        // The turn is rigid and carries the metacarpal with the thumb: each
+        // thumb bone keeps its length, and the CMC stays where it is.
+        let thumb = fist
+            .fingers
+            .iter()
+            .find(|f| f.finger == Finger::Thumb)
+            .unwrap();
+        let cmc = thumb.root.unwrap();
+        let mcp = thumb.joints[0];
+        assert!((mcp.posed().distance(cmc) - mcp.rest.distance(cmc)).abs() < 1e-12);
+        let chain = rig
+            .chains
+            .fingers
+            .iter()
+            .find(|f| f.finger == Finger::Thumb)
+            .unwrap();
+        let m = chain.metacarpal.unwrap();
+        assert!(fist.motion[m].transform_point3(cmc).distance(cmc) < 1e-12);
+        assert!(
+            fist.motion[m] != DMat4::IDENTITY,
+            "the metacarpal does not turn"
+        );
+        // Pointing folds it across the middle finger instead.
+        let point = pose_hand(&rig.skeleton, &rig.chains, &Pose::point()).unwrap();
+        let (_, to_middle, _) = thumb_tip_place(&point, Finger::Middle);
+        assert!(to_middle < 0.025, "{to_middle}");
     }
 
     #[test]

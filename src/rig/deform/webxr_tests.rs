@@ -132,6 +132,29 @@ fn the_webxr_hands_curl_into_a_fist() {
             .fold(0.0, f64::max);
         assert!(off < 1e-5, "{off}");
         let posed = pose::pose_hand(&skeleton, &hand, &Pose::fist()).unwrap();
+        {
+            let bent = Pose {
+                thumb_across: None,
+                ..Pose::fist()
+            };
+            let bent = pose::pose_hand(&skeleton, &hand, &bent).unwrap();
+            // The fist's thumb lies across the index's middle phalanx (its tip
+            // within 15 mm of that bone's axis: the index's skin is about 9 mm
+            // off it here) and no deeper below the palm than the curled index's
+            // DIP plus 10 mm. Bent at its MCP and IP alone, it stuck straight
+            // out of the palm: 27 mm from the index, 17 mm below its DIP.
+            let (height, to_index, depth) = pose::tests::thumb_tip_place(&posed, Finger::Index);
+            assert!(to_index < 0.015, "{name}: {to_index} m from the index");
+            assert!(
+                height > 0.0 && height < depth + 0.01,
+                "{name}: {height} m below the palm, the fist {depth}"
+            );
+            let (height, to_index, depth) = pose::tests::thumb_tip_place(&bent, Finger::Index);
+            assert!(
+                to_index > 0.02 && height > depth + 0.015,
+                "{name}: {to_index} {height}"
+            );
+        }
         let mut results = Vec::new();
         for method in [Skinning::Lbs, Skinning::Dqs] {
             let d = deform(&mesh, &skeleton, &posed, method);
@@ -208,10 +231,11 @@ fn the_webxr_hands_curl_into_a_fist() {
                 positions: &d.posed,
                 triangles: &mesh.triangles,
                 strain: &d.vertex_strain,
+                focus: &[],
             })
             .collect();
         let fig = Figure::layout(&meshes, &views, 360, 300);
-        let png = fig.render(&meshes).unwrap();
+        let png = fig.render(&meshes, &["LBS", "DQS"], Some(&font())).unwrap();
         let path = out.join(format!("webxr-{name}-fist-lbs-dqs.png"));
         std::fs::write(&path, &png).unwrap();
         eprintln!("drawn: {}", path.display());
@@ -258,11 +282,12 @@ fn thirty_thousand_triangles() {
             positions: &d.posed,
             triangles: &rig.mesh.triangles,
             strain: &d.vertex_strain,
+            focus: &[],
         })
         .collect();
     let views = [View::side(&posed.frame), View::above(&posed.frame)];
     let fig = Figure::layout(&meshes, &views, 360, 300);
-    let png = fig.render(&meshes).unwrap();
+    let png = fig.render(&meshes, &["LBS", "DQS"], Some(&font())).unwrap();
     let t_all = start.elapsed();
     eprintln!(
         "pose + LBS + measures: {:.3} s; + DQS + measures: {:.3} s; + figure ({} bytes): {:.3} s",
@@ -278,4 +303,11 @@ fn thirty_thousand_triangles() {
         .map(|f| f.self_intersections)
         .sum();
     eprintln!("LBS crossings: {crossings}");
+}
+
+/// The vendored label font, read as `phalanx` reads it (from the checkout).
+fn font() -> Vec<u8> {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(crate::report::render3d::FONT_FILE);
+    std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }

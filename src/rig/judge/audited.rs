@@ -6,6 +6,7 @@
 use super::bend;
 use super::finger;
 use super::ray_base::{self, MetacarpalCheck, WRIST_DEFINITION, WristRatios};
+use super::sanity;
 use super::standing::{
     BEND_GUARD, ChainInput, FingerAudit, Held, HoldReason, JudgeOptions, MOVE_TOLERANCE,
     SoftTissue, TipKind, chain_kinds,
@@ -244,6 +245,28 @@ fn scale_warning(lengths: &[f64]) -> Option<String> {
     })
 }
 
+/// The rig's scale warning, unless the nodes' rest pose disagrees with the
+/// skin's bind pose and the bind pose's fingers are of a plausible length
+/// (then the disagreement, named instead, is the cause); then the joints far
+/// outside their mesh ([`sanity`]).
+fn geometry_warnings(
+    chains: &[FingerChain],
+    weights: Option<&SkinWeights>,
+    lengths: &[f64],
+) -> Vec<String> {
+    let rest = weights.and_then(|w| sanity::rest_not_bind(chains, w));
+    let mut out = Vec::new();
+    if rest
+        .as_ref()
+        .is_none_or(|r| scale_warning(&r.bind_lengths).is_some())
+    {
+        out.extend(scale_warning(lengths));
+    }
+    out.extend(rest.map(|r| r.warning));
+    out.extend(weights.and_then(|w| sanity::joints_outside_mesh(chains, w)));
+    out
+}
+
 /// The note saying how the MCPs were judged from their rays' bases.
 fn metacarpal_note(
     atlas: &Analysis,
@@ -381,7 +404,7 @@ impl AuditedRig {
             bend_tolerance: opts.bend_tolerance,
             fingers,
             notes,
-            warnings: scale_warning(&lengths).into_iter().collect(),
+            warnings: geometry_warnings(chains, weights, &lengths),
         }
     }
 

@@ -2,8 +2,9 @@
 //! joints' standings, `expected`, and the explanation that moves the fewest
 //! joints, `explain`, in the terms of [`standing`], on the chain geometry of
 //! `chain`); its MCP from its ray's base, the CMC or the wrist
-//! ([`ray_base`]); where its skin bends ([`bend`]); a whole rig at once
-//! ([`audited`]); and `--fix-mcp atlas`, the MCP placed from its ray's base
+//! ([`ray_base`]); where its skin bends ([`bend`]); whether its bones match its
+//! mesh (`sanity`: joints far outside it, a rest pose not the bind pose); a whole
+//! rig at once ([`audited`]); and `--fix-mcp atlas`, the MCP placed from its ray's base
 //! ([`ray`]).
 //!
 //! It reads the chains and skin weights of [`super::read`] and writes
@@ -17,6 +18,7 @@ mod explain;
 pub mod finger;
 pub mod ray;
 pub mod ray_base;
+pub(crate) mod sanity;
 pub mod standing;
 #[cfg(test)]
 mod tests;

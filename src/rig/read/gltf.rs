@@ -81,8 +81,11 @@ impl GltfFile {
     /// The JSON is validated by the gltf crate, except `extensionsRequired`:
     /// an audit reads only nodes and skins, so a file needing, say, mesh
     /// compression is still read. Node transforms must give finite world
-    /// matrices. Never panics: the few inputs known to panic inside the gltf
-    /// crate are refused first, and any other panic there becomes an error.
+    /// matrices. Never panics: the inputs known to panic inside the gltf crate,
+    /// or to index out of range when its data is read, are refused first
+    /// (`precheck`), and any other panic there becomes an error. Every problem
+    /// found at the door (this file's checks and the crate's validation) is
+    /// reported in one error, each with its JSON path.
     pub fn from_bytes(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
         let fail = |what: String| DataError::whole_file(label, what);
         let (json_bytes, blob) = if bytes.starts_with(b"glTF") {
@@ -105,16 +108,17 @@ impl GltfFile {
         {
             return Err(fail(what));
         }
-        let problems = precheck(&json);
-        if !problems.is_empty() {
-            return Err(DataError {
-                file: label.to_string(),
-                problems: problems
-                    .into_iter()
-                    .map(|e| crate::dataset::Problem::file(format!("is not valid glTF 2.0: {e}")))
-                    .collect(),
-            });
-        }
+        // Every problem found at the door is reported together: this file's
+        // own checks (what the gltf crate would unwrap or index out of range),
+        // then the gltf crate's validation, each with its JSON path.
+        let mut problems = precheck(&json, blob.map(<[u8]>::len));
+        let invalid = |problems: Vec<String>| DataError {
+            file: label.to_string(),
+            problems: problems
+                .into_iter()
+                .map(|e| crate::dataset::Problem::file(format!("is not valid glTF 2.0: {e}")))
+                .collect(),
+        };
         let mut for_document = json.clone();
         if let Some(o) = for_document.as_object_mut() {
             o.remove("extensionsRequired");
@@ -134,20 +138,35 @@ impl GltfFile {
             }
             list.retain(|a| a["channels"].as_array().is_some_and(|c| !c.is_empty()));
         }
-        let root: gltf::json::Root = serde_json::from_value(for_document).map_err(|e| {
-            fail(format!(
-                "is not a valid glTF 2.0 file ({e}); export it as glTF 2.0 (.glb or .gltf)"
-            ))
-        })?;
-        let document = quietly(|| gltf::Document::from_json(root))
-            .ok_or_else(|| {
-                fail("could not be parsed: the glTF reader failed on it; re-export it".into())
-            })?
-            .map_err(|e| {
-                fail(format!(
+        let root: gltf::json::Root = match serde_json::from_value(for_document) {
+            Ok(root) => root,
+            Err(_) if !problems.is_empty() => return Err(invalid(problems)),
+            Err(e) => {
+                return Err(fail(format!(
                     "is not a valid glTF 2.0 file ({e}); export it as glTF 2.0 (.glb or .gltf)"
-                ))
-            })?;
+                )));
+            }
+        };
+        // The crate's validation panics on what `precheck` finds (a mesh
+        // attribute naming a missing accessor): then its problems stand alone.
+        let document = match quietly(|| gltf::Document::from_json(root)) {
+            Some(Ok(document)) if problems.is_empty() => document,
+            Some(Ok(_)) => return Err(invalid(problems)),
+            Some(Err(gltf::Error::Validation(errors))) => {
+                problems.extend(errors.iter().map(|(path, e)| validation_words(path, e)));
+                return Err(invalid(problems));
+            }
+            Some(Err(e)) => {
+                problems.push(format!("{e}; export it as glTF 2.0 (.glb or .gltf)"));
+                return Err(invalid(problems));
+            }
+            None if !problems.is_empty() => return Err(invalid(problems)),
+            None => {
+                return Err(fail(
+                    "could not be parsed: the glTF reader failed on it; re-export it".into(),
+                ));
+            }
+        };
         let n = document.nodes().len();
         let mut parent = vec![None; n];
         for node in document.nodes() {
@@ -416,13 +435,75 @@ fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), String> {
     }
 }
 
-/// What is known to panic inside the gltf crate, each with its JSON path: a
-/// mesh attribute naming an accessor that does not exist (its validation
-/// indexes it), and an image with neither `uri` nor `bufferView`, with both,
-/// or with a `bufferView` and no `mimeType` (`Image::source` unwraps them;
-/// the glTF 2.0 specification requires exactly one source, and the MIME type
-/// with a buffer view). Every problem is listed. O(JSON size).
-fn precheck(json: &serde_json::Value) -> Vec<String> {
+/// One problem of the gltf crate's validation, its path as a JSON pointer
+/// (`accessors[0].bufferView` as `/accessors/0/bufferView`, as [`precheck`]
+/// names them) and what it means.
+fn validation_words(path: &gltf::json::Path, e: &gltf::json::validation::Error) -> String {
+    use gltf::json::validation::Error as E;
+    let pointer: String = path
+        .to_string()
+        .replace('[', ".")
+        .replace(']', "")
+        .split('.')
+        .filter(|p| !p.is_empty())
+        .map(|p| format!("/{p}"))
+        .collect();
+    let what = match e {
+        E::IndexOutOfBounds => "names an entry that does not exist (index out of range)",
+        E::Invalid => "has a value glTF 2.0 does not allow",
+        E::Missing => "is missing, and glTF 2.0 requires it",
+        E::Oversize => "is too large to read",
+        E::Unsupported => "needs an extension this reader does not support",
+    };
+    format!("{pointer} {what}")
+}
+
+/// Bytes of one component of an accessor's `componentType`; `None` for an
+/// unknown type (the gltf crate's validation names it).
+fn component_bytes(t: &serde_json::Value) -> Option<u64> {
+    match t.as_u64()? {
+        5120 | 5121 => Some(1),
+        5122 | 5123 => Some(2),
+        5125 | 5126 => Some(4),
+        _ => None,
+    }
+}
+
+/// Bytes of one element of an accessor: its components, with each matrix
+/// column padded to 4 bytes as glTF 2.0 lays them out; `None` for an unknown
+/// `type`.
+fn element_bytes(ty: &serde_json::Value, component: u64) -> Option<u64> {
+    let (columns, rows) = match ty.as_str()? {
+        "SCALAR" => (1, 1),
+        "VEC2" => (1, 2),
+        "VEC3" => (1, 3),
+        "VEC4" => (1, 4),
+        "MAT2" => (2, 2),
+        "MAT3" => (3, 3),
+        "MAT4" => (4, 4),
+        _ => return None,
+    };
+    let column = rows * component;
+    Some(if columns == 1 {
+        column
+    } else {
+        columns * column.div_ceil(4) * 4
+    })
+}
+
+/// What is known to panic inside the gltf crate, or to index out of range
+/// when the file's data is read, each with its JSON path: a mesh attribute
+/// naming an accessor that does not exist (its validation indexes it); an
+/// image with neither `uri` nor `bufferView`, with both, or with a
+/// `bufferView` and no `mimeType` (`Image::source` unwraps them; the glTF 2.0
+/// specification requires exactly one source, and the MIME type with a buffer
+/// view); a GLB buffer longer than the binary chunk (`blob`, its length) that
+/// holds it; and buffer views, accessors and sparse accessors whose bytes run
+/// past the view or buffer they lie in. Indices out of range (a texture's
+/// sampler or image, an accessor's buffer view) are left to the gltf crate's
+/// validation, which names them without panicking. Every problem is listed.
+/// O(JSON size).
+fn precheck(json: &serde_json::Value, blob: Option<usize>) -> Vec<String> {
     let mut problems = Vec::new();
     let accessors = json["accessors"].as_array().map_or(0, Vec::len);
     for (m, mesh) in json["meshes"].as_array().into_iter().flatten().enumerate() {
@@ -442,6 +523,113 @@ fn precheck(json: &serde_json::Value) -> Vec<String> {
                     }
                 }
             }
+        }
+    }
+    let buffers: Vec<Option<u64>> = json["buffers"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .map(|b| b["byteLength"].as_u64())
+        .collect();
+    if let (Some(have), Some(Some(declared))) = (blob, buffers.first())
+        && json["buffers"][0]
+            .get("uri")
+            .is_none_or(serde_json::Value::is_null)
+        && *declared > have as u64
+    {
+        problems.push(format!(
+            "/buffers/0 declares {declared} bytes, but the GLB binary chunk that holds it has \
+             {have}; re-export the file"
+        ));
+    }
+    let views: Vec<&serde_json::Value> = json["bufferViews"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .collect();
+    for (i, view) in views.iter().enumerate() {
+        let (Some(b), Some(length)) = (view["buffer"].as_u64(), view["byteLength"].as_u64()) else {
+            continue;
+        };
+        let Some(Some(size)) = buffers.get(b as usize) else {
+            continue;
+        };
+        let offset = view["byteOffset"].as_u64().unwrap_or(0);
+        if offset.checked_add(length).is_none_or(|end| end > *size) {
+            problems.push(format!(
+                "/bufferViews/{i}: its {length} bytes from byteOffset {offset} run past the end \
+                 of buffer {b} ({size} bytes)"
+            ));
+        }
+    }
+    // Bytes `what` needs from `byteOffset` in buffer view `view`, checked
+    // against the view's length.
+    let mut fits =
+        |at: String, view: &serde_json::Value, offset: &serde_json::Value, need: Option<u64>| {
+            let Some(v) = view.as_u64() else { return };
+            let Some(length) = views.get(v as usize).and_then(|x| x["byteLength"].as_u64()) else {
+                return;
+            };
+            let offset = offset.as_u64().unwrap_or(0);
+            let end = need.and_then(|n| n.checked_add(offset));
+            if end.is_none_or(|end| end > length) {
+                problems.push(format!(
+                    "{at} need {} bytes from byteOffset {offset} of bufferView {v}, which holds \
+                 {length}; fix its count or byteOffset",
+                    need.map_or_else(|| "more".to_string(), |n| n.to_string())
+                ));
+            }
+        };
+    for (i, acc) in json["accessors"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .enumerate()
+    {
+        let Some(component) = component_bytes(&acc["componentType"]) else {
+            continue;
+        };
+        let Some(element) = element_bytes(&acc["type"], component) else {
+            continue;
+        };
+        let count = acc["count"].as_u64().unwrap_or(0);
+        if count > 0 && !acc["bufferView"].is_null() {
+            let stride = acc["bufferView"]
+                .as_u64()
+                .and_then(|v| views.get(v as usize))
+                .and_then(|v| v["byteStride"].as_u64())
+                .unwrap_or(element);
+            let need = (count - 1)
+                .checked_mul(stride)
+                .and_then(|x| x.checked_add(element));
+            fits(
+                format!(
+                    "/accessors/{i}: {count} {} elements",
+                    acc["type"].as_str().unwrap_or("")
+                ),
+                &acc["bufferView"],
+                &acc["byteOffset"],
+                need,
+            );
+        }
+        let sparse = &acc["sparse"];
+        if let Some(n) = sparse["count"].as_u64() {
+            let idx = &sparse["indices"];
+            if let Some(c) = component_bytes(&idx["componentType"]) {
+                fits(
+                    format!("/accessors/{i}/sparse/indices: {n} indices"),
+                    &idx["bufferView"],
+                    &idx["byteOffset"],
+                    n.checked_mul(c),
+                );
+            }
+            let values = &sparse["values"];
+            fits(
+                format!("/accessors/{i}/sparse/values: {n} values"),
+                &values["bufferView"],
+                &values["byteOffset"],
+                n.checked_mul(element),
+            );
         }
     }
     for (i, image) in json["images"].as_array().into_iter().flatten().enumerate() {

@@ -56,6 +56,28 @@ use std::sync::LazyLock;
 /// Which hand (the dataset's side, re-exported where rigs name it).
 pub use crate::dataset::landmarks::Side;
 
+/// Which hand a hand of a file is: the side its joint names say (`named`),
+/// else the side given (`--side`), else the side its file name says
+/// ([`side_from_label`]); `None` when none of them says. The one rule for
+/// every command: `deform` curls by it (and refuses a hand it leaves
+/// unknown), `audit` states it.
+pub fn hand_side(named: Option<Side>, given: Option<Side>, label: &str) -> Option<Side> {
+    named.or(given).or_else(|| side_from_label(label))
+}
+
+/// `left`/`right` in a file name, when exactly one of them is.
+pub fn side_from_label(label: &str) -> Option<Side> {
+    let stem = std::path::Path::new(label)
+        .file_stem()?
+        .to_string_lossy()
+        .to_ascii_lowercase();
+    match (stem.contains("left"), stem.contains("right")) {
+        (true, false) => Some(Side::Left),
+        (false, true) => Some(Side::Right),
+        _ => None,
+    }
+}
+
 /// A node name fit for a message or a terminal: quoted, control characters
 /// replaced, at most 80 characters.
 pub(crate) fn shown(name: &str) -> String {
