@@ -52,7 +52,8 @@ pub enum FixMcp {
                   --fix OUT.glb writes a copy with the explanation's joints moved along each finger, translation keys offset, and the inverse bind matrices updated so the mesh's rest \
                   shape is unchanged; the input is never modified. The skin weights stay as painted, so a joint is held \
                   (and says so) when its move would take it more than 1 mm farther from where its skin bends, and no \
-                  move under 1 mm is made. --fix-mcp atlas places each MCP where the \
+                  move under 1 mm is made. An MCP is held too: where the skin over a knuckle bends cannot be located \
+                  well enough to guard its move, so only --fix-mcp atlas moves MCPs. --fix-mcp atlas places each MCP where the \
                   metacarpals' dataset puts it from its CMC (or the wrist, for a rig with a hand bone and no \
                   metacarpals) when it lies outside that interval. An FBX rig is read with ufbx (metres, +Y up, the \
                   bind pose from its skin clusters) and cannot be fixed in place: --moves FILE.csv lists each node the \

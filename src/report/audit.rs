@@ -261,7 +261,7 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
         let at_bends = a.joints.iter().any(|j| {
             j.held
                 .as_ref()
-                .is_some_and(|h| h.reason == crate::rig::judge::HoldReason::Bend)
+                .is_some_and(|h| h.reason != crate::rig::judge::HoldReason::Small)
         });
         if at_bends {
             "No move of the joints that are not held fits the X-rays, so the fix moves none."

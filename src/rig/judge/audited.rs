@@ -112,8 +112,12 @@ pub(super) fn hold_reason(
     (shift > 0.0 && shift < MOVE_TOLERANCE).then(|| Held::new(HoldReason::Small, shift, bend))
 }
 
-/// `audit` (of `input`, judged with `judge` against `a`) with the fix's two
-/// rules applied to its explanation: a joint the explanation would move more
+/// `audit` (of `input`, judged with `judge` against `a`) with the fix's
+/// rules applied to its explanation: an MCP the explanation would move is
+/// held unless `pinned` holds it already (the caller places it itself, as
+/// `--fix-mcp atlas` does): the guard cannot check it, for where the skin
+/// over a knuckle bends is not located reliably ([`super::bend`]); a joint
+/// the explanation would move more
 /// than [`BEND_GUARD`] farther from where its skin bends (`bends`, from the
 /// rig's weights) is held, and the explanation sought again among the other
 /// joints (and `pinned`), until no held joint remains to add; then a move
@@ -124,9 +128,22 @@ pub(super) fn guard(
     a: &Analysis,
     input: &ChainInput,
     judge: &JudgeOptions,
+    audit: FingerAudit,
+    bends: &[bend::Bend],
+    pinned: &[Joint],
+) -> FingerAudit {
+    guard_holding(a, input, judge, audit, bends, pinned, &[])
+}
+
+/// [`guard`] with the joints `pre` held from the start, each with its reason.
+fn guard_holding(
+    a: &Analysis,
+    input: &ChainInput,
+    judge: &JudgeOptions,
     mut audit: FingerAudit,
     bends: &[bend::Bend],
     pinned: &[Joint],
+    pre: &[(Joint, Held)],
 ) -> FingerAudit {
     let kinds = chain_kinds(input.finger, input.has_tip);
     let at = |joint: Joint| {
@@ -135,7 +152,17 @@ pub(super) fn guard(
             .position(|&k| k == joint)
             .and_then(|k| input.points.get(k).copied())
     };
-    let mut held: Vec<(Joint, Held)> = Vec::new();
+    let mut held: Vec<(Joint, Held)> = pre.to_vec();
+    if !held.is_empty() {
+        let hold: Vec<Joint> = pinned
+            .iter()
+            .copied()
+            .chain(held.iter().map(|h| h.0))
+            .collect();
+        if let Some(again) = finger::audit_holding(a, input, judge, &hold) {
+            audit = again;
+        }
+    }
     for _ in 0..4 {
         let new: Vec<(Joint, Held)> = audit
             .joints
@@ -143,6 +170,10 @@ pub(super) fn guard(
             .filter(|j| j.moves)
             .filter_map(|j| {
                 let from = at(j.joint)?;
+                if j.joint == Joint::Mcp && !pinned.contains(&Joint::Mcp) {
+                    let h = Held::new(HoldReason::Knuckle, from.distance(j.suggested), None);
+                    return Some((j.joint, h));
+                }
                 let h = hold_reason(bends, j.joint, from, j.suggested)?;
                 (h.reason == HoldReason::Bend).then_some((j.joint, h))
             })
@@ -170,6 +201,64 @@ pub(super) fn guard(
         {
             j.held = hold_reason(bends, j.joint, from, j.suggested);
         }
+    }
+    audit
+}
+
+/// [`guard`] (no joint pinned) checked on the skin as the fix leaves it:
+/// the bends of `chain` with the guarded explanation's moves made, found
+/// again on the skin's weights (with the bend tolerance) as the re-audit of the written copy finds them (the
+/// fix keeps the weights and the mesh's rest shape, so only the joints
+/// move). Moving a joint moves the axis its bend is measured along, so a
+/// move [`guard`] passes against the rig's bend may still end more than
+/// [`BEND_GUARD`] farther from the bend the fixed copy has; such a joint is
+/// held too, with those two distances, and the explanation sought again.
+/// At most 3 rounds of at most 5 re-judgements and one bend search each.
+fn guard_on_weights(
+    a: &Analysis,
+    input: &ChainInput,
+    judge: &JudgeOptions,
+    first: FingerAudit,
+    bends: &[bend::Bend],
+    chain: &FingerChain,
+    skin: Option<(&SkinWeights, f64)>,
+) -> FingerAudit {
+    let mut held: Vec<(Joint, Held)> = Vec::new();
+    let mut audit = guard(a, input, judge, first.clone(), bends, &[]);
+    let Some((w, tolerance)) = skin else {
+        return audit;
+    };
+    for _ in 0..3 {
+        let mut moved = chain.clone();
+        for rj in &mut moved.joints {
+            if let Some(j) = audit.joint(rj.joint).filter(|j| j.fix_moves()) {
+                rj.position = j.suggested;
+            }
+        }
+        let after = bend::bends(&moved, w, tolerance);
+        let at = |list: &[bend::Bend], joint: Joint| {
+            list.iter().find(|b| b.joint == joint).and_then(|b| b.at)
+        };
+        let new: Vec<(Joint, Held)> = chain
+            .joints
+            .iter()
+            .filter_map(|rj| {
+                let j = audit.joint(rj.joint).filter(|j| j.fix_moves())?;
+                let (b0, b1) = (at(bends, rj.joint)?, at(&after, rj.joint)?);
+                let (d0, d1) = (rj.position.distance(b0), j.suggested.distance(b1));
+                (d1 > d0 + BEND_GUARD).then(|| {
+                    (
+                        rj.joint,
+                        Held::new(HoldReason::Bend, j.shift, Some((d0, d1))),
+                    )
+                })
+            })
+            .collect();
+        if new.is_empty() {
+            break;
+        }
+        held.extend(new);
+        audit = guard_holding(a, input, judge, first.clone(), bends, &[], &held);
     }
     audit
 }
@@ -368,7 +457,15 @@ impl AuditedRig {
                     let bends = weights
                         .map(|w| bend::bends(chain, w, opts.bend_tolerance))
                         .unwrap_or_default();
-                    let audit = guard(a, &input, &judge, audit, &bends, &[]);
+                    let audit = guard_on_weights(
+                        a,
+                        &input,
+                        &judge,
+                        audit,
+                        &bends,
+                        chain,
+                        weights.map(|w| (w, opts.bend_tolerance)),
+                    );
                     fingers.push(AuditedFinger {
                         chain: chain.clone(),
                         audit,

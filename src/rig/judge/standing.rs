@@ -336,6 +336,12 @@ pub enum HoldReason {
     Bend,
     /// The move is shorter than [`MOVE_TOLERANCE`].
     Small,
+    /// The joint is an MCP and the fix was not asked to move MCPs
+    /// (`--fix-mcp atlas`): where the skin over a knuckle bends is not
+    /// located well enough ([`super::bend`]: the MCP's bend is reported for
+    /// information only) for the bend guard to tell whether the move takes
+    /// the MCP off it; the explanation was sought again with the MCP held.
+    Knuckle,
 }
 
 /// A move a fix gives up, and why, with the words every output gives for it.
@@ -375,6 +381,11 @@ impl Held {
                 mm(shift),
                 mm(after),
                 mm(before)
+            ),
+            (HoldReason::Knuckle, _) => format!(
+                "held: where the skin over a knuckle bends cannot be located, so it is not moved \
+                 (the move would be {} mm; --fix-mcp atlas moves MCPs)",
+                mm(shift)
             ),
             _ => format!(
                 "held: the move, {} mm, is under the {} mm tolerance",
