@@ -116,7 +116,10 @@ pub(super) fn hold_reason(
 /// rules applied to its explanation: an MCP the explanation would move is
 /// held unless `pinned` holds it already (the caller places it itself, as
 /// `--fix-mcp atlas` does): the guard cannot check it, for where the skin
-/// over a knuckle bends is not located reliably ([`super::bend`]); a joint
+/// over a knuckle bends is not located reliably ([`super::bend`]). The
+/// explanation is not sought again without it: it still names the MCP (a
+/// misplaced MCP is not made up for by moving the PIP and DIP), and the
+/// fix leaves it; a joint
 /// the explanation would move more
 /// than [`BEND_GUARD`] farther from where its skin bends (`bends`, from the
 /// rig's weights) is held, and the explanation sought again among the other
@@ -171,8 +174,7 @@ fn guard_holding(
             .filter_map(|j| {
                 let from = at(j.joint)?;
                 if j.joint == Joint::Mcp && !pinned.contains(&Joint::Mcp) {
-                    let h = Held::new(HoldReason::Knuckle, from.distance(j.suggested), None);
-                    return Some((j.joint, h));
+                    return None;
                 }
                 let h = hold_reason(bends, j.joint, from, j.suggested)?;
                 (h.reason == HoldReason::Bend).then_some((j.joint, h))
@@ -196,6 +198,16 @@ fn guard_holding(
     for j in &mut audit.joints {
         if let Some((_, h)) = held.iter().find(|(k, _)| *k == j.joint) {
             j.held = Some(h.clone());
+        } else if j.joint == Joint::Mcp
+            && j.moves
+            && !pinned.contains(&Joint::Mcp)
+            && let Some(from) = at(j.joint)
+        {
+            j.held = Some(Held::new(
+                HoldReason::Knuckle,
+                from.distance(j.suggested),
+                None,
+            ));
         } else if j.moves
             && let Some(from) = at(j.joint)
         {

@@ -340,7 +340,7 @@ pub enum HoldReason {
     /// (`--fix-mcp atlas`): where the skin over a knuckle bends is not
     /// located well enough ([`super::bend`]: the MCP's bend is reported for
     /// information only) for the bend guard to tell whether the move takes
-    /// the MCP off it; the explanation was sought again with the MCP held.
+    /// the MCP off it. The explanation still names it.
     Knuckle,
 }
 
@@ -384,7 +384,7 @@ impl Held {
             ),
             (HoldReason::Knuckle, _) => format!(
                 "held: where the skin over a knuckle bends cannot be located, so it is not moved \
-                 (the move would be {} mm; --fix-mcp atlas moves MCPs)",
+                 (it would be moved {} mm; --fix-mcp atlas moves MCPs)",
                 mm(shift)
             ),
             _ => format!(
