@@ -223,8 +223,9 @@ fn guard_holding(
 /// fix keeps the weights and the mesh's rest shape, so only the joints
 /// move). Moving a joint moves the axis its bend is measured along, so a
 /// move [`guard`] passes against the rig's bend may still end more than
-/// [`BEND_GUARD`] farther from the bend the fixed copy has; such a joint is
-/// held too, with those two distances, and the explanation sought again.
+/// [`BEND_GUARD`] farther from the bend the fixed copy has (allowing for the
+/// bends' resolution, a bin of [`bend::BIN`] of the finger's length); such a
+/// joint is held too, with those two distances, and the explanation sought again.
 /// At most 3 rounds of at most 5 re-judgements and one bend search each.
 fn guard_on_weights(
     a: &Analysis,
@@ -248,6 +249,17 @@ fn guard_on_weights(
             }
         }
         let after = bend::bends(&moved, w, tolerance);
+        // Each bend is found to within half a bin either way (the shares are
+        // averaged in bins `bend::BIN` of the finger's length wide), so
+        // before and after together may be off by a bin: a move is held
+        // when it may end more than BEND_GUARD farther, not only when the
+        // estimates say it does.
+        let bin = bend::BIN
+            * chain
+                .joints
+                .windows(2)
+                .map(|p| p[0].position.distance(p[1].position))
+                .sum::<f64>();
         let at = |list: &[bend::Bend], joint: Joint| {
             list.iter().find(|b| b.joint == joint).and_then(|b| b.at)
         };
@@ -258,7 +270,7 @@ fn guard_on_weights(
                 let j = audit.joint(rj.joint).filter(|j| j.fix_moves())?;
                 let (b0, b1) = (at(bends, rj.joint)?, at(&after, rj.joint)?);
                 let (d0, d1) = (rj.position.distance(b0), j.suggested.distance(b1));
-                (d1 > d0 + BEND_GUARD).then(|| {
+                (d1 > d0 + BEND_GUARD - bin).then(|| {
                     (
                         rj.joint,
                         Held::new(HoldReason::Bend, j.shift, Some((d0, d1))),
