@@ -561,14 +561,14 @@ pub(crate) fn text(
     );
     if rig.fingers.iter().any(|f| f.metacarpal_check.is_some()) {
         summary.push_str(&format!(
-            " {} MCPs lie outside the atlas's {c} prediction interval from their CMC or wrist.",
-            rig.metacarpals_outside()
+            " {} outside the atlas's {c} prediction interval from their CMC or wrist.",
+            crate::format::count(rig.metacarpals_outside(), "MCP lies", "MCPs lie")
         ));
     }
     if rig.fingers.iter().any(|f| !f.bends.is_empty()) {
         summary.push_str(&format!(
-            " {} inner joints lie more than {} mm from where their skin bends.",
-            rig.bends_flagged(),
+            " {} more than {} mm from where their skin bends.",
+            crate::format::count(rig.bends_flagged(), "inner joint lies", "inner joints lie"),
             num(rig.bend_tolerance * MM, 1)
         ));
     }
