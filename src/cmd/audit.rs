@@ -49,9 +49,11 @@ pub enum FixMcp {
                   rig's finger, so a rig in any unit is judged alike (--tip-soft-tissue MM sets one length). \
                   Rigs without tip nodes are judged on J2/J1 only. Where the skin weights make the mesh bend is found \
                   for each joint, and a joint further than --bend-tolerance from its bend is flagged.\n\n\
-                  --fix OUT.glb writes a copy with the explanation's joints moved along each finger, the skin weights \
-                  moved with them, translation keys offset, and the inverse bind matrices updated so the mesh's rest \
-                  shape is unchanged; the input is never modified. --fix-mcp atlas places each MCP where the \
+                  --fix OUT.glb writes a copy with the explanation's joints moved along each finger, translation keys offset, and the inverse bind matrices updated so the mesh's rest \
+                  shape is unchanged; the input is never modified. The skin weights stay as painted, so a joint is held \
+                  (and says so) when its move would take it more than 1 mm farther from where its skin bends, and no \
+                  move under 1 mm is made. An MCP is held too: where the skin over a knuckle bends cannot be located \
+                  well enough to guard its move, so only --fix-mcp atlas moves MCPs. --fix-mcp atlas places each MCP where the \
                   metacarpals' dataset puts it from its CMC (or the wrist, for a rig with a hand bone and no \
                   metacarpals) when it lies outside that interval. An FBX rig is read with ufbx (metres, +Y up, the \
                   bind pose from its skin clusters) and cannot be fixed in place: --moves FILE.csv lists each node the \
@@ -291,6 +293,17 @@ fn json(audit: &Audit) -> Result<Vec<u8>, Error> {
             })
             .collect(),
         warnings: &fix.warnings,
+        bends: fix
+            .bends
+            .iter()
+            .map(|b| report::json::MovedBendView {
+                node: &b.node,
+                joint: &b.joint,
+                before: b.before,
+                after: b.after,
+            })
+            .collect(),
+        new_bend_defects: &fix.new_defects,
     });
     report::json::audit(&audit.analysis, &audit.rig, audit.fbx.as_ref(), fix)
 }
@@ -339,5 +352,6 @@ fn fix_summary(fix: &FixOutcome) -> String {
             count(rays, "MCP", "MCPs")
         ));
     }
+    line.push_str(&report::audit::fix_bend_words(fix));
     line
 }

@@ -29,13 +29,14 @@ fn para(text: &str, first: &str) -> String {
     format!("{first}{text}\n")
 }
 
-/// "in range", "OUT, 5.30 mm too distal": how a joint stands, short for the table.
+/// "in range", "OUT, 5.3 mm too distal": how a joint stands, short for the table
+/// (to 0.1 mm: see [`crate::rig::judge::MOVE_TOLERANCE`] for what 5 X-rays support).
 pub(crate) fn joint_standing(s: Standing, scale: f64) -> String {
     match s {
         Standing::InRange => "in range".into(),
         Standing::InPrediction => "in prediction".into(),
-        Standing::Above { by } => format!("OUT, {} mm too distal", num(by * scale, 2)),
-        Standing::Below { by } => format!("OUT, {} mm too proximal", num(by * scale, 2)),
+        Standing::Above { by } => format!("OUT, {} mm too distal", num(by * scale, 1)),
+        Standing::Below { by } => format!("OUT, {} mm too proximal", num(by * scale, 1)),
     }
 }
 
@@ -132,7 +133,7 @@ pub(crate) fn heading(f: &AuditedFinger) -> String {
         .segments
         .iter()
         .enumerate()
-        .map(|(k, c)| format!("J{} {}", k + 1, num(c * MM, 2)))
+        .map(|(k, c)| format!("J{} {}", k + 1, num(c * MM, 1)))
         .collect();
     let mut line = format!("segments {} mm", segments.join(", "));
     if a.tip_correction != 0.0
@@ -141,8 +142,8 @@ pub(crate) fn heading(f: &AuditedFinger) -> String {
         line.push_str(&format!(
             "; compared J{} {} ({} mm soft tissue {})",
             a.compared.len(),
-            num(last * MM, 2),
-            num(a.tip_correction.abs() * MM, 2),
+            num(last * MM, 1),
+            num(a.tip_correction.abs() * MM, 1),
             if a.tip_correction > 0.0 {
                 "off"
             } else {
@@ -151,14 +152,14 @@ pub(crate) fn heading(f: &AuditedFinger) -> String {
         ));
     }
     if let Some(l) = a.length {
-        line.push_str(&format!("; length {} mm", num(l * MM, 2)));
+        line.push_str(&format!("; length {} mm", num(l * MM, 1)));
     }
     out.push_str(&para(&line, "  "));
     if let (Some(t), Some(node)) = (&f.skin_tip, f.chain.joints.last()) {
         out.push_str(&para(
             &format!(
                 "tip: the skin's end on the mesh, {} mm past {} (the tip node lies inside the skin)",
-                num(t.beyond_node * MM, 2),
+                num(t.beyond_node * MM, 1),
                 node.name
             ),
             "  ",
@@ -177,7 +178,7 @@ pub(crate) fn suggestion(j: &crate::rig::judge::JointCheck) -> String {
     format!(
         "move {} {} mm {towards}, to ({}, {}, {}) m",
         j.joint.name(),
-        num(j.shift * MM, 2),
+        num(j.shift * MM, 1),
         num(j.suggested[0], 5),
         num(j.suggested[1], 5),
         num(j.suggested[2], 5)
@@ -201,11 +202,12 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
         return String::new();
     }
     if e.moved.is_empty() && e.consistent {
-        return if soft {
-            "Fits the X-rays as it is, the tip's soft tissue accounted for.".into()
+        let fits = if soft {
+            "Fits the X-rays as it is, the tip's soft tissue accounted for."
         } else {
-            "Fits the X-rays as it is.".into()
+            "Fits the X-rays as it is."
         };
+        return format!("{fits}{}", held_words(a));
     }
     let moved: Vec<String> = a
         .joints
@@ -225,7 +227,7 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
             format!(
                 "the {} sits {} mm {side} of where the X-rays put it{web}",
                 j.joint.name(),
-                num(j.shift_along.abs() * MM, 2)
+                num(j.shift_along.abs() * MM, 1)
             )
         })
         .collect();
@@ -255,12 +257,25 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
             and_list(&accounted),
             verb(&accounted)
         )
+    } else if moved.is_empty() {
+        let at_bends = a.joints.iter().any(|j| {
+            j.held
+                .as_ref()
+                .is_some_and(|h| h.reason != crate::rig::judge::HoldReason::Small)
+        });
+        if at_bends {
+            "No move of the joints that are not held fits the X-rays, so the fix moves none."
+                .to_string()
+        } else {
+            "No move of up to two joints fits the X-rays.".to_string()
+        }
     } else {
         format!(
             "No move of up to two joints fits the X-rays; the closest: {}.",
             and_list(&moved)
         )
     };
+    out.push_str(&held_words(a));
     if !e.also.is_empty() {
         let alt: Vec<String> = e
             .also
@@ -273,6 +288,20 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
         ));
     }
     out
+}
+
+/// The joints a fix holds, one sentence each, with the words every output
+/// gives for them ([`crate::rig::judge::Held::words`]): " The PIP is held:
+/// it sits where its skin bends, 0.2 mm (...)."; empty when none is held.
+pub(crate) fn held_words(a: &FingerAudit) -> String {
+    a.joints
+        .iter()
+        .filter_map(|j| {
+            j.held
+                .as_ref()
+                .map(|h| format!(" The {} is {}.", j.joint.name(), h.words))
+        })
+        .collect()
 }
 
 /// Where the skin bends, in words: one clause per joint.
@@ -291,7 +320,7 @@ pub(crate) fn bend_words(bends: &[Bend], tolerance: f64) -> String {
                 format!(
                     "{} {} mm {side}{flag}",
                     b.joint.name(),
-                    num(o.abs() * MM, 2)
+                    num(o.abs() * MM, 1)
                 )
             }
         })
@@ -329,7 +358,7 @@ pub(crate) fn metacarpal_values(m: &MetacarpalCheck, c: &str) -> Vec<String> {
 
 /// The MCP judged from the CMC against the atlas's metacarpals, in words.
 pub(crate) fn metacarpal_words(m: &MetacarpalCheck, c: &str) -> String {
-    let mm = |x: f64| num(x * MM, 2);
+    let mm = |x: f64| num(x * MM, 1);
     let values = metacarpal_values(m, c);
     let pi = m.pi.map_or("n/a".into(), |p| {
         format!("[{}, {}] mm", mm(p.low), mm(p.high))
@@ -374,7 +403,7 @@ fn finger_table(
     width: Width,
     hidden: &mut Hidden,
 ) -> String {
-    let mm = |x: f64| num(x * MM, 2);
+    let mm = |x: f64| num(x * MM, 1);
     let interval =
         |i: Interval, f: &dyn Fn(f64) -> String| format!("[{}, {}]", f(i.low), f(i.high));
     let mut t = Grid::new()
@@ -391,7 +420,10 @@ fn finger_table(
             mm(j.expected),
             interval(j.range, &mm),
             j.pi.map_or("n/a".into(), |p| interval(p, &mm)),
-            joint_standing(j.standing, MM),
+            match &j.held {
+                Some(h) => format!("{}; {}", joint_standing(j.standing, MM), h.words),
+                None => joint_standing(j.standing, MM),
+            },
         ]);
     }
     if let Some(m) = ray {
@@ -500,7 +532,7 @@ pub(crate) fn text(
             &mut hidden,
         ));
         out.push_str(&para(&explanation_words(a), "  "));
-        for j in a.joints.iter().filter(|j| j.moves) {
+        for j in a.joints.iter().filter(|j| j.fix_moves()) {
             out.push_str(&para(&suggestion(j), "  "));
         }
         if !f.bends.is_empty() {
@@ -561,12 +593,12 @@ pub(crate) fn finger_summary(a: &FingerAudit) -> String {
             Standing::Above { by } => outside.push(format!(
                 "{} {} mm too far towards the tip",
                 j.joint.name(),
-                num(by * MM, 2)
+                num(by * MM, 1)
             )),
             Standing::Below { by } => outside.push(format!(
                 "{} {} mm too close to the root",
                 j.joint.name(),
-                num(by * MM, 2)
+                num(by * MM, 1)
             )),
             _ => {}
         }
@@ -592,12 +624,12 @@ pub(crate) fn finger_summary(a: &FingerAudit) -> String {
         let fewest: Vec<String> = a
             .joints
             .iter()
-            .filter(|j| j.moves)
+            .filter(|j| j.fix_moves())
             .map(|j| {
                 format!(
                     "{} {} mm towards the {}",
                     j.joint.name(),
-                    num(j.shift * MM, 2),
+                    num(j.shift * MM, 1),
                     if j.shift_along < 0.0 { "root" } else { "tip" }
                 )
             })
@@ -624,4 +656,38 @@ pub(crate) fn value_of(a: &FingerAudit, q: Quantity) -> Option<f64> {
         .iter()
         .find(|v| v.quantity == q)
         .map(|v| v.measured)
+}
+
+/// What the result line of `audit --fix` adds on bends: every moved joint's
+/// distance to where its skin bends before and after ("; bends before -> after
+/// the fix: right index PIP 0.2 -> 0.4 mm, ..."), and any bend defect the
+/// re-audit flags that the rig as given did not have.
+pub(crate) fn fix_bend_words(fix: &crate::rig::session::FixOutcome) -> String {
+    let mm = |d: Option<f64>| {
+        d.map_or("not found".to_string(), |x| {
+            format!("{} mm", num(x * MM, 1))
+        })
+    };
+    let mut out = String::new();
+    if !fix.bends.is_empty() {
+        let each: Vec<String> = fix
+            .bends
+            .iter()
+            .map(|b| format!("{} {} -> {}", b.joint, mm(b.before), mm(b.after)))
+            .collect();
+        out.push_str(&format!(
+            "; each moved joint's distance to where its skin bends, before -> after: {}",
+            each.join(", ")
+        ));
+    }
+    if fix.new_defects.is_empty() {
+        out.push_str("; no new bend defect");
+    } else {
+        out.push_str(&format!(
+            "; new bend defects the original did not have: {} (further than the bend tolerance \
+             from where their skin bends)",
+            and_list(&fix.new_defects)
+        ));
+    }
+    out
 }

@@ -12,7 +12,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 /// Version of every JSON document phalanx writes; bumped on any incompatible change.
-pub const SCHEMA_VERSION: u32 = 1;
+pub const SCHEMA_VERSION: u32 = 2;
 
 /// The settings block of every JSON document.
 #[derive(Serialize, JsonSchema)]
@@ -342,6 +342,21 @@ pub struct FixView<'a> {
     /// Moved joints: node name and distance moved, in rig units.
     pub moved: Vec<MovedView<'a>>,
     pub warnings: &'a [String],
+    /// Every moved joint's distance to where its skin bends, before the fix
+    /// and after it (the written copy, judged again).
+    pub bends: Vec<MovedBendView<'a>>,
+    /// Joints the re-audit flags as far from their bend that the rig as given did not.
+    pub new_bend_defects: &'a [String],
+}
+
+/// A moved joint's distance to where its skin bends, in rig units (`null`: no bend found).
+#[derive(Serialize, JsonSchema)]
+pub struct MovedBendView<'a> {
+    pub node: &'a str,
+    /// The joint, as "right index PIP".
+    pub joint: &'a str,
+    pub before: Option<f64>,
+    pub after: Option<f64>,
 }
 
 /// One moved joint.

@@ -64,6 +64,80 @@ pub struct FixOutcome {
     pub warnings: Vec<String>,
     /// The written copy, read back and judged again.
     pub reaudit: AuditedRig,
+    /// Every moved joint's distance to where its skin bends, before the fix
+    /// (the rig as given) and after it (the written copy, judged again).
+    pub bends: Vec<MovedBend>,
+    /// Joints (as "right index PIP") the re-audit flags as far from their
+    /// bend that the rig as given did not.
+    pub new_defects: Vec<String>,
+}
+
+/// A moved joint and its distance to where its skin bends, in rig units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MovedBend {
+    /// The node.
+    pub node: String,
+    /// The joint, as "right index PIP".
+    pub joint: String,
+    /// Before the fix: from the rig's joint to its bend (`None`: no bend found).
+    pub before: Option<f64>,
+    /// After it: from the moved joint to its bend in the fixed copy.
+    pub after: Option<f64>,
+}
+
+/// The distance from joint `node` of `rig` to where its skin bends, with the
+/// joint's label ("right index PIP") and its finger's index; `None` when the
+/// node is not a judged finger's joint.
+fn bend_of(rig: &AuditedRig, node: &str) -> Option<(String, usize, Option<f64>)> {
+    rig.fingers.iter().enumerate().find_map(|(i, f)| {
+        let j = f.chain.joints.iter().find(|j| j.name == node)?;
+        let d = f
+            .bends
+            .iter()
+            .find(|b| b.joint == j.joint)
+            .and_then(|b| b.at)
+            .map(|at| at.distance(j.position));
+        Some((format!("{} {}", f.chain.label(), j.joint.name()), i, d))
+    })
+}
+
+/// The moved joints' bends before and after a fix, and the bend defects
+/// `after` (the fixed copy, judged) flags that `before` (the rig) did not.
+pub fn bends_across(
+    before: &AuditedRig,
+    after: &AuditedRig,
+    moved: &[(String, f64)],
+) -> (Vec<MovedBend>, Vec<String>) {
+    let bends = moved
+        .iter()
+        .filter_map(|(node, _)| {
+            let (joint, _, d0) = bend_of(before, node)?;
+            let d1 = bend_of(after, node).and_then(|b| b.2);
+            Some(MovedBend {
+                node: node.clone(),
+                joint,
+                before: d0,
+                after: d1,
+            })
+        })
+        .collect();
+    let flagged = |rig: &AuditedRig| -> Vec<String> {
+        rig.fingers
+            .iter()
+            .flat_map(|f| {
+                f.bends
+                    .iter()
+                    .filter(|b| b.flagged)
+                    .map(move |b| format!("{} {}", f.chain.label(), b.joint.name()))
+            })
+            .collect()
+    };
+    let old = flagged(before);
+    let new = flagged(after)
+        .into_iter()
+        .filter(|j| !old.contains(j))
+        .collect();
+    (bends, new)
 }
 
 /// The atlas's landmark file, looked for beside the metacarpals' dataset.
@@ -172,18 +246,16 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         };
         let placed = match &atlas {
             Some(_) if req.mcp_from_atlas => {
-                judge::ray::mcp_from_base(&audited, &analysis, &audited.tips)
+                let placed = judge::ray::mcp_from_base(&audited, &analysis, &audited.tips);
+                show_placed(&mut audited, &placed);
+                placed
             }
             _ => audited.fingers.clone(),
         };
         let glb = fix_glb.unwrap_or(true);
         Some(fix::fix_with(
-            &rig.file,
-            &placed,
-            rig.weights.as_ref(),
-            dir,
-            glb,
-            &opts,
+            &rig.file, &placed, // The skin weights stay as painted: see `fix_loaded`.
+            None, dir, glb, &opts,
         )?)
     } else {
         None
@@ -199,11 +271,14 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
             if let Some(atlas) = &atlas {
                 reaudit.judge_metacarpals(atlas, wrist.as_ref());
             }
+            let (bends, new_defects) = bends_across(&audited, &reaudit, &fixed.moved);
             Some(FixOutcome {
                 output: out.to_path_buf(),
                 moved: fixed.moved,
                 warnings: fixed.warnings,
                 reaudit,
+                bends,
+                new_defects,
             })
         }
         _ => None,
@@ -215,6 +290,26 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         moves,
         fbx: rig.file.fbx.clone(),
     })
+}
+
+/// With `--fix-mcp atlas`, what the audit says each finger's fix does is
+/// what the fix writes: each finger's explanation and every joint's move
+/// (`moves`, `suggested`, `shift`, `held`) are taken from `placed`, the
+/// fingers the fix applies ([`judge::ray::mcp_from_base`]); the standings,
+/// which are of the rig as it is, stay.
+fn show_placed(audited: &mut AuditedRig, placed: &[judge::AuditedFinger]) {
+    for (f, p) in audited.fingers.iter_mut().zip(placed) {
+        f.audit.explanation = p.audit.explanation.clone();
+        for j in &mut f.audit.joints {
+            if let Some(q) = p.audit.joint(j.joint) {
+                j.moves = q.moves;
+                j.suggested = q.suggested;
+                j.shift = q.shift;
+                j.shift_along = q.shift_along;
+                j.held = q.held.clone();
+            }
+        }
+    }
 }
 
 /// The nodes `fixed` (the fix of `original`, as `--fix` writes it) moves,
@@ -303,7 +398,12 @@ fn fix_loaded(
     let out = fix::fix_with(
         &loaded.file,
         &audited.fingers,
-        loaded.weights.as_ref(),
+        // The skin weights stay as painted: the judge's bend guard keeps every
+        // moved joint within 1 mm of where they make the skin bend, and moving
+        // the weights with the joint would carry the bend off the edge loops
+        // the mesh was modelled with (measured with `deform --fix`: the fixed
+        // rigs deformed worse at more joints with the weights moved).
+        None,
         dir,
         true,
         &fix::FixOptions::default(),

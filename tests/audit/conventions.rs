@@ -128,10 +128,20 @@ fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
         idx["audit"]["explanation"]["moved"],
         serde_json::json!(["MCP"])
     );
+    // The explanation names the MCP; the fix holds it (no MCP moves without
+    // --fix-mcp atlas), so its check says so, with the move it would make.
     let mcp = joint_of(idx, "MCP");
     assert_eq!(mcp["standing"], "above");
-    // Moved back towards the root by about the 10 mm it was pushed.
-    let back = -num(&mcp["shift_along"]);
+    assert_eq!(mcp["held"]["reason"], "knuckle", "{mcp}");
+    assert!(
+        mcp["held"]["words"]
+            .as_str()
+            .unwrap()
+            .starts_with("held: where the skin over a knuckle bends cannot be located"),
+        "{mcp}"
+    );
+    // Moved back towards the root it would be, by about the 10 mm it was pushed.
+    let back = num(&mcp["held"]["shift"]);
     assert!((0.007..0.013).contains(&back), "{back}");
     assert_eq!(joint_of(idx, "PIP")["moves"], false);
     assert_eq!(joint_of(idx, "DIP")["moves"], false);
@@ -147,14 +157,17 @@ fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
         "Explanation: the MCP sits ",
         " mm distal of where the X-rays put it (at the finger web, not the knuckle?); PIP, DIP and \
          the tip are consistent with the X-rays once the MCP is accounted for.",
-        "move MCP ",
+        "The MCP is held: where the skin over a knuckle bends cannot be located, so it is not \
+         moved",
     ] {
         assert!(words.contains(needle), "{needle}\n{words}");
     }
-    // The fix moves the MCP alone, back into the range, and keeps the mesh.
+    assert!(!words.contains("move MCP "), "{words}");
+    // The fix leaves the MCP (and so the finger) as it is: the file's
+    // skeleton is unchanged, and the re-audit still finds the index outside.
     wd.run(&["audit", "web.glb", "--fix", "fixed.glb"])
         .ok()
-        .stderr_has("1 joint moved; re-audited, 0 of 5 fingers outside");
+        .stderr_has("0 joints moved; re-audited, 1 of 5 fingers outside");
     assert!(worst_vertex_move(&input, &wd.read("fixed.glb")) < 1e-5);
 }
 

@@ -1,6 +1,7 @@
 //! `audit --fix`: a copy of a rig with the joints the audit's explanation
-//! moves (see [`crate::rig::judge`]) where it puts them, the skin weights moved
-//! with them, and everything else kept.
+//! moves (see [`crate::rig::judge`]) where it puts them, and everything else
+//! kept. Joints the judge holds (at their skin bend, or a move under 1 mm:
+//! [`crate::rig::judge::Held`]) stay.
 //!
 //! For each finger the explanation's joints (MCP, PIP, DIP: the fewest that
 //! bring the finger inside the X-rays' prediction intervals; with
@@ -15,9 +16,11 @@
 //!
 //! The mesh's rest shape is kept exactly: a joint whose world matrix goes from
 //! W to W' gets the inverse bind matrix B' = W'^-1 W B, so W' B' = W B and every
-//! skinned vertex is where it was (up to the f32 the file stores). The skin
-//! weights of each moved finger are moved with its joints so its skin bends
-//! where the joints now are (`remap`). Translation keys of moved
+//! skinned vertex is where it was (up to the f32 the file stores). `audit
+//! --fix` leaves the skin weights as painted (the judge keeps every moved
+//! joint within 1 mm of where they bend the skin); given `weights`,
+//! [`fix_with`] moves each moved finger's weights with its joints (`remap`).
+//! Translation keys of moved
 //! nodes are offset by their rest translation's change (`anim`);
 //! channels with paths glTF does not define are reported and left alone.
 //!
@@ -165,8 +168,9 @@ struct Plan {
 
 /// Where each chain node goes: the joints the explanation moves to their
 /// suggestions, and the chain's other nodes after a moved one pinned where
-/// they are. With `only_outside`, a joint moves only when its own standing
-/// is outside the prediction interval.
+/// they are. A joint the judge holds ([`crate::rig::judge::Held`]: at its
+/// skin bend, or a move under the tolerance) stays. With `only_outside`, a
+/// joint moves only when its own standing is outside the prediction interval.
 fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
     let mut plan = Plan {
         targets: Vec::new(),
@@ -176,9 +180,9 @@ fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
     for (i, f) in fingers.iter().enumerate() {
         let (chain, audit) = (&f.chain, &f.audit);
         let moves = |rj: &RigJoint| {
-            audit.joint(rj.joint).filter(|j| {
-                j.moves && j.shift > 0.0 && !(only_outside && j.standing.is_consistent())
-            })
+            audit
+                .joint(rj.joint)
+                .filter(|j| j.fix_moves() && !(only_outside && j.standing.is_consistent()))
         };
         if !chain.joints.iter().any(|rj| moves(rj).is_some()) {
             continue;

@@ -7,8 +7,12 @@ use super::bend;
 use super::finger;
 use super::ray_base::{self, MetacarpalCheck, WRIST_DEFINITION, WristRatios};
 use super::sanity;
-use super::standing::{FingerAudit, JudgeOptions, SoftTissue, TipKind};
+use super::standing::{
+    BEND_GUARD, ChainInput, FingerAudit, Held, HoldReason, JudgeOptions, MOVE_TOLERANCE,
+    SoftTissue, TipKind, chain_kinds,
+};
 use crate::analysis::Analysis;
+use crate::analysis::placement::Joint;
 use crate::dataset::Finger;
 use crate::rig::read::FingerChain;
 use crate::rig::read::weights::SkinWeights;
@@ -75,6 +79,212 @@ pub struct AuditedFinger {
     /// the chain's metacarpal node.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub metacarpal_check: Option<MetacarpalCheck>,
+}
+
+/// The distances from `from` (the joint `joint` as the rig has it) and from
+/// `to` (where a move puts it) to where its skin bends, when a bend was found.
+fn bend_distances(
+    bends: &[bend::Bend],
+    joint: Joint,
+    from: DVec3,
+    to: DVec3,
+) -> Option<(f64, f64)> {
+    let at = bends.iter().find(|b| b.joint == joint)?.at?;
+    Some((from.distance(at), to.distance(at)))
+}
+
+/// Why a move of the joint at `from` to `to` is not made, if it is not: it
+/// would end more than [`BEND_GUARD`] farther from its bend, or it is
+/// shorter than [`MOVE_TOLERANCE`].
+pub(super) fn hold_reason(
+    bends: &[bend::Bend],
+    joint: Joint,
+    from: DVec3,
+    to: DVec3,
+) -> Option<Held> {
+    let shift = from.distance(to);
+    let bend = bend_distances(bends, joint, from, to);
+    if let Some((before, after)) = bend
+        && after > before + BEND_GUARD
+    {
+        return Some(Held::new(HoldReason::Bend, shift, bend));
+    }
+    (shift > 0.0 && shift < MOVE_TOLERANCE).then(|| Held::new(HoldReason::Small, shift, bend))
+}
+
+/// `audit` (of `input`, judged with `judge` against `a`) with the fix's
+/// rules applied to its explanation: an MCP the explanation would move is
+/// held unless `pinned` holds it already (the caller places it itself, as
+/// `--fix-mcp atlas` does): the guard cannot check it, for where the skin
+/// over a knuckle bends is not located reliably ([`super::bend`]). The
+/// explanation is not sought again without it: it still names the MCP (a
+/// misplaced MCP is not made up for by moving the PIP and DIP), and the
+/// fix leaves it; a joint
+/// the explanation would move more
+/// than [`BEND_GUARD`] farther from where its skin bends (`bends`, from the
+/// rig's weights) is held, and the explanation sought again among the other
+/// joints (and `pinned`), until no held joint remains to add; then a move
+/// shorter than [`MOVE_TOLERANCE`] is marked not made. Each held joint's
+/// check says why ([`super::standing::JointCheck::held`]). Without bends only the tolerance
+/// applies. At most 4 re-judgements (a finger has 3 movable joints).
+pub(super) fn guard(
+    a: &Analysis,
+    input: &ChainInput,
+    judge: &JudgeOptions,
+    audit: FingerAudit,
+    bends: &[bend::Bend],
+    pinned: &[Joint],
+) -> FingerAudit {
+    guard_holding(a, input, judge, audit, bends, pinned, &[])
+}
+
+/// [`guard`] with the joints `pre` held from the start, each with its reason.
+fn guard_holding(
+    a: &Analysis,
+    input: &ChainInput,
+    judge: &JudgeOptions,
+    mut audit: FingerAudit,
+    bends: &[bend::Bend],
+    pinned: &[Joint],
+    pre: &[(Joint, Held)],
+) -> FingerAudit {
+    let kinds = chain_kinds(input.finger, input.has_tip);
+    let at = |joint: Joint| {
+        kinds
+            .iter()
+            .position(|&k| k == joint)
+            .and_then(|k| input.points.get(k).copied())
+    };
+    let mut held: Vec<(Joint, Held)> = pre.to_vec();
+    if !held.is_empty() {
+        let hold: Vec<Joint> = pinned
+            .iter()
+            .copied()
+            .chain(held.iter().map(|h| h.0))
+            .collect();
+        if let Some(again) = finger::audit_holding(a, input, judge, &hold) {
+            audit = again;
+        }
+    }
+    for _ in 0..4 {
+        let new: Vec<(Joint, Held)> = audit
+            .joints
+            .iter()
+            .filter(|j| j.moves)
+            .filter_map(|j| {
+                let from = at(j.joint)?;
+                if j.joint == Joint::Mcp && !pinned.contains(&Joint::Mcp) {
+                    return None;
+                }
+                let h = hold_reason(bends, j.joint, from, j.suggested)?;
+                (h.reason == HoldReason::Bend).then_some((j.joint, h))
+            })
+            .filter(|(joint, _)| !held.iter().any(|(k, _)| k == joint))
+            .collect();
+        if new.is_empty() {
+            break;
+        }
+        held.extend(new);
+        let hold: Vec<Joint> = pinned
+            .iter()
+            .copied()
+            .chain(held.iter().map(|h| h.0))
+            .collect();
+        match finger::audit_holding(a, input, judge, &hold) {
+            Some(again) => audit = again,
+            None => break,
+        }
+    }
+    for j in &mut audit.joints {
+        if let Some((_, h)) = held.iter().find(|(k, _)| *k == j.joint) {
+            j.held = Some(h.clone());
+        } else if j.joint == Joint::Mcp
+            && j.moves
+            && !pinned.contains(&Joint::Mcp)
+            && let Some(from) = at(j.joint)
+        {
+            j.held = Some(Held::new(
+                HoldReason::Knuckle,
+                from.distance(j.suggested),
+                None,
+            ));
+        } else if j.moves
+            && let Some(from) = at(j.joint)
+        {
+            j.held = hold_reason(bends, j.joint, from, j.suggested);
+        }
+    }
+    audit
+}
+
+/// [`guard`] (no joint pinned) checked on the skin as the fix leaves it:
+/// the bends of `chain` with the guarded explanation's moves made, found
+/// again on the skin's weights (with the bend tolerance) as the re-audit of the written copy finds them (the
+/// fix keeps the weights and the mesh's rest shape, so only the joints
+/// move). Moving a joint moves the axis its bend is measured along, so a
+/// move [`guard`] passes against the rig's bend may still end more than
+/// [`BEND_GUARD`] farther from the bend the fixed copy has (allowing for the
+/// bends' resolution, a bin of [`bend::BIN`] of the finger's length); such a
+/// joint is held too, with those two distances, and the explanation sought again.
+/// At most 3 rounds of at most 5 re-judgements and one bend search each.
+fn guard_on_weights(
+    a: &Analysis,
+    input: &ChainInput,
+    judge: &JudgeOptions,
+    first: FingerAudit,
+    bends: &[bend::Bend],
+    chain: &FingerChain,
+    skin: Option<(&SkinWeights, f64)>,
+) -> FingerAudit {
+    let mut held: Vec<(Joint, Held)> = Vec::new();
+    let mut audit = guard(a, input, judge, first.clone(), bends, &[]);
+    let Some((w, tolerance)) = skin else {
+        return audit;
+    };
+    for _ in 0..3 {
+        let mut moved = chain.clone();
+        for rj in &mut moved.joints {
+            if let Some(j) = audit.joint(rj.joint).filter(|j| j.fix_moves()) {
+                rj.position = j.suggested;
+            }
+        }
+        let after = bend::bends(&moved, w, tolerance);
+        // Each bend is found to within half a bin either way (the shares are
+        // averaged in bins `bend::BIN` of the finger's length wide), so
+        // before and after together may be off by a bin: a move is held
+        // when it may end more than BEND_GUARD farther, not only when the
+        // estimates say it does.
+        let bin = bend::BIN
+            * chain
+                .joints
+                .windows(2)
+                .map(|p| p[0].position.distance(p[1].position))
+                .sum::<f64>();
+        let at = |list: &[bend::Bend], joint: Joint| {
+            list.iter().find(|b| b.joint == joint).and_then(|b| b.at)
+        };
+        let new: Vec<(Joint, Held)> = chain
+            .joints
+            .iter()
+            .filter_map(|rj| {
+                let j = audit.joint(rj.joint).filter(|j| j.fix_moves())?;
+                let (b0, b1) = (at(bends, rj.joint)?, at(&after, rj.joint)?);
+                let (d0, d1) = (rj.position.distance(b0), j.suggested.distance(b1));
+                (d1 > d0 + BEND_GUARD - bin).then(|| {
+                    (
+                        rj.joint,
+                        Held::new(HoldReason::Bend, j.shift, Some((d0, d1))),
+                    )
+                })
+            })
+            .collect();
+        if new.is_empty() {
+            break;
+        }
+        held.extend(new);
+        audit = guard_holding(a, input, judge, first.clone(), bends, &[], &held);
+    }
+    audit
 }
 
 /// Every finger of a rig judged against the statistics.
@@ -271,6 +481,15 @@ impl AuditedRig {
                     let bends = weights
                         .map(|w| bend::bends(chain, w, opts.bend_tolerance))
                         .unwrap_or_default();
+                    let audit = guard_on_weights(
+                        a,
+                        &input,
+                        &judge,
+                        audit,
+                        &bends,
+                        chain,
+                        weights.map(|w| (w, opts.bend_tolerance)),
+                    );
                     fingers.push(AuditedFinger {
                         chain: chain.clone(),
                         audit,

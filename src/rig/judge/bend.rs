@@ -56,7 +56,7 @@ pub const BEND_TOLERANCE_MM: f64 = 3.0;
 /// Shares are averaged in bins this fraction of the finger's length wide
 /// (about 1 mm): a mesh's rings of vertices lie a few mm apart, and each
 /// ring's vertices straddle its mean position.
-const BIN: f64 = 0.01;
+pub(super) const BIN: f64 = 0.01;
 
 /// Where the skin bends at one joint.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

@@ -80,13 +80,13 @@ fn fit(quantities: &[(Quantity, &QuantityStats)], segments: &[f64]) -> (f64, boo
     (worst, inside)
 }
 
-/// The explanation with the fewest moved joints (see [`super::finger`]'s notes); with
-/// `hold_mcp`, among moves of the inner joints only.
+/// The explanation with the fewest moved joints (see [`super::finger`]'s notes),
+/// among moves of the joints not in `hold`.
 pub(super) fn explain(
     axis: &Axis,
     quantities: &[(Quantity, &QuantityStats)],
     basis: Basis,
-    hold_mcp: bool,
+    hold: &[Joint],
 ) -> Solved {
     if basis == Basis::None || quantities.is_empty() {
         return none_like();
@@ -101,7 +101,7 @@ pub(super) fn explain(
             _ => vec![Joint::Pip, Joint::Dip],
         })
         .collect();
-    let first = usize::from(hold_mcp);
+    let free = |k: usize| !hold.contains(&kinds[k]);
     let solved = |moved: Vec<Joint>, u: Vec<f64>| {
         let s = axis.segments(&u);
         let (score, inside) = fit(quantities, &s);
@@ -116,7 +116,8 @@ pub(super) fn explain(
     };
     let mut tried: Vec<Vec<Solved>> = vec![vec![solved(Vec::new(), u0.clone())]];
     tried.push(
-        (first..kinds.len())
+        (0..kinds.len())
+            .filter(|&k| free(k))
             .filter_map(|k| solve_one(axis, quantities, &u0, k).map(|u| solved(vec![kinds[k]], u)))
             .collect(),
     );
@@ -124,7 +125,7 @@ pub(super) fn explain(
         tried.push(
             [[1, 2], [0, 1], [0, 2]]
                 .into_iter()
-                .filter(|pair| pair[0] >= first)
+                .filter(|pair| pair.iter().all(|&k| free(k)))
                 .filter_map(|pair| {
                     solve_pair(axis, quantities, &u0, pair)
                         .map(|u| solved(pair.iter().map(|&k| kinds[k]).collect(), u))

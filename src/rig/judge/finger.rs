@@ -95,7 +95,7 @@ pub fn audit(a: &Analysis, chain: &ChainInput) -> Option<FingerAudit> {
 /// segment no longer than the tip correction. Cost: O(1) for the
 /// standings, a few thousand evaluations of the proportions for the explanation.
 pub fn audit_with(a: &Analysis, chain: &ChainInput, opts: &JudgeOptions) -> Option<FingerAudit> {
-    judge_finger(a, chain, opts, false)
+    judge_finger(a, chain, opts, &[])
 }
 
 /// Judges one rig finger as [`audit_with`] with its MCP held where it is: the
@@ -106,7 +106,20 @@ pub fn audit_holding_mcp(
     chain: &ChainInput,
     opts: &JudgeOptions,
 ) -> Option<FingerAudit> {
-    judge_finger(a, chain, opts, true)
+    judge_finger(a, chain, opts, &[Joint::Mcp])
+}
+
+/// Judges one rig finger as [`audit_with`] with the joints `hold` held where
+/// they are: the explanation moves only the others (for joints that sit where
+/// their skin bends, [`super::audited`]). The standings are those of
+/// [`audit_with`]: they do not depend on the explanation.
+pub fn audit_holding(
+    a: &Analysis,
+    chain: &ChainInput,
+    opts: &JudgeOptions,
+    hold: &[Joint],
+) -> Option<FingerAudit> {
+    judge_finger(a, chain, opts, hold)
 }
 
 /// The segments c_k of a chain, the tip correction and the compared segments;
@@ -144,7 +157,7 @@ fn judge_finger(
     a: &Analysis,
     chain: &ChainInput,
     opts: &JudgeOptions,
-    hold_mcp: bool,
+    hold: &[Joint],
 ) -> Option<FingerAudit> {
     let finger = chain.finger;
     let fa = a.finger(finger)?;
@@ -170,7 +183,7 @@ fn judge_finger(
         Basis::None => Vec::new(),
     };
     let axis = Axis::new(chain, &compared, tip_correction);
-    let solved = explain(&axis, &quantities, basis, hold_mcp);
+    let solved = explain(&axis, &quantities, basis, hold);
     let joints = joint_checks(chain, &axis, &solved, standings)?;
     let explanation = Explanation {
         moved: solved.moved,
@@ -233,6 +246,7 @@ fn joint_checks(
             suggested,
             shift: chain.points[k].distance(suggested),
             shift_along,
+            held: None,
         });
     }
     Some(joints)

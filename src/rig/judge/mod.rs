@@ -24,12 +24,13 @@ pub mod standing;
 mod tests;
 
 pub use audited::{AuditOptions, AuditedFinger, AuditedRig, SkinTip, TIP_INSIDE};
-pub use finger::{audit, audit_holding_mcp, audit_with};
+pub use finger::{audit, audit_holding, audit_holding_mcp, audit_with};
 pub use ray_base::{
     MetacarpalCheck, RayBase, WRIST_DEFINITION, WristRatio, WristRatios, WristValue, metacarpal,
     wrist,
 };
 pub use standing::{
-    Basis, ChainInput, Explanation, FingerAudit, FingerSoftTissue, JointCheck, JudgeOptions,
-    SOFT_TISSUE_TABLE, SoftTissue, Standing, TipKind, ValueCheck, data_tip_of,
+    BEND_GUARD, Basis, ChainInput, Explanation, FingerAudit, FingerSoftTissue, Held, HoldReason,
+    JointCheck, JudgeOptions, MOVE_TOLERANCE, SOFT_TISSUE_TABLE, SoftTissue, Standing, TipKind,
+    ValueCheck, data_tip_of,
 };

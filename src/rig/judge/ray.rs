@@ -10,9 +10,12 @@
 //! A finger whose MCP is inside is judged again with its MCP held where it is.
 //! A finger without a check keeps its own explanation. A fixed rig's MCP lies
 //! at the mean, inside the interval, so a second fix holds it and, when the
-//! first fit the proportions, moves nothing.
+//! first fit the proportions, moves nothing. The atlas's MCP and the inner
+//! joints' moves are guarded as the finger's own are
+//! ([`super::audited`]): a move that would take a joint off its skin bend,
+//! or shorter than the move tolerance, is not made, and the joint says so.
 
-use super::audited::{AuditedFinger, AuditedRig};
+use super::audited::{AuditedFinger, AuditedRig, guard, hold_reason};
 use super::finger::audit_holding_mcp;
 use super::standing::JudgeOptions;
 use crate::analysis::Analysis;
@@ -37,11 +40,26 @@ fn placed(f: &AuditedFinger, a: &Analysis, opts: &JudgeOptions) -> Option<Audite
         *last = t.position;
     }
     let original = *input.points.first()?;
-    let outside = !m.standing.is_consistent();
+    // The atlas's MCP is guarded as the finger's own moves are: not made when
+    // it would take the MCP off its skin bend, or when it is too short.
+    let held = (!m.standing.is_consistent())
+        .then(|| hold_reason(&f.bends, Joint::Mcp, original, m.suggested))
+        .flatten();
+    let outside = !m.standing.is_consistent() && held.is_none();
     if outside {
         input.points[0] = m.suggested;
     }
-    let mut audit = audit_holding_mcp(a, &input, opts)?;
+    let audit = audit_holding_mcp(a, &input, opts)?;
+    let mut audit = guard(a, &input, opts, audit, &f.bends, &[Joint::Mcp]);
+    if let (Some(h), Some(mcp)) = (
+        held,
+        audit.joints.iter_mut().find(|j| j.joint == Joint::Mcp),
+    ) {
+        mcp.held = Some(h);
+        mcp.suggested = m.suggested;
+        mcp.shift = original.distance(m.suggested);
+        mcp.shift_along = m.expected - m.to_mcp;
+    }
     if outside {
         let mcp = audit.joints.iter_mut().find(|j| j.joint == Joint::Mcp)?;
         mcp.moves = true;

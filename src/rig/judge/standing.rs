@@ -320,6 +320,112 @@ pub struct JointCheck {
     /// How far the suggestion lies along the chain from the rig's joint:
     /// positive towards the tip, negative towards the root.
     pub shift_along: f64,
+    /// Why a joint the explanation would move is not moved by the fix
+    /// (`None`: it moves when `moves`, or no move was asked of it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub held: Option<Held>,
+}
+
+/// Why a move is given up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum HoldReason {
+    /// The move would take the joint more than [`BEND_GUARD`] farther from
+    /// where its skin bends (measured on the rig's weights); the explanation
+    /// was sought again with the joint held.
+    Bend,
+    /// The move is shorter than [`MOVE_TOLERANCE`].
+    Small,
+    /// The joint is an MCP and the fix was not asked to move MCPs
+    /// (`--fix-mcp atlas`): where the skin over a knuckle bends is not
+    /// located well enough ([`super::bend`]: the MCP's bend is reported for
+    /// information only) for the bend guard to tell whether the move takes
+    /// the MCP off it. The explanation still names it.
+    Knuckle,
+}
+
+/// A move a fix gives up, and why, with the words every output gives for it.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct Held {
+    pub reason: HoldReason,
+    /// The joint's distance to where its skin bends as the rig has it (rig
+    /// units), when a bend was found.
+    pub before: Option<f64>,
+    /// Its distance to that bend were it moved, when a bend was found.
+    pub after: Option<f64>,
+    /// The length of the move not made.
+    pub shift: f64,
+    /// What the audit says of it, in its text and here alike (mm, for a rig in metres).
+    pub words: String,
+}
+
+impl Held {
+    /// A move of `shift` not made: for `reason`, with the distances to the bend `bend` (before, after).
+    pub fn new(reason: HoldReason, shift: f64, bend: Option<(f64, f64)>) -> Held {
+        let mm = |x: f64| crate::format::num(x * 1000.0, 1);
+        let words = match (reason, bend) {
+            (HoldReason::Bend, Some((before, after)))
+                if before <= super::bend::BEND_TOLERANCE_MM / 1000.0 =>
+            {
+                format!(
+                    "held: it sits where its skin bends, {} mm (moved {} mm it would be {} mm \
+                     from it)",
+                    mm(before),
+                    mm(shift),
+                    mm(after)
+                )
+            }
+            (HoldReason::Bend, Some((before, after))) => format!(
+                "held: moved {} mm it would be {} mm from where its skin bends, farther than the \
+                 {} mm it is",
+                mm(shift),
+                mm(after),
+                mm(before)
+            ),
+            (HoldReason::Knuckle, _) => format!(
+                "held: where the skin over a knuckle bends cannot be located, so it is not moved \
+                 (it would be moved {} mm; --fix-mcp atlas moves MCPs)",
+                mm(shift)
+            ),
+            _ => format!(
+                "held: the move, {} mm, is under the {} mm tolerance",
+                mm(shift),
+                mm(MOVE_TOLERANCE)
+            ),
+        };
+        Held {
+            reason,
+            before: bend.map(|b| b.0),
+            after: bend.map(|b| b.1),
+            shift,
+            words,
+        }
+    }
+}
+
+/// A fix never takes a joint more than this farther from where its skin
+/// bends than it was (metres): the skin weights stay as painted, and the mesh
+/// was modelled to fold there, so a joint moved off its bend rotates skin
+/// that is not built to bend. 1 mm: a third of the bend tolerance
+/// ([`super::bend::BEND_TOLERANCE_MM`]) and below a ring of a finger mesh's
+/// vertices (2-4 mm apart), so a move within it leaves the fold on the same
+/// edge loop.
+pub const BEND_GUARD: f64 = 0.001;
+
+/// A fix makes no move shorter than this (metres). 1 mm: with the paper's
+/// 5 X-rays the mean position of a joint along a finger is itself uncertain
+/// by about this much (the index PIP of a 90 mm finger: SD of the position
+/// about 1.2 mm, so a standard error of the mean of 1.2 / sqrt(5) = 0.5 mm and
+/// a 95% confidence half-width of t(0.975, 4) x 0.5 = 1.5 mm); a shorter move
+/// is below what the data can tell apart. For the same reason the audit
+/// prints millimetres to 0.1 mm.
+pub const MOVE_TOLERANCE: f64 = 0.001;
+
+impl JointCheck {
+    /// True when a fix moves this joint: the explanation moves it and it is not held.
+    pub fn fix_moves(&self) -> bool {
+        self.moves && self.held.is_none() && self.shift > 0.0
+    }
 }
 
 /// The fewest joints whose moves bring the finger inside the X-rays' prediction intervals.

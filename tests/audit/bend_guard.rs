@@ -1,0 +1,374 @@
+//! The fix's bend guard, checked by this test's own reading of the weights:
+//! over every glTF rig in ../shared/rigs (skipped with the reason when absent)
+//! and the tests' own rigs, no joint `--fix` moves ends more than 1 mm
+//! farther from where its skin bends; and the moves the audit prints are the
+//! moves `fix.moved` lists and the nodes the written file moves.
+
+use super::hand::{HandSpec, Naming, build};
+use crate::common::*;
+use glam::{DMat4, DVec3};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+/// A rig's skinned rest vertices and their influences by node, read with the
+/// gltf crate: v = sum_j w_j (W_j B_j) p, W_j the joint's world matrix and
+/// B_j its inverse bind matrix; and every node's world position.
+struct Skinned {
+    vertices: Vec<(DVec3, Vec<(usize, f64)>)>,
+    world: Vec<DVec3>,
+}
+
+/// The document and buffers of a .glb or .gltf (embedded or beside it), read
+/// with the gltf crate.
+fn import(path: &Path) -> (gltf::Document, Vec<Vec<u8>>) {
+    use base64::Engine;
+    let bytes = std::fs::read(path).expect("the rig reads");
+    let g = gltf::Gltf::from_slice(&bytes).expect("the rig parses");
+    let buffers = g
+        .document
+        .buffers()
+        .map(|b| match b.source() {
+            gltf::buffer::Source::Bin => g.blob.clone().expect("a GLB blob"),
+            gltf::buffer::Source::Uri(uri) => match uri.split_once(";base64,") {
+                Some((_, data)) => base64::engine::general_purpose::STANDARD
+                    .decode(data)
+                    .expect("base64"),
+                None => std::fs::read(path.parent().unwrap().join(uri)).expect("the buffer"),
+            },
+        })
+        .collect();
+    (g.document, buffers)
+}
+
+fn skinned(path: &Path) -> Skinned {
+    let (doc, buffers) = import(path);
+    let n = doc.nodes().count();
+    let mut local = vec![DMat4::IDENTITY; n];
+    let mut parent = vec![None; n];
+    for node in doc.nodes() {
+        local[node.index()] = glam::Mat4::from_cols_array_2d(&node.transform().matrix()).as_dmat4();
+        for c in node.children() {
+            parent[c.index()] = Some(node.index());
+        }
+    }
+    let world_of = |mut i: usize| {
+        let mut m = local[i];
+        while let Some(p) = parent[i] {
+            m = local[p] * m;
+            i = p;
+        }
+        m
+    };
+    let world: Vec<DMat4> = (0..n).map(world_of).collect();
+    let mut vertices = Vec::new();
+    for node in doc.nodes() {
+        let (Some(mesh), Some(skin)) = (node.mesh(), node.skin()) else {
+            continue;
+        };
+        let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
+        let reader = skin.reader(|b| Some(&buffers[b.index()]));
+        let ibm: Vec<DMat4> = match reader.read_inverse_bind_matrices() {
+            Some(it) => it
+                .map(|m| glam::Mat4::from_cols_array_2d(&m).as_dmat4())
+                .collect(),
+            None => vec![DMat4::IDENTITY; joints.len()],
+        };
+        for prim in mesh.primitives() {
+            let r = prim.reader(|b| Some(&buffers[b.index()]));
+            let (Some(pos), Some(js), Some(ws)) =
+                (r.read_positions(), r.read_joints(0), r.read_weights(0))
+            else {
+                continue;
+            };
+            for ((p, j), w) in pos.zip(js.into_u16()).zip(ws.into_f32()) {
+                let p = DVec3::from(p.map(f64::from));
+                let mut v = DVec3::ZERO;
+                let mut infl = Vec::new();
+                for k in 0..4 {
+                    let (slot, weight) = (j[k] as usize, w[k] as f64);
+                    if weight <= 0.0 || slot >= joints.len() {
+                        continue;
+                    }
+                    let node = joints[slot];
+                    v += weight * (world[node] * ibm[slot]).transform_point3(p);
+                    infl.push((node, weight));
+                }
+                vertices.push((v, infl));
+            }
+        }
+    }
+    Skinned {
+        vertices,
+        world: world.iter().map(|m| m.w_axis.truncate()).collect(),
+    }
+}
+
+/// This test's own estimate of where the skin bends at joint `k` of `chain`
+/// (node indices, MCP first; `before` the metacarpal or wrist nodes): along
+/// the bone axis through the joint (from the point before it, the
+/// metacarpal's node or, without one, the first segment mirrored, to the
+/// joint after it), the vertices carrying at least half their weight on the
+/// finger's bones, binned by their projection to 0.5 mm, and the position
+/// where the bins' mean share of weight on the distal bones (the joint's node
+/// and later ones) first exceeds that on the proximal ones, interpolated
+/// with the bin before. Returns the signed distance from the joint (+
+/// towards the tip), `None` without a crossing.
+fn bend(s: &Skinned, chain: &[usize], before: &[usize], k: usize) -> Option<f64> {
+    let p = |i: usize| s.world[chain[i]];
+    if k + 1 >= chain.len() {
+        return None;
+    }
+    let prev = if k > 0 {
+        p(k - 1)
+    } else {
+        match before.first() {
+            Some(&m) => s.world[m],
+            None => p(0) - (p(1) - p(0)),
+        }
+    };
+    let (a, b) = (prev, p(k + 1));
+    let dir = (b - a).normalize();
+    let at = (p(k) - a).dot(dir);
+    let len = (b - a).length();
+    let distal = &chain[k..];
+    let proximal: Vec<usize> = chain[..k].iter().chain(before).copied().collect();
+    let mut bins: std::collections::BTreeMap<i64, (f64, f64)> = Default::default();
+    for (v, infl) in &s.vertices {
+        let (mut d, mut q) = (0.0, 0.0);
+        for &(n, w) in infl {
+            if distal.contains(&n) {
+                d += w;
+            } else if proximal.contains(&n) {
+                q += w;
+            }
+        }
+        if d + q < 0.5 || !infl.iter().any(|(n, _)| chain.contains(n)) {
+            continue;
+        }
+        let t = (*v - a).dot(dir);
+        let radial = (*v - a - t * dir).length();
+        if !(0.0..=len).contains(&t) || radial > 0.5 * len {
+            continue;
+        }
+        let e = bins.entry((t / 0.0005).floor() as i64).or_default();
+        e.0 += d / (d + q);
+        e.1 += 1.0;
+    }
+    let means: Vec<(f64, f64)> = bins
+        .into_iter()
+        .map(|(i, (sum, c))| ((i as f64 + 0.5) * 0.0005, sum / c))
+        .collect();
+    let i = means.iter().position(|m| m.1 > 0.5)?;
+    let x = if i == 0 {
+        means[0].0
+    } else {
+        let (lo, hi) = (means[i - 1], means[i]);
+        lo.0 + (0.5 - lo.1) / (hi.1 - lo.1) * (hi.0 - lo.0)
+    };
+    Some(x - at)
+}
+
+/// Node index by name in the rig at `path`.
+fn node_index(path: &Path, name: &str) -> Option<usize> {
+    let (doc, _) = import(path);
+    doc.nodes().position(|n| n.name() == Some(name))
+}
+
+/// The rigs to check: every glTF in ../shared/rigs and the tests' own.
+fn rigs(wd: &Workdir) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let shared = manifest_dir().join("../shared/rigs");
+    match std::fs::read_dir(&shared) {
+        Ok(dirs) => {
+            let mut dirs: Vec<PathBuf> = dirs.flatten().map(|d| d.path()).collect();
+            dirs.sort();
+            for d in dirs {
+                let mut files: Vec<PathBuf> = std::fs::read_dir(&d)
+                    .into_iter()
+                    .flatten()
+                    .flatten()
+                    .map(|f| f.path())
+                    .filter(|f| {
+                        matches!(f.extension().and_then(|e| e.to_str()), Some("glb" | "gltf"))
+                    })
+                    .collect();
+                files.sort();
+                out.extend(files);
+            }
+        }
+        Err(e) => eprintln!(
+            "skipped ../shared/rigs: {} is not readable ({e})",
+            shared.display()
+        ),
+    }
+    for f in ["left.glb", "right.glb"] {
+        let p = manifest_dir().join("data/rigs/webxr-generic-hand").join(f);
+        if p.is_file() {
+            out.push(p);
+        }
+    }
+    // The tests' own: a smooth-skinned hand with an index PIP 5 mm off
+    // (bend 1.5 mm distal of it), a ring DIP 4 mm off and a middle MCP at the web.
+    let mut spec = HandSpec::new(Naming::Mixamo)
+        .moved("index", 1, 0.5)
+        .moved("ring", 2, -0.4)
+        .moved("middle", 0, 1.0);
+    spec.smooth = Some(vec![
+        ("index", 1, 1.5),
+        ("ring", 2, 2.0),
+        ("middle", 0, 2.0),
+    ]);
+    out.push(wd.write("smooth.glb", build(&spec)));
+    out.push(wd.write(
+        "hard.glb",
+        build(&HandSpec::new(Naming::Mixamo).moved("index", 1, 0.5)),
+    ));
+    out
+}
+
+/// Each moved node of a fix's JSON, with its finger's chain and proximal
+/// nodes (indices in `rig`) and its place in the chain.
+fn moved_joints(doc: &Value, rig: &Path) -> Vec<(String, Vec<usize>, Vec<usize>, usize)> {
+    let mut out = Vec::new();
+    for m in doc["fix"]["moved"].as_array().unwrap() {
+        let node = m["node"].as_str().unwrap();
+        for f in doc["rig"]["fingers"].as_array().unwrap() {
+            let names: Vec<&str> = f["joints"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|j| j["name"].as_str().unwrap())
+                .collect();
+            let Some(k) = names.iter().position(|n| *n == node) else {
+                continue;
+            };
+            let chain: Vec<usize> = names.iter().filter_map(|n| node_index(rig, n)).collect();
+            let before: Vec<usize> = ["metacarpal", "wrist"]
+                .iter()
+                .filter_map(|key| f[key]["name"].as_str())
+                .filter_map(|n| node_index(rig, n))
+                .collect();
+            out.push((node.to_string(), chain, before, k));
+        }
+    }
+    out
+}
+
+#[test]
+fn no_moved_joint_ends_farther_from_its_skin_bend_by_the_tests_own_reading() {
+    let wd = Workdir::with_paper_data();
+    let mut checked = 0;
+    for (i, rig) in rigs(&wd).iter().enumerate() {
+        let out = wd.path().join(format!("fixed-{i}.glb"));
+        let (r, o) = (rig.to_str().unwrap(), out.to_str().unwrap());
+        let doc = wd
+            .run(&["audit", r, "--fix", o, "--format", "json"])
+            .ok()
+            .json();
+        let (a, b) = (skinned(rig), skinned(&out));
+        for (node, chain, before, k) in moved_joints(&doc, rig) {
+            let (Some(d0), Some(d1)) = (bend(&a, &chain, &before, k), bend(&b, &chain, &before, k))
+            else {
+                eprintln!("{}: {node}: no bend found by the test", rig.display());
+                continue;
+            };
+            eprintln!(
+                "{}: {node} {:.1} mm from its bend before, {:.1} mm after",
+                rig.display(),
+                d0.abs() * 1e3,
+                d1.abs() * 1e3
+            );
+            assert!(
+                d1.abs() <= d0.abs() + 0.001 + 1e-4,
+                "{}: {node} went from {d0} to {d1} m from its skin bend",
+                rig.display()
+            );
+            checked += 1;
+        }
+    }
+    eprintln!("{checked} moved joints checked");
+}
+
+/// The finger label and joint of every "move X" line of the audit's text.
+fn printed_moves(text: &str) -> Vec<(String, String)> {
+    let mut finger = String::new();
+    let mut out = Vec::new();
+    for line in text.lines() {
+        if !line.starts_with(' ') && line.contains(": ") && !line.starts_with("Rig audit") {
+            finger = line.split(':').next().unwrap().to_string();
+        }
+        if let Some(rest) = line.trim_start().strip_prefix("move ") {
+            out.push((finger.clone(), rest.split(' ').next().unwrap().to_string()));
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn the_moves_printed_are_fix_moved_and_the_nodes_the_written_file_moves() {
+    let wd = Workdir::with_paper_data();
+    for file in [
+        "data/atlas/measurements.csv",
+        "data/atlas/landmarks.csv",
+        "data/literature/buryanov-kotiuk-2010.csv",
+        "data/literature/buryanov-kotiuk-2010.cohort.csv",
+    ] {
+        if let Ok(bytes) = std::fs::read(manifest_dir().join(file)) {
+            wd.write(file, &bytes);
+        }
+    }
+    let atlas = wd.path().join("data/atlas/measurements.csv").is_file();
+    let mut modes: Vec<&[&str]> = vec![&[]];
+    if atlas {
+        modes.push(&["--fix-mcp", "atlas"]);
+    } else {
+        eprintln!("skipped --fix-mcp atlas: data/atlas is not readable");
+    }
+    for (i, rig) in rigs(&wd).iter().enumerate() {
+        for (m, extra) in modes.iter().enumerate() {
+            let out = wd.path().join(format!("fixed-{i}-{m}.glb"));
+            let (r, o) = (rig.to_str().unwrap(), out.to_str().unwrap());
+            let mut args = vec!["audit", r, "--fix", o, "--force"];
+            args.extend_from_slice(extra);
+            let run = wd.run(&args);
+            let text = run.ok().stdout.clone();
+            args.extend_from_slice(&["--format", "json"]);
+            let doc = wd.run(&args).ok().json();
+            // From the JSON: each moved node's finger and joint.
+            let mut listed: Vec<(String, String)> = Vec::new();
+            let mut nodes: Vec<String> = Vec::new();
+            for (node, _, _, k) in moved_joints(&doc, rig) {
+                let f = doc["rig"]["fingers"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .find(|f| f["joints"][k]["name"] == node.as_str())
+                    .unwrap();
+                let side = f["side"]
+                    .as_str()
+                    .map(|s| format!("{s} "))
+                    .unwrap_or_default();
+                listed.push((
+                    format!("{side}{}", f["finger"].as_str().unwrap()),
+                    f["joints"][k]["joint"].as_str().unwrap().to_string(),
+                ));
+                nodes.push(node);
+            }
+            listed.sort();
+            assert_eq!(printed_moves(&text), listed, "{} {extra:?}", rig.display());
+            // From the file: the nodes whose world position changed.
+            let (a, b) = (skinned(rig), skinned(&out));
+            let mut changed: Vec<String> = Vec::new();
+            let (gdoc, _) = import(rig);
+            for n in gdoc.nodes() {
+                if a.world[n.index()].distance(b.world[n.index()]) > 1e-5 {
+                    changed.push(n.name().unwrap_or("").to_string());
+                }
+            }
+            changed.sort();
+            nodes.sort();
+            assert_eq!(changed, nodes, "{} {extra:?}", rig.display());
+        }
+    }
+}
