@@ -226,10 +226,14 @@ fn rigs(wd: &Workdir) -> Vec<PathBuf> {
     out
 }
 
+/// A moved node: its name, its finger's chain and proximal nodes, its place
+/// in the chain, and whether the audit found its bend.
+type MovedJoint = (String, Vec<usize>, Vec<usize>, usize, bool);
+
 /// Each moved node of a fix's JSON, with its finger's chain and proximal
 /// nodes (indices in `rig`), its place in the chain, and whether the audit
 /// itself found the joint's bend (`bends[k].offset` not null).
-fn moved_joints(doc: &Value, rig: &Path) -> Vec<(String, Vec<usize>, Vec<usize>, usize, bool)> {
+fn moved_joints(doc: &Value, rig: &Path) -> Vec<MovedJoint> {
     let mut out = Vec::new();
     for m in doc["fix"]["moved"].as_array().unwrap() {
         let node = m["node"].as_str().unwrap();
