@@ -86,10 +86,10 @@ pub struct MovedBend {
 }
 
 /// The distance from joint `node` of `rig` to where its skin bends, with the
-/// joint's label ("right index PIP") and its finger's index; `None` when the
-/// node is not a judged finger's joint.
-fn bend_of(rig: &AuditedRig, node: &str) -> Option<(String, usize, Option<f64>)> {
-    rig.fingers.iter().enumerate().find_map(|(i, f)| {
+/// joint's label ("right index PIP"); `None` when the node is not a judged
+/// finger's joint.
+fn bend_of(rig: &AuditedRig, node: &str) -> Option<(String, Option<f64>)> {
+    rig.fingers.iter().find_map(|f| {
         let j = f.chain.joints.iter().find(|j| j.name == node)?;
         let d = f
             .bends
@@ -97,7 +97,7 @@ fn bend_of(rig: &AuditedRig, node: &str) -> Option<(String, usize, Option<f64>)>
             .find(|b| b.joint == j.joint)
             .and_then(|b| b.at)
             .map(|at| at.distance(j.position));
-        Some((format!("{} {}", f.chain.label(), j.joint.name()), i, d))
+        Some((format!("{} {}", f.chain.label(), j.joint.name()), d))
     })
 }
 
@@ -111,8 +111,8 @@ pub fn bends_across(
     let bends = moved
         .iter()
         .filter_map(|(node, _)| {
-            let (joint, _, d0) = bend_of(before, node)?;
-            let d1 = bend_of(after, node).and_then(|b| b.2);
+            let (joint, d0) = bend_of(before, node)?;
+            let d1 = bend_of(after, node).and_then(|b| b.1);
             Some(MovedBend {
                 node: node.clone(),
                 joint,
@@ -143,14 +143,6 @@ pub fn bends_across(
 /// The atlas's landmark file, looked for beside the metacarpals' dataset.
 pub const WRIST_LANDMARKS: &str = "landmarks.csv";
 
-/// Audits a rig against the statistics, and with `fix` writes a corrected copy;
-/// with `moves`, lists the nodes that copy moves (the same copy: one fix
-/// serves both, so the list follows the fix).
-///
-/// The fix is refused before any work when it would overwrite the input or its
-/// extension names no glTF container. The fixed copy is read back from memory
-/// before it is written, so a copy that would not load is never left on disk;
-/// it is written atomically and the input is never modified.
 /// What the audit says of the side of fingers whose joint names carry none,
 /// by the rule `deform` curls by ([`crate::rig::read::naming::hand_side`]):
 /// the side the file name says, or that no side is known and what `deform`
@@ -174,6 +166,14 @@ pub fn side_note(label: &str, chains: &[crate::rig::read::FingerChain]) -> Optio
     )
 }
 
+/// Audits a rig against the statistics, and with `fix` writes a corrected copy;
+/// with `moves`, lists the nodes that copy moves (the same copy: one fix
+/// serves both, so the list follows the fix).
+///
+/// The fix is refused before any work when it would overwrite the input or its
+/// extension names no glTF container. The fixed copy is read back from memory
+/// before it is written, so a copy that would not load is never left on disk;
+/// it is written atomically and the input is never modified.
 pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     let map = req.map.map(NameMap::load).transpose()?;
     let fix_glb = req.fix.map(|out| fix_container(req.rig, out)).transpose()?;
@@ -253,10 +253,8 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
             _ => audited.fingers.clone(),
         };
         let glb = fix_glb.unwrap_or(true);
-        Some(fix::fix_with(
-            &rig.file, &placed, // The skin weights stay as painted: see `fix_loaded`.
-            None, dir, glb, &opts,
-        )?)
+        // The skin weights stay as painted (`None`): see `fix_loaded`.
+        Some(fix::fix_with(&rig.file, &placed, None, dir, glb, &opts)?)
     } else {
         None
     };
