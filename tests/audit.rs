@@ -199,10 +199,33 @@ fn a_far_off_joint_is_flagged_with_its_direction_and_distance() {
     assert_eq!(moved("middle"), serde_json::json!([]));
 }
 
+/// The index of the glTF node called `name` in a file's JSON `doc`.
+fn node_at(doc: &Value, name: &str) -> usize {
+    doc["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|n| n["name"] == name)
+        .unwrap_or_else(|| panic!("no node {name}"))
+}
+
+/// Asserts that an audit JSON joint is held as an MCP the plain fix does not
+/// move, with the words every output gives for it.
+fn assert_knuckle_held(joint: &Value) {
+    assert_eq!(joint["held"]["reason"], "knuckle", "{joint}");
+    assert!(
+        joint["held"]["words"]
+            .as_str()
+            .unwrap()
+            .starts_with("held: where the skin over a knuckle bends cannot be located"),
+        "{joint}"
+    );
+}
+
 fn node_position(doc: &Value, name: &str) -> [f64; 3] {
     let nodes = doc["nodes"].as_array().unwrap();
     let world = hand::world_of(nodes);
-    let i = nodes.iter().position(|n| n["name"] == name).unwrap();
+    let i = node_at(doc, name);
     let t = world[i].w_axis;
     [t.x, t.y, t.z]
 }
@@ -595,14 +618,7 @@ fn edit(bytes: &[u8], f: impl FnOnce(&mut Value)) -> Vec<u8> {
 fn hostile_rigs_get_clear_errors_and_never_a_panic() {
     let wd = Workdir::with_paper_data();
     let good = build(&HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0));
-    let node = |json: &Value, name: &str| {
-        json["nodes"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .position(|n| n["name"] == name)
-            .unwrap()
-    };
+    let node = node_at;
     // A zero quaternion on a finger joint: a non-finite world transform.
     wd.write(
         "nan.glb",

@@ -132,14 +132,7 @@ fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
     // --fix-mcp atlas), so its check says so, with the move it would make.
     let mcp = joint_of(idx, "MCP");
     assert_eq!(mcp["standing"], "above");
-    assert_eq!(mcp["held"]["reason"], "knuckle", "{mcp}");
-    assert!(
-        mcp["held"]["words"]
-            .as_str()
-            .unwrap()
-            .starts_with("held: where the skin over a knuckle bends cannot be located"),
-        "{mcp}"
-    );
+    super::assert_knuckle_held(mcp);
     // Moved back towards the root it would be, by about the 10 mm it was pushed.
     let back = num(&mcp["held"]["shift"]);
     assert!((0.007..0.013).contains(&back), "{back}");

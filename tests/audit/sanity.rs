@@ -157,14 +157,7 @@ fn a_rest_pose_that_is_not_the_bind_pose_is_named_instead_of_a_wrong_unit() {
     let bound = XRAY_1B[1].1[0] * CM_PER_UNIT * 10.0;
     assert_eq!(format!("{bound:.1}"), "42.8");
     let (doc, _) = read_glb(&wd.read("rest.glb"));
-    let at = |name: &str| {
-        doc["nodes"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .position(|n| n["name"] == name)
-            .unwrap()
-    };
+    let at = |name: &str| super::node_at(&doc, name);
     let expected = format!(
         "right index's MCP-PIP segment, mixamorig:RightHandIndex1 (node {}) to \
          mixamorig:RightHandIndex2 (node {}), is 0.43 m long in the nodes' rest pose and 42.8 mm \
