@@ -2,6 +2,7 @@
 
 use super::args::{BootArgs, DataArgs, ForceArgs, TextFormat, check_output_file};
 use super::out;
+use crate::analysis::placement::Joint;
 use crate::error::{EXIT_FAILURE, Error};
 use crate::format::count;
 use crate::report;
@@ -108,11 +109,33 @@ pub(crate) struct Args {
     /// then held and only PIP and DIP move to fit the proportions
     #[arg(long, value_enum, default_value_t = FixMcp::Finger)]
     fix_mcp: FixMcp,
+    /// Joints to pin where the rig has them, comma-separated (mcp, pip, dip, ip, tip): the
+    /// explanation moves only the others, and --fix, --moves and --fix-mcp atlas never move them
+    #[arg(long, value_name = "JOINTS", value_delimiter = ',', value_parser = parse_joint)]
+    hold: Vec<Joint>,
+    /// Print only the line per finger and the summary (with --fix: the line per finger, and the
+    /// fix's line on standard error)
+    #[arg(long, conflicts_with = "format")]
+    brief: bool,
     /// Output format
     #[arg(long, value_enum, default_value_t = TextFormat::Table)]
     format: TextFormat,
     #[command(flatten)]
     force: ForceArgs,
+}
+
+/// A joint named on the command line (`--hold`), in any case.
+fn parse_joint(s: &str) -> Result<Joint, String> {
+    match s.trim().to_ascii_lowercase().as_str() {
+        "mcp" => Ok(Joint::Mcp),
+        "pip" => Ok(Joint::Pip),
+        "dip" => Ok(Joint::Dip),
+        "ip" => Ok(Joint::Ip),
+        "tip" => Ok(Joint::Tip),
+        _ => Err(format!(
+            "no joint is called '{s}': give mcp, pip, dip, ip or tip, comma-separated"
+        )),
+    }
 }
 
 /// The metacarpals' dataset when given or when the default exists.
@@ -196,27 +219,42 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
             crate::rig::judge::SOFT_TISSUE_TABLE
         ));
     }
+    // --only-outside decides only what a fix moves.
+    let only_outside = args.only_outside && (args.fix.is_some() || args.moves.is_some());
     let bytes = match args.format {
-        TextFormat::Table => table(&audit, width).into_bytes(),
+        TextFormat::Table if args.brief => report::audit::brief(
+            &audit.rig,
+            audit.analysis.settings.confidence,
+            only_outside,
+            audit.fix.is_none(),
+            width,
+        )
+        .into_bytes(),
+        TextFormat::Table => table(&audit, only_outside, width).into_bytes(),
         TextFormat::Json => json(&audit)?,
     };
     if let (Some(path), Some((moves, warnings))) = (&args.moves, &audit.moves) {
         let csv = report::csv_out::moves(moves)?;
         crate::atomic::replace(path, &csv).map_err(Error::write(path))?;
         if !quiet {
-            eprintln!(
-                "{}",
-                fit_text(&moves_summary(&audit, path, moves.len()), width)
-            );
-            for w in warnings {
+            let mut line = moves_summary(&audit, path, moves.len());
+            if args.brief {
+                line.push_str(&brief_warnings(warnings.len()));
+            }
+            eprintln!("{}", fit_text(&line, width));
+            for w in warnings.iter().filter(|_| !args.brief) {
                 eprintln!("warning: {w}");
             }
         }
     }
     out::print(&bytes)?;
     if !quiet && let Some(fix) = &audit.fix {
-        eprintln!("{}", fit_text(&fix_summary(fix), width));
-        for w in &fix.warnings {
+        let mut line = fix_summary(fix);
+        if args.brief {
+            line.push_str(&brief_warnings(fix.warnings.len()));
+        }
+        eprintln!("{}", fit_text(&line, width));
+        for w in fix.warnings.iter().filter(|_| !args.brief) {
             eprintln!("warning: {w}");
         }
     }
@@ -263,11 +301,24 @@ fn options(args: &Args) -> Result<AuditOptions, Error> {
             false,
         )?,
         measure_tip: args.tip == Tip::Auto,
+        hold: args.hold.clone(),
     })
 }
 
+/// What `--brief` says of the warnings it does not print, on the result line.
+fn brief_warnings(n: usize) -> String {
+    if n == 0 {
+        String::new()
+    } else {
+        format!(
+            "; {} (shown without --brief)",
+            count(n, "warning", "warnings")
+        )
+    }
+}
+
 /// The audit table.
-fn table(audit: &Audit, width: Width) -> String {
+fn table(audit: &Audit, only_outside: bool, width: Width) -> String {
     let a = &audit.analysis;
     let n_note = crate::format::xrays(a.dataset.xrays);
     report::audit::text(
@@ -276,6 +327,7 @@ fn table(audit: &Audit, width: Width) -> String {
         &a.dataset.path,
         &n_note,
         a.settings.confidence,
+        only_outside,
         width,
     )
 }

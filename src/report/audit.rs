@@ -8,7 +8,8 @@ use crate::analysis::{Interval, Quantity};
 use crate::format::{level, num, percent};
 use crate::rig::bend::Bend;
 use crate::rig::judge::{
-    Basis, FingerAudit, JudgeOptions, MetacarpalCheck, RayBase, SoftTissue, Standing, TipKind,
+    Basis, FingerAudit, JointCheck, JudgeOptions, MetacarpalCheck, RayBase, SoftTissue, Standing,
+    TipKind,
 };
 use crate::rig::read::source::FbxSource;
 use crate::rig::{AuditedFinger, AuditedRig};
@@ -488,22 +489,177 @@ pub(crate) fn unit_words(m: f64) -> String {
     }
 }
 
+/// What the fix does with one joint, for the line per finger.
+enum Step {
+    /// "the PIP 3.1 mm towards the tip": the fix makes this move.
+    Move(String),
+    /// "the IP 2.7 mm (it would leave its skin bend)": a move the fix does not make.
+    Held(String),
+}
+
+/// What the fix does with joint `j`, read off the fields the table and the
+/// JSON give (`held`, [`JointCheck::fix_moves`], `shift`, `shift_along`);
+/// with `only_outside` (`--only-outside` with a fix), a joint inside the
+/// prediction interval is not moved, as the fix decides. `None`: nothing.
+fn step(j: &JointCheck, only_outside: bool) -> Option<Step> {
+    let mm = |x: f64| num(x * MM, 1);
+    if let Some(h) = &j.held {
+        return Some(Step::Held(format!(
+            "the {} {} mm ({})",
+            j.joint.name(),
+            mm(h.shift),
+            h.reason.short()
+        )));
+    }
+    if !j.fix_moves() {
+        return None;
+    }
+    if only_outside && j.standing.is_consistent() {
+        return Some(Step::Held(format!(
+            "the {} {} mm (inside the prediction interval; --only-outside)",
+            j.joint.name(),
+            mm(j.shift)
+        )));
+    }
+    Some(Step::Move(format!(
+        "the {} {} mm towards the {}",
+        j.joint.name(),
+        mm(j.shift),
+        if j.shift_along >= 0.0 { "tip" } else { "root" }
+    )))
+}
+
+/// A finger's verdict and its move in a few words: "keep", "move the PIP
+/// 3.1 mm towards the tip", "held: the IP 2.7 mm (it would leave its skin
+/// bend)", or both, root first; read off each joint's move ([`step`]) and the
+/// explanation, so it says what the table's rows, the explanation's words
+/// and the JSON say.
+pub(crate) fn finger_line(a: &FingerAudit, only_outside: bool) -> String {
+    if a.basis == Basis::None {
+        return "not judged (a thumb without a tip has no proportion)".into();
+    }
+    let (mut moves, mut held) = (Vec::new(), Vec::new());
+    for j in &a.joints {
+        match step(j, only_outside) {
+            Some(Step::Move(w)) => moves.push(w),
+            Some(Step::Held(w)) => held.push(w),
+            None => {}
+        }
+    }
+    let fits = a.explanation.consistent;
+    let mut parts = Vec::new();
+    if !moves.is_empty() {
+        let closest = if fits {
+            ""
+        } else {
+            " (the closest: no move of up to two joints fits the X-rays)"
+        };
+        parts.push(format!("move {}{closest}", and_list(&moves)));
+    }
+    if !held.is_empty() {
+        parts.push(format!("held: {}", and_list(&held)));
+    }
+    match (parts.is_empty(), fits) {
+        (false, _) => parts.join("; "),
+        (true, true) => "keep".into(),
+        (true, false) => "keep: no move of up to two joints fits the X-rays".into(),
+    }
+}
+
+/// The audit's opening: one line per finger, its label then [`finger_line`],
+/// in the rig's order (either hand's fingers named by side when the joint
+/// names say it), each wrapped under its words to fit `width`.
+pub(crate) fn opening(rig: &AuditedRig, only_outside: bool, width: Width) -> String {
+    let labels: Vec<String> = rig.fingers.iter().map(|f| f.chain.label()).collect();
+    let pad = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0) + 2;
+    let mut out = String::new();
+    for (f, label) in rig.fingers.iter().zip(&labels) {
+        let line = format!("{label:<pad$}{}", finger_line(&f.audit, only_outside));
+        match width {
+            Width::Fit(max) => {
+                let hanging = " ".repeat(pad);
+                let options = textwrap::Options::new(max)
+                    .subsequent_indent(&hanging)
+                    .word_splitter(textwrap::WordSplitter::NoHyphenation);
+                out.push_str(&textwrap::fill(&line, options));
+            }
+            _ => out.push_str(&line),
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// The audit's summary, one paragraph: the fingers outside the prediction
+/// interval, the MCPs outside it from their rays' bases, the joints off their bends.
+pub(crate) fn summary(rig: &AuditedRig, confidence: f64) -> String {
+    let c = level(confidence);
+    let judged = rig
+        .fingers
+        .iter()
+        .filter(|f| f.audit.basis != Basis::None)
+        .count();
+    let mut summary = format!(
+        "Summary: {} of {} judged fingers have a joint or proportion outside the {c} prediction \
+         interval.",
+        rig.outside(),
+        judged
+    );
+    if rig.fingers.iter().any(|f| f.metacarpal_check.is_some()) {
+        summary.push_str(&format!(
+            " {} outside the atlas's {c} prediction interval from their CMC or wrist.",
+            crate::format::count(rig.metacarpals_outside(), "MCP lies", "MCPs lie")
+        ));
+    }
+    if rig.fingers.iter().any(|f| !f.bends.is_empty()) {
+        summary.push_str(&format!(
+            " {} more than {} mm from where their skin bends.",
+            crate::format::count(rig.bends_flagged(), "inner joint lies", "inner joints lie"),
+            num(rig.bend_tolerance * MM, 1)
+        ));
+    }
+    summary
+}
+
+/// `audit --brief`: the [`opening`] and, with `with_summary`, the [`summary`], fitted to `width`.
+pub(crate) fn brief(
+    rig: &AuditedRig,
+    confidence: f64,
+    only_outside: bool,
+    with_summary: bool,
+    width: Width,
+) -> String {
+    let mut out = opening(rig, only_outside, width);
+    if with_summary {
+        out.push_str(&super::layout::fit_text(
+            &para(&summary(rig, confidence), ""),
+            width,
+        ));
+    }
+    out
+}
+
 /// The terminal report of `phalanx audit`, fitted to `width` (tables give way
-/// as [`super::layout`] says; the other lines wrap).
+/// as [`super::layout`] says; the other lines wrap): the [`opening`] (with
+/// `only_outside` as `--only-outside` with a fix), then the details and the
+/// methods.
 pub(crate) fn text(
     rig: &AuditedRig,
     fbx: Option<&FbxSource>,
     data: &str,
     n_note: &str,
     confidence: f64,
+    only_outside: bool,
     width: Width,
 ) -> String {
     let mut hidden = Hidden::new();
     let c = level(confidence);
-    let mut out = para(
+    let mut out = opening(rig, only_outside, width);
+    out.push('\n');
+    out.push_str(&para(
         &format!("Rig audit of {} against {data} ({n_note})", rig.label),
         "",
-    );
+    ));
     out.push_str(&para(
         &format!(
             "Joints in mm along each finger from the rig's MCP (distal = towards the tip; {}); \
@@ -548,32 +704,8 @@ pub(crate) fn text(
             out.push_str(&para(n, "  - "));
         }
     }
-    let judged = rig
-        .fingers
-        .iter()
-        .filter(|f| f.audit.basis != Basis::None)
-        .count();
-    let mut summary = format!(
-        "Summary: {} of {} judged fingers have a joint or proportion outside the {c} prediction \
-         interval.",
-        rig.outside(),
-        judged
-    );
-    if rig.fingers.iter().any(|f| f.metacarpal_check.is_some()) {
-        summary.push_str(&format!(
-            " {} outside the atlas's {c} prediction interval from their CMC or wrist.",
-            crate::format::count(rig.metacarpals_outside(), "MCP lies", "MCPs lie")
-        ));
-    }
-    if rig.fingers.iter().any(|f| !f.bends.is_empty()) {
-        summary.push_str(&format!(
-            " {} more than {} mm from where their skin bends.",
-            crate::format::count(rig.bends_flagged(), "inner joint lies", "inner joints lie"),
-            num(rig.bend_tolerance * MM, 1)
-        ));
-    }
     out.push('\n');
-    out.push_str(&para(&summary, ""));
+    out.push_str(&para(&summary(rig, confidence), ""));
     out.push_str("Caveats:\n");
     for c in CAVEATS {
         out.push_str(&para(c, "  - "));

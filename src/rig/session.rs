@@ -246,7 +246,12 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         };
         let placed = match &atlas {
             Some(_) if req.mcp_from_atlas => {
-                let placed = judge::ray::mcp_from_base(&audited, &analysis, &audited.tips);
+                let placed = judge::ray::mcp_from_base(
+                    &audited,
+                    &analysis,
+                    &audited.tips,
+                    &req.options.hold,
+                );
                 show_placed(&mut audited, &placed);
                 placed
             }

@@ -33,6 +33,8 @@ pub struct AuditOptions {
     /// With skin tips: take the skin's end from the mesh when it reaches
     /// past the tip node (`--tip auto`).
     pub measure_tip: bool,
+    /// Joints the artist pins (`--hold`): never moved by the explanation or the fix.
+    pub hold: Vec<Joint>,
 }
 
 impl Default for AuditOptions {
@@ -42,6 +44,7 @@ impl Default for AuditOptions {
             soft_tissue: SoftTissue::Unknown,
             bend_tolerance: bend::BEND_TOLERANCE_MM / 1000.0,
             measure_tip: true,
+            hold: Vec::new(),
         }
     }
 }
@@ -115,13 +118,12 @@ pub(super) fn hold_reason(
 /// `audit` (of `input`, judged with `judge` against `a`) with the fix's
 /// rules applied to its explanation: an MCP the explanation would move is
 /// held unless `pinned` holds it already (the caller places it itself, as
-/// `--fix-mcp atlas` does): the guard cannot check it, for where the skin
-/// over a knuckle bends is not located reliably ([`super::bend`]). The
-/// explanation is not sought again without it: it still names the MCP (a
-/// misplaced MCP is not made up for by moving the PIP and DIP), and the
-/// fix leaves it; a joint
-/// the explanation would move more
-/// than [`BEND_GUARD`] farther from where its skin bends (`bends`, from the
+/// `--fix-mcp atlas` does, or the artist pinned it with `--hold`): the guard
+/// cannot check it, for where the skin over a knuckle bends is not located
+/// reliably ([`super::bend`]). The explanation is not sought again without
+/// it: it still names the MCP (a misplaced MCP is not made up for by moving
+/// the PIP and DIP), and the fix leaves it; a joint the explanation would
+/// move more than [`BEND_GUARD`] farther from where its skin bends (`bends`, from the
 /// rig's weights) is held, and the explanation sought again among the other
 /// joints (and `pinned`), until no held joint remains to add; then a move
 /// shorter than [`MOVE_TOLERANCE`] is marked not made. Each held joint's
@@ -217,7 +219,19 @@ fn guard_holding(
     audit
 }
 
-/// [`guard`] (no joint pinned) checked on the skin as the fix leaves it:
+/// The joints of `hold` that `audit`'s explanation (sought with none held)
+/// moves, each held as pinned by the artist with the move it gives up.
+fn pins(audit: &FingerAudit, hold: &[Joint]) -> Vec<(Joint, Held)> {
+    audit
+        .joints
+        .iter()
+        .filter(|j| hold.contains(&j.joint) && j.moves)
+        .map(|j| (j.joint, Held::new(HoldReason::Pinned, j.shift, None)))
+        .collect()
+}
+
+/// [`guard`] (the joints `hold` pinned, those of them `first` moves held
+/// as pinned, [`pins`]) checked on the skin as the fix leaves it:
 /// the bends of `chain` with the guarded explanation's moves made, found
 /// again on the skin's weights (with the bend tolerance) as the re-audit of the written copy finds them (the
 /// fix keeps the weights and the mesh's rest shape, so only the joints
@@ -227,6 +241,7 @@ fn guard_holding(
 /// bends' resolution, a bin of [`bend::BIN`] of the finger's length); such a
 /// joint is held too, with those two distances, and the explanation sought again.
 /// At most 3 rounds of at most 5 re-judgements and one bend search each.
+#[allow(clippy::too_many_arguments)]
 fn guard_on_weights(
     a: &Analysis,
     input: &ChainInput,
@@ -235,9 +250,11 @@ fn guard_on_weights(
     bends: &[bend::Bend],
     chain: &FingerChain,
     skin: Option<(&SkinWeights, f64)>,
+    hold: &[Joint],
 ) -> FingerAudit {
-    let mut held: Vec<(Joint, Held)> = Vec::new();
-    let mut audit = guard(a, input, judge, first.clone(), bends, &[]);
+    let pinned = pins(&first, hold);
+    let mut audit = guard_holding(a, input, judge, first.clone(), bends, hold, &pinned);
+    let mut held = pinned;
     let Some((w, tolerance)) = skin else {
         return audit;
     };
@@ -282,7 +299,7 @@ fn guard_on_weights(
             break;
         }
         held.extend(new);
-        audit = guard_holding(a, input, judge, first.clone(), bends, &[], &held);
+        audit = guard_holding(a, input, judge, first.clone(), bends, hold, &held);
     }
     audit
 }
@@ -489,6 +506,7 @@ impl AuditedRig {
                         &bends,
                         chain,
                         weights.map(|w| (w, opts.bend_tolerance)),
+                        &opts.hold,
                     );
                     fingers.push(AuditedFinger {
                         chain: chain.clone(),

@@ -14,26 +14,42 @@
 //! joints' moves are guarded as the finger's own are
 //! ([`super::audited`]): a move that would take a joint off its skin bend,
 //! or shorter than the move tolerance, is not made, and the joint says so.
+//! Joints the artist pins (`--hold`) stay pinned: a pinned MCP keeps the
+//! finger's own explanation, and pinned inner joints are held in the new one.
 
 use super::audited::{AuditedFinger, AuditedRig, guard, hold_reason};
-use super::finger::audit_holding_mcp;
-use super::standing::JudgeOptions;
+use super::finger::audit_holding;
+use super::standing::{HoldReason, JudgeOptions};
 use crate::analysis::Analysis;
 use crate::analysis::placement::Joint;
 
 /// The fingers of `rig` with the explanation a fix applies when the MCP is
 /// placed from its ray's base (see the module notes); `a` the statistics the
-/// fingers were judged against, `opts` as they were judged. O(fingers) audits.
-pub fn mcp_from_base(rig: &AuditedRig, a: &Analysis, opts: &JudgeOptions) -> Vec<AuditedFinger> {
+/// fingers were judged against, `opts` as they were judged, `hold` the joints
+/// the artist pinned. O(fingers) audits.
+pub fn mcp_from_base(
+    rig: &AuditedRig,
+    a: &Analysis,
+    opts: &JudgeOptions,
+    hold: &[Joint],
+) -> Vec<AuditedFinger> {
     rig.fingers
         .iter()
-        .map(|f| placed(f, a, opts).unwrap_or_else(|| f.clone()))
+        .map(|f| placed(f, a, opts, hold).unwrap_or_else(|| f.clone()))
         .collect()
 }
 
 /// One finger with its MCP from its base and the inner joints re-explained;
-/// `None` when it has no check or cannot be judged again.
-fn placed(f: &AuditedFinger, a: &Analysis, opts: &JudgeOptions) -> Option<AuditedFinger> {
+/// `None` when it has no check, its MCP is pinned, or it cannot be judged again.
+fn placed(
+    f: &AuditedFinger,
+    a: &Analysis,
+    opts: &JudgeOptions,
+    hold: &[Joint],
+) -> Option<AuditedFinger> {
+    if hold.contains(&Joint::Mcp) {
+        return None;
+    }
     let m = f.metacarpal_check.as_ref()?;
     let mut input = f.chain.input();
     if let (Some(t), Some(last)) = (&f.skin_tip, input.points.last_mut()) {
@@ -49,8 +65,22 @@ fn placed(f: &AuditedFinger, a: &Analysis, opts: &JudgeOptions) -> Option<Audite
     if outside {
         input.points[0] = m.suggested;
     }
-    let audit = audit_holding_mcp(a, &input, opts)?;
-    let mut audit = guard(a, &input, opts, audit, &f.bends, &[Joint::Mcp]);
+    let pinned: Vec<Joint> = std::iter::once(Joint::Mcp)
+        .chain(hold.iter().copied())
+        .collect();
+    let audit = audit_holding(a, &input, opts, &pinned)?;
+    let mut audit = guard(a, &input, opts, audit, &f.bends, &pinned);
+    // The artist's pins say what they give up as in the finger's own judgement.
+    for j in &mut audit.joints {
+        if let Some(h) = f
+            .audit
+            .joint(j.joint)
+            .and_then(|k| k.held.as_ref())
+            .filter(|h| h.reason == HoldReason::Pinned && j.held.is_none())
+        {
+            j.held = Some(h.clone());
+        }
+    }
     if let (Some(h), Some(mcp)) = (
         held,
         audit.joints.iter_mut().find(|j| j.joint == Joint::Mcp),

@@ -342,6 +342,24 @@ pub enum HoldReason {
     /// information only) for the bend guard to tell whether the move takes
     /// the MCP off it. The explanation still names it.
     Knuckle,
+    /// The artist pinned the joint (`audit --hold`): the explanation was
+    /// sought among the other joints, and the fix leaves it.
+    Pinned,
+}
+
+impl HoldReason {
+    /// The reason in a few words, for the audit's one line per finger.
+    pub fn short(self) -> String {
+        match self {
+            HoldReason::Bend => "would leave its skin bend".into(),
+            HoldReason::Small => format!(
+                "under the {} mm tolerance",
+                crate::format::num(MOVE_TOLERANCE * 1000.0, 1)
+            ),
+            HoldReason::Knuckle => "a knuckle".into(),
+            HoldReason::Pinned => "pinned by --hold".into(),
+        }
+    }
 }
 
 /// A move a fix gives up, and why, with the words every output gives for it.
@@ -387,6 +405,11 @@ impl Held {
                  (it would be moved {} mm; --fix-mcp atlas moves MCPs)",
                 mm(shift)
             ),
+            (HoldReason::Pinned, _) if shift > 0.0 => format!(
+                "held: pinned by --hold (the explanation would move it {} mm)",
+                mm(shift)
+            ),
+            (HoldReason::Pinned, _) => "held: pinned by --hold".to_string(),
             _ => format!(
                 "held: the move, {} mm, is under the {} mm tolerance",
                 mm(shift),
