@@ -1,6 +1,7 @@
 //! `phalanx audit`: rigs built by the tests (tests/audit/hand.rs) judged against the paper's data.
 
 mod bend_guard;
+mod brief;
 mod conventions;
 mod fixing;
 pub(crate) mod hand;

@@ -9,7 +9,7 @@ use serde_json::Value;
 /// A workdir with the paper's data and the atlas (its measurements and its
 /// landmarks, which give the wrist-to-MCP distance over the finger's length) at its default path; `None`
 /// (skipped, with the reason printed) when the atlas is not readable.
-fn with_atlas() -> Option<Workdir> {
+pub(super) fn with_atlas() -> Option<Workdir> {
     let wd = Workdir::new();
     wd.copy_paper_data();
     // The atlas's tips are at the bone and the rigs' at the skin: the measured soft
