@@ -724,7 +724,10 @@ fn the_readme_audit_example_is_current() {
     let (thumb, index) = (section("thumb:"), section("index:"));
     assert!(thumb.len() > 8 && index.len() > 8, "{text}");
     let summary = section("Summary:");
-    for line in thumb.into_iter().chain(index).chain(summary) {
+    // The opening: one line per finger, before the first blank line.
+    let opening = section("thumb ");
+    assert_eq!(opening.len(), 5, "{text}");
+    for line in opening.into_iter().chain(thumb).chain(index).chain(summary) {
         assert!(
             readme.contains(line),
             "README lacks the current line:\n{line}"
@@ -750,10 +753,12 @@ fn the_readme_fix_example_is_current() {
     let run = wd.run(&["audit", "docs/examples/hand.glb", "--fix", "hand-fixed.glb"]);
     run.ok();
     assert!(wd.path().join("hand-fixed.glb").exists());
+    // The opening (one line per finger), the audit's first line, its summary.
     let shown = run
         .stdout
         .lines()
-        .take(2)
+        .take_while(|l| !l.is_empty())
+        .chain(run.stdout.lines().filter(|l| l.starts_with("Rig audit of")))
         .chain(run.stdout.lines().filter(|l| l.starts_with("Summary")))
         .chain(run.stderr.lines().filter(|l| l.starts_with("wrote")));
     let mut lines = 0;
@@ -764,7 +769,7 @@ fn the_readme_fix_example_is_current() {
             "the README's --fix example lacks the line:\n{line}\n{block}"
         );
     }
-    assert_eq!(lines, 4, "{}\n{}", run.stdout, run.stderr);
+    assert_eq!(lines, 8, "{}\n{}", run.stdout, run.stderr);
 }
 
 /// A file that is not a rig, or a directory, is named for what it is; an image

@@ -50,6 +50,12 @@ pub enum FixMcp {
                   rig's finger, so a rig in any unit is judged alike (--tip-soft-tissue MM sets one length). \
                   Rigs without tip nodes are judged on J2/J1 only. Where the skin weights make the mesh bend is found \
                   for each joint, and a joint further than --bend-tolerance from its bend is flagged.\n\n\
+                  The text opens with one line per finger, its verdict and its move (\"index   keep\", \
+                  \"index   move the PIP 3.1 mm towards the tip\", or \"held: ...\" for a move the fix \
+                  does not make), read off the same fields as the table and the JSON; --brief prints only \
+                  those lines and the summary (with --fix, the fix's line on standard error). --hold \
+                  pip,dip pins the artist's joints: the explanation moves only the others, and --fix, \
+                  --moves and --fix-mcp atlas leave them (\"held: pinned by --hold\").\n\n\
                   --fix OUT.glb writes a copy with the explanation's joints moved along each finger, translation keys offset, and the inverse bind matrices updated so the mesh's rest \
                   shape is unchanged; the input is never modified. The skin weights stay as painted, so a joint is held \
                   (and says so) when its move would take it more than 1 mm farther from where its skin bends, and no \
@@ -61,7 +67,7 @@ pub enum FixMcp {
                   fix moves, with its new world position and its new local translation (FBX: Lcl Translation) to \
                   set in a DCC.\n\n\
                   --map FILE: CSV with the header node,side,finger,joint (joint MCP, PIP, DIP, IP or tip).\n\n\
-                  Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv\n  phalanx audit glove.fbx --moves moves.csv"
+                  Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --brief\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit hand.glb --hold pip --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv\n  phalanx audit glove.fbx --moves moves.csv"
 )]
 pub(crate) struct Args {
     /// The rig: a .glb, .gltf or .vrm (glTF 2.0) or .fbx file
