@@ -343,3 +343,75 @@ fn a_bad_hold_exits_2_naming_the_value() {
     wd.run(&["audit", "hand.glb", "--hold", "PIP,Dip", "--fix", "x.glb"])
         .ok();
 }
+
+#[test]
+fn with_only_outside_the_opening_holds_a_joint_inside_its_interval() {
+    let wd = Workdir::with_paper_data();
+    // As in fixing.rs: ring PIP 2.5 mm towards the root, DIP 3 mm towards the
+    // tip; the PIP alone explains the misfit, yet stands inside its interval,
+    // so --only-outside leaves it (the fix writes 0 moves).
+    let input = build(
+        &HandSpec::new(Naming::Mixamo)
+            .moved("ring", 1, -0.25)
+            .moved("ring", 2, 0.3),
+    );
+    wd.write("ring.glb", &input);
+    let ring = |args: &[&str]| -> String {
+        let run = wd.run(args);
+        opening(&run.ok().stdout)
+            .into_iter()
+            .find(|l| l.starts_with("right ring"))
+            .unwrap()
+    };
+    let free = ring(&["audit", "ring.glb", "--fix", "a.glb"]);
+    assert!(free.contains("move the PIP "), "{free}");
+    let held = ring(&["audit", "ring.glb", "--fix", "b.glb", "--only-outside"]);
+    assert!(
+        held.contains("held: the PIP ")
+            && held.ends_with("mm (inside the prediction interval; --only-outside)"),
+        "{held}"
+    );
+    // Without a fix --only-outside decides nothing, and the line is the plain one.
+    assert_eq!(ring(&["audit", "ring.glb", "--only-outside"]), free);
+}
+
+#[test]
+fn hold_mcp_keeps_the_mcps_that_fix_mcp_atlas_moves() {
+    let Some(wd) = super::ray::with_atlas() else {
+        return;
+    };
+    let Some(input) = vendored("data/rigs/webxr-generic-hand/right.glb") else {
+        return;
+    };
+    wd.write("right.glb", &input);
+    let mcp = "index-finger-phalanx-proximal";
+    let fix = |out: &str, extra: &[&str]| -> Value {
+        let mut args = vec!["audit", "right.glb", "--fix-mcp", "atlas", "--fix", out];
+        args.extend_from_slice(extra);
+        args.extend(["--format", "json"]);
+        wd.run(&args).ok().json()
+    };
+    let moved = |doc: &Value| -> Vec<String> {
+        doc["fix"]["moved"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| m["node"].as_str().unwrap().to_string())
+            .collect()
+    };
+    // Unheld, the atlas moves the index MCP (its MCP lies outside from its CMC).
+    let free = fix("free.glb", &[]);
+    assert!(moved(&free).iter().any(|n| n == mcp), "{}", free["fix"]);
+    let held = fix("held.glb", &["--hold", "mcp"]);
+    let fixed = wd.read("held.glb");
+    for f in fingers(&held) {
+        let j = joint_of(f, "MCP");
+        assert_eq!(j["moves"], false, "{j}");
+        let node = f["joints"][0]["name"].as_str().unwrap();
+        assert!(!moved(&held).iter().any(|n| n == node), "{node}");
+        let (a, b) = (position(&input, node), position(&fixed, node));
+        for k in 0..3 {
+            assert!((a[k] - b[k]).abs() < 1e-7, "{node}: {a:?} -> {b:?}");
+        }
+    }
+}
