@@ -210,17 +210,35 @@ fn node_at(doc: &Value, name: &str) -> usize {
         .unwrap_or_else(|| panic!("no node {name}"))
 }
 
+/// Asserts that an audit JSON joint is held for `reason`, its words (the
+/// ones every output gives for it) starting with `words`.
+fn assert_held(joint: &Value, reason: &str, words: &str) {
+    assert_eq!(joint["held"]["reason"], reason, "{joint}");
+    assert!(
+        joint["held"]["words"].as_str().unwrap().starts_with(words),
+        "{joint}"
+    );
+}
+
 /// Asserts that an audit JSON joint is held as an MCP the plain fix does not
 /// move, with the words every output gives for it.
 fn assert_knuckle_held(joint: &Value) {
-    assert_eq!(joint["held"]["reason"], "knuckle", "{joint}");
-    assert!(
-        joint["held"]["words"]
-            .as_str()
-            .unwrap()
-            .starts_with("held: where the skin over a knuckle bends cannot be located"),
-        "{joint}"
+    assert_held(
+        joint,
+        "knuckle",
+        "held: where the skin over a knuckle bends cannot be located",
     );
+}
+
+/// A built Mixamo hand whose ring PIP sits 2.5 mm towards the root and DIP
+/// 3 mm towards the tip: the finger is outside, the PIP alone explains it,
+/// yet the PIP itself stands inside its prediction interval.
+fn ring_pip_inside_yet_explaining() -> Vec<u8> {
+    hand::build(
+        &hand::HandSpec::new(hand::Naming::Mixamo)
+            .moved("ring", 1, -0.25)
+            .moved("ring", 2, 0.3),
+    )
 }
 
 fn node_position(doc: &Value, name: &str) -> [f64; 3] {

@@ -2,7 +2,7 @@
 //! `--brief`, and `--hold`, the joints the artist pins.
 
 use super::hand::{HandSpec, Naming, build, read_glb};
-use super::{finger_of, fingers, joint_of};
+use super::{assert_held, finger_of, fingers, joint_of, ring_pip_inside_yet_explaining};
 use crate::common::*;
 use serde_json::Value;
 use std::path::PathBuf;
@@ -277,14 +277,7 @@ fn hold_pip_keeps_the_pip_in_the_json_and_the_fixed_file() {
     let j = joint_of(index, "PIP");
     assert_eq!(j["moves"], false, "{j}");
     assert_eq!(j["shift"], 0.0, "{j}");
-    assert_eq!(j["held"]["reason"], "pinned", "{j}");
-    assert!(
-        j["held"]["words"]
-            .as_str()
-            .unwrap()
-            .starts_with("held: pinned by --hold"),
-        "{j}"
-    );
+    assert_held(j, "pinned", "held: pinned by --hold");
     // What it gives up is the move the unheld audit makes.
     assert_close(num(&j["held"]["shift"]), free, 1e-9, "the move given up");
     assert!(
@@ -347,14 +340,9 @@ fn a_bad_hold_exits_2_naming_the_value() {
 #[test]
 fn with_only_outside_the_opening_holds_a_joint_inside_its_interval() {
     let wd = Workdir::with_paper_data();
-    // As in fixing.rs: ring PIP 2.5 mm towards the root, DIP 3 mm towards the
-    // tip; the PIP alone explains the misfit, yet stands inside its interval,
-    // so --only-outside leaves it (the fix writes 0 moves).
-    let input = build(
-        &HandSpec::new(Naming::Mixamo)
-            .moved("ring", 1, -0.25)
-            .moved("ring", 2, 0.3),
-    );
+    // The PIP alone explains the misfit, yet stands inside its interval, so
+    // --only-outside leaves it (the fix writes 0 moves).
+    let input = ring_pip_inside_yet_explaining();
     wd.write("ring.glb", &input);
     let ring = |args: &[&str]| -> String {
         let run = wd.run(args);

@@ -384,14 +384,7 @@ fn channels_with_unknown_paths_are_reported_and_left_alone() {
 #[test]
 fn only_outside_moves_only_joints_outside_their_interval() {
     let wd = Workdir::with_paper_data();
-    // Ring PIP 2.5 mm towards the root, DIP 3 mm towards the tip: the finger
-    // is outside, the PIP alone explains it, yet the PIP itself stands inside
-    // its prediction interval.
-    let input = build(
-        &HandSpec::new(Naming::Mixamo)
-            .moved("ring", 1, -0.25)
-            .moved("ring", 2, 0.3),
-    );
+    let input = super::ring_pip_inside_yet_explaining();
     wd.write("ring.glb", &input);
     let doc = super::audit_json(&wd, "ring.glb");
     let ring = finger_of(&doc, "ring");

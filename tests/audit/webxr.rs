@@ -2,7 +2,10 @@
 //! 25 joints are siblings, read by name, judged, and fixed.
 
 use super::hand::read_glb;
-use super::{assert_second_fix_changes_nothing, audit_json, finger_of, fingers, worst_vertex_move};
+use super::{
+    assert_held, assert_second_fix_changes_nothing, audit_json, finger_of, fingers,
+    worst_vertex_move,
+};
 use crate::common::*;
 use serde_json::Value;
 
@@ -95,14 +98,7 @@ fn both_hands_have_every_finger_found_and_judged_by_name() {
             }
             let joints = f["audit"]["joints"].as_array().unwrap();
             let ip = joints.iter().find(|j| j["joint"] == "IP").unwrap();
-            assert_eq!(ip["held"]["reason"], "bend", "{side} {ip}");
-            assert!(
-                ip["held"]["words"]
-                    .as_str()
-                    .unwrap()
-                    .starts_with("held: it sits where its skin bends, 0.2 mm"),
-                "{side} {ip}"
-            );
+            assert_held(ip, "bend", "held: it sits where its skin bends, 0.2 mm");
             let mcp = joints.iter().find(|j| j["joint"] == "MCP").unwrap();
             assert_eq!(mcp["held"]["reason"], "knuckle", "{side} {mcp}");
         }
