@@ -5,6 +5,7 @@ mod brief;
 mod conventions;
 mod fixing;
 pub(crate) mod hand;
+mod mesh_tip;
 mod ray;
 mod sanity;
 mod validator;

@@ -52,8 +52,9 @@ pub(crate) fn value_standing(s: Standing) -> String {
 }
 
 /// What a finger was judged on, in words.
-pub(crate) fn basis_words(a: &FingerAudit) -> String {
+pub(crate) fn basis_words(a: &FingerAudit, mesh_tip: bool) -> String {
     match a.basis {
+        Basis::Relative if mesh_tip => "judged on relative values (tip from the mesh)".into(),
         Basis::Relative => "judged on relative values (the rig has a tip)".into(),
         Basis::Ratio => "judged on J2/J1 only: the rig has no tip, so the finger's length, its DIP and J3 cannot be judged".into(),
         Basis::None => "not judged: a thumb without a tip has one segment, and one segment has no proportion".into(),
@@ -157,14 +158,22 @@ pub(crate) fn heading(f: &AuditedFinger) -> String {
     }
     out.push_str(&para(&line, "  "));
     if let (Some(t), Some(node)) = (&f.skin_tip, f.chain.joints.last()) {
-        out.push_str(&para(
-            &format!(
-                "tip: the skin's end on the mesh, {} mm past {} (the tip node lies inside the skin)",
+        let line = if t.from_mesh {
+            format!(
+                "tip: tip from the mesh, where the skin weighted to {} ends, {} mm past it (the \
+                 rig has no tip node)",
+                node.name,
+                num(t.beyond_node * MM, 1)
+            )
+        } else {
+            format!(
+                "tip: the skin's end on the mesh, {} mm past {} (the tip node lies inside the \
+                 skin)",
                 num(t.beyond_node * MM, 1),
                 node.name
-            ),
-            "  ",
-        ));
+            )
+        };
+        out.push_str(&para(&line, "  "));
     }
     out
 }
@@ -676,7 +685,10 @@ pub(crate) fn text(
         out.push('\n');
         out.push_str(&heading(f));
         let a = &f.audit;
-        out.push_str(&para(&basis_words(a), "  "));
+        out.push_str(&para(
+            &basis_words(a, f.skin_tip.as_ref().is_some_and(|t| t.from_mesh)),
+            "  ",
+        ));
         if a.joints.is_empty() {
             continue;
         }

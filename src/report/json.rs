@@ -1,4 +1,4 @@
-//! JSON documents: the documented machine interface (`schema_version` 1).
+//! JSON documents: the documented machine interface (`schema_version` 3).
 
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
@@ -11,8 +11,12 @@ use crate::stats::rng;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-/// Version of every JSON document phalanx writes; bumped on any incompatible change.
-pub const SCHEMA_VERSION: u32 = 2;
+/// Version of every JSON document phalanx writes; bumped whenever a field is
+/// added or a field's meaning changes. 2: the audit's bend guard (`held`,
+/// the moves not made). 3: a tipless finger's tip from the mesh
+/// (`skin_tip.from_mesh`): such a finger is judged on relative values, with
+/// `has_tip` false (the chain's) and `audit.has_tip` true (as judged).
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// The settings block of every JSON document.
 #[derive(Serialize, JsonSchema)]

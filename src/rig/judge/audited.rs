@@ -58,11 +58,16 @@ pub const TIP_INSIDE: f64 = 0.002;
 /// The skin's end of a finger, measured on its mesh and used as its tip.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct SkinTip {
-    /// How far the skin reaches past the tip node, along the last segment.
+    /// How far the skin reaches past the tip node, along the last segment;
+    /// for a tip from the mesh, past the last joint (DIP; the thumb's IP).
     pub beyond_node: f64,
     /// The point used as the tip.
     #[schemars(with = "[f64; 3]")]
     pub position: DVec3,
+    /// True when the rig has no tip node and the tip is taken from the mesh
+    /// ([`bend::mesh_end`]): "tip from the mesh". The finger is then judged
+    /// on relative values, as a finger with a skin tip is.
+    pub from_mesh: bool,
 }
 
 /// A rig finger with its judgement.
@@ -82,6 +87,23 @@ pub struct AuditedFinger {
     /// the chain's metacarpal node.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub metacarpal_check: Option<MetacarpalCheck>,
+}
+
+impl AuditedFinger {
+    /// The chain's geometry as it was judged: with the skin's end as its tip
+    /// where one was measured ([`SkinTip`]), appended for a tip from the mesh.
+    pub fn judged_input(&self) -> ChainInput {
+        let mut input = self.chain.input();
+        if let Some(t) = &self.skin_tip {
+            if t.from_mesh {
+                input.points.push(t.position);
+                input.has_tip = true;
+            } else if let Some(last) = input.points.last_mut() {
+                *last = t.position;
+            }
+        }
+        input
+    }
 }
 
 /// The distances from `from` (the joint `joint` as the rig has it) and from
@@ -483,7 +505,31 @@ impl AuditedRig {
                     skin_tip = Some(SkinTip {
                         beyond_node: reach - node,
                         position,
+                        from_mesh: false,
                     });
+                }
+            } else if opts.measure_tip
+                && opts.rig_tip == TipKind::Skin
+                && !chain.has_tip
+                && n >= 2
+                && let Some(w) = weights
+            {
+                match bend::mesh_end(chain, w) {
+                    Ok(reach) => {
+                        let (prev, last) = (input.points[n - 2], input.points[n - 1]);
+                        let position = last + (last - prev).normalize_or_zero() * reach;
+                        input.points.push(position);
+                        input.has_tip = true;
+                        skin_tip = Some(SkinTip {
+                            beyond_node: reach,
+                            position,
+                            from_mesh: true,
+                        });
+                    }
+                    Err(why) => notes.push(format!(
+                        "{}: no tip from the mesh ({why}), so it is judged on J2/J1 alone",
+                        chain.label()
+                    )),
                 }
             }
             lengths.push(

@@ -277,6 +277,80 @@ pub fn skin_end(chain: &FingerChain, weights: &SkinWeights) -> Option<f64> {
         .max_by(f64::total_cmp)
 }
 
+/// Where the mesh ends along a tipless finger's last bone: how far past the
+/// last joint (DIP; the thumb's IP) the skin reaches, along the last
+/// segment's direction, or why no clear end was found.
+///
+/// The vertices are those within the finger's radius of its axis (the axis
+/// runs on two last segments past the last joint) that carry at least half
+/// their weight on the last joint's node; the reach is the farthest
+/// projection of them along the last segment. It is a clear end when at
+/// least [`MESH_END_VERTICES`] such vertices are found and the reach is
+/// between [`MESH_END_RANGE`] times the last segment (PIP to DIP; the thumb's
+/// MCP to IP): a human distal phalanx with its pulp is 0.86-1.09 times its
+/// middle phalanx, the thumb's 0.86 times its proximal (the means of
+/// Buryanov & Kotiuk 2010's 66 adults: index (15.82 + 3.84) / 22.38, little
+/// (15.96 + 3.73) / 18.11, thumb (21.67 + 5.67) / 31.57), so a reach far
+/// outside that is a mesh that does not end at the finger (a glove, a
+/// mitten, a hand merged with its sleeve), not a fingertip. O(V m).
+pub fn mesh_end(chain: &FingerChain, weights: &SkinWeights) -> Result<f64, String> {
+    if chain.has_tip {
+        return Err("the chain has a tip node".to_string());
+    }
+    let (nodes, before) = finger_nodes(chain).ok_or("its joints have no nodes")?;
+    let mut points: Vec<DVec3> = chain.joints.iter().map(|j| j.position).collect();
+    let n = points.len();
+    if n < 2 {
+        return Err("the chain has fewer than two joints".to_string());
+    }
+    let (prev, last) = (points[n - 2], points[n - 1]);
+    let segment = prev.distance(last);
+    if !(segment.is_finite() && segment > 0.0) {
+        return Err("its last segment has zero length".to_string());
+    }
+    let dir = (last - prev) / segment;
+    points.push(last + 2.0 * segment * dir);
+    let axis = FingerAxis::new(&points, true).ok_or("its axis is degenerate")?;
+    let node = nodes[n - 1];
+    let reach: Vec<f64> = finger_vertices(&axis, weights, &nodes, &before)
+        .iter()
+        .filter(|v| {
+            v.influences
+                .iter()
+                .filter(|(k, _)| *k == node)
+                .map(|x| x.1)
+                .sum::<f64>()
+                >= 0.5
+        })
+        .map(|v| (v.position - last).dot(dir))
+        .collect();
+    let far = reach.iter().copied().max_by(f64::total_cmp);
+    match far {
+        Some(r) if reach.len() >= MESH_END_VERTICES => {
+            let (lo, hi) = MESH_END_RANGE;
+            if r >= lo * segment && r <= hi * segment {
+                Ok(r)
+            } else {
+                Err(format!(
+                    "the skin weighted to its last bone reaches {:.2} times the segment before \
+                     it, outside {lo}-{hi} times",
+                    r / segment
+                ))
+            }
+        }
+        _ => Err(format!(
+            "{} vertices carry half their weight on its last bone (at least \
+             {MESH_END_VERTICES} are needed)",
+            reach.len()
+        )),
+    }
+}
+
+/// Fewest vertices on a tipless finger's last bone for [`mesh_end`].
+pub const MESH_END_VERTICES: usize = 8;
+/// The reach of a clear mesh end, in last segments ([`mesh_end`]).
+pub const MESH_END_RANGE: (f64, f64) = (0.25, 1.5);
+
 /// Where the shares `samples` (arc position, share of the distal side) cross
 /// 1/2: the samples are averaged in bins `bin` wide along the finger (so a
 /// ring of vertices, whose vertices' shares straddle its mean, counts as one

@@ -51,10 +51,7 @@ fn placed(
         return None;
     }
     let m = f.metacarpal_check.as_ref()?;
-    let mut input = f.chain.input();
-    if let (Some(t), Some(last)) = (&f.skin_tip, input.points.last_mut()) {
-        *last = t.position;
-    }
+    let mut input = f.judged_input();
     let original = *input.points.first()?;
     // The atlas's MCP is guarded as the finger's own moves are: not made when
     // it would take the MCP off its skin bend, or when it is too short.
