@@ -6,6 +6,7 @@ mod conventions;
 mod fixing;
 pub(crate) mod hand;
 mod mesh_tip;
+mod one_ray;
 mod ray;
 mod sanity;
 mod validator;

@@ -575,6 +575,34 @@ pub(crate) fn finger_line(a: &FingerAudit, only_outside: bool) -> String {
     }
 }
 
+/// What the finger's ray base says of its MCP, for the opening line, when it
+/// puts the MCP outside the atlas's prediction interval and the finger's own
+/// line does not name the MCP (it neither moves nor holds it): "the MCP from
+/// its CMC: OUT, 4.4 mm too proximal (--fix-mcp atlas places it)", the words
+/// of the table's row. An MCP the base puts in range and the finger would move
+/// is held instead ([`crate::rig::AuditedRig::weigh_bases`]), so the line and the row agree.
+pub(crate) fn base_clause(f: &AuditedFinger) -> Option<String> {
+    let m = f.metacarpal_check.as_ref()?;
+    if m.standing.is_consistent() {
+        return None;
+    }
+    let named = f
+        .audit
+        .joint(Joint::Mcp)
+        .is_some_and(|j| j.held.is_some() || j.fix_moves());
+    if named {
+        return None;
+    }
+    let base = match m.base {
+        RayBase::Cmc => "its CMC",
+        RayBase::Wrist => "the wrist",
+    };
+    Some(format!(
+        "the MCP from {base}: {} (--fix-mcp atlas places it)",
+        joint_standing(m.standing, MM)
+    ))
+}
+
 /// The audit's opening: one line per finger, its label then [`finger_line`],
 /// in the rig's order (either hand's fingers named by side when the joint
 /// names say it), each wrapped under its words to fit `width`.
@@ -583,7 +611,15 @@ pub(crate) fn opening(rig: &AuditedRig, only_outside: bool, width: Width) -> Str
     let pad = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0) + 2;
     let mut out = String::new();
     for (f, label) in rig.fingers.iter().zip(&labels) {
-        let line = format!("{label:<pad$}{}", finger_line(&f.audit, only_outside));
+        let mut verdict = finger_line(&f.audit, only_outside);
+        if let Some(base) = base_clause(f) {
+            verdict = if verdict == "keep" {
+                format!("keep the finger; {base}")
+            } else {
+                format!("{verdict}; {base}")
+            };
+        }
+        let line = format!("{label:<pad$}{verdict}");
         match width {
             Width::Fit(max) => {
                 let hanging = " ".repeat(pad);

@@ -15,7 +15,8 @@ use serde::Serialize;
 /// added or a field's meaning changes. 2: the audit's bend guard (`held`,
 /// the moves not made). 3: a tipless finger's tip from the mesh
 /// (`skin_tip.from_mesh`): such a finger is judged on relative values, with
-/// `has_tip` false (the chain's) and `audit.has_tip` true (as judged).
+/// `has_tip` false (the chain's) and `audit.has_tip` true (as judged); and
+/// `held.reason` `base`, an MCP its ray's base puts in range.
 pub const SCHEMA_VERSION: u32 = 3;
 
 /// The settings block of every JSON document.

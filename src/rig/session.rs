@@ -233,6 +233,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     );
     if let Some(atlas) = &atlas {
         audited.judge_metacarpals(atlas, wrist.as_ref());
+        audited.weigh_bases(&analysis, &req.options, rig.weights.as_ref());
     }
     if let Some(note) = side_note(&rig.file.label, &rig.chains) {
         audited.notes.push(note);
@@ -273,6 +274,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
                 write_checked(&rig, &fixed, out, map.as_ref(), &analysis, &req.options)?;
             if let Some(atlas) = &atlas {
                 reaudit.judge_metacarpals(atlas, wrist.as_ref());
+                reaudit.weigh_bases(&analysis, &req.options, rig.weights.as_ref());
             }
             let (bends, new_defects) = bends_across(&audited, &reaudit, &fixed.moved);
             Some(FixOutcome {

@@ -60,6 +60,7 @@ fn expected_line(finger: &Value) -> String {
                 "small" => "under the 1.0 mm tolerance",
                 "knuckle" => "a knuckle",
                 "pinned" => "pinned by --hold",
+                "base" => "in range from its base",
                 other => panic!("unknown hold reason {other}"),
             };
             held.push(format!("the {name} {} mm ({why})", mm(&h["shift"])));
@@ -88,10 +89,39 @@ fn expected_line(finger: &Value) -> String {
     if !held.is_empty() {
         parts.push(format!("held: {}", and_list(&held)));
     }
-    match (parts.is_empty(), fits) {
+    let line = match (parts.is_empty(), fits) {
         (false, _) => parts.join("; "),
         (true, true) => "keep".into(),
         (true, false) => "keep: no move of up to two joints fits the X-rays".into(),
+    };
+    // The MCP from the ray's base, when the base puts it outside and the line
+    // does not name the MCP already (it neither moves nor is held).
+    let check = &finger["metacarpal_check"];
+    let named = audit["joints"].as_array().unwrap().iter().any(|j| {
+        j["joint"] == "MCP"
+            && (j.get("held").is_some() || (j["moves"] == true && num(&j["shift"]) > 0.0))
+    });
+    let outside = matches!(check["standing"].as_str(), Some("above" | "below"));
+    if !outside || named {
+        return line;
+    }
+    let base = match check["base"].as_str().unwrap() {
+        "cmc" => "its CMC",
+        _ => "the wrist",
+    };
+    let way = if check["standing"] == "above" {
+        "distal"
+    } else {
+        "proximal"
+    };
+    let clause = format!(
+        "the MCP from {base}: OUT, {} mm too {way} (--fix-mcp atlas places it)",
+        mm(&check["by"])
+    );
+    if line == "keep" {
+        format!("keep the finger; {clause}")
+    } else {
+        format!("{line}; {clause}")
     }
 }
 

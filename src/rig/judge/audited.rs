@@ -703,6 +703,79 @@ impl AuditedRig {
         }
     }
 
+    /// Weighs each finger's own judgement with its MCP's from its ray's base
+    /// ([`AuditedRig::judge_metacarpals`], which must run first), so the two
+    /// never contradict each other: where the base puts the MCP inside the
+    /// atlas's prediction interval and the finger's explanation would move it
+    /// (the finger alone reads an MCP at the finger's web as a misplaced
+    /// knuckle), the MCP is held ([`HoldReason::Base`]) and the explanation
+    /// sought again among the inner joints, with the same guards as the
+    /// finger's own (the bend guard on `weights`, the tolerance, `opts.hold`).
+    /// An MCP the base puts outside is left to the finger's explanation and to
+    /// `--fix-mcp atlas`; the audit's opening line names it. O(fingers) re-judgements.
+    pub fn weigh_bases(
+        &mut self,
+        a: &Analysis,
+        opts: &AuditOptions,
+        weights: Option<&SkinWeights>,
+    ) {
+        let judge = self.tips.clone();
+        for f in &mut self.fingers {
+            let Some(m) = &f.metacarpal_check else {
+                continue;
+            };
+            let given_up = f
+                .audit
+                .joint(Joint::Mcp)
+                .filter(|j| j.moves && j.shift > 0.0)
+                .map(|j| j.shift);
+            let Some(given_up) = given_up else {
+                continue;
+            };
+            if !m.standing.is_consistent() || opts.hold.contains(&Joint::Mcp) {
+                continue;
+            }
+            let base = match m.base {
+                ray_base::RayBase::Cmc => format!("its CMC ({})", m.node),
+                ray_base::RayBase::Wrist => format!("the wrist ({})", m.node),
+            };
+            let input = f.judged_input();
+            let Some(first) = finger::audit_with(a, &input, &judge) else {
+                continue;
+            };
+            let hold: Vec<Joint> = opts
+                .hold
+                .iter()
+                .copied()
+                .chain(std::iter::once(Joint::Mcp))
+                .collect();
+            let mut audit = guard_on_weights(
+                a,
+                &input,
+                &judge,
+                first,
+                &f.bends,
+                &f.chain,
+                weights.map(|w| (w, opts.bend_tolerance)),
+                &hold,
+            );
+            // The MCP's move the finger alone asks for is what the base's
+            // evidence gives up, whether or not the unguarded explanation named it.
+            for j in &mut audit.joints {
+                if j.joint == Joint::Mcp {
+                    let mut held = Held::new(HoldReason::Base, given_up, None);
+                    held.words = format!(
+                        "held: from {base} the atlas puts it in range, so the explanation moves \
+                         the other joints (the finger alone would move it {} mm)",
+                        crate::format::num(given_up * 1000.0, 1)
+                    );
+                    j.held = Some(held);
+                }
+            }
+            f.audit = audit;
+        }
+    }
+
     /// Fingers whose MCP lies outside the prediction interval from its ray's
     /// base (the CMC or the wrist).
     pub fn metacarpals_outside(&self) -> usize {

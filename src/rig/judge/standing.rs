@@ -345,6 +345,12 @@ pub enum HoldReason {
     /// The artist pinned the joint (`audit --hold`): the explanation was
     /// sought among the other joints, and the fix leaves it.
     Pinned,
+    /// The joint is an MCP that its ray's base (the CMC, or the wrist) puts
+    /// inside the atlas's prediction interval, while the finger alone would
+    /// move it: the two kinds of evidence are weighed together, so the
+    /// explanation is sought among the other joints, and the fix leaves it
+    /// ([`super::AuditedRig::weigh_bases`]).
+    Base,
 }
 
 impl HoldReason {
@@ -358,6 +364,7 @@ impl HoldReason {
             ),
             HoldReason::Knuckle => "a knuckle".into(),
             HoldReason::Pinned => "pinned by --hold".into(),
+            HoldReason::Base => "in range from its base".into(),
         }
     }
 }
@@ -410,6 +417,11 @@ impl Held {
                 mm(shift)
             ),
             (HoldReason::Pinned, _) => "held: pinned by --hold".to_string(),
+            (HoldReason::Base, _) => format!(
+                "held: from its ray's base (the CMC or the wrist) the atlas puts it in range, so \
+                 the explanation moves the other joints (the finger alone would move it {} mm)",
+                mm(shift)
+            ),
             _ => format!(
                 "held: the move, {} mm, is under the {} mm tolerance",
                 mm(shift),
