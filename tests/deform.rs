@@ -745,3 +745,62 @@ fn audit_and_deform_agree_on_the_side_of_a_sideless_copy() {
         .ok()
         .stdout_has("right hand");
 }
+
+/// Over every rig in ../shared/rigs (skipped with the reason when absent),
+/// `deform --fix` in the fist with LBS (the fix `audit --fix` writes, with the
+/// MCPs judged from their rays' bases against the repository's atlas): the
+/// fixed rig deforms worse at no more joints than it deforms better, per file.
+/// Each joint's verdict is read from the JSON's `overall` ("a": the rig as it
+/// was is better; "b": the fixed rig).
+#[test]
+fn the_fix_deforms_worse_at_no_more_joints_than_better_on_every_shared_rig() {
+    let shared = manifest_dir().join("../shared/rigs");
+    let Ok(dirs) = std::fs::read_dir(&shared) else {
+        eprintln!("skipped: {} is not readable", shared.display());
+        return;
+    };
+    let mut rigs: Vec<PathBuf> = dirs
+        .flatten()
+        .filter_map(|d| std::fs::read_dir(d.path()).ok())
+        .flat_map(|files| files.flatten().map(|f| f.path()))
+        .filter(|p| {
+            matches!(
+                p.extension().and_then(|e| e.to_str()),
+                Some("glb" | "gltf" | "fbx" | "vrm")
+            )
+        })
+        .collect();
+    rigs.sort();
+    assert!(!rigs.is_empty(), "no rigs in {}", shared.display());
+    let wd = Workdir::new();
+    for rig in &rigs {
+        let run = wd
+            .command(&[
+                "deform",
+                &rig.display().to_string(),
+                "--fix",
+                "--format",
+                "json",
+            ])
+            .current_dir(manifest_dir())
+            .output()
+            .unwrap();
+        assert!(run.status.success(), "{}: {:?}", rig.display(), run);
+        let doc: Value = serde_json::from_slice(&run.stdout).unwrap();
+        let (mut a, mut b) = (0, 0);
+        for hand in doc["verdicts"].as_array().unwrap() {
+            for j in hand["joints"].as_array().unwrap() {
+                match j["overall"].as_str() {
+                    Some("a") => a += 1,
+                    Some("b") => b += 1,
+                    _ => {}
+                }
+            }
+        }
+        assert!(
+            a <= b,
+            "{}: the fixed rig is worse at {a} joints and better at {b}",
+            rig.display()
+        );
+    }
+}

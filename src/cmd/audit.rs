@@ -11,7 +11,7 @@ use crate::rig::AuditOptions;
 use crate::rig::bend::BEND_TOLERANCE_MM;
 use crate::rig::judge::{SoftTissue, TipKind};
 use crate::rig::session::{self, Audit, AuditRequest, FixOutcome};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// What a rig's tip nodes mark.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -147,6 +147,14 @@ fn parse_joint(s: &str) -> Result<Joint, String> {
 /// The metacarpals' dataset when given or when the default exists.
 const DEFAULT_METACARPALS: &str = "data/atlas/measurements.csv";
 
+/// The metacarpals' dataset `audit` uses: `given`, or the default where it exists.
+pub(crate) fn metacarpals_or_default(given: Option<&Path>) -> Option<PathBuf> {
+    match given {
+        Some(path) => Some(path.to_path_buf()),
+        None => Some(PathBuf::from(DEFAULT_METACARPALS)).filter(|p| p.is_file()),
+    }
+}
+
 pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> {
     if args.fix_mcp != FixMcp::Finger && args.fix.is_none() && args.moves.is_none() {
         return Err(Error::Usage(
@@ -171,10 +179,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
     if let Some(path) = &args.moves {
         check_output_file("--moves", path, args.force.force)?;
     }
-    let metacarpals = match &args.metacarpals {
-        Some(path) => Some(path.clone()),
-        None => Some(PathBuf::from(DEFAULT_METACARPALS)).filter(|p| p.is_file()),
-    };
+    let metacarpals = metacarpals_or_default(args.metacarpals.as_deref());
     let options = options(args)?;
     let no_tissue = options.soft_tissue == SoftTissue::Unknown;
     let mut audit = session::audit(&AuditRequest {

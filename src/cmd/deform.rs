@@ -272,12 +272,16 @@ type Deformed = (
 
 fn deform_rigs(args: &Args, req: &DeformRequest<'_>) -> Result<Deformed, Error> {
     Ok(if args.fix {
+        // The fix `audit --fix` writes: with the MCPs judged from their rays'
+        // bases against the default metacarpals' dataset where it exists.
+        let metacarpals = super::audit::metacarpals_or_default(None);
         let fixed = session::fix_in_memory(
             &args.rig,
             args.map.as_deref(),
             &args.data.data,
             args.boot.settings()?,
             &super::soft_tissue_table()?,
+            metacarpals.as_deref(),
         )?;
         let (a, b, verdicts) = compare_fixed(&fixed, &args.rig, req)?;
         (a, Some(b), verdicts, Some(fixed.moved))

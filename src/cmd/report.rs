@@ -384,10 +384,7 @@ fn deform_section(
     }
     let pose = Pose::fist();
     let req = super::deform::request(rig, &pose, Skinning::Lbs);
-    let mut fixed = session::fix_in_memory_with(rig, None, a, soft_tissue)?;
-    if let Some((atlas, wrist)) = atlas {
-        fixed.audited.judge_metacarpals(atlas, wrist);
-    }
+    let fixed = session::fix_in_memory_with(rig, None, a, soft_tissue, atlas)?;
     let (da, db, verdicts) = super::deform::compare_fixed(&fixed, rig, &req)?;
     let (files, renders) = super::deform::figures(&da, Some(&db), true)?;
     let slug: String = rig

@@ -347,12 +347,18 @@ pub struct FixedInMemory {
 /// [`audit`] with `--fix` does, without writing anything: the fixed copy is
 /// the same bytes `audit --fix OUT.glb` writes, parsed from memory;
 /// `soft_tissue` as `audit` takes it, used where the rig's tips and the data's differ.
+///
+/// `metacarpals` is the metacarpals' dataset `audit` judges each MCP from its
+/// ray's base against (its default, `data/atlas/measurements.csv`, where it
+/// exists), so the fix weighs the bases as `audit --fix` does
+/// ([`AuditedRig::weigh_bases`]); `None` judges the fingers alone.
 pub fn fix_in_memory(
     rig: &Path,
     map: Option<&Path>,
     data: &Path,
     settings: Settings,
     soft_tissue: &SoftTissue,
+    metacarpals: Option<&Path>,
 ) -> Result<FixedInMemory, Error> {
     let map = map.map(NameMap::load).transpose()?;
     let loaded = Rig::load(rig, map.as_ref())?;
@@ -360,19 +366,34 @@ pub fn fix_in_memory(
     analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)
         .map_err(Error::Usage)?;
     let analysis = analysis::analyse(&dataset, &settings);
-    fix_loaded(rig, loaded, &analysis, soft_tissue)
+    let atlas = match metacarpals {
+        Some(path) => {
+            let atlas = Dataset::load(path)?;
+            analysis::budget::check_bootstrap(atlas.xray_count(), settings.resamples)
+                .map_err(Error::Usage)?;
+            Some((
+                analysis::analyse(&atlas, &settings),
+                wrist_ratios_beside(path)?,
+            ))
+        }
+        None => None,
+    };
+    let atlas = atlas.as_ref().map(|(a, w)| (a, w.as_ref()));
+    fix_loaded(rig, loaded, &analysis, soft_tissue, atlas)
 }
 
-/// [`fix_in_memory`] against statistics already computed (the report's).
+/// [`fix_in_memory`] against statistics already computed (the report's),
+/// the metacarpals' with their wrist ratios when given.
 pub fn fix_in_memory_with(
     rig: &Path,
     map: Option<&Path>,
     analysis: &Analysis,
     soft_tissue: &SoftTissue,
+    atlas: Option<(&Analysis, Option<&judge::WristRatios>)>,
 ) -> Result<FixedInMemory, Error> {
     let map = map.map(NameMap::load).transpose()?;
     let loaded = Rig::load(rig, map.as_ref())?;
-    fix_loaded(rig, loaded, analysis, soft_tissue)
+    fix_loaded(rig, loaded, analysis, soft_tissue, atlas)
 }
 
 fn fix_loaded(
@@ -380,6 +401,7 @@ fn fix_loaded(
     loaded: Rig,
     analysis: &Analysis,
     soft_tissue: &SoftTissue,
+    atlas: Option<(&Analysis, Option<&judge::WristRatios>)>,
 ) -> Result<FixedInMemory, Error> {
     // `audit --fix OUT.glb` with its default options: the same judgement
     // (skin tips, bends from the skin weights) and the same fix.
@@ -391,7 +413,7 @@ fn fix_loaded(
         &JudgeOptions::new(options.rig_tip, options.soft_tissue.clone(), analysis),
         analysis,
     )?;
-    let audited = AuditedRig::with(
+    let mut audited = AuditedRig::with(
         &loaded.file.label,
         &loaded.chains,
         &loaded.notes,
@@ -399,6 +421,10 @@ fn fix_loaded(
         &options,
         loaded.weights.as_ref(),
     );
+    if let Some((atlas, wrist)) = atlas {
+        audited.judge_metacarpals(atlas, wrist);
+        audited.weigh_bases(analysis, &options, loaded.weights.as_ref());
+    }
     let dir = rig.parent().unwrap_or(Path::new("."));
     let out = fix::fix_with(
         &loaded.file,
