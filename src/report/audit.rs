@@ -430,10 +430,7 @@ fn finger_table(
             mm(j.expected),
             interval(j.range, &mm),
             j.pi.map_or("n/a".into(), |p| interval(p, &mm)),
-            match &j.held {
-                Some(h) => format!("{}; {}", joint_standing(j.standing, MM), h.words),
-                None => joint_standing(j.standing, MM),
-            },
+            joint_given(a, j),
         ]);
     }
     if let Some(m) = ray {
@@ -459,10 +456,56 @@ fn finger_table(
             v4(v.mean),
             interval(v.range, &v4),
             v.pi.map_or("n/a".into(), |p| interval(p, &v4)),
-            value_standing(v.standing),
+            given(a, value_standing(v.standing), v.standing.is_consistent()),
         ]);
     }
     t.render(width, 2, hidden)
+}
+
+/// A row's standing given the finger's explanation, with the rig's own
+/// standing `as_is` beside it where the two differ, labelled "as the rig
+/// is", so a row never contradicts the explanation under the table: a row
+/// outside as the rig is that fits once the explanation's joints move says
+/// so ("fits once the MCP moves (as the rig is: OUT, 0.2 mm too distal)").
+fn given(a: &FingerAudit, as_is: String, consistent: bool) -> String {
+    let e = &a.explanation;
+    if consistent || !e.consistent || e.moved.is_empty() {
+        return as_is;
+    }
+    let names: Vec<String> = e
+        .moved
+        .iter()
+        .map(|j| format!("the {}", j.name()))
+        .collect();
+    format!(
+        "fits once {} move{} (as the rig is: {as_is})",
+        and_list(&names),
+        if names.len() == 1 { "s" } else { "" }
+    )
+}
+
+/// A joint's standing given the explanation ([`given`]): a joint the
+/// explanation moves says by how much and whether the fix makes the move or
+/// holds it, with its standing as the rig is.
+fn joint_given(a: &FingerAudit, j: &JointCheck) -> String {
+    let as_is = joint_standing(j.standing, MM);
+    if !a.explanation.moved.contains(&j.joint) {
+        let g = given(a, as_is, j.standing.is_consistent());
+        // A joint an earlier explanation would have moved, held (off its
+        // bend, pinned), the explanation then sought without it.
+        return match &j.held {
+            Some(h) => format!("{g}; {}", h.words),
+            None => g,
+        };
+    }
+    let mm = num(j.shift * MM, 1);
+    match &j.held {
+        Some(h) => format!("{} (as the rig is: {as_is})", h.words),
+        None => format!(
+            "moves {mm} mm towards the {} (as the rig is: {as_is})",
+            if j.shift_along >= 0.0 { "tip" } else { "root" }
+        ),
+    }
 }
 
 /// What the rig file's units and axes are, for the audit's header: glTF's
