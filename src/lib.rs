@@ -68,7 +68,7 @@
 //!   copy; [`session::audit`](rig::session::audit) does all three for a file;
 //!   [`reference`](rig::reference) reads the popular rigs of `data/rigs/`.
 //!   [`deform`](rig::deform) and [`skin`](rig::skin) measure skin deformation
-//!   of a curled hand (library only so far).
+//!   of a curled hand (the `phalanx deform` command).
 //! - [`report`]: everything shown. [`render`](report::render()) turns
 //!   [`ReportInputs`](report::view::ReportInputs) into the report files
 //!   ([`Formats`](report::Formats), [`Templates`](report::render::Templates)),
@@ -88,8 +88,9 @@
 //! writers) -> `cmd` (one module per command) -> `cli` (dispatch); `track`
 //! holds the file operations of tracking a dataset (add, snapshot). Two leaves
 //! serve them all: `stats`, the self-contained statistics core, and `format`,
-//! where every number shown becomes text. What is not listed above is
-//! `pub(crate)`: free to change without breaking a library user.
+//! where every number shown becomes text. `atomic`, `format` and `track` are
+//! `pub(crate)` and `cmd` private: free to change without breaking a library
+//! user; every other module above is public.
 
 pub mod analysis;
 pub(crate) mod atomic;

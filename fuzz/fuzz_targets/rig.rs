@@ -45,6 +45,7 @@ fuzz_target!(|data: &[u8]| {
     );
     if let Some((atlas, wrist)) = atlas {
         audited.judge_metacarpals(atlas, wrist.as_ref());
+        audited.weigh_bases(a, &AuditOptions::default(), rig.weights.as_ref());
     }
     for f in &audited.fingers {
         for j in &f.audit.joints {
@@ -61,7 +62,7 @@ fuzz_target!(|data: &[u8]| {
     // audited again, as `audit --fix` and `--moves` do.
     let placed = atlas
         .as_ref()
-        .map(|_| phalanx::rig::judge::ray::mcp_from_base(&audited, a, &audited.tips));
+        .map(|_| phalanx::rig::judge::ray::mcp_from_base(&audited, a, &audited.tips, &[]));
     for fingers in std::iter::once(&audited.fingers).chain(placed.as_ref()) {
         let Ok(fixed) = phalanx::rig::fix::fix_with(
             &rig.file,

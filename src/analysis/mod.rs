@@ -242,7 +242,31 @@ pub struct FlaggedRow {
     pub reason: String,
 }
 
+/// Why intervals at small n are wide: the t quantile at the smallest finger
+/// count against the normal quantile, at the analysis's confidence.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WidthReason {
+    /// The smallest number of X-rays of a finger.
+    pub n: usize,
+    /// The two-sided t quantile with n - 1 degrees of freedom (`None` below n = 2).
+    pub t: Option<f64>,
+    /// The two-sided normal quantile.
+    pub z: f64,
+}
+
 impl Analysis {
+    /// The t and normal quantiles that say why the intervals are as wide as
+    /// they are at this data's n ([`WidthReason`]). O(fingers).
+    pub fn width_reason(&self) -> WidthReason {
+        let n = self.fingers.iter().map(|f| f.n).min().unwrap_or(0);
+        let c = self.settings.confidence;
+        WidthReason {
+            n,
+            t: crate::stats::describe::t_quantile(c, n.saturating_sub(1)),
+            z: crate::stats::describe::normal_quantile(1.0 - (1.0 - c) / 2.0),
+        }
+    }
+
     /// True when the rows give their lengths in more than one unit: relative values
     /// and ratios pool across them, lengths and totals are not averaged across them.
     pub fn mixed_units(&self) -> bool {

@@ -203,6 +203,40 @@ pub(crate) const MAX_NEEDED: usize = 100_000_000;
 /// The assurance the report asks for: the target is met in 80% of studies.
 pub(crate) const ASSURANCE: f64 = 0.8;
 
+/// The X-rays one relative quantity of one finger needs for a t interval of
+/// half-width `target` ([`needed_per_quantity`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Needed<'a> {
+    pub finger: Finger,
+    pub quantity: &'a super::QuantityStats,
+    /// Plug-in: the sample SD taken as the truth ([`xrays_needed`]).
+    pub needed: Option<usize>,
+    /// With [`ASSURANCE`] ([`xrays_needed_assured`]).
+    pub assured: Option<usize>,
+}
+
+/// [`Needed`] for every finger and relative quantity of `a`, in order.
+/// O(fingers x quantities) solves.
+pub fn needed_per_quantity(a: &Analysis, target: f64) -> Vec<Needed<'_>> {
+    let c = a.settings.confidence;
+    a.fingers
+        .iter()
+        .flat_map(|f| {
+            f.quantities
+                .iter()
+                .filter(|q| q.name.is_relative())
+                .map(move |q| Needed {
+                    finger: f.finger,
+                    quantity: q,
+                    needed: q.sd.and_then(|sd| xrays_needed(sd, target, c)),
+                    assured: q
+                        .sd
+                        .and_then(|sd| xrays_needed_assured(sd, target, c, ASSURANCE)),
+                })
+        })
+        .collect()
+}
+
 /// The smallest number of X-rays n >= 2 whose t interval half-width
 /// t_{(1+c)/2, n-1} * sd / sqrt(n) is at most `target`, taking the SD as known
 /// (the "plug-in" sample size: the SD of the new study will differ, and the

@@ -811,18 +811,15 @@ fn settings_text(inputs: &ReportInputs<'_>) -> SettingsText {
 
 /// "With n = 5 the 95% t quantile is 2.78 (4 degrees of freedom), not the normal 1.96."
 fn width_reason(a: &Analysis) -> String {
-    let n = a.fingers.iter().map(|f| f.n).min().unwrap_or(0);
+    let crate::analysis::WidthReason { n, t, z } = a.width_reason();
     let c = a.settings.confidence;
-    match crate::stats::describe::t_quantile(c, n.saturating_sub(1)) {
+    match t {
         Some(t) => format!(
             "With n = {n} X-rays the {} t quantile is {} ({} degrees of freedom), not the normal {}.",
             level(c),
             num(t, 2),
             n - 1,
-            num(
-                crate::stats::describe::normal_quantile(1.0 - (1.0 - c) / 2.0),
-                2
-            )
+            num(z, 2)
         ),
         None => format!(
             "With n = {n} X-ray{} no interval can be estimated.",
@@ -1590,36 +1587,28 @@ fn change_rows(before: &Snapshot, after: &Snapshot) -> Vec<ChangeRow> {
 }
 
 /// The X-rays needed for a t interval of half-width `target`, plug-in and
-/// with 80% assurance, per finger and relative quantity.
+/// with 80% assurance, per finger and relative quantity
+/// ([`crate::analysis::tracking::needed_per_quantity`]).
 fn needed_rows(a: &Analysis, target: f64) -> Vec<NeededRow> {
-    use crate::analysis::tracking::{ASSURANCE, xrays_needed, xrays_needed_assured};
-    let c = a.settings.confidence;
     let count = |n: Option<usize>| n.map_or_else(|| "n/a".to_string(), |n| n.to_string());
-    a.fingers
-        .iter()
-        .flat_map(|f| {
-            f.quantities
-                .iter()
-                .filter(|q| q.name.is_relative())
-                .map(move |q| {
-                    let need = q.sd.and_then(|sd| xrays_needed(sd, target, c));
-                    let assured =
-                        q.sd.and_then(|sd| xrays_needed_assured(sd, target, c, ASSURANCE));
-                    NeededRow {
-                        finger: f.finger.display_name().to_string(),
-                        quantity: q.name.label().to_string(),
-                        n: q.n.to_string(),
-                        sd: opt(q.sd, 4),
-                        half_width: opt(q.intervals.ci_t.map(|i| i.width() / 2.0), 4),
-                        needed: count(need),
-                        assured: count(assured),
-                        more: match assured {
-                            Some(n) if n <= q.n => "reached".to_string(),
-                            Some(n) => format!("{} more", n - q.n),
-                            None => "n/a".to_string(),
-                        },
-                    }
-                })
+    crate::analysis::tracking::needed_per_quantity(a, target)
+        .into_iter()
+        .map(|r| {
+            let q = r.quantity;
+            NeededRow {
+                finger: r.finger.display_name().to_string(),
+                quantity: q.name.label().to_string(),
+                n: q.n.to_string(),
+                sd: opt(q.sd, 4),
+                half_width: opt(q.intervals.ci_t.map(|i| i.width() / 2.0), 4),
+                needed: count(r.needed),
+                assured: count(r.assured),
+                more: match r.assured {
+                    Some(n) if n <= q.n => "reached".to_string(),
+                    Some(n) => format!("{} more", n - q.n),
+                    None => "n/a".to_string(),
+                },
+            }
         })
         .collect()
 }
