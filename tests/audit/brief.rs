@@ -61,6 +61,7 @@ fn expected_line(finger: &Value) -> String {
                 "knuckle" => "a knuckle",
                 "pinned" => "pinned by --hold",
                 "base" => "in range from its base",
+                "base_opposes" => "its base puts it the other way",
                 other => panic!("unknown hold reason {other}"),
             };
             held.push(format!("the {name} {} mm ({why})", mm(&h["shift"])));

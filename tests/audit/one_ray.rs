@@ -217,3 +217,46 @@ fn no_row_says_out_above_an_explanation_that_fits() {
     // PIP 5 mm off; the Daz-like middle finger), so the check compared rows.
     assert!(checked >= 2, "{checked}");
 }
+
+#[test]
+fn an_mcp_the_finger_and_its_base_would_move_opposite_ways_is_held() {
+    let Some(wd) = super::ray::with_atlas() else {
+        return;
+    };
+    // The Daz-like finger (which alone reads its MCP as too distal) on a palm
+    // 8% shorter than built: the wrist puts the MCP too proximal.
+    let mut spec = HandSpec::new(Naming::Mixamo)
+        .moved("middle", 1, -0.8)
+        .moved("middle", 2, 0.2)
+        .moved("middle", 3, 0.6);
+    spec.palm = 0.92;
+    wd.write("short.glb", build(&spec));
+    let doc = wd
+        .run(&["audit", "short.glb", "--format", "json"])
+        .ok()
+        .json();
+    let middle = finger_of(&doc, "middle");
+    assert_eq!(
+        middle["metacarpal_check"]["standing"], "below",
+        "{}",
+        middle["metacarpal_check"]
+    );
+    let mcp = joint_of(middle, "MCP");
+    assert_eq!(mcp["held"]["reason"], "base_opposes", "{mcp}");
+    assert!(num(&mcp["held"]["shift"]) > 0.005, "{mcp}");
+    let moved = middle["audit"]["explanation"]["moved"].as_array().unwrap();
+    assert!(!moved.contains(&Value::from("MCP")), "{moved:?}");
+    let text = wd.run(&["audit", "short.glb"]).ok().stdout.clone();
+    // The opening, its wrapped lines joined.
+    let opening = text
+        .lines()
+        .take_while(|l| !l.trim().is_empty())
+        .collect::<Vec<_>>()
+        .join(" ");
+    let opening = opening.split_whitespace().collect::<Vec<_>>().join(" ");
+    let line = opening
+        .split("right ")
+        .find(|l| l.starts_with("middle"))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(line.contains("(its base puts it the other way)"), "{line}");
+}

@@ -9,7 +9,7 @@ use super::ray_base::{self, MetacarpalCheck, WRIST_DEFINITION, WristRatios};
 use super::sanity;
 use super::standing::{
     BEND_GUARD, ChainInput, FingerAudit, Held, HoldReason, JudgeOptions, MOVE_TOLERANCE,
-    SoftTissue, TipKind, chain_kinds,
+    SoftTissue, Standing, TipKind, chain_kinds,
 };
 use crate::analysis::Analysis;
 use crate::analysis::placement::Joint;
@@ -711,8 +711,11 @@ impl AuditedRig {
     /// knuckle), the MCP is held ([`HoldReason::Base`]) and the explanation
     /// sought again among the inner joints, with the same guards as the
     /// finger's own (the bend guard on `weights`, the tolerance, `opts.hold`).
-    /// An MCP the base puts outside is left to the finger's explanation and to
-    /// `--fix-mcp atlas`; the audit's opening line names it. O(fingers) re-judgements.
+    /// So is an MCP the finger would move one way while the base puts it
+    /// outside the other way ([`HoldReason::BaseOpposes`]): no move of it
+    /// satisfies both. An MCP the base puts outside the way the finger would
+    /// move it is left to the finger's explanation and to `--fix-mcp atlas`;
+    /// one the finger does not move, the audit's opening line names. O(fingers) re-judgements.
     pub fn weigh_bases(
         &mut self,
         a: &Analysis,
@@ -724,15 +727,23 @@ impl AuditedRig {
             let Some(m) = &f.metacarpal_check else {
                 continue;
             };
-            let given_up = f
+            let Some((given_up, along)) = f
                 .audit
                 .joint(Joint::Mcp)
                 .filter(|j| j.moves && j.shift > 0.0)
-                .map(|j| j.shift);
-            let Some(given_up) = given_up else {
+                .map(|j| (j.shift, j.shift_along))
+            else {
                 continue;
             };
-            if !m.standing.is_consistent() || opts.hold.contains(&Joint::Mcp) {
+            // The base's own direction: too distal asks for a move towards
+            // the root (negative along the finger), too proximal towards the tip.
+            let reason = match m.standing {
+                Standing::InRange | Standing::InPrediction => HoldReason::Base,
+                Standing::Above { .. } if along > 0.0 => HoldReason::BaseOpposes,
+                Standing::Below { .. } if along < 0.0 => HoldReason::BaseOpposes,
+                _ => continue,
+            };
+            if opts.hold.contains(&Joint::Mcp) {
                 continue;
             }
             let base = match m.base {
@@ -763,12 +774,27 @@ impl AuditedRig {
             // evidence gives up, whether or not the unguarded explanation named it.
             for j in &mut audit.joints {
                 if j.joint == Joint::Mcp {
-                    let mut held = Held::new(HoldReason::Base, given_up, None);
-                    held.words = format!(
-                        "held: from {base} the atlas puts it in range, so the explanation moves \
-                         the other joints (the finger alone would move it {} mm)",
-                        crate::format::num(given_up * 1000.0, 1)
-                    );
+                    let mut held = Held::new(reason, given_up, None);
+                    let mm = |x: f64| crate::format::num(x * 1000.0, 1);
+                    held.words = match m.standing {
+                        Standing::Above { by } | Standing::Below { by } => format!(
+                            "held: from {base} the atlas puts it {} mm too {}, the other way, so \
+                             the explanation moves the other joints (the finger alone would move \
+                             it {} mm)",
+                            mm(by),
+                            if matches!(m.standing, Standing::Above { .. }) {
+                                "distal"
+                            } else {
+                                "proximal"
+                            },
+                            mm(given_up)
+                        ),
+                        _ => format!(
+                            "held: from {base} the atlas puts it in range, so the explanation \
+                             moves the other joints (the finger alone would move it {} mm)",
+                            mm(given_up)
+                        ),
+                    };
                     j.held = Some(held);
                 }
             }

@@ -351,6 +351,12 @@ pub enum HoldReason {
     /// explanation is sought among the other joints, and the fix leaves it
     /// ([`super::AuditedRig::weigh_bases`]).
     Base,
+    /// The joint is an MCP that the finger alone would move one way while
+    /// its ray's base puts it outside the atlas's prediction interval the
+    /// other way: no move of it satisfies both, so it is held and the
+    /// explanation sought among the other joints
+    /// ([`super::AuditedRig::weigh_bases`]).
+    BaseOpposes,
 }
 
 impl HoldReason {
@@ -365,6 +371,7 @@ impl HoldReason {
             HoldReason::Knuckle => "a knuckle".into(),
             HoldReason::Pinned => "pinned by --hold".into(),
             HoldReason::Base => "in range from its base".into(),
+            HoldReason::BaseOpposes => "its base puts it the other way".into(),
         }
     }
 }
@@ -417,6 +424,12 @@ impl Held {
                 mm(shift)
             ),
             (HoldReason::Pinned, _) => "held: pinned by --hold".to_string(),
+            (HoldReason::BaseOpposes, _) => format!(
+                "held: its ray's base (the CMC or the wrist) puts it outside the atlas's \
+                 prediction interval the other way, so the explanation moves the other joints \
+                 (the finger alone would move it {} mm)",
+                mm(shift)
+            ),
             (HoldReason::Base, _) => format!(
                 "held: from its ray's base (the CMC or the wrist) the atlas puts it in range, so \
                  the explanation moves the other joints (the finger alone would move it {} mm)",
