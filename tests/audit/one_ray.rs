@@ -4,7 +4,7 @@
 //! from the finger and "MCP in range" from the wrist).
 
 use super::hand::{HandSpec, Naming, build};
-use super::{finger_of, fingers, joint_of};
+use super::{audit_json, finger_of, fingers, joint_of};
 use crate::common::*;
 use serde_json::Value;
 
@@ -14,12 +14,17 @@ use serde_json::Value;
 /// The palm is 3% longer than built (the built middle MCP sits 1.0 mm below
 /// the wrist's 95% prediction interval, [94.1, 102.2] mm, at 93.1 mm).
 fn daz_like() -> Vec<u8> {
+    build(&daz_spec(1.03))
+}
+
+/// The Daz-like middle finger on a palm `palm` times as long as built.
+fn daz_spec(palm: f64) -> HandSpec {
     let mut spec = HandSpec::new(Naming::Mixamo)
         .moved("middle", 1, -0.8)
         .moved("middle", 2, 0.2)
         .moved("middle", 3, 0.6);
-    spec.palm = 1.03;
-    build(&spec)
+    spec.palm = palm;
+    spec
 }
 
 #[test]
@@ -33,10 +38,7 @@ fn the_daz_like_middle_finger_moves_its_pip_and_dip_not_the_mcp_the_wrist_puts_i
     let alone = Workdir::new();
     alone.copy_paper_data();
     alone.write("daz.glb", daz_like());
-    let doc = alone
-        .run(&["audit", "daz.glb", "--format", "json"])
-        .ok()
-        .json();
+    let doc = audit_json(&alone, "daz.glb");
     let middle = finger_of(&doc, "middle");
     assert!(
         middle["audit"]["explanation"]["moved"]
@@ -47,10 +49,7 @@ fn the_daz_like_middle_finger_moves_its_pip_and_dip_not_the_mcp_the_wrist_puts_i
         middle["audit"]["explanation"]
     );
 
-    let doc = wd
-        .run(&["audit", "daz.glb", "--format", "json"])
-        .ok()
-        .json();
+    let doc = audit_json(&wd, "daz.glb");
     let middle = finger_of(&doc, "middle");
     let check = &middle["metacarpal_check"];
     assert_eq!(check["base"], "wrist", "{check}");
@@ -187,26 +186,12 @@ fn no_row_says_out_above_an_explanation_that_fits() {
     if vendored.is_file() {
         rigs.push(vendored.display().to_string());
     }
-    let shared = manifest_dir().join("../shared/rigs");
-    match std::fs::read_dir(&shared) {
-        Ok(dirs) => {
-            let mut found: Vec<String> = dirs
-                .flatten()
-                .filter_map(|d| std::fs::read_dir(d.path()).ok())
-                .flat_map(|files| files.flatten().map(|f| f.path()))
-                .filter(|p| {
-                    matches!(
-                        p.extension().and_then(|e| e.to_str()),
-                        Some("glb" | "gltf" | "fbx")
-                    )
-                })
-                .map(|p| p.display().to_string())
-                .collect();
-            found.sort();
-            rigs.extend(found);
-        }
-        Err(e) => eprintln!("skipped ../shared/rigs: {} ({e})", shared.display()),
-    }
+    rigs.extend(
+        shared_rig_files()
+            .unwrap_or_default()
+            .iter()
+            .map(|p| p.display().to_string()),
+    );
     let mut checked = 0;
     for rig in &rigs {
         let text = wd.run(&["audit", rig, "--wide"]).ok().stdout.clone();
@@ -225,16 +210,8 @@ fn an_mcp_the_finger_and_its_base_would_move_opposite_ways_is_held() {
     };
     // The Daz-like finger (which alone reads its MCP as too distal) on a palm
     // 8% shorter than built: the wrist puts the MCP too proximal.
-    let mut spec = HandSpec::new(Naming::Mixamo)
-        .moved("middle", 1, -0.8)
-        .moved("middle", 2, 0.2)
-        .moved("middle", 3, 0.6);
-    spec.palm = 0.92;
-    wd.write("short.glb", build(&spec));
-    let doc = wd
-        .run(&["audit", "short.glb", "--format", "json"])
-        .ok()
-        .json();
+    wd.write("short.glb", build(&daz_spec(0.92)));
+    let doc = audit_json(&wd, "short.glb");
     let middle = finger_of(&doc, "middle");
     assert_eq!(
         middle["metacarpal_check"]["standing"], "below",

@@ -332,6 +332,35 @@ pub fn quantity<'a>(doc: &'a Value, finger_name: &str, quantity: &str) -> &'a Va
 
 /// A JSON number as f64.
 #[track_caller]
+/// Every rig file (.glb, .gltf, .vrm, .fbx) in the folders of ../shared/rigs,
+/// sorted; `None`, with the reason printed, when the folder is not there.
+pub fn shared_rig_files() -> Option<Vec<PathBuf>> {
+    let shared = manifest_dir().join("../shared/rigs");
+    let dirs = match std::fs::read_dir(&shared) {
+        Ok(dirs) => dirs,
+        Err(e) => {
+            eprintln!(
+                "skipped ../shared/rigs: {} is not readable ({e})",
+                shared.display()
+            );
+            return None;
+        }
+    };
+    let mut rigs: Vec<PathBuf> = dirs
+        .flatten()
+        .filter_map(|d| std::fs::read_dir(d.path()).ok())
+        .flat_map(|files| files.flatten().map(|f| f.path()))
+        .filter(|p| {
+            matches!(
+                p.extension().and_then(|e| e.to_str()),
+                Some("glb" | "gltf" | "vrm" | "fbx")
+            )
+        })
+        .collect();
+    rigs.sort();
+    Some(rigs)
+}
+
 pub fn num(v: &Value) -> f64 {
     v.as_f64()
         .unwrap_or_else(|| panic!("expected a number, got {v}"))
