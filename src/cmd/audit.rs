@@ -48,8 +48,15 @@ pub enum FixMcp {
                   segments are compared as they are; bone against skin, the last segment is corrected by that \
                   finger's soft tissue measured by Buryanov & Kotiuk 2010 (data/literature/), as a share of the \
                   rig's finger, so a rig in any unit is judged alike (--tip-soft-tissue MM sets one length). \
-                  Rigs without tip nodes are judged on J2/J1 only. Where the skin weights make the mesh bend is found \
-                  for each joint, and a joint further than --bend-tolerance from its bend is flagged.\n\n\
+                  A finger without a tip node takes its tip from the mesh (where the skin weighted to its last \
+                  bone ends: \"tip from the mesh\") and is judged on relative values; where the mesh has no clear \
+                  end, on J2/J1 only. Where the skin weights make the mesh bend is found for each joint, and a \
+                  joint further than --bend-tolerance from its bend is flagged. The finger and its ray's base are \
+                  weighed together: an MCP that the CMC or the wrist puts inside the atlas's prediction interval, or \
+                  outside the other way, is held (\"in range from its base\", \"its base puts it the other way\") \
+                  and the explanation sought among the inner joints; each table row states its standing given the \
+                  explanation, with the rig's own standing beside it (\"as the rig is\"). ARCHITECTURE.md, \
+                  \"How a ray is judged\", gives the steps and their assumptions.\n\n\
                   The text opens with one line per finger, its verdict and its move (\"index   keep\", \
                   \"index   move the PIP 3.1 mm towards the tip\", or \"held: ...\" for a move the fix \
                   does not make), read off the same fields as the table and the JSON; --brief prints only \
