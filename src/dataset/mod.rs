@@ -36,6 +36,7 @@ pub use quantity::Quantity;
 pub use tip::{TipCounts, TipKind};
 
 use csvinput::{Cells, Columns, quote};
+use rustc_hash::FxHashMap;
 use std::collections::HashMap;
 use std::collections::hash_map::Entry;
 use std::path::Path;
@@ -363,7 +364,7 @@ pub(crate) fn parse_length(text: &str) -> Result<f64, String> {
 
 /// Interns repeated metadata strings so a large file keeps one copy of each.
 #[derive(Default)]
-struct Interner(HashMap<String, Arc<str>>);
+struct Interner(FxHashMap<String, Arc<str>>);
 
 impl Interner {
     fn get(&mut self, s: &str) -> Arc<str> {
@@ -399,8 +400,8 @@ fn parse_rows(
     input: impl std::io::Read,
 ) -> Result<(Vec<String>, Vec<Row>, String), DataError> {
     let mut interner = Interner::default();
-    let mut seen: HashMap<(Arc<str>, Finger), u64> = HashMap::new();
-    let mut xray_meta: HashMap<Arc<str>, XrayMeta> = HashMap::new();
+    let mut seen: FxHashMap<(Arc<str>, Finger), u64> = FxHashMap::default();
+    let mut xray_meta: FxHashMap<Arc<str>, XrayMeta> = FxHashMap::default();
     let mut rows = Vec::new();
     let read = csvinput::read_table(label, input, |cells| {
         let Some(row) = parse_row(cells, &mut interner) else {
@@ -667,7 +668,7 @@ fn normalise_sex(text: &str) -> String {
 fn check_xray_meta(
     row: &Row,
     cells: &mut Cells<'_, '_, Column>,
-    seen: &mut HashMap<Arc<str>, XrayMeta>,
+    seen: &mut FxHashMap<Arc<str>, XrayMeta>,
 ) {
     let line = row.line;
     let entry = seen.entry(row.xray.clone()).or_insert_with(|| XrayMeta {
@@ -678,12 +679,14 @@ fn check_xray_meta(
         unit: row.meta.unit.clone(),
         tip: row.meta.tip,
     });
-    let xray = quote(&row.xray);
+    // The X-ray quoted only when a conflict is reported (not once per row).
+    let xray = &row.xray;
     let mut conflict = |c: Column, ours: String, theirs: String, at: u64| {
         cells.bad(
             c,
             format!(
-                "is {ours}, but line {at} gives {theirs} for the same X-ray {xray}; one hand has one value"
+                "is {ours}, but line {at} gives {theirs} for the same X-ray {}; one hand has one value",
+                quote(xray)
             ),
         );
     };
