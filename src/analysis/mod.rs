@@ -23,6 +23,7 @@ pub(crate) mod outliers;
 pub mod placement;
 pub(crate) mod plausible;
 pub mod population;
+pub mod region;
 pub(crate) mod tracking;
 
 /// The interval type of [`crate::stats`] and the quantities of [`crate::dataset`],
