@@ -262,10 +262,21 @@ pub fn skin_end(chain: &FingerChain, weights: &SkinWeights) -> Option<f64> {
     let n = points.len();
     let (dip, tip) = (points[n - 2], points[n - 1]);
     let dir = (tip - dip).normalize_or_zero();
-    let last = &nodes[n - 2..];
-    finger_vertices(&axis, weights, &nodes, &before)
+    let vertices = finger_vertices(&axis, weights, &nodes, &before);
+    reaches(&vertices, &nodes[n - 2..], dip, dir).max_by(f64::total_cmp)
+}
+
+/// How far each of `vertices` that carries at least half its weight on the
+/// nodes `last` (a finger's last bone) lies past `from` along `dir`.
+fn reaches<'v>(
+    vertices: &'v [FingerVertex<'_>],
+    last: &'v [usize],
+    from: DVec3,
+    dir: DVec3,
+) -> impl Iterator<Item = f64> + 'v {
+    vertices
         .iter()
-        .filter(|v| {
+        .filter(move |v| {
             v.influences
                 .iter()
                 .filter(|(node, _)| last.contains(node))
@@ -273,8 +284,7 @@ pub fn skin_end(chain: &FingerChain, weights: &SkinWeights) -> Option<f64> {
                 .sum::<f64>()
                 >= 0.5
         })
-        .map(|v| (v.position - dip).dot(dir))
-        .max_by(f64::total_cmp)
+        .map(move |v| (v.position - from).dot(dir))
 }
 
 /// Where the mesh ends along a tipless finger's last bone: how far past the
@@ -311,19 +321,8 @@ pub fn mesh_end(chain: &FingerChain, weights: &SkinWeights) -> Result<f64, Strin
     let dir = (last - prev) / segment;
     points.push(last + 2.0 * segment * dir);
     let axis = FingerAxis::new(&points, true).ok_or("its axis is degenerate")?;
-    let node = nodes[n - 1];
-    let reach: Vec<f64> = finger_vertices(&axis, weights, &nodes, &before)
-        .iter()
-        .filter(|v| {
-            v.influences
-                .iter()
-                .filter(|(k, _)| *k == node)
-                .map(|x| x.1)
-                .sum::<f64>()
-                >= 0.5
-        })
-        .map(|v| (v.position - last).dot(dir))
-        .collect();
+    let vertices = finger_vertices(&axis, weights, &nodes, &before);
+    let reach: Vec<f64> = reaches(&vertices, &nodes[n - 1..], last, dir).collect();
     let far = reach.iter().copied().max_by(f64::total_cmp);
     match far {
         Some(r) if reach.len() >= MESH_END_VERTICES => {
