@@ -44,8 +44,13 @@ fuzz_target!(|data: &[u8]| {
         rig.weights.as_ref(),
     );
     if let Some((atlas, wrist)) = atlas {
-        audited.judge_metacarpals(atlas, wrist.as_ref());
-        audited.weigh_bases(a, &AuditOptions::default(), rig.weights.as_ref());
+        audited.judge_rays(
+            atlas,
+            wrist.as_ref(),
+            a,
+            &AuditOptions::default(),
+            rig.weights.as_ref(),
+        );
     }
     for f in &audited.fingers {
         for j in &f.audit.joints {

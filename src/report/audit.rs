@@ -623,7 +623,7 @@ pub(crate) fn finger_line(a: &FingerAudit, only_outside: bool) -> String {
 /// line does not name the MCP (it neither moves nor holds it): "the MCP from
 /// its CMC: OUT, 4.4 mm too proximal (--fix-mcp atlas places it)", the words
 /// of the table's row. An MCP the base puts in range and the finger would move
-/// is held instead ([`crate::rig::AuditedRig::weigh_bases`]), so the line and the row agree.
+/// is held instead ([`crate::rig::AuditedRig::judge_rays`]), so the line and the row agree.
 pub(crate) fn base_clause(f: &AuditedFinger) -> Option<String> {
     let m = f.metacarpal_check.as_ref()?;
     if m.standing.is_consistent() {

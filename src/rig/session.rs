@@ -232,8 +232,13 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         rig.weights.as_ref(),
     );
     if let Some(atlas) = &atlas {
-        audited.judge_metacarpals(atlas, wrist.as_ref());
-        audited.weigh_bases(&analysis, &req.options, rig.weights.as_ref());
+        audited.judge_rays(
+            atlas,
+            wrist.as_ref(),
+            &analysis,
+            &req.options,
+            rig.weights.as_ref(),
+        );
     }
     if let Some(note) = side_note(&rig.file.label, &rig.chains) {
         audited.notes.push(note);
@@ -273,8 +278,13 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
             let mut reaudit =
                 write_checked(&rig, &fixed, out, map.as_ref(), &analysis, &req.options)?;
             if let Some(atlas) = &atlas {
-                reaudit.judge_metacarpals(atlas, wrist.as_ref());
-                reaudit.weigh_bases(&analysis, &req.options, rig.weights.as_ref());
+                reaudit.judge_rays(
+                    atlas,
+                    wrist.as_ref(),
+                    &analysis,
+                    &req.options,
+                    rig.weights.as_ref(),
+                );
             }
             let (bends, new_defects) = bends_across(&audited, &reaudit, &fixed.moved);
             Some(FixOutcome {
@@ -351,7 +361,7 @@ pub struct FixedInMemory {
 /// `metacarpals` is the metacarpals' dataset `audit` judges each MCP from its
 /// ray's base against (its default, `data/atlas/measurements.csv`, where it
 /// exists), so the fix weighs the bases as `audit --fix` does
-/// ([`AuditedRig::weigh_bases`]); `None` judges the fingers alone.
+/// ([`AuditedRig::judge_rays`]); `None` judges the fingers alone.
 pub fn fix_in_memory(
     rig: &Path,
     map: Option<&Path>,
@@ -422,8 +432,7 @@ fn fix_loaded(
         loaded.weights.as_ref(),
     );
     if let Some((atlas, wrist)) = atlas {
-        audited.judge_metacarpals(atlas, wrist);
-        audited.weigh_bases(analysis, &options, loaded.weights.as_ref());
+        audited.judge_rays(atlas, wrist, analysis, &options, loaded.weights.as_ref());
     }
     let dir = rig.parent().unwrap_or(Path::new("."));
     let out = fix::fix_with(

@@ -83,7 +83,7 @@ pub struct AuditedFinger {
     pub skin_tip: Option<SkinTip>,
     /// The MCP judged from the CMC against the metacarpals' dataset, when the
     /// rig has a metacarpal node and the audit was given one
-    /// ([`AuditedRig::judge_metacarpals`]). Not `metacarpal`: that key is
+    /// ([`AuditedRig::judge_rays`]). Not `metacarpal`: that key is
     /// the chain's metacarpal node.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub metacarpal_check: Option<MetacarpalCheck>,
@@ -601,6 +601,23 @@ impl AuditedRig {
             .count()
     }
 
+    /// Judges every finger's MCP from its ray's base against `atlas`
+    /// ([`AuditedRig::judge_metacarpals`]), then weighs that with the finger's
+    /// own judgement ([`AuditedRig::weigh_bases`], with the statistics `a`, the
+    /// options `opts` and the skin `weights` the rig was judged with): the one
+    /// call every audit with a metacarpals' dataset makes.
+    pub fn judge_rays(
+        &mut self,
+        atlas: &Analysis,
+        wrist: Option<&WristRatios>,
+        a: &Analysis,
+        opts: &AuditOptions,
+        weights: Option<&SkinWeights>,
+    ) {
+        self.judge_metacarpals(atlas, wrist);
+        self.weigh_bases(a, opts, weights);
+    }
+
     /// Judges the MCP of every finger from the base of its ray against
     /// `atlas`'s metacarpal statistics: from its CMC where the finger has a
     /// metacarpal node ([`ray_base::metacarpal`]), else from the wrist where the
@@ -609,7 +626,7 @@ impl AuditedRig {
     /// judged (no tip, no mc/J in `atlas`) gets a note; without `wrist` (the
     /// atlas's wrist-to-MCP over finger length, read from its landmark file) no MCP is
     /// judged from the wrist, and a rig that has one gets a note.
-    pub fn judge_metacarpals(&mut self, atlas: &Analysis, wrist: Option<&WristRatios>) {
+    fn judge_metacarpals(&mut self, atlas: &Analysis, wrist: Option<&WristRatios>) {
         let (mut from_cmc, mut from_wrist, mut wrist_skipped, mut wrist_unbridged) = (0, 0, 0, 0);
         for f in &mut self.fingers {
             let Some(mcp) = f.chain.joints.first() else {
@@ -704,7 +721,7 @@ impl AuditedRig {
     }
 
     /// Weighs each finger's own judgement with its MCP's from its ray's base
-    /// ([`AuditedRig::judge_metacarpals`], which must run first), so the two
+    /// ([`AuditedRig::judge_metacarpals`] runs first), so the two
     /// never contradict each other: where the base puts the MCP inside the
     /// atlas's prediction interval and the finger's explanation would move it
     /// (the finger alone reads an MCP at the finger's web as a misplaced
@@ -716,12 +733,10 @@ impl AuditedRig {
     /// satisfies both. An MCP the base puts outside the way the finger would
     /// move it is left to the finger's explanation and to `--fix-mcp atlas`;
     /// one the finger does not move, the audit's opening line names. O(fingers) re-judgements.
-    pub fn weigh_bases(
-        &mut self,
-        a: &Analysis,
-        opts: &AuditOptions,
-        weights: Option<&SkinWeights>,
-    ) {
+    fn weigh_bases(&mut self, a: &Analysis, opts: &AuditOptions, weights: Option<&SkinWeights>) {
+        if opts.hold.contains(&Joint::Mcp) {
+            return;
+        }
         let judge = self.tips.clone();
         for f in &mut self.fingers {
             let Some(m) = &f.metacarpal_check else {
@@ -737,13 +752,13 @@ impl AuditedRig {
             };
             // The base's own direction: too distal asks for a move towards
             // the root (negative along the finger), too proximal towards the tip.
-            let reason = match m.standing {
-                Standing::InRange | Standing::InPrediction => HoldReason::Base,
-                Standing::Above { .. } if along > 0.0 => HoldReason::BaseOpposes,
-                Standing::Below { .. } if along < 0.0 => HoldReason::BaseOpposes,
-                _ => continue,
+            // An MCP outside the way the finger moves it is left to the finger.
+            let agrees = match m.standing {
+                Standing::InRange | Standing::InPrediction => false,
+                Standing::Above { .. } => along <= 0.0,
+                Standing::Below { .. } => along >= 0.0,
             };
-            if opts.hold.contains(&Joint::Mcp) {
+            if agrees {
                 continue;
             }
             let base = match m.base {
@@ -774,28 +789,7 @@ impl AuditedRig {
             // evidence gives up, whether or not the unguarded explanation named it.
             for j in &mut audit.joints {
                 if j.joint == Joint::Mcp {
-                    let mut held = Held::new(reason, given_up, None);
-                    let mm = |x: f64| crate::format::num(x * 1000.0, 1);
-                    held.words = match m.standing {
-                        Standing::Above { by } | Standing::Below { by } => format!(
-                            "held: from {base} the atlas puts it {} mm too {}, the other way, so \
-                             the explanation moves the other joints (the finger alone would move \
-                             it {} mm)",
-                            mm(by),
-                            if matches!(m.standing, Standing::Above { .. }) {
-                                "distal"
-                            } else {
-                                "proximal"
-                            },
-                            mm(given_up)
-                        ),
-                        _ => format!(
-                            "held: from {base} the atlas puts it in range, so the explanation \
-                             moves the other joints (the finger alone would move it {} mm)",
-                            mm(given_up)
-                        ),
-                    };
-                    j.held = Some(held);
+                    j.held = Some(Held::from_base(given_up, &base, m.standing));
                 }
             }
             f.audit = audit;

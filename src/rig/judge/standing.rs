@@ -349,13 +349,13 @@ pub enum HoldReason {
     /// inside the atlas's prediction interval, while the finger alone would
     /// move it: the two kinds of evidence are weighed together, so the
     /// explanation is sought among the other joints, and the fix leaves it
-    /// ([`super::AuditedRig::weigh_bases`]).
+    /// ([`super::AuditedRig::judge_rays`]).
     Base,
     /// The joint is an MCP that the finger alone would move one way while
     /// its ray's base puts it outside the atlas's prediction interval the
     /// other way: no move of it satisfies both, so it is held and the
     /// explanation sought among the other joints
-    /// ([`super::AuditedRig::weigh_bases`]).
+    /// ([`super::AuditedRig::judge_rays`]).
     BaseOpposes,
 }
 
@@ -424,17 +424,8 @@ impl Held {
                 mm(shift)
             ),
             (HoldReason::Pinned, _) => "held: pinned by --hold".to_string(),
-            (HoldReason::BaseOpposes, _) => format!(
-                "held: its ray's base (the CMC or the wrist) puts it outside the atlas's \
-                 prediction interval the other way, so the explanation moves the other joints \
-                 (the finger alone would move it {} mm)",
-                mm(shift)
-            ),
-            (HoldReason::Base, _) => format!(
-                "held: from its ray's base (the CMC or the wrist) the atlas puts it in range, so \
-                 the explanation moves the other joints (the finger alone would move it {} mm)",
-                mm(shift)
-            ),
+            (HoldReason::Base, _) => base_words(GENERIC_BASE, None, shift),
+            (HoldReason::BaseOpposes, _) => base_words(GENERIC_BASE, Some(None), shift),
             _ => format!(
                 "held: the move, {} mm, is under the {} mm tolerance",
                 mm(shift),
@@ -449,6 +440,48 @@ impl Held {
             words,
         }
     }
+
+    /// An MCP move of `shift` the finger alone asks for, given up for the
+    /// evidence of its ray's base `base` ("its CMC (Index_Metacarpal_R)"),
+    /// where that base puts the MCP (`standing`): in range ([`HoldReason::Base`])
+    /// or outside the other way ([`HoldReason::BaseOpposes`]).
+    pub fn from_base(shift: f64, base: &str, standing: Standing) -> Held {
+        let (reason, outside) = match standing {
+            Standing::InRange | Standing::InPrediction => (HoldReason::Base, None),
+            Standing::Above { by } => (HoldReason::BaseOpposes, Some(Some((by, "distal")))),
+            Standing::Below { by } => (HoldReason::BaseOpposes, Some(Some((by, "proximal")))),
+        };
+        Held {
+            reason,
+            before: None,
+            after: None,
+            shift,
+            words: base_words(base, outside, shift),
+        }
+    }
+}
+
+/// How [`Held::new`] names a ray's base it was not told.
+const GENERIC_BASE: &str = "its ray's base (the CMC or the wrist)";
+
+/// The words of an MCP held for its ray's base `base`: in range (`outside`
+/// `None`), or outside the other way, by how much and which way when known.
+fn base_words(base: &str, outside: Option<Option<(f64, &str)>>, shift: f64) -> String {
+    let mm = |x: f64| crate::format::num(x * 1000.0, 1);
+    let where_ = match outside {
+        None => "the atlas puts it in range".to_string(),
+        Some(Some((by, way))) => {
+            format!("the atlas puts it {} mm too {way}, the other way", mm(by))
+        }
+        Some(None) => {
+            "the atlas puts it outside its prediction interval, the other way".to_string()
+        }
+    };
+    format!(
+        "held: from {base} {where_}, so the explanation moves the other joints (the finger alone \
+         would move it {} mm)",
+        mm(shift)
+    )
 }
 
 /// A fix never takes a joint more than this farther from where its skin
