@@ -207,7 +207,7 @@ fn paper_numbers_appear_in_the_report() {
     assert!(md.contains("30 claims: 20 match, 2 match from rounded values"));
     let json = file(&files, "stats.json");
     let v: serde_json::Value = serde_json::from_str(json).unwrap();
-    assert_eq!(v["schema_version"], 3);
+    assert_eq!(v["schema_version"], 4);
     assert_eq!(v["fingers"].as_array().unwrap().len(), 5);
 }
 

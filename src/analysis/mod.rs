@@ -186,6 +186,18 @@ impl FingerAnalysis {
     pub fn quantity(&self, q: Quantity) -> Option<&QuantityStats> {
         self.quantities.iter().find(|s| s.name == q)
     }
+
+    /// The prediction region of this finger's relative joint positions at
+    /// `confidence` ([`region::JointRegion`], from every X-ray's lengths);
+    /// `None` with too few X-rays or a singular covariance. O(n).
+    pub fn joint_region(&self, confidence: f64) -> Option<region::JointRegion> {
+        let hands: Option<Vec<Vec<f64>>> = self
+            .xrays
+            .iter()
+            .map(|x| region::positions(&x.lengths))
+            .collect();
+        region::JointRegion::of(&hands?, confidence)
+    }
 }
 
 /// What an analysis was computed from: enough to cite the dataset, not its rows.

@@ -43,7 +43,9 @@ pub enum FixMcp {
                   and measures joint-to-joint distances in the node (bind) pose; the joints need not be parent and \
                   child when the names say which finger they belong to (WebXR). Every joint (MCP, PIP, DIP, tip) is \
                   reported inside the X-ray range, inside the prediction interval, or outside by how many mm and in \
-                  which direction, and the misfit is explained by moving the fewest joints. Tips are read as skin tips \
+                  which direction; the finger's verdict is its relative joint positions (J~1, J~1 + J~2) as one \
+                  vector against the X-rays' 95% joint prediction region (Hotelling's T^2 with their covariance), \
+                  and a misfit is explained by moving the fewest joints that bring it inside. Tips are read as skin tips \
                   (--tip) and the data's where its tip column says (the paper's at the skin): alike, the last \
                   segments are compared as they are; bone against skin, the last segment is corrected by that \
                   finger's soft tissue measured by Buryanov & Kotiuk 2010 (data/literature/), as a share of the \
@@ -112,8 +114,8 @@ pub(crate) struct Args {
     /// [default: data/atlas/measurements.csv, when it exists]
     #[arg(long, value_name = "DATASET")]
     metacarpals: Option<PathBuf>,
-    /// Exit with status 1 when a finger, or an MCP judged from its CMC or wrist, is outside the
-    /// prediction interval
+    /// Exit with status 1 when a finger is outside the joint region (without a tip, J2/J1's
+    /// prediction interval), or an MCP judged from its CMC or wrist outside its prediction interval
     #[arg(long)]
     strict: bool,
     /// With --fix or --moves: where an MCP goes. `finger`: where the finger's own proportions put it,
@@ -267,7 +269,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
     }
     out::print(&bytes)?;
     if !quiet && let Some(fix) = &audit.fix {
-        let mut line = fix_summary(fix);
+        let mut line = fix_summary(fix, audit.analysis.settings.confidence);
         if args.brief {
             line.push_str(&brief_warnings(fix.warnings.len()));
         }
@@ -397,9 +399,9 @@ fn moves_summary(audit: &Audit, path: &std::path::Path, n: usize) -> String {
 }
 
 /// The line on standard error saying what the fix wrote.
-fn fix_summary(fix: &FixOutcome) -> String {
+fn fix_summary(fix: &FixOutcome, confidence: f64) -> String {
     let mut line = format!(
-        "wrote {}: {} moved; re-audited, {} of {} outside the prediction interval",
+        "wrote {}: {} moved; re-audited, {} of {} outside {}",
         fix.output.display(),
         count(
             fix.moved.iter().filter(|(_, d)| *d > 0.0).count(),
@@ -407,7 +409,8 @@ fn fix_summary(fix: &FixOutcome) -> String {
             "joints"
         ),
         fix.reaudit.outside(),
-        count(fix.reaudit.fingers.len(), "finger", "fingers")
+        count(fix.reaudit.fingers.len(), "finger", "fingers"),
+        crate::report::audit::outside_of(&fix.reaudit, confidence)
     );
     let rays = fix
         .reaudit

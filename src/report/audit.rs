@@ -212,12 +212,20 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
         return String::new();
     }
     if e.moved.is_empty() && e.consistent {
-        let fits = if soft {
-            "Fits the X-rays as it is, the tip's soft tissue accounted for."
+        let soft = if soft {
+            ", the tip's soft tissue accounted for"
         } else {
-            "Fits the X-rays as it is."
+            ""
         };
-        return format!("{fits}{}", held_words(a));
+        let region = a.region.as_ref().map_or(String::new(), |r| {
+            format!(
+                " (inside the X-rays' {} joint region: T^2 {} of at most {})",
+                level(r.confidence),
+                num(r.t2, 1),
+                num(r.bound, 1)
+            )
+        });
+        return format!("Fits the X-rays as it is{soft}{region}.{}", held_words(a));
     }
     let moved: Vec<String> = a
         .joints
@@ -459,6 +467,9 @@ fn finger_table(
             given(a, value_standing(v.standing), v.standing.is_consistent()),
         ]);
     }
+    if let Some(row) = region_row(a) {
+        t.row(row);
+    }
     t.render(width, 2, hidden)
 }
 
@@ -469,8 +480,14 @@ fn finger_table(
 /// so ("fits once the MCP moves (as the rig is: OUT, 0.2 mm too distal)").
 fn given(a: &FingerAudit, as_is: String, consistent: bool) -> String {
     let e = &a.explanation;
-    if consistent || !e.consistent || e.moved.is_empty() {
+    if consistent || !e.consistent {
         return as_is;
+    }
+    if e.moved.is_empty() {
+        // The finger is inside the joint region as it is: this row's own
+        // interval, the rest of the finger as the rig has it, is read against
+        // the whole vector, not alone.
+        return format!("fits: the finger is inside the joint region (alone: {as_is})");
     }
     let names: Vec<String> = e
         .moved
@@ -482,6 +499,25 @@ fn given(a: &FingerAudit, as_is: String, consistent: bool) -> String {
         and_list(&names),
         if names.len() == 1 { "s" } else { "" }
     )
+}
+
+/// The joint region's row: T^2 of the relative joint positions as the rig is,
+/// against the region's bound (the finger's verdict; see [`given`]).
+fn region_row(a: &FingerAudit) -> Option<Vec<String>> {
+    let r = a.region.as_ref()?;
+    let standing = if r.inside {
+        "in the joint region".to_string()
+    } else {
+        given(a, "OUT of the joint region".into(), false)
+    };
+    Some(vec![
+        "joint positions (T^2)".into(),
+        num(r.t2, 1),
+        "0".into(),
+        String::new(),
+        format!("<= {}", num(r.bound, 1)),
+        standing,
+    ])
 }
 
 /// A joint's standing given the explanation ([`given`]): a joint the
@@ -568,7 +604,7 @@ fn step(j: &JointCheck, only_outside: bool) -> Option<Step> {
     }
     if only_outside && j.standing.is_consistent() {
         return Some(Step::Held(format!(
-            "the {} {} mm (inside the prediction interval; --only-outside)",
+            "the {} {} mm (inside its own prediction interval; --only-outside)",
             j.joint.name(),
             mm(j.shift)
         )));
@@ -678,8 +714,26 @@ pub(crate) fn opening(rig: &AuditedRig, only_outside: bool, width: Width) -> Str
     out
 }
 
-/// The audit's summary, one paragraph: the fingers outside the prediction
-/// interval, the MCPs outside it from their rays' bases, the joints off their bends.
+/// What a finger is outside of when [`AuditedRig::outside`] counts it: the
+/// joint region for the fingers with a tip, J2/J1's prediction interval for
+/// those without ("the 95% joint region", "the 95% joint region (without a
+/// tip: J2/J1's prediction interval)", "the 95% prediction interval").
+pub(crate) fn outside_of(rig: &AuditedRig, confidence: f64) -> String {
+    let c = level(confidence);
+    let judged = || rig.fingers.iter().filter(|f| f.audit.basis != Basis::None);
+    let region = judged().any(|f| f.audit.region.is_some());
+    let interval = judged().any(|f| f.audit.region.is_none());
+    match (region, interval) {
+        (true, false) => format!("the {c} joint region"),
+        (true, true) => {
+            format!("the {c} joint region (without a tip: J2/J1's prediction interval)")
+        }
+        (false, _) => format!("the {c} prediction interval"),
+    }
+}
+
+/// The audit's summary, one paragraph: the fingers outside the joint region
+/// ([`outside_of`]), the MCPs outside it from their rays' bases, the joints off their bends.
 pub(crate) fn summary(rig: &AuditedRig, confidence: f64) -> String {
     let c = level(confidence);
     let judged = rig
@@ -688,10 +742,10 @@ pub(crate) fn summary(rig: &AuditedRig, confidence: f64) -> String {
         .filter(|f| f.audit.basis != Basis::None)
         .count();
     let mut summary = format!(
-        "Summary: {} of {} judged fingers have a joint or proportion outside the {c} prediction \
-         interval.",
+        "Summary: {} of {} judged fingers lie outside {} of the X-rays.",
         rig.outside(),
-        judged
+        judged,
+        outside_of(rig, confidence)
     );
     if rig.fingers.iter().any(|f| f.metacarpal_check.is_some()) {
         summary.push_str(&format!(
@@ -843,7 +897,26 @@ pub(crate) fn finger_summary(a: &FingerAudit) -> String {
         .map(|j| j.standing)
         .chain(a.values.iter().map(|v| v.standing))
         .all(|s| s == Standing::InRange);
-    if !outside.is_empty() {
+    let region = a.region.as_ref().map(|r| {
+        format!(
+            "the {} joint region (T^2 {} of at most {})",
+            level(r.confidence),
+            num(r.t2, 1),
+            num(r.bound, 1)
+        )
+    });
+    if let (Some(r), Some(words)) = (&a.region, &region)
+        && r.inside
+    {
+        // The finger's verdict is the region's; a joint or value outside its
+        // own interval alone is read against the whole vector.
+        return if outside.is_empty() {
+            format!("inside {words}")
+        } else {
+            format!("inside {words}; alone: {}", outside.join("; "))
+        };
+    }
+    if !outside.is_empty() || region.is_some() {
         let fewest: Vec<String> = a
             .joints
             .iter()
@@ -862,10 +935,14 @@ pub(crate) fn finger_summary(a: &FingerAudit) -> String {
         } else {
             format!("; fewest joints to move: {}", fewest.join(", "))
         };
-        format!(
-            "outside the prediction interval: {}{explained}",
-            outside.join("; ")
-        )
+        match region {
+            Some(words) if outside.is_empty() => format!("outside {words}{explained}"),
+            Some(words) => format!("outside {words}: {}{explained}", outside.join("; ")),
+            None => format!(
+                "outside the prediction interval: {}{explained}",
+                outside.join("; ")
+            ),
+        }
     } else if all_in_range {
         "inside the X-ray range".into()
     } else {

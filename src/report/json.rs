@@ -1,4 +1,4 @@
-//! JSON documents: the documented machine interface (`schema_version` 3).
+//! JSON documents: the documented machine interface (`schema_version` 4).
 
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
@@ -16,8 +16,12 @@ use serde::Serialize;
 /// the moves not made). 3: a tipless finger's tip from the mesh
 /// (`skin_tip.from_mesh`): such a finger is judged on relative values, with
 /// `has_tip` false (the chain's) and `audit.has_tip` true (as judged); and
-/// `held.reason` `base`, an MCP its ray's base puts in range.
-pub const SCHEMA_VERSION: u32 = 3;
+/// `held.reason` `base`, an MCP its ray's base puts in range. 4: a finger
+/// with a tip is judged in the joint region of its relative joint positions
+/// (`audit.region`); `explanation.consistent` and `explanation.score` are read
+/// against that region, and the joints' and values' own standings stay as the
+/// rig is, each alone.
+pub const SCHEMA_VERSION: u32 = 4;
 
 /// The settings block of every JSON document.
 #[derive(Serialize, JsonSchema)]

@@ -637,7 +637,7 @@ pub struct RigView {
     pub source: String,
     pub url: String,
     pub notes: String,
-    /// "2 of 5 fingers outside the prediction interval", ...
+    /// "2 of 5 judged fingers outside the 95% joint region", ...
     pub summary: String,
     pub fingers: Vec<RigFingerView>,
 }
@@ -696,7 +696,7 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         coverage: coverage(inputs),
         tracking: tracking(inputs),
         groups: groups_view(inputs.groups, a.settings.confidence),
-        rigs: rigs_view(inputs.rigs),
+        rigs: rigs_view(inputs.rigs, a.settings.confidence),
         atlas: inputs.atlas.map(|x| atlas_view(a, x)),
         literature: inputs.literature.map(literature_view),
         deform: inputs.deform.map(|d| d.view.clone()),
@@ -1687,7 +1687,7 @@ fn group_difference(d: &GroupDifference, i: usize) -> GroupDifferenceView {
     }
 }
 
-fn rigs_view(rigs: &[ReferenceAudit]) -> Option<RigsView> {
+fn rigs_view(rigs: &[ReferenceAudit], confidence: f64) -> Option<RigsView> {
     use super::audit::{finger_summary, value_of};
     use crate::rig::judge::Basis;
     if rigs.is_empty() {
@@ -1737,8 +1737,9 @@ fn rigs_view(rigs: &[ReferenceAudit]) -> Option<RigsView> {
                     .collect::<Vec<_>>()
                     .join(" "),
                 summary: format!(
-                    "{} of {judged} judged fingers outside the prediction interval",
-                    r.audit.outside()
+                    "{} of {judged} judged fingers outside {}",
+                    r.audit.outside(),
+                    super::audit::outside_of(&r.audit, confidence)
                 ),
                 fingers,
             }

@@ -371,12 +371,15 @@ fn a_bad_hold_exits_2_naming_the_value() {
 #[test]
 fn with_only_outside_the_opening_holds_a_joint_inside_its_interval() {
     let wd = Workdir::with_paper_data();
-    // The PIP alone explains the misfit, yet stands inside its interval, so
-    // --only-outside leaves it (the fix writes 0 moves).
+    // With the DIP pinned the PIP alone explains the misfit, yet stands
+    // inside its own interval, so --only-outside leaves it (the fix writes 0
+    // moves).
     let input = ring_pip_inside_yet_explaining();
     wd.write("ring.glb", &input);
     let ring = |args: &[&str]| -> String {
-        let run = wd.run(args);
+        let mut args = args.to_vec();
+        args.extend_from_slice(&super::RING_HOLD);
+        let run = wd.run(&args);
         opening(&run.ok().stdout)
             .into_iter()
             .find(|l| l.starts_with("right ring"))
@@ -387,7 +390,8 @@ fn with_only_outside_the_opening_holds_a_joint_inside_its_interval() {
     let held = ring(&["audit", "ring.glb", "--fix", "b.glb", "--only-outside"]);
     assert!(
         held.contains("held: the PIP ")
-            && held.ends_with("mm (inside the prediction interval; --only-outside)"),
+            && held.contains("mm (inside its own prediction interval; --only-outside)")
+            && held.ends_with("the DIP 4.6 mm (pinned by --hold)"),
         "{held}"
     );
     // Without a fix --only-outside decides nothing, and the line is the plain one.

@@ -250,7 +250,7 @@ fn fix_mcp_atlas_places_the_mcp_from_its_base_and_keeps_the_mesh() {
     // are held, so the longer J1s leave 4 fingers outside (the thumb has no
     // metacarpal check here and fits as built).
     assert!(
-        words.contains("4 joints moved; re-audited, 4 of 5 fingers outside the prediction interval, 0 of 4 MCPs outside"),
+        words.contains("4 joints moved; re-audited, 4 of 5 fingers outside the 95% joint region, 0 of 4 MCPs outside"),
         "{}",
         run.stderr
     );

@@ -5,6 +5,7 @@
 use super::chain::{arc_positions, backward_at, on_chain, point_at};
 use super::standing::{Basis, ChainInput, Standing, normalised, value_of};
 use crate::analysis::placement::Joint;
+use crate::analysis::region::{JointRegion, positions};
 use crate::analysis::{Interval, Quantity, QuantityStats};
 use glam::DVec3;
 
@@ -63,32 +64,46 @@ pub(super) struct Solved {
     pub(super) also: Vec<Vec<Joint>>,
 }
 
-/// The largest normalised distance of the judged values of `segments`, and
-/// whether every value is inside its prediction interval (or range).
-fn fit(quantities: &[(Quantity, &QuantityStats)], segments: &[f64]) -> (f64, bool) {
-    if segments.iter().any(|&c| !(c.is_finite() && c > 0.0)) {
-        return (f64::INFINITY, false);
+/// What a placement is judged against: the joint region of the finger's
+/// relative joint positions when there is one ([`JointRegion`], a finger with
+/// a tip), else one prediction interval per quantity (J2/J1 without a tip).
+#[derive(Clone, Copy)]
+pub(super) struct Judge<'a> {
+    pub(super) quantities: &'a [(Quantity, &'a QuantityStats)],
+    pub(super) region: Option<&'a JointRegion>,
+}
+
+impl Judge<'_> {
+    /// The normalised distance of `segments` from the reference hands (0 at
+    /// their mean, 1 at the edge of the 95% region or of a prediction
+    /// interval) and whether they are inside. With a region the distance is
+    /// sqrt(T^2 / bound); without one, the largest normalised distance of the
+    /// judged values, inside when every value is inside its prediction
+    /// interval (or range). O(p^2) or O(quantities).
+    pub(super) fn fit(&self, segments: &[f64]) -> (f64, bool) {
+        if segments.iter().any(|&c| !(c.is_finite() && c > 0.0)) {
+            return (f64::INFINITY, false);
+        }
+        if let Some(r) = self.region {
+            let t2 = positions(segments).map_or(f64::INFINITY, |u| r.distance(&u));
+            return ((t2 / r.bound).sqrt(), t2 <= r.bound);
+        }
+        let mut worst: f64 = 0.0;
+        let mut inside = true;
+        for &(q, s) in self.quantities {
+            let x = value_of(q, segments);
+            worst = worst.max(normalised(x, s));
+            let range = Interval::new(s.min, s.max);
+            inside &= Standing::of(x, range, s.intervals.pi).is_consistent();
+        }
+        (worst, inside)
     }
-    let mut worst: f64 = 0.0;
-    let mut inside = true;
-    for &(q, s) in quantities {
-        let x = value_of(q, segments);
-        worst = worst.max(normalised(x, s));
-        let range = Interval::new(s.min, s.max);
-        inside &= Standing::of(x, range, s.intervals.pi).is_consistent();
-    }
-    (worst, inside)
 }
 
 /// The explanation with the fewest moved joints (see [`super::finger`]'s notes),
 /// among moves of the joints not in `hold`.
-pub(super) fn explain(
-    axis: &Axis,
-    quantities: &[(Quantity, &QuantityStats)],
-    basis: Basis,
-    hold: &[Joint],
-) -> Solved {
-    if basis == Basis::None || quantities.is_empty() {
+pub(super) fn explain(axis: &Axis, judge: Judge, basis: Basis, hold: &[Joint]) -> Solved {
+    if basis == Basis::None || judge.quantities.is_empty() {
         return none_like();
     }
     let u0 = axis.joint_arcs.clone();
@@ -104,7 +119,7 @@ pub(super) fn explain(
     let free = |k: usize| !hold.contains(&kinds[k]);
     let solved = |moved: Vec<Joint>, u: Vec<f64>| {
         let s = axis.segments(&u);
-        let (score, inside) = fit(quantities, &s);
+        let (score, inside) = judge.fit(&s);
         Solved {
             moved,
             consistent: inside,
@@ -118,7 +133,7 @@ pub(super) fn explain(
     tried.push(
         (0..kinds.len())
             .filter(|&k| free(k))
-            .filter_map(|k| solve_one(axis, quantities, &u0, k).map(|u| solved(vec![kinds[k]], u)))
+            .filter_map(|k| solve_one(axis, judge, &u0, k).map(|u| solved(vec![kinds[k]], u)))
             .collect(),
     );
     if n == 4 {
@@ -127,7 +142,7 @@ pub(super) fn explain(
                 .into_iter()
                 .filter(|pair| pair.iter().all(|&k| free(k)))
                 .filter_map(|pair| {
-                    solve_pair(axis, quantities, &u0, pair)
+                    solve_pair(axis, judge.quantities, &u0, pair)
                         .map(|u| solved(pair.iter().map(|&k| kinds[k]).collect(), u))
                 })
                 .collect(),
@@ -187,16 +202,12 @@ fn none_like() -> Solved {
     }
 }
 
-/// The arc positions with joint `k` alone moved to where the worst value is
-/// best: a scan of 200 points over its span, then golden-section search
-/// around the best (the worst value is a maximum of functions each monotone
-/// in the joint's position, so it falls then rises). `None` for an empty span.
-fn solve_one(
-    axis: &Axis,
-    quantities: &[(Quantity, &QuantityStats)],
-    u0: &[f64],
-    k: usize,
-) -> Option<Vec<f64>> {
+/// The arc positions with joint `k` alone moved to where the fit is best: a
+/// scan of 200 points over its span, then golden-section search around the
+/// best (T^2 is a quadratic form in positions that move monotonically with
+/// the joint, and the worst value a maximum of functions each monotone in it,
+/// so either falls then rises). `None` for an empty span.
+fn solve_one(axis: &Axis, judge: Judge, u0: &[f64], k: usize) -> Option<Vec<f64>> {
     let n = u0.len();
     let gap = 1e-4 * (u0[n - 1] - u0[0]);
     let (lo, hi) = if k == 0 {
@@ -213,7 +224,7 @@ fn solve_one(
     let mut u = u0.to_vec();
     let mut eval = |x: f64| {
         u[k] = x;
-        fit(quantities, &axis.segments(&u)).0
+        judge.fit(&axis.segments(&u)).0
     };
     const STEPS: usize = 200;
     let step = (hi - lo) / STEPS as f64;

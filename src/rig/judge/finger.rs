@@ -43,10 +43,14 @@
 //! the knuckle, and the tip at the skin. So the judgement looks for the
 //! explanation that moves the fewest joints (MCP, PIP, DIP; the tip node is
 //! never moved: its soft tissue is modelled above): first none, then each
-//! joint alone, then pairs, keeping the first size at which every value lies
-//! inside its prediction interval. A joint alone is placed where the worst
-//! value is best (the smallest largest normalised distance from the mean, 1 at
-//! a prediction limit); a pair is placed exactly at the means. Between
+//! joint alone, then pairs, keeping the first size at which the finger is
+//! inside the X-rays' joint prediction region (with a tip: its relative joint
+//! positions u = (J~1, J~1 + J~2) as one vector with their covariance,
+//! T^2 <= bound, [`crate::analysis::region`]; without a tip J2/J1 inside its
+//! prediction interval). A joint alone is placed where the fit is best (the
+//! smallest sqrt(T^2 / bound), 1 at the region's edge; without a tip the
+//! normalised distance of J2/J1, 1 at a prediction limit); a pair is placed
+//! exactly at the means. Between
 //! explanations of the same size the better fit wins, then the smaller total
 //! move. Joints move along the rig's own chain (the polyline through its
 //! joints), the MCP along the first segment's backward extension (at most one
@@ -54,10 +58,10 @@
 
 use super::chain::point_at;
 use super::expected::{StandingInput, ratio_standings, relative_standings};
-use super::explain::{Axis, Solved, explain};
+use super::explain::{Axis, Judge, Solved, explain};
 use super::standing::{
-    Basis, ChainInput, Explanation, FingerAudit, JointCheck, JudgeOptions, Standing, chain_kinds,
-    stats, value_check, value_of,
+    Basis, ChainInput, Explanation, FingerAudit, JointCheck, JudgeOptions, RegionCheck, Standing,
+    chain_kinds, stats, value_check, value_of,
 };
 use crate::analysis::placement::Joint;
 use crate::analysis::{Analysis, Quantity, QuantityStats};
@@ -182,8 +186,29 @@ fn judge_finger(
         Basis::Ratio => ratio_standings(a, finger, &compared)?,
         Basis::None => Vec::new(),
     };
+    // The proportions as one vector with their covariance, for a finger with a
+    // tip: the joint region of the X-rays' relative joint positions.
+    let region = match basis {
+        Basis::Relative => fa.joint_region(a.settings.confidence),
+        _ => None,
+    };
+    let judge = Judge {
+        quantities: &quantities,
+        region: region.as_ref(),
+    };
+    let region_check = region.as_ref().map(|r| {
+        let t2 =
+            crate::analysis::region::positions(&compared).map_or(f64::INFINITY, |u| r.distance(&u));
+        RegionCheck {
+            t2,
+            bound: r.bound,
+            confidence: r.confidence,
+            n: r.n,
+            inside: t2 <= r.bound,
+        }
+    });
     let axis = Axis::new(chain, &compared, tip_correction);
-    let solved = explain(&axis, &quantities, basis, hold);
+    let solved = explain(&axis, judge, basis, hold);
     let joints = joint_checks(chain, &axis, &solved, standings)?;
     let explanation = Explanation {
         moved: solved.moved,
@@ -212,6 +237,7 @@ fn judge_finger(
         values,
         joints,
         unjudged,
+        region: region_check,
         explanation,
     })
 }

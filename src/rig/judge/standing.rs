@@ -509,16 +509,35 @@ impl JointCheck {
     }
 }
 
-/// The fewest joints whose moves bring the finger inside the X-rays' prediction intervals.
+/// A finger's relative joint positions against the X-rays' joint prediction
+/// region ([`crate::analysis::region::JointRegion`]), as the rig is.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct RegionCheck {
+    /// Hotelling's T^2 of the positions u = (J~1, J~1 + J~2) (the thumb's J~1).
+    pub t2: f64,
+    /// The region's bound on T^2: p (n - 1) / (n - p) F(confidence; p, n - p).
+    pub bound: f64,
+    pub confidence: f64,
+    /// X-rays behind the region.
+    pub n: usize,
+    /// T^2 at most the bound.
+    pub inside: bool,
+}
+
+/// The fewest joints whose moves bring the finger inside the X-rays' joint
+/// prediction region (with a tip; without one, inside the prediction
+/// interval of J2/J1).
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct Explanation {
     /// The joints that move, root first (empty: nothing needs to move).
     pub moved: Vec<Joint>,
-    /// True when, with those moved, every value is inside its prediction interval.
+    /// True when, with those moved, the finger is inside the joint region
+    /// (without a tip: J2/J1 inside its prediction interval or range).
     pub consistent: bool,
-    /// The largest normalised distance of a value from its mean after the
-    /// moves: 0 at the mean, 1 at a prediction limit (`None` when no value
-    /// could be judged).
+    /// The normalised distance from the X-rays after the moves: 0 at their
+    /// mean, 1 at the region's edge, sqrt(T^2 / bound) (without a tip, J2/J1's
+    /// distance from its mean over the distance to its prediction limit)
+    /// (`None` when nothing could be judged).
     pub score: Option<f64>,
     /// The values after the moves.
     pub values: Vec<ValueCheck>,
@@ -547,14 +566,25 @@ pub struct FingerAudit {
     pub joints: Vec<JointCheck>,
     /// Inner joints that could not be judged (no tip).
     pub unjudged: Vec<Joint>,
+    /// The relative joint positions against the joint region, as the rig is
+    /// (`None` without a tip or without a region: too few X-rays).
+    pub region: Option<RegionCheck>,
     pub explanation: Explanation,
 }
 
 impl FingerAudit {
-    /// True when every judged joint and value is inside the range or the prediction interval.
+    /// True when the finger fits the X-rays as the rig is: inside the joint
+    /// region when there is one (its joints' and values' own intervals are
+    /// then read against it, not alone), else every judged joint and value
+    /// inside its range or prediction interval.
     pub fn is_consistent(&self) -> bool {
-        self.joints.iter().all(|j| j.standing.is_consistent())
-            && self.values.iter().all(|v| v.standing.is_consistent())
+        match &self.region {
+            Some(r) => r.inside,
+            None => {
+                self.joints.iter().all(|j| j.standing.is_consistent())
+                    && self.values.iter().all(|v| v.standing.is_consistent())
+            }
+        }
     }
 
     /// The check of `joint`, when judged.
