@@ -811,6 +811,21 @@ pub(crate) fn text(
         ),
         "",
     ));
+    if rig.fingers.iter().any(|f| f.audit.region.is_some()) {
+        out.push_str(&para(
+            &format!(
+                "A finger with a tip is judged as one vector: its relative joint positions u = \
+                 (J~1, J~1 + J~2) (the thumb's J~1) against the X-rays' {c} joint prediction \
+                 region, T^2 = (u - u_bar)' [S (1 + 1/n)]^-1 (u - u_bar) at most p (n - 1) / \
+                 (n - p) times the {c} quantile of F(p, n - p), S the X-rays' covariance of u \
+                 (normal proportions, \
+                 independent hands); its explanation is the fewest joints whose moves bring it \
+                 inside. Each row gives one joint or value against its own interval, read against \
+                 that verdict."
+            ),
+            "",
+        ));
+    }
     for w in &rig.warnings {
         out.push_str(&para(&format!("Warning: {w}"), ""));
     }
