@@ -233,15 +233,15 @@ fn assert_knuckle_held(joint: &Value) {
     );
 }
 
-/// A built Mixamo hand whose ring PIP sits 1 mm towards the tip and DIP 3 mm
-/// towards the root: the finger is outside the joint region (T^2 31.8 of at
+/// A built Mixamo hand whose ring PIP sits 2 mm towards the tip and DIP 3 mm
+/// towards the root: the finger is outside the joint region (T^2 41.2 of at
 /// most 25.5) and, with the DIP pinned (`RING_HOLD`), the PIP alone explains
-/// it, yet the PIP itself stands inside its own interval, the rest of the
-/// finger as the rig has it.
+/// it (a 2.0 mm move to the region's edge), yet the PIP itself stands inside
+/// its own interval, the rest of the finger as the rig has it.
 fn ring_pip_inside_yet_explaining() -> Vec<u8> {
     hand::build(
         &hand::HandSpec::new(hand::Naming::Mixamo)
-            .moved("ring", 1, 0.1)
+            .moved("ring", 1, 0.2)
             .moved("ring", 2, -0.3),
     )
 }
@@ -362,7 +362,8 @@ fn fix_can_write_gltf_and_fixes_ratio_only_rigs() {
     assert!(text.contains("data:application/octet-stream;base64,"));
     let doc = audit_json(&wd, "out.gltf");
     let m = finger_of(&doc, "middle");
-    assert_eq!(joint_of(m, "PIP")["standing"], "in_range");
+    // Moved only as far as just inside J2/J1's prediction interval.
+    assert_eq!(joint_of(m, "PIP")["standing"], "in_prediction");
 }
 
 #[test]
@@ -753,7 +754,11 @@ fn the_readme_audit_example_is_current() {
     let summary = section("Summary:");
     // The opening: one line per finger, before the first blank line.
     let opening = section("thumb ");
-    assert_eq!(opening.len(), 5, "{text}");
+    assert_eq!(
+        opening.iter().filter(|l| !l.starts_with(' ')).count(),
+        5,
+        "{text}"
+    );
     for line in opening.into_iter().chain(thumb).chain(index).chain(summary) {
         assert!(
             readme.contains(line),

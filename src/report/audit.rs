@@ -243,7 +243,7 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
                 ""
             };
             format!(
-                "the {} sits {} mm {side} of where the X-rays put it{web}",
+                "the {} sits {} mm {side} of the nearest place the X-rays allow{web}",
                 j.joint.name(),
                 num(j.shift_along.abs() * MM, 1)
             )
@@ -819,8 +819,8 @@ pub(crate) fn text(
                  region, T^2 = (u - u_bar)' [S (1 + 1/n)]^-1 (u - u_bar) at most p (n - 1) / \
                  (n - p) times the {c} quantile of F(p, n - p), S the X-rays' covariance of u \
                  (normal proportions, \
-                 independent hands); its explanation is the fewest joints whose moves bring it \
-                 inside. Each row gives one joint or value against its own interval, read against \
+                 independent hands); its explanation is the fewest joints, moved as little as \
+                 brings it inside. Each row gives one joint or value against its own interval, read against \
                  that verdict."
             ),
             "",

@@ -295,8 +295,10 @@ fn hold_pip_keeps_the_pip_in_the_json_and_the_fixed_file() {
         .ok()
         .json();
     assert_eq!(doc["fix"]["moved"][0]["node"], pip, "{}", doc["fix"]);
+    // Back towards where it was built, as far as the joint region's edge
+    // (3.5 of the 5 mm it was pushed).
     let free = num(&joint_of(finger_of(&doc, "index"), "PIP")["shift"]);
-    assert!(free > 0.004, "{free}");
+    assert!(free > 0.003 && free < 0.005, "{free}");
 
     let doc = wd
         .run(&[
@@ -351,7 +353,8 @@ fn hold_pip_keeps_the_pip_in_the_json_and_the_fixed_file() {
         )),
         "{line}"
     );
-    assert!(text.contains("held: pinned by --hold"), "{text}");
+    let flat = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(flat.contains("held: pinned by --hold"), "{text}");
     assert_opening_agrees(&wd, "hand.glb", &["--hold", "pip"]);
 }
 
@@ -391,7 +394,7 @@ fn with_only_outside_the_opening_holds_a_joint_inside_its_interval() {
     assert!(
         held.contains("held: the PIP ")
             && held.contains("mm (inside its own prediction interval; --only-outside)")
-            && held.ends_with("the DIP 4.6 mm (pinned by --hold)"),
+            && held.ends_with("the DIP 1.2 mm (pinned by --hold)"),
         "{held}"
     );
     // Without a fix --only-outside decides nothing, and the line is the plain one.

@@ -58,6 +58,9 @@ pub(super) struct Solved {
     pub(super) moved: Vec<Joint>,
     pub(super) consistent: bool,
     pub(super) score: f64,
+    /// The fit at the joints' best place (where the score is least), which
+    /// chooses among explanations of one size.
+    rank: f64,
     /// Arc positions of the chain's joints after the moves (`None`: nothing solved).
     pub(super) arcs: Option<Vec<f64>>,
     pub(super) segments: Option<Vec<f64>>,
@@ -117,13 +120,19 @@ pub(super) fn explain(axis: &Axis, judge: Judge, basis: Basis, hold: &[Joint]) -
         })
         .collect();
     let free = |k: usize| !hold.contains(&kinds[k]);
-    let solved = |moved: Vec<Joint>, u: Vec<f64>| {
+    // An explanation is chosen by how well its joints can fit at their best
+    // place, and placed by the smallest move that fits: from the rig's place
+    // towards the best one, as far as just inside the region's edge.
+    let solved = |moved: Vec<Joint>, best: Vec<f64>| {
+        let rank = judge.fit(&axis.segments(&best)).0;
+        let u = towards_edge(axis, judge, &u0, best);
         let s = axis.segments(&u);
         let (score, inside) = judge.fit(&s);
         Solved {
             moved,
             consistent: inside,
             score,
+            rank,
             arcs: Some(u),
             segments: Some(s),
             also: Vec::new(),
@@ -151,8 +160,9 @@ pub(super) fn explain(axis: &Axis, judge: Judge, basis: Basis, hold: &[Joint]) -
     choose(tried, &u0)
 }
 
-/// The first size at which an explanation fits, its best (the better fit,
-/// then the smaller total move), with the others of that size as `also`;
+/// The first size at which an explanation fits, its best (the better fit at
+/// its joints' best place, then the smaller total move), with the others of
+/// that size as `also`;
 /// when none fits, the best fit of all, fewer joints first on a tie.
 fn choose(mut tried: Vec<Vec<Solved>>, u0: &[f64]) -> Solved {
     let movement = |s: &Solved| -> f64 {
@@ -160,9 +170,12 @@ fn choose(mut tried: Vec<Vec<Solved>>, u0: &[f64]) -> Solved {
             a.iter().zip(u0).map(|(x, y)| (x - y).abs()).sum()
         })
     };
+    // Among explanations that fit, the better fit at the joints' best place
+    // wins, then the smaller total move (each is placed at the region's edge
+    // nearest the rig, [`EDGE`]).
     let better = |a: &Solved, b: &Solved| -> bool {
-        if (a.score - b.score).abs() > 1e-6 {
-            a.score < b.score
+        if (a.rank - b.rank).abs() > 1e-6 {
+            a.rank < b.rank
         } else {
             movement(a) < movement(b)
         }
@@ -196,6 +209,7 @@ fn none_like() -> Solved {
         moved: Vec::new(),
         consistent: false,
         score: f64::INFINITY,
+        rank: f64::INFINITY,
         arcs: None,
         segments: None,
         also: Vec::new(),
@@ -260,6 +274,35 @@ fn solve_one(axis: &Axis, judge: Judge, u0: &[f64], k: usize) -> Option<Vec<f64>
     let mut out = u0.to_vec();
     out[k] = x;
     Some(out)
+}
+
+/// How far inside a moved joint is placed: the normalised distance (1 at
+/// the region's edge or the prediction limit) the smallest move aims at,
+/// just inside the edge so that the fixed rig, stored as f32, reads inside.
+const EDGE: f64 = 0.999;
+
+/// The arc positions on the straight way from `u0` to `u1` (a placement that
+/// fits) nearest `u0` where the fit reaches [`EDGE`], by bisection; `u1` when
+/// it does not fit that well, `u0` when the rig already does.
+fn towards_edge(axis: &Axis, judge: Judge, u0: &[f64], u1: Vec<f64>) -> Vec<f64> {
+    let at = |t: f64| -> Vec<f64> { u0.iter().zip(&u1).map(|(a, b)| a + t * (b - a)).collect() };
+    let eval = |t: f64| judge.fit(&axis.segments(&at(t))).0;
+    if eval(1.0) > EDGE {
+        return u1;
+    }
+    if eval(0.0) <= EDGE {
+        return u0.to_vec();
+    }
+    let (mut out, mut inside) = (0.0, 1.0);
+    for _ in 0..60 {
+        let mid = 0.5 * (out + inside);
+        if eval(mid) <= EDGE {
+            inside = mid;
+        } else {
+            out = mid;
+        }
+    }
+    at(inside)
 }
 
 /// The arc positions with the joints `pair` (of MCP 0, PIP 1, DIP 2; a finger

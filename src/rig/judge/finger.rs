@@ -47,12 +47,14 @@
 //! inside the X-rays' joint prediction region (with a tip: its relative joint
 //! positions u = (J~1, J~1 + J~2) as one vector with their covariance,
 //! T^2 <= bound, [`crate::analysis::region`]; without a tip J2/J1 inside its
-//! prediction interval). A joint alone is placed where the fit is best (the
-//! smallest sqrt(T^2 / bound), 1 at the region's edge; without a tip the
-//! normalised distance of J2/J1, 1 at a prediction limit); a pair is placed
-//! exactly at the means. Between
-//! explanations of the same size the better fit wins, then the smaller total
-//! move. Joints move along the rig's own chain (the polyline through its
+//! prediction interval). Explanations of one size are told apart by how well
+//! they can fit: a joint alone at its best place (the smallest sqrt(T^2 /
+//! bound), 1 at the region's edge; without a tip the normalised distance of
+//! J2/J1, 1 at a prediction limit), a pair exactly at the means; the better
+//! fit wins, then the smaller move. The chosen joints are then moved only as
+//! far as that takes: from the rig's place straight towards the best place,
+//! just inside the edge (0.999), so the fix is the smallest change of those
+//! joints that makes the finger a plausible hand. Joints move along the rig's own chain (the polyline through its
 //! joints), the MCP along the first segment's backward extension (at most one
 //! segment back, half a segment forward). See `rig::chain`. No files, no glTF.
 
