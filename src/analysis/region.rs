@@ -125,6 +125,13 @@ impl JointRegion {
             .sum()
     }
 
+    /// T^2 of a finger with segments `segments` (J1, J2[, J3]): the
+    /// [`distance`](Self::distance) of their [`positions`]; infinite for
+    /// segments `positions` refuses.
+    pub fn distance_of_segments(&self, segments: &[f64]) -> f64 {
+        positions(segments).map_or(f64::INFINITY, |u| self.distance(&u))
+    }
+
     /// True when `u` lies inside the region (T^2 at most the bound).
     pub fn contains(&self, u: &[f64]) -> bool {
         self.distance(u) <= self.bound

@@ -8,8 +8,8 @@ use crate::analysis::{Interval, Quantity};
 use crate::format::{level, num, percent};
 use crate::rig::bend::Bend;
 use crate::rig::judge::{
-    Basis, FingerAudit, JointCheck, JudgeOptions, MetacarpalCheck, RayBase, SoftTissue, Standing,
-    TipKind,
+    Basis, FingerAudit, JointCheck, JudgeOptions, MetacarpalCheck, RayBase, RegionCheck,
+    SoftTissue, Standing, TipKind,
 };
 use crate::rig::read::source::FbxSource;
 use crate::rig::{AuditedFinger, AuditedRig};
@@ -219,10 +219,9 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
         };
         let region = a.region.as_ref().map_or(String::new(), |r| {
             format!(
-                " (inside the X-rays' {} joint region: T^2 {} of at most {})",
+                " (inside the X-rays' {} joint region: {})",
                 level(r.confidence),
-                num(r.t2, 1),
-                num(r.bound, 1)
+                t2_words(r)
             )
         });
         return format!("Fits the X-rays as it is{soft}{region}.{}", held_words(a));
@@ -499,6 +498,11 @@ fn given(a: &FingerAudit, as_is: String, consistent: bool) -> String {
         and_list(&names),
         if names.len() == 1 { "s" } else { "" }
     )
+}
+
+/// A region check's T^2 against its bound: "T^2 9.0 of at most 7.7".
+fn t2_words(r: &RegionCheck) -> String {
+    format!("T^2 {} of at most {}", num(r.t2, 1), num(r.bound, 1))
 }
 
 /// The joint region's row: T^2 of the relative joint positions as the rig is,
@@ -818,10 +822,9 @@ pub(crate) fn text(
                  (J~1, J~1 + J~2) (the thumb's J~1) against the X-rays' {c} joint prediction \
                  region, T^2 = (u - u_bar)' [S (1 + 1/n)]^-1 (u - u_bar) at most p (n - 1) / \
                  (n - p) times the {c} quantile of F(p, n - p), S the X-rays' covariance of u \
-                 (normal proportions, \
-                 independent hands); its explanation is the fewest joints, moved as little as \
-                 brings it inside. Each row gives one joint or value against its own interval, read against \
-                 that verdict."
+                 (normal proportions, independent hands); its explanation is the fewest joints, \
+                 moved as little as brings it inside. Each row gives one joint or value against \
+                 its own interval, read against that verdict."
             ),
             "",
         ));
@@ -913,16 +916,10 @@ pub(crate) fn finger_summary(a: &FingerAudit) -> String {
         .chain(a.values.iter().map(|v| v.standing))
         .all(|s| s == Standing::InRange);
     let region = a.region.as_ref().map(|r| {
-        format!(
-            "the {} joint region (T^2 {} of at most {})",
-            level(r.confidence),
-            num(r.t2, 1),
-            num(r.bound, 1)
-        )
+        let words = format!("the {} joint region ({})", level(r.confidence), t2_words(r));
+        (words, r.inside)
     });
-    if let (Some(r), Some(words)) = (&a.region, &region)
-        && r.inside
-    {
+    if let Some((words, true)) = &region {
         // The finger's verdict is the region's; a joint or value outside its
         // own interval alone is read against the whole vector.
         return if outside.is_empty() {
@@ -951,8 +948,8 @@ pub(crate) fn finger_summary(a: &FingerAudit) -> String {
             format!("; fewest joints to move: {}", fewest.join(", "))
         };
         match region {
-            Some(words) if outside.is_empty() => format!("outside {words}{explained}"),
-            Some(words) => format!("outside {words}: {}{explained}", outside.join("; ")),
+            Some((words, _)) if outside.is_empty() => format!("outside {words}{explained}"),
+            Some((words, _)) => format!("outside {words}: {}{explained}", outside.join("; ")),
             None => format!(
                 "outside the prediction interval: {}{explained}",
                 outside.join("; ")

@@ -5,7 +5,7 @@
 use super::chain::{arc_positions, backward_at, on_chain, point_at};
 use super::standing::{Basis, ChainInput, Standing, normalised, value_of};
 use crate::analysis::placement::Joint;
-use crate::analysis::region::{JointRegion, positions};
+use crate::analysis::region::JointRegion;
 use crate::analysis::{Interval, Quantity, QuantityStats};
 use glam::DVec3;
 
@@ -88,7 +88,7 @@ impl Judge<'_> {
             return (f64::INFINITY, false);
         }
         if let Some(r) = self.region {
-            let t2 = positions(segments).map_or(f64::INFINITY, |u| r.distance(&u));
+            let t2 = r.distance_of_segments(segments);
             return ((t2 / r.bound).sqrt(), t2 <= r.bound);
         }
         let mut worst: f64 = 0.0;

@@ -54,9 +54,10 @@
 //! fit wins, then the smaller move. The chosen joints are then moved only as
 //! far as that takes: from the rig's place straight towards the best place,
 //! just inside the edge (0.999), so the fix is the smallest change of those
-//! joints that makes the finger a plausible hand. Joints move along the rig's own chain (the polyline through its
-//! joints), the MCP along the first segment's backward extension (at most one
-//! segment back, half a segment forward). See `rig::chain`. No files, no glTF.
+//! joints that makes the finger a plausible hand. Joints move along the rig's
+//! own chain (the polyline through its joints), the MCP along the first
+//! segment's backward extension (at most one segment back, half a segment
+//! forward). See `rig::chain`. No files, no glTF.
 
 use super::chain::point_at;
 use super::expected::{StandingInput, ratio_standings, relative_standings};
@@ -199,8 +200,7 @@ fn judge_finger(
         region: region.as_ref(),
     };
     let region_check = region.as_ref().map(|r| {
-        let t2 =
-            crate::analysis::region::positions(&compared).map_or(f64::INFINITY, |u| r.distance(&u));
+        let t2 = r.distance_of_segments(&compared);
         RegionCheck {
             t2,
             bound: r.bound,
