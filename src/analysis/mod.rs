@@ -35,6 +35,7 @@ use crate::dataset::{Dataset, Finger, Row, TipCounts, is_pixel_unit};
 use crate::stats::Intervals;
 use crate::stats::bootstrap::{self, Plan, Sorted};
 use crate::stats::describe;
+use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 use schemars::JsonSchema;
 use serde::Serialize;
@@ -98,16 +99,72 @@ impl Settings {
     }
 }
 
+/// The two or three values of a finger's segments (J1, J2[, J3]), held inline: a finger's
+/// X-rays are many (500,000 at 100,000 hands) and two small heap vectors each were a
+/// million allocations and about 50 bytes an X-ray more. Reads as a slice (`Deref`) and
+/// serialises as a JSON array of its values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segments {
+    values: [f64; 3],
+    len: u8,
+}
+
+impl Segments {
+    /// The first (at most three) values of `values`.
+    pub fn new(values: &[f64]) -> Segments {
+        let mut s = Segments {
+            values: [0.0; 3],
+            len: values.len().min(3) as u8,
+        };
+        s.values[..s.len as usize].copy_from_slice(&values[..s.len as usize]);
+        s
+    }
+
+    /// The values as a slice.
+    pub fn as_slice(&self) -> &[f64] {
+        self
+    }
+}
+
+impl<'a> IntoIterator for &'a Segments {
+    type Item = &'a f64;
+    type IntoIter = std::slice::Iter<'a, f64>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.as_slice().iter()
+    }
+}
+
+impl std::ops::Deref for Segments {
+    type Target = [f64];
+    fn deref(&self) -> &[f64] {
+        &self.values[..self.len as usize]
+    }
+}
+
+impl std::ops::DerefMut for Segments {
+    fn deref_mut(&mut self) -> &mut [f64] {
+        &mut self.values[..self.len as usize]
+    }
+}
+
+impl Serialize for Segments {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.iter())
+    }
+}
+
 /// The derived values of one X-ray for one finger (eqs. 1-2).
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct XrayValues {
     pub xray: Arc<str>,
     /// J1, J2[, J3] in data units.
-    pub lengths: Vec<f64>,
+    #[schemars(with = "Vec<f64>")]
+    pub lengths: Segments,
     /// J = sum of the lengths (eq. 1).
     pub total: f64,
     /// J~k = J_k / J for every segment (eq. 2).
-    pub relative: Vec<f64>,
+    #[schemars(with = "Vec<f64>")]
+    pub relative: Segments,
     /// The metacarpal (CMC to MCP) in data units, when measured.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mc: Option<f64>,
@@ -345,32 +402,40 @@ pub(crate) fn blocks(data: &Dataset) -> Vec<Block> {
         let next = order.len();
         order.entry(&r.xray).or_insert(next);
     }
-    let mut blocks: Vec<Block> = Vec::new();
-    for f in Finger::ALL {
-        let mut rows: Vec<&Row> = data.rows_of(f).collect();
-        if rows.is_empty() {
-            continue;
-        }
-        // One lookup per row, not one per comparison (a finger has one row per X-ray).
-        rows.sort_by_cached_key(|r| order[&*r.xray]);
-        let xrays: Vec<XrayValues> = rows.iter().map(|r| xray_values(r)).collect();
-        let quantities = quantities(f, &xrays);
-        let partial: Vec<XrayValues> = xrays.iter().filter(|x| x.mc.is_some()).cloned().collect();
-        let subset = !partial.is_empty() && partial.len() < xrays.len();
+    // The fingers' blocks are independent: built side by side (rayon), kept in finger order.
+    let per_finger: Vec<Vec<Block>> = Finger::ALL
+        .par_iter()
+        .map(|&f| finger_blocks(data, f, &order))
+        .collect();
+    per_finger.into_iter().flatten().collect()
+}
+
+/// The main block of finger `f` (its rows in the X-rays' first-appearance `order`) and,
+/// when only some of its X-rays have the metacarpal, the block of those. O(rows).
+fn finger_blocks(data: &Dataset, f: Finger, order: &FxHashMap<&str, usize>) -> Vec<Block> {
+    let mut rows: Vec<&Row> = data.rows_of(f).collect();
+    if rows.is_empty() {
+        return Vec::new();
+    }
+    // One lookup per row, not one per comparison (a finger has one row per X-ray).
+    rows.sort_by_cached_key(|r| order[&*r.xray]);
+    let xrays: Vec<XrayValues> = rows.iter().map(|r| xray_values(r)).collect();
+    let quantities = quantities(f, &xrays);
+    let partial: Vec<XrayValues> = xrays.iter().filter(|x| x.mc.is_some()).cloned().collect();
+    let subset = !partial.is_empty() && partial.len() < xrays.len();
+    let mut blocks = vec![Block {
+        finger: f,
+        quantities,
+        xrays,
+        main: true,
+    }];
+    if subset {
         blocks.push(Block {
             finger: f,
-            quantities,
-            xrays,
-            main: true,
+            quantities: Quantity::METACARPAL.to_vec(),
+            xrays: partial,
+            main: false,
         });
-        if subset {
-            blocks.push(Block {
-                finger: f,
-                quantities: Quantity::METACARPAL.to_vec(),
-                xrays: partial,
-                main: false,
-            });
-        }
     }
     blocks
 }
@@ -444,10 +509,12 @@ pub fn analyse_with(
         let mut offset = 0;
         for (&i, bcols) in group.iter().zip(&cols) {
             let b = &blocks[i];
+            // Each quantity's statistics (a median's sort, the bootstrap means' sort) are
+            // independent of the others': computed side by side, collected in order.
             stats[i] = b
                 .quantities
-                .iter()
-                .zip(bcols)
+                .par_iter()
+                .zip(bcols.par_iter())
                 .enumerate()
                 .map(|(k, (&q, col))| {
                     let mut s =
@@ -505,9 +572,10 @@ pub fn analyse_with(
 
 /// Eqs. (1)-(2) for one row.
 pub(crate) fn xray_values(row: &Row) -> XrayValues {
-    let lengths = row.segments().to_vec();
+    let lengths = Segments::new(row.segments());
     let total = row.total();
-    let relative = lengths.iter().map(|l| l / total).collect();
+    let mut relative = lengths;
+    relative.iter_mut().for_each(|l| *l /= total);
     XrayValues {
         xray: row.xray.clone(),
         lengths,

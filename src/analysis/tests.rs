@@ -402,3 +402,18 @@ fn pixel_lengths_are_not_averaged() {
             .is_some()
     );
 }
+
+#[test]
+fn segments_read_and_write_as_their_values() {
+    // A thumb's two segments and a finger's three: the slice, the JSON array and the
+    // schema's type are those of the Vec<f64> they replace.
+    let thumb = Segments::new(&[31.5, 22.25]);
+    assert_eq!(thumb.as_slice(), &[31.5, 22.25]);
+    assert_eq!(thumb.len(), 2);
+    assert_eq!(serde_json::to_string(&thumb).unwrap(), "[31.5,22.25]");
+    let finger = Segments::new(&[40.0, 25.0, 20.0]);
+    assert_eq!(serde_json::to_string(&finger).unwrap(), "[40.0,25.0,20.0]");
+    let schema = serde_json::to_value(schemars::schema_for!(XrayValues)).unwrap();
+    assert_eq!(schema["properties"]["lengths"]["type"], "array");
+    assert_eq!(schema["properties"]["relative"]["items"]["type"], "number");
+}

@@ -2,7 +2,9 @@
 
 use super::*;
 use crate::analysis::placement::place_all;
-use crate::analysis::{DatasetInfo, Quantity, Settings, XrayValues, analyse, quantity_stats};
+use crate::analysis::{
+    DatasetInfo, Quantity, Segments, Settings, XrayValues, analyse, quantity_stats,
+};
 use crate::dataset::Dataset;
 use crate::stats::bootstrap::Plan;
 use crate::stats::describe;
@@ -330,8 +332,8 @@ fn synthetic(n: usize) -> FingerAnalysis {
             let total: f64 = lengths.iter().sum();
             XrayValues {
                 xray: Arc::from(format!("x{i}")),
-                relative: lengths.iter().map(|l| l / total).collect(),
-                lengths,
+                relative: Segments::new(&lengths.iter().map(|l| l / total).collect::<Vec<_>>()),
+                lengths: Segments::new(&lengths),
                 total,
                 mc: None,
                 unit: None,
