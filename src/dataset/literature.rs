@@ -113,7 +113,10 @@ impl SummaryTable {
         SummaryTable::from_reader(label, bytes)
     }
 
-    fn from_reader(label: &str, input: impl std::io::Read) -> Result<SummaryTable, DataError> {
+    fn from_reader(
+        label: &str,
+        input: impl std::io::Read + Send,
+    ) -> Result<SummaryTable, DataError> {
         let mut rows: Vec<TableRow> = Vec::new();
         let mut seen: HashMap<(Finger, Segment), u64> = HashMap::new();
         let mut unit: Option<(String, u64)> = None;

@@ -216,7 +216,10 @@ impl Dataset {
     }
 
     /// Validates a measurement table read from `input`; `label` names it in errors.
-    pub fn from_reader(label: &str, input: impl std::io::Read) -> Result<Dataset, DataError> {
+    pub fn from_reader(
+        label: &str,
+        input: impl std::io::Read + Send,
+    ) -> Result<Dataset, DataError> {
         let (columns, rows, sha256) = parse_rows(label, input)?;
         Ok(Dataset {
             path: label.to_string(),
@@ -397,7 +400,7 @@ struct XrayMeta {
 /// file's SHA-256.
 fn parse_rows(
     label: &str,
-    input: impl std::io::Read,
+    input: impl std::io::Read + Send,
 ) -> Result<(Vec<String>, Vec<Row>, String), DataError> {
     let mut interner = Interner::default();
     let mut seen: FxHashMap<(Arc<str>, Finger), u64> = FxHashMap::default();

@@ -437,3 +437,50 @@ fn an_unquoted_decimal_comma_is_named_as_one() {
     let p = problems("xray,finger,j1,j2,j3\n9a,index,350,190,170,x\n");
     assert!(!p[0].message.contains("decimal comma"), "{}", p[0].message);
 }
+
+#[test]
+fn problems_across_the_reading_threads_batches() {
+    // 3,000 records read in batches of 1,024 on the reading thread: problems on the
+    // records either side of each batch boundary (lines 1025 and 1026: records 1024 and
+    // 1025 after the header; lines 2049 and 2050), one found by the reading thread (a byte
+    // that is not UTF-8) and the others by the table's code, come back together, each at
+    // its own line and column, in file order. The row with the byte that is not UTF-8
+    // is not read further: its J3 is not taken as 0 (no "lengths differ" problem too).
+    let mut bytes = HEADER.as_bytes().to_vec();
+    for i in 0..3000 {
+        let line = i + 2;
+        let row: Vec<u8> = match line {
+            1025 => format!("x{i},index,1,-2,3\n").into_bytes(),
+            1026 => [format!("x{i},index,1,2,").into_bytes(), b"3\xff\n".to_vec()].concat(),
+            2049 => format!("x{i},index,1,2\n").into_bytes(),
+            2050 => format!("x{i},indx,1,2,3\n").into_bytes(),
+            _ => format!("x{i},index,1,2,3\n").into_bytes(),
+        };
+        bytes.extend_from_slice(&row);
+    }
+    let p = Dataset::from_bytes("t.csv", &bytes).unwrap_err().problems;
+    let at: Vec<(Option<u64>, Option<usize>)> = p.iter().map(|p| (p.line, p.column)).collect();
+    assert_eq!(
+        at,
+        [
+            (Some(1025), Some(4)),
+            (Some(1026), Some(5)),
+            (Some(2049), None),
+            (Some(2050), Some(2)),
+        ],
+        "{p:#?}"
+    );
+    assert!(p[1].message.contains("not UTF-8"), "{:?}", p[1].message);
+    assert_eq!(p[1].field.as_deref(), Some("j3"));
+    // The rows without problems are read, in order, when nothing is wrong.
+    let fine: String = (0..3000).map(|i| format!("x{i},index,1,2,3\n")).collect();
+    let d = load(&format!("{HEADER}{fine}")).unwrap();
+    assert_eq!(d.rows.len(), 3000);
+    assert!(
+        d.rows
+            .iter()
+            .enumerate()
+            .all(|(i, r)| r.line == i as u64 + 2)
+    );
+    assert_eq!(&*d.rows[2999].xray, "x2999");
+}
