@@ -38,7 +38,6 @@ pub use tip::{TipCounts, TipKind};
 use csvinput::{Cells, Columns, quote};
 use rustc_hash::FxHashMap;
 use std::collections::HashMap;
-use std::collections::hash_map::Entry;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -389,6 +388,8 @@ impl Interner {
 /// sex, age and side given, each with its line (a row may leave them empty).
 struct XrayMeta {
     line: u64,
+    /// The line of the X-ray's row of each finger (by [`Finger::index`]), 0 while none.
+    fingers: [u64; 5],
     sex: Option<(Arc<str>, u64)>,
     age: Option<(f64, u64)>,
     side: Option<(Arc<str>, u64)>,
@@ -403,31 +404,39 @@ fn parse_rows(
     input: impl std::io::Read + Send,
 ) -> Result<(Vec<String>, Vec<Row>, String), DataError> {
     let mut interner = Interner::default();
-    let mut seen: FxHashMap<(Arc<str>, Finger), u64> = FxHashMap::default();
     let mut xray_meta: FxHashMap<Arc<str>, XrayMeta> = FxHashMap::default();
     let mut rows = Vec::new();
     let read = csvinput::read_table(label, input, |cells| {
         let Some(row) = parse_row(cells, &mut interner) else {
             return;
         };
-        match seen.entry((row.xray.clone(), row.finger)) {
-            Entry::Occupied(first) => {
-                cells.bad(
-                    Column::Xray,
-                    format!(
-                        "duplicate row: X-ray {} already has {} row on line {}; remove one or correct the X-ray id",
-                        quote(&row.xray),
-                        row.finger.with_article(),
-                        first.get()
-                    ),
-                );
-                return;
-            }
-            Entry::Vacant(v) => {
-                v.insert(row.line);
-            }
+        // One lookup per row serves the duplicate check and the hand's metadata.
+        let entry = xray_meta
+            .entry(row.xray.clone())
+            .or_insert_with(|| XrayMeta {
+                line: row.line,
+                fingers: [0; 5],
+                sex: None,
+                age: None,
+                side: None,
+                unit: row.meta.unit.clone(),
+                tip: row.meta.tip,
+            });
+        let first = &mut entry.fingers[row.finger.index()];
+        if *first != 0 {
+            cells.bad(
+                Column::Xray,
+                format!(
+                    "duplicate row: X-ray {} already has {} row on line {}; remove one or correct the X-ray id",
+                    quote(&row.xray),
+                    row.finger.with_article(),
+                    first
+                ),
+            );
+            return;
         }
-        check_xray_meta(&row, cells, &mut xray_meta);
+        *first = row.line;
+        check_xray_meta(&row, cells, entry);
         rows.push(row);
     });
     let (header, sha256) = read?;
@@ -668,20 +677,8 @@ fn normalise_sex(text: &str) -> String {
 /// its rows (unknown there, so filling one in conflicts with nothing), but two rows that
 /// give different values conflict; unit and tip must be the same on every row, empty
 /// included (lengths of one hand are measured one way).
-fn check_xray_meta(
-    row: &Row,
-    cells: &mut Cells<'_, '_, Column>,
-    seen: &mut FxHashMap<Arc<str>, XrayMeta>,
-) {
+fn check_xray_meta(row: &Row, cells: &mut Cells<'_, '_, Column>, entry: &mut XrayMeta) {
     let line = row.line;
-    let entry = seen.entry(row.xray.clone()).or_insert_with(|| XrayMeta {
-        line,
-        sex: None,
-        age: None,
-        side: None,
-        unit: row.meta.unit.clone(),
-        tip: row.meta.tip,
-    });
     // The X-ray quoted only when a conflict is reported (not once per row).
     let xray = &row.xray;
     let mut conflict = |c: Column, ours: String, theirs: String, at: u64| {
