@@ -101,7 +101,7 @@ measure "rig audit --fix (docs/examples/hand.glb)" "-" -- "$bin" audit docs/exam
 glove=../shared/rigs/steamvr-gloves/vr_glove_model.fbx
 if [ -f "$glove" ]; then
     measure "rig audit, FBX (SteamVR glove, 4,900 triangles)" "-" -- "$bin" audit "$glove"
-    measure "rig audit --moves, FBX (SteamVR glove)" "-" -- "$bin" audit "$glove" --moves "$work/moves.csv"
+    measure "rig audit --moves, FBX (SteamVR glove)" "-" -- "$bin" audit "$glove" --moves "$work/moves.csv" --force
     measure "deform, FBX (SteamVR glove), fist, LBS" "-" -- "$bin" deform "$glove"
 fi
 measure "deform, 30,000-triangle hand, fist, LBS" "1 s / 200 MB" -- "$bin" deform "$work/hand30k-right.glb"
