@@ -4,8 +4,10 @@
 # NumPy peer (bench/peer.py, the same statistics) at 1k, 10k and 100k X-rays in the
 # same run, then the report at every size from the paper's 5 X-rays to 100,000, then
 # how the cost grows with X-rays and resamples.
-# Usage: bench/run.sh [RUNS]   (default 3; best run kept). The peer needs python3 with
-# numpy and scipy (pip install numpy scipy); without them its rows are skipped.
+# Usage: bench/run.sh [RUNS]   (default 3; best run kept). The peer runs in a virtual
+# environment, target/bench-venv, made here the first time with bench/requirements.txt
+# (numpy and scipy); where it cannot be made (no python3 or no registry) its rows are
+# skipped with the reason.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-3}
@@ -50,12 +52,19 @@ measure() {
     fi
 }
 
+# The NumPy peer's own Python, with the pinned numpy and scipy.
+venv=target/bench-venv
+py=$venv/bin/python3
+if [ ! -x "$py" ] || ! "$py" -c "import numpy, scipy" 2> /dev/null; then
+    python3 -m venv "$venv" > /dev/null 2>&1 && "$py" -m pip install -q -r bench/requirements.txt > /dev/null 2>&1 || true
+fi
+
 echo "Machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(uname -sr); $($bin --version)"
 echo "Date: $(date -u +%Y-%m-%d); best of $runs runs; 10,000 resamples unless noted"
 echo
-if python3 -c "import numpy, scipy" 2> /dev/null; then
+if [ -x "$py" ] && "$py" -c "import numpy, scipy" 2> /dev/null; then
     echo "phalanx against the NumPy peer (bench/peer.py: chunked index matrices, bincount, BLAS"
-    echo "matrix product; $(python3 -c 'import numpy, scipy; print("numpy", numpy.__version__, "scipy", scipy.__version__)')),"
+    echo "matrix product; $("$py" -c 'import numpy, scipy; print("numpy", numpy.__version__, "scipy", scipy.__version__)')),"
     echo "stats --format json, 10,000 resamples; the ratio is the peer's wall time over phalanx's:"
     echo
     echo "| workload | target | wall time | peak memory | ratio |"
@@ -66,7 +75,7 @@ if python3 -c "import numpy, scipy" 2> /dev/null; then
             10k) target="60x the peer" ;;
             100k) target="3 s / 250 MB" ;;
         esac
-        silent=1 measure "" "" -- python3 bench/peer.py "$work/x$size.csv"
+        silent=1 measure "" "" -- "$py" bench/peer.py "$work/x$size.csv"
         printf '| NumPy peer, %s X-rays | | %.3f s | %s MB | 1x |\n' "$size" "$last_s" "$last_mb"
         peer_s=$last_s
         silent=1 measure "" "" -- "$bin" stats --data "$work/x$size.csv" --format json
@@ -75,7 +84,7 @@ if python3 -c "import numpy, scipy" 2> /dev/null; then
     done
     echo
 else
-    echo "(NumPy peer skipped: python3 with numpy and scipy is missing; pip install numpy scipy)"
+    echo "(NumPy peer skipped: could not make $venv with bench/requirements.txt; python3 -m venv and pip need python3 and the PyPI registry)"
     echo
 fi
 echo "The report (all formats and plots) at every size: the paper's data with the atlas and"
