@@ -17,7 +17,8 @@ weights instead, as phalanx does (the paper's 5 X-rays: 126). The random numbers
 phalanx's (ChaCha8), so the bootstrap intervals agree with phalanx's to Monte-Carlo error only.
 
 Usage: bench/peer.py DATA.csv [--resamples B] [--seed S] > stats.json
-Needs numpy and scipy (pip install numpy scipy). Phase times go to standard error.
+Needs numpy and scipy: bench/run.sh installs the pinned versions of bench/requirements.txt into
+target/bench-venv and runs this file with that Python. Phase times go to standard error.
 """
 
 import argparse
