@@ -52,17 +52,19 @@ measure() {
     fi
 }
 
-# The NumPy peer's own Python, with the pinned numpy and scipy.
+# The NumPy peer's own Python, with the pinned numpy and scipy; what venv and pip
+# printed is kept for the reason when the peer has to be skipped.
 venv=target/bench-venv
 py=$venv/bin/python3
-if [ ! -x "$py" ] || ! "$py" -c "import numpy, scipy" 2> /dev/null; then
-    python3 -m venv "$venv" > /dev/null 2>&1 && "$py" -m pip install -q -r bench/requirements.txt > /dev/null 2>&1 || true
+peer_ready() { [ -x "$py" ] && "$py" -c "import numpy, scipy" 2> /dev/null; }
+if ! peer_ready; then
+    { python3 -m venv "$venv" && "$py" -m pip install -q -r bench/requirements.txt; } > "$work/venv.txt" 2>&1 || true
 fi
 
 echo "Machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(uname -sr); $($bin --version)"
 echo "Date: $(date -u +%Y-%m-%d); best of $runs runs; 10,000 resamples unless noted"
 echo
-if [ -x "$py" ] && "$py" -c "import numpy, scipy" 2> /dev/null; then
+if peer_ready; then
     echo "phalanx against the NumPy peer (bench/peer.py: chunked index matrices, bincount, BLAS"
     echo "matrix product; $("$py" -c 'import numpy, scipy; print("numpy", numpy.__version__, "scipy", scipy.__version__)')),"
     echo "stats --format json, 10,000 resamples; the ratio is the peer's wall time over phalanx's:"
@@ -84,7 +86,7 @@ if [ -x "$py" ] && "$py" -c "import numpy, scipy" 2> /dev/null; then
     done
     echo
 else
-    echo "(NumPy peer skipped: could not make $venv with bench/requirements.txt; python3 -m venv and pip need python3 and the PyPI registry)"
+    echo "(NumPy peer skipped: could not make $venv with bench/requirements.txt: $(tail -n 1 "$work/venv.txt" 2> /dev/null))"
     echo
 fi
 echo "The report (all formats and plots) at every size: the paper's data with the atlas and"
