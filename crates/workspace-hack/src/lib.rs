@@ -1,0 +1,1 @@
+//! Empty: this crate only names features (see its Cargo.toml).
