@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders the top of reports/index.html (header, provenance, Table 1, derived
 # values) to docs/report-screenshot.png for the README, with headless Chromium
-# (Debian package chromium). Builds nothing: run `cargo run -- report`
+# (Debian package chromium). Builds nothing: run `cargo run --release -- report`
 # first if the report is stale.
 #
 # Usage: scripts/screenshot.sh [HEIGHT]   (default 1800; the width is 1366 px)
@@ -17,7 +17,7 @@ out=docs/report-screenshot.png
 max_bytes=600000
 
 if [ ! -f "$report" ]; then
-    echo "screenshot: $report is missing; run 'cargo run -- report' first" >&2
+    echo "screenshot: $report is missing; run 'cargo run --release -- report' first" >&2
     exit 1
 fi
 

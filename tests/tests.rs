@@ -17,7 +17,6 @@ mod fbx;
 mod import;
 mod lab;
 mod literature;
-mod one_build;
 mod option_ranges;
 mod options;
 mod place;

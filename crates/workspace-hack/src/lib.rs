@@ -1,1 +1,0 @@
-//! Empty: this crate only names features (see its Cargo.toml).
