@@ -248,10 +248,10 @@ impl FingerAnalysis {
     /// `confidence` ([`region::JointRegion`], from every X-ray's lengths);
     /// `None` with too few X-rays or a singular covariance. O(n).
     pub fn joint_region(&self, confidence: f64) -> Option<region::JointRegion> {
-        let hands: Option<Vec<Vec<f64>>> = self
+        let hands: Option<Vec<region::Position>> = self
             .xrays
             .iter()
-            .map(|x| region::positions(&x.lengths))
+            .map(|x| region::Position::of(&x.lengths))
             .collect();
         region::JointRegion::of(&hands?, confidence)
     }

@@ -52,31 +52,68 @@ pub fn positions(segments: &[f64]) -> Option<Vec<f64>> {
     Some(out)
 }
 
+/// [`positions`] held inline (p is at most 2), so a region over n hands is
+/// built without n heap vectors.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Position {
+    values: [f64; 2],
+    p: usize,
+}
+
+impl Position {
+    /// As [`positions`]; also `None` for more than three segments (p over 2,
+    /// which [`JointRegion::of`] refuses anyway).
+    pub(crate) fn of(segments: &[f64]) -> Option<Position> {
+        if !(2..=3).contains(&segments.len())
+            || segments.iter().any(|&s| !(s.is_finite() && s > 0.0))
+        {
+            return None;
+        }
+        let total: f64 = segments.iter().sum();
+        let mut values = [0.0; 2];
+        let mut run = 0.0;
+        for (v, s) in values.iter_mut().zip(&segments[..segments.len() - 1]) {
+            run += s;
+            *v = run / total;
+        }
+        Some(Position {
+            values,
+            p: segments.len() - 1,
+        })
+    }
+}
+
+impl AsRef<[f64]> for Position {
+    fn as_ref(&self) -> &[f64] {
+        &self.values[..self.p]
+    }
+}
+
 impl JointRegion {
     /// The region from the reference hands' position vectors `hands` (each of
     /// the same length p, 1 or 2) at `confidence`. `None` when p is not 1 or 2,
     /// the vectors differ in length or hold a value that is not finite, there
     /// are not more hands than p (n - p degrees of freedom), `confidence` is
     /// not inside (0, 1), or S is singular.
-    pub fn of(hands: &[Vec<f64>], confidence: f64) -> Option<JointRegion> {
-        let p = hands.first()?.len();
+    pub fn of<H: AsRef<[f64]>>(hands: &[H], confidence: f64) -> Option<JointRegion> {
+        let p = hands.first()?.as_ref().len();
         let n = hands.len();
         if !(p == 1 || p == 2)
             || n <= p
             || !(confidence > 0.0 && confidence < 1.0)
             || hands
                 .iter()
-                .any(|h| h.len() != p || h.iter().any(|x| !x.is_finite()))
+                .any(|h| h.as_ref().len() != p || h.as_ref().iter().any(|x| !x.is_finite()))
         {
             return None;
         }
         let mean: Vec<f64> = (0..p)
-            .map(|k| hands.iter().map(|h| h[k]).sum::<f64>() / n as f64)
+            .map(|k| hands.iter().map(|h| h.as_ref()[k]).sum::<f64>() / n as f64)
             .collect();
         let cov = |a: usize, b: usize| {
             hands
                 .iter()
-                .map(|h| (h[a] - mean[a]) * (h[b] - mean[b]))
+                .map(|h| (h.as_ref()[a] - mean[a]) * (h.as_ref()[b] - mean[b]))
                 .sum::<f64>()
                 / (n - 1) as f64
         };
@@ -193,8 +230,47 @@ mod tests {
     }
 
     #[test]
+    fn inline_positions_are_the_vectors_and_give_the_same_region() {
+        // Position (inline, for building a region over many hands) against
+        // positions (a vector): the same values, refusals and region.
+        let thumb = [0.9, 0.7];
+        let finger = [339.96, 188.83, 169.67];
+        for seg in [&thumb[..], &finger[..]] {
+            assert_eq!(
+                Position::of(seg).unwrap().as_ref(),
+                &positions(seg).unwrap()[..]
+            );
+        }
+        for bad in [
+            &[1.0][..],
+            &[1.0, f64::NAN],
+            &[1.0, -1.0, 2.0],
+            &[1.0, 1.0, 1.0, 1.0],
+        ] {
+            assert!(Position::of(bad).is_none());
+        }
+        let mut g = rng::stream(7, 1, 0);
+        let hands: Vec<Vec<f64>> = (0..40)
+            .map(|_| {
+                let j: Vec<f64> = (0..3)
+                    .map(|_| 1.0 + rng::standard_normal(&mut g).abs())
+                    .collect();
+                j
+            })
+            .collect();
+        let vectors: Vec<Vec<f64>> = hands.iter().map(|h| positions(h).unwrap()).collect();
+        let inline: Vec<Position> = hands.iter().map(|h| Position::of(h).unwrap()).collect();
+        let (a, b) = (
+            JointRegion::of(&vectors, 0.95),
+            JointRegion::of(&inline, 0.95),
+        );
+        assert!(a.is_some());
+        assert_eq!(a, b);
+    }
+
+    #[test]
     fn bad_input_gives_no_region() {
-        assert_eq!(JointRegion::of(&[], 0.95), None);
+        assert_eq!(JointRegion::of::<Vec<f64>>(&[], 0.95), None);
         assert_eq!(
             JointRegion::of(&[vec![0.5, 0.7], vec![0.6, 0.8]], 0.95),
             None

@@ -431,8 +431,9 @@ fn write(dir: &Path, files: &[OutputFile]) -> Result<(), Error> {
     report::writer::write_all(dir, files)?;
     let names: Vec<String> = files.iter().map(|f| f.path.display().to_string()).collect();
     eprintln!(
-        "phalanx: wrote {} files to {}: {}",
+        "phalanx: wrote {} file{} to {}: {}",
         files.len(),
+        if files.len() == 1 { "" } else { "s" },
         dir.display(),
         names.join(", ")
     );
