@@ -9,7 +9,7 @@
 //! the mesh is closed around them.
 
 use glam::{DVec2, DVec3};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// A point where the plane cuts a mesh edge: welded vertices `a`, `b` and
 /// the fraction `t` from a to b; `at` in the plane's 2-D frame.
@@ -79,7 +79,7 @@ pub(crate) fn loops(
     let pos = |v: u32| positions[welded[v as usize] as usize];
     let dist = |v: u32| (pos(v) - plane.origin).dot(plane.normal);
     // Directed segments between edge keys; each edge key's crossing point.
-    let mut points: HashMap<(u32, u32), Cut> = HashMap::new();
+    let mut points: HashMap<(u32, u32), Cut> = HashMap::default();
     let mut segments: Vec<[(u32, u32); 2]> = Vec::new();
     // A segment of zero length (the plane through a vertex) has no direction of its own.
     let mut degenerate: Vec<bool> = Vec::new();
@@ -122,8 +122,8 @@ pub(crate) fn loops(
             }
         }
     }
-    let mut starting: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-    let mut ending: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+    let mut starting: HashMap<(u32, u32), Vec<usize>> = HashMap::default();
+    let mut ending: HashMap<(u32, u32), Vec<usize>> = HashMap::default();
     for (i, s) in segments.iter().enumerate() {
         starting.entry(s[0]).or_default().push(i);
         ending.entry(s[1]).or_default().push(i);

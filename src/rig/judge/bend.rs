@@ -38,9 +38,9 @@ use crate::analysis::placement::Joint;
 use crate::rig::read::FingerChain;
 use crate::rig::read::weights::SkinWeights;
 use glam::DVec3;
+use rustc_hash::FxHashSet;
 use schemars::JsonSchema;
 use serde::Serialize;
-use std::collections::HashSet;
 
 /// A joint further than this from its bend is flagged, in mm, unless
 /// `--bend-tolerance` says otherwise.
@@ -169,14 +169,12 @@ pub fn finger_vertices<'a>(
     nodes: &[usize],
     before: &[usize],
 ) -> Vec<FingerVertex<'a>> {
-    let mut seen = HashSet::new();
+    let mut seen = FxHashSet::default();
     let mut out = Vec::new();
+    let wanted = NodeMask::of(nodes, before);
     for p in &weights.primitives {
         for (pos, infl) in p.rest.iter().zip(&p.influences) {
-            if !infl
-                .iter()
-                .any(|(n, _)| nodes.contains(n) || before.contains(n))
-            {
+            if !wanted.any(infl) {
                 continue;
             }
             if !seen.insert(pos.to_array().map(|x| (x + 0.0).to_bits())) {
@@ -207,12 +205,10 @@ pub fn finger_vertices_at(
 ) -> Vec<(usize, usize, f64)> {
     let mut all = Vec::new();
     let mut located = Vec::new();
+    let wanted = NodeMask::of(nodes, before);
     for (pi, p) in weights.primitives.iter().enumerate() {
         for (v, (pos, infl)) in p.rest.iter().zip(&p.influences).enumerate() {
-            if infl
-                .iter()
-                .any(|(n, _)| nodes.contains(n) || before.contains(n))
-            {
+            if wanted.any(infl) {
                 let (u, radial) = axis.locate(*pos);
                 all.push((pi, v, u));
                 located.push(FingerVertex {
@@ -230,6 +226,28 @@ pub fn finger_vertices_at(
         .filter(|(_, f)| f.radial <= radius)
         .map(|(a, _)| a)
         .collect()
+}
+
+/// The nodes of a finger and those before it, as a mask indexed by node: one
+/// look-up per influence instead of a search of both lists.
+struct NodeMask(Vec<bool>);
+
+impl NodeMask {
+    fn of(nodes: &[usize], before: &[usize]) -> NodeMask {
+        let len = nodes.iter().chain(before).max().map_or(0, |&m| m + 1);
+        let mut mask = vec![false; len];
+        for &n in nodes.iter().chain(before) {
+            mask[n] = true;
+        }
+        NodeMask(mask)
+    }
+
+    /// True when any of `influences` is on one of the nodes.
+    fn any(&self, influences: &[(usize, f64)]) -> bool {
+        influences
+            .iter()
+            .any(|(n, _)| self.0.get(*n).copied().unwrap_or(false))
+    }
 }
 
 /// 1.5 times the median distance from the axis of the vertices whose largest
