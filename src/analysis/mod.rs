@@ -481,11 +481,30 @@ pub fn analyse(data: &Dataset, settings: &Settings) -> Analysis {
     analyse_with(data, settings, &bootstrap::NoProgress)
 }
 
+/// [`analyse`] without the bootstrap: every statistic but the percentile and BCa
+/// intervals, which are left empty (`None`). For the rig's judgement, which reads the
+/// means, spreads, prediction intervals and X-ray values alone (an audit of a rig
+/// against the 910-X-ray atlas spent most of its time on a bootstrap it never read).
+/// Cost: O(n q).
+pub fn analyse_without_bootstrap(data: &Dataset, settings: &Settings) -> Analysis {
+    analyse_inner(data, settings, &bootstrap::NoProgress, false)
+}
+
 /// [`analyse`] reporting bootstrap progress (in resamples, over all groups) to `progress`.
 pub fn analyse_with(
     data: &Dataset,
     settings: &Settings,
     progress: &dyn bootstrap::Progress,
+) -> Analysis {
+    analyse_inner(data, settings, progress, true)
+}
+
+/// [`analyse_with`], with the bootstrap intervals only when `boot`.
+fn analyse_inner(
+    data: &Dataset,
+    settings: &Settings,
+    progress: &dyn bootstrap::Progress,
+    boot: bool,
 ) -> Analysis {
     let unit = data.unit().map(str::to_string);
     let blocks = blocks(data);
@@ -494,7 +513,7 @@ pub fn analyse_with(
         .iter()
         .filter(|g| {
             let n = blocks[g[0]].xrays.len();
-            matches!(Plan::choose(n, settings.resamples), Plan::Random { .. })
+            boot && matches!(Plan::choose(n, settings.resamples), Plan::Random { .. })
         })
         .count();
     progress.start((random_groups * settings.resamples) as u64);
@@ -504,8 +523,17 @@ pub fn analyse_with(
         let cols: Vec<Vec<Vec<f64>>> = group.iter().map(|&i| blocks[i].columns()).collect();
         let flat: Vec<&[f64]> = cols.iter().flatten().map(Vec::as_slice).collect();
         let key = blocks[group[0]].key();
-        let dist =
-            bootstrap::resample_means_with(&flat, settings.resamples, settings.seed, key, progress);
+        let dist = if boot {
+            bootstrap::resample_means_with(&flat, settings.resamples, settings.seed, key, progress)
+        } else {
+            // The plan the bootstrap would follow, with no resample drawn.
+            let n = flat.first().map_or(0, |c| c.len());
+            bootstrap::Distribution {
+                plan: Plan::choose(n, settings.resamples),
+                weights: Vec::new(),
+                means: vec![Vec::new(); flat.len()],
+            }
+        };
         let mut offset = 0;
         for (&i, bcols) in group.iter().zip(&cols) {
             let b = &blocks[i];
@@ -517,8 +545,8 @@ pub fn analyse_with(
                 .zip(bcols.par_iter())
                 .enumerate()
                 .map(|(k, (&q, col))| {
-                    let mut s =
-                        quantity_stats(q, col, &dist.means[offset + k], &dist.weights, settings);
+                    let boot = boot.then(|| (dist.means[offset + k].as_slice(), &dist.weights[..]));
+                    let mut s = quantity_stats(q, col, boot, settings);
                     if !b.main {
                         s.notes.push(format!(
                             "from the {} of {} X-rays whose metacarpal is measured",
@@ -594,8 +622,7 @@ pub(crate) fn xray_values(row: &Row) -> XrayValues {
 pub(crate) fn quantity_stats(
     name: Quantity,
     values: &[f64],
-    boot: &[f64],
-    weights: &[f64],
+    boot: Option<(&[f64], &[f64])>,
     settings: &Settings,
 ) -> QuantityStats {
     let n = values.len();
@@ -621,11 +648,18 @@ pub(crate) fn quantity_stats(
             "every X-ray gives the same value: every interval collapses to that value".into(),
         );
         Intervals::point(mean)
-    } else {
+    } else if let Some((boot, weights)) = boot {
         let sorted = Sorted::new(boot, weights);
         let (intervals, why) = Intervals::of_mean(values, mean, sd.unwrap_or(0.0), &sorted, c);
         notes.extend(why.map(str::to_string));
         intervals
+    } else {
+        let sd = sd.unwrap_or(0.0);
+        Intervals {
+            ci_t: describe::t_interval(mean, sd, n, c),
+            pi: describe::prediction_interval(mean, sd, n, c),
+            ..Intervals::NONE
+        }
     };
     QuantityStats {
         name,

@@ -417,3 +417,42 @@ fn segments_read_and_write_as_their_values() {
     assert_eq!(schema["properties"]["lengths"]["type"], "array");
     assert_eq!(schema["properties"]["relative"]["items"]["type"], "number");
 }
+
+#[test]
+fn the_analysis_without_bootstrap_is_the_analysis_less_its_bootstrap_intervals() {
+    // The rig's judgement reads this one: every statistic must be the full analysis's,
+    // bit for bit, but the percentile and BCa intervals, which are empty. Over the paper's
+    // X-rays (exact enumeration) and over 40 synthetic ones (random resamples).
+    let bytes = crate::synth::generate(&crate::synth::SynthOptions {
+        xrays: 40,
+        seed: 3,
+        metadata: false,
+    });
+    let synthetic = Dataset::from_bytes("synthetic.csv", &bytes).unwrap();
+    for d in [paper(), synthetic] {
+        let s = Settings::default();
+        let (full, lean) = (analyse(&d, &s), analyse_without_bootstrap(&d, &s));
+        assert_eq!(full.fingers.len(), lean.fingers.len());
+        for (f, g) in full.fingers.iter().zip(&lean.fingers) {
+            assert_eq!((f.finger, f.n, f.bootstrap), (g.finger, g.n, g.bootstrap));
+            let lengths = |a: &FingerAnalysis| -> Vec<Vec<f64>> {
+                a.xrays.iter().map(|x| x.lengths.to_vec()).collect()
+            };
+            assert_eq!(lengths(f), lengths(g));
+            assert_eq!(f.quantities.len(), g.quantities.len());
+            for (q, r) in f.quantities.iter().zip(&g.quantities) {
+                assert_eq!(
+                    (q.name, q.mean, q.sd, q.median, q.min, q.max),
+                    (r.name, r.mean, r.sd, r.median, r.min, r.max)
+                );
+                assert_eq!(q.intervals.ci_t, r.intervals.ci_t, "{:?}", q.name);
+                assert_eq!(q.intervals.pi, r.intervals.pi, "{:?}", q.name);
+                assert!(q.intervals.ci_percentile.is_some(), "{:?}", q.name);
+                assert_eq!(
+                    (r.intervals.ci_percentile, r.intervals.ci_bca),
+                    (None, None)
+                );
+            }
+        }
+    }
+}

@@ -192,7 +192,8 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     let dataset = Dataset::load(req.data)?;
     analysis::budget::check_bootstrap(dataset.xray_count(), req.settings.resamples)
         .map_err(Error::Usage)?;
-    let analysis = analysis::analyse(&dataset, &req.settings);
+    // The judgement reads no bootstrap interval: the analysis is computed without one.
+    let analysis = analysis::analyse_without_bootstrap(&dataset, &req.settings);
     refuse_unlike_tips(
         &JudgeOptions::new(
             req.options.rig_tip,
@@ -213,7 +214,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
             let atlas = Dataset::load(path)?;
             analysis::budget::check_bootstrap(atlas.xray_count(), req.settings.resamples)
                 .map_err(Error::Usage)?;
-            Some(analysis::analyse(&atlas, &req.settings))
+            Some(analysis::analyse_without_bootstrap(&atlas, &req.settings))
         }
         None => None,
     };
@@ -375,14 +376,14 @@ pub fn fix_in_memory(
     let dataset = Dataset::load(data)?;
     analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)
         .map_err(Error::Usage)?;
-    let analysis = analysis::analyse(&dataset, &settings);
+    let analysis = analysis::analyse_without_bootstrap(&dataset, &settings);
     let atlas = match metacarpals {
         Some(path) => {
             let atlas = Dataset::load(path)?;
             analysis::budget::check_bootstrap(atlas.xray_count(), settings.resamples)
                 .map_err(Error::Usage)?;
             Some((
-                analysis::analyse(&atlas, &settings),
+                analysis::analyse_without_bootstrap(&atlas, &settings),
                 wrist_ratios_beside(path)?,
             ))
         }

@@ -352,7 +352,7 @@ fn synthetic(n: usize) -> FingerAnalysis {
                     describe::mean(&sub).unwrap_or(0.0)
                 })
                 .collect();
-            quantity_stats(q, &values, &boot, &[1.0 / 64.0; 64], &settings)
+            quantity_stats(q, &values, Some((&boot, &[1.0 / 64.0; 64])), &settings)
         })
         .collect();
     FingerAnalysis {
