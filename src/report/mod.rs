@@ -51,6 +51,30 @@ pub fn render(
     formats: Formats,
     templates: &Templates,
 ) -> Result<Vec<OutputFile>, Error> {
+    // The pages and plots, and stats.json (at 100,000 X-rays 150 MB of JSON, about 0.3 s),
+    // are made side by side; the files keep their order.
+    let (pages, json) = rayon::join(
+        || pages(inputs, formats, templates),
+        || {
+            formats
+                .json
+                .then(|| json::stats(inputs.analysis, inputs.groups))
+                .transpose()
+        },
+    );
+    let mut files = pages?;
+    if let Some(json) = json? {
+        files.push(OutputFile::new("stats.json", json));
+    }
+    Ok(files)
+}
+
+/// The HTML and Markdown pages with their plots and figures, as `formats` asks.
+fn pages(
+    inputs: &ReportInputs<'_>,
+    formats: Formats,
+    templates: &Templates,
+) -> Result<Vec<OutputFile>, Error> {
     let mut files = Vec::new();
     if formats.html || formats.markdown {
         let mut plots = plots::all_named(inputs.analysis, inputs.placements, &named(inputs))?;
@@ -92,12 +116,6 @@ pub fn render(
         if let Some(d) = inputs.deform {
             files.extend(d.figures.iter().cloned());
         }
-    }
-    if formats.json {
-        files.push(OutputFile::new(
-            "stats.json",
-            json::stats(inputs.analysis, inputs.groups)?,
-        ));
     }
     Ok(files)
 }
