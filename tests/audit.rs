@@ -977,3 +977,34 @@ fn what_is_not_a_rig_is_named_and_images_are_checked_at_the_door() {
         .ok()
         .stderr_has("images referenced by file name stay external");
 }
+
+#[test]
+fn the_audit_draws_no_bootstrap_so_no_bootstrap_budget_refuses_it() {
+    // 10,001 X-rays x 1,000,000 resamples is past the 10^10 resample-X-ray pairs a
+    // bootstrap may take (src/analysis/budget.rs): `stats` refuses it, while the audit,
+    // whose judgement reads no bootstrap interval, runs, and gives the verdicts it gives
+    // at the default resamples (the verdicts cannot depend on them).
+    let wd = Workdir::with_paper_data();
+    wd.write("hand.glb", build(&HandSpec::new(Naming::Mixamo)));
+    wd.run(&[
+        "synth", "--xrays", "10001", "--seed", "2", "--out", "big.csv",
+    ])
+    .ok();
+    wd.run(&["stats", "--data", "big.csv", "--resamples", "1000000"])
+        .data_error()
+        .stderr_has("resample-X-ray pairs");
+    let audit = |extra: &[&str]| {
+        let mut args = vec![
+            "audit", "hand.glb", "--data", "big.csv", "--tip", "bone", "--format", "json",
+        ];
+        args.extend_from_slice(extra);
+        let run = wd.run(&args);
+        assert_ne!(run.code, Some(2), "{}", run.stderr);
+        run.json()
+    };
+    let (many, default) = (audit(&["--resamples", "1000000"]), audit(&[]));
+    assert_eq!(many["settings"]["resamples"], 1_000_000);
+    // The verdicts (everything but the settings echoed) are the default run's.
+    assert!(many["rig"] == default["rig"], "the rig's audit differs");
+    assert_eq!(many["fingers_outside"], default["fingers_outside"]);
+}

@@ -190,9 +190,8 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         )));
     }
     let dataset = Dataset::load(req.data)?;
-    analysis::budget::check_bootstrap(dataset.xray_count(), req.settings.resamples)
-        .map_err(Error::Usage)?;
-    // The judgement reads no bootstrap interval: the analysis is computed without one.
+    // The judgement reads no bootstrap interval: the analysis is computed without one
+    // (so no bootstrap budget applies either).
     let analysis = analysis::analyse_without_bootstrap(&dataset, &req.settings);
     refuse_unlike_tips(
         &JudgeOptions::new(
@@ -212,8 +211,6 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     let atlas = match req.metacarpals {
         Some(path) => {
             let atlas = Dataset::load(path)?;
-            analysis::budget::check_bootstrap(atlas.xray_count(), req.settings.resamples)
-                .map_err(Error::Usage)?;
             Some(analysis::analyse_without_bootstrap(&atlas, &req.settings))
         }
         None => None,
@@ -374,14 +371,10 @@ pub fn fix_in_memory(
     let map = map.map(NameMap::load).transpose()?;
     let loaded = Rig::load(rig, map.as_ref())?;
     let dataset = Dataset::load(data)?;
-    analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)
-        .map_err(Error::Usage)?;
     let analysis = analysis::analyse_without_bootstrap(&dataset, &settings);
     let atlas = match metacarpals {
         Some(path) => {
             let atlas = Dataset::load(path)?;
-            analysis::budget::check_bootstrap(atlas.xray_count(), settings.resamples)
-                .map_err(Error::Usage)?;
             Some((
                 analysis::analyse_without_bootstrap(&atlas, &settings),
                 wrist_ratios_beside(path)?,
