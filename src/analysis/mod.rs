@@ -523,17 +523,14 @@ fn analyse_inner(
         let cols: Vec<Vec<Vec<f64>>> = group.iter().map(|&i| blocks[i].columns()).collect();
         let flat: Vec<&[f64]> = cols.iter().flatten().map(Vec::as_slice).collect();
         let key = blocks[group[0]].key();
-        let dist = if boot {
+        let dist = boot.then(|| {
             bootstrap::resample_means_with(&flat, settings.resamples, settings.seed, key, progress)
-        } else {
-            // The plan the bootstrap would follow, with no resample drawn.
-            let n = flat.first().map_or(0, |c| c.len());
-            bootstrap::Distribution {
-                plan: Plan::choose(n, settings.resamples),
-                weights: Vec::new(),
-                means: vec![Vec::new(); flat.len()],
-            }
-        };
+        });
+        // Without the bootstrap, the plan it would follow, with no resample drawn.
+        let plan = dist.as_ref().map_or_else(
+            || Plan::choose(flat.first().map_or(0, |c| c.len()), settings.resamples),
+            |d| d.plan,
+        );
         let mut offset = 0;
         for (&i, bcols) in group.iter().zip(&cols) {
             let b = &blocks[i];
@@ -545,7 +542,9 @@ fn analyse_inner(
                 .zip(bcols.par_iter())
                 .enumerate()
                 .map(|(k, (&q, col))| {
-                    let boot = boot.then(|| (dist.means[offset + k].as_slice(), &dist.weights[..]));
+                    let boot = dist
+                        .as_ref()
+                        .map(|d| (d.means[offset + k].as_slice(), &d.weights[..]));
                     let mut s = quantity_stats(q, col, boot, settings);
                     if !b.main {
                         s.notes.push(format!(
@@ -557,7 +556,7 @@ fn analyse_inner(
                     s
                 })
                 .collect();
-            plans[i] = Some(dist.plan);
+            plans[i] = Some(plan);
             offset += bcols.len();
         }
     }
@@ -654,12 +653,7 @@ pub(crate) fn quantity_stats(
         notes.extend(why.map(str::to_string));
         intervals
     } else {
-        let sd = sd.unwrap_or(0.0);
-        Intervals {
-            ci_t: describe::t_interval(mean, sd, n, c),
-            pi: describe::prediction_interval(mean, sd, n, c),
-            ..Intervals::NONE
-        }
+        Intervals::parametric(mean, sd.unwrap_or(0.0), n, c)
     };
     QuantityStats {
         name,

@@ -37,19 +37,10 @@ pub struct JointRegion {
 /// The relative joint positions u of a finger with segments `segments` (J1,
 /// J2[, J3], MCP to tip): the cumulative shares of the length before the last
 /// segment, (J~1) for the thumb and (J~1, J~1 + J~2) for a finger. `None` for
-/// fewer than two segments, or segments that are not finite and positive.
+/// fewer than two segments or more than three, or segments that are not finite
+/// and positive.
 pub fn positions(segments: &[f64]) -> Option<Vec<f64>> {
-    if segments.len() < 2 || segments.iter().any(|&s| !(s.is_finite() && s > 0.0)) {
-        return None;
-    }
-    let total: f64 = segments.iter().sum();
-    let mut out = Vec::with_capacity(segments.len() - 1);
-    let mut run = 0.0;
-    for s in &segments[..segments.len() - 1] {
-        run += s;
-        out.push(run / total);
-    }
-    Some(out)
+    Position::of(segments).map(|u| u.as_ref().to_vec())
 }
 
 /// [`positions`] held inline (p is at most 2), so a region over n hands is
@@ -61,8 +52,7 @@ pub(crate) struct Position {
 }
 
 impl Position {
-    /// As [`positions`]; also `None` for more than three segments (p over 2,
-    /// which [`JointRegion::of`] refuses anyway).
+    /// As [`positions`].
     pub(crate) fn of(segments: &[f64]) -> Option<Position> {
         if !(2..=3).contains(&segments.len())
             || segments.iter().any(|&s| !(s.is_finite() && s > 0.0))
@@ -227,6 +217,7 @@ mod tests {
         assert_eq!(positions(&[1.0]), None);
         assert_eq!(positions(&[1.0, f64::NAN]), None);
         assert_eq!(positions(&[1.0, -1.0, 2.0]), None);
+        assert_eq!(positions(&[1.0, 1.0, 1.0, 1.0]), None);
     }
 
     #[test]

@@ -62,12 +62,22 @@ impl Intervals {
             Err(reason) => (None, Some(reason)),
         };
         let intervals = Intervals {
-            ci_t: describe::t_interval(mean, sd, n, confidence),
             ci_percentile: Some(bootstrap::percentile_interval(boot, confidence)),
             ci_bca,
-            pi: describe::prediction_interval(mean, sd, n, confidence),
+            ..Intervals::parametric(mean, sd, n, confidence)
         };
         (intervals, why)
+    }
+
+    /// The t interval and the prediction interval of a mean of n values with SD `sd` at
+    /// level `confidence`, the bootstrap intervals left undefined: the two
+    /// [`of_mean`](Self::of_mean) gives that need no resample. O(1).
+    pub fn parametric(mean: f64, sd: f64, n: usize, confidence: f64) -> Intervals {
+        Intervals {
+            ci_t: describe::t_interval(mean, sd, n, confidence),
+            pi: describe::prediction_interval(mean, sd, n, confidence),
+            ..Intervals::NONE
+        }
     }
 
     /// The four in table order: t, percentile, BCa, prediction.
