@@ -245,15 +245,24 @@ impl FingerAnalysis {
     }
 
     /// The prediction region of this finger's relative joint positions at
-    /// `confidence` ([`region::JointRegion`], from every X-ray's lengths);
-    /// `None` with too few X-rays or a singular covariance. O(n).
-    pub fn joint_region(&self, confidence: f64) -> Option<region::JointRegion> {
-        let hands: Option<Vec<region::Position>> = self
-            .xrays
+    /// `confidence` ([`region::JointRegion`], from every X-ray's lengths),
+    /// its shape borrowed from `prior` (`None`: the X-rays' own); `None`
+    /// with too few X-rays or a singular covariance. O(n).
+    pub fn joint_region(
+        &self,
+        confidence: f64,
+        prior: Option<region::ShapePrior>,
+    ) -> Option<region::JointRegion> {
+        region::JointRegion::with_prior(&self.positions()?, confidence, prior)
+    }
+
+    /// Every X-ray's relative joint positions u ([`region::positions`]);
+    /// `None` when one X-ray's lengths give none. O(n).
+    pub fn positions(&self) -> Option<Vec<region::Position>> {
+        self.xrays
             .iter()
             .map(|x| region::Position::of(&x.lengths))
-            .collect();
-        region::JointRegion::of(&hands?, confidence)
+            .collect()
     }
 }
 
@@ -325,6 +334,18 @@ pub struct WidthReason {
 }
 
 impl Analysis {
+    /// The prior shapes of the joint regions from this analysis as the prior
+    /// cohort ([`region::ShapePriors`]): each finger's correlation of u,
+    /// weighted as `hands` hands. O(X-rays).
+    pub fn shape_priors(&self, hands: f64) -> region::ShapePriors {
+        let fingers: Vec<(Finger, Vec<region::Position>)> = self
+            .fingers
+            .iter()
+            .filter_map(|f| f.positions().map(|u| (f.finger, u)))
+            .collect();
+        region::ShapePriors::of_hands(&self.dataset.path, &fingers, hands)
+    }
+
     /// The t and normal quantiles that say why the intervals are as wide as
     /// they are at this data's n ([`WidthReason`]). O(fingers).
     pub fn width_reason(&self) -> WidthReason {

@@ -114,6 +114,11 @@ pub(crate) struct Args {
     /// [default: data/atlas/measurements.csv, when it exists]
     #[arg(long, value_name = "DATASET")]
     metacarpals: Option<PathBuf>,
+    /// How many hands the atlas's shape of each joint region counts as (--metacarpals' dataset):
+    /// its correlation of the PIP's and DIP's positions is pooled with the X-rays' own, their
+    /// variances kept; 0 judges on the X-rays' covariance alone (0 to 100000)
+    #[arg(long, value_name = "N", default_value_t = crate::analysis::region::PRIOR_HANDS)]
+    prior_hands: f64,
     /// Exit with status 1 when a finger is outside the joint region (without a tip, J2/J1's
     /// prediction interval), or an MCP judged from its CMC or wrist outside its prediction interval
     #[arg(long)]
@@ -202,6 +207,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         metacarpals: metacarpals.as_deref(),
         mcp_from_atlas: args.fix_mcp == FixMcp::Atlas,
         moves: args.moves.is_some(),
+        prior_hands: prior_hands(args.prior_hands)?,
     })?;
     if metacarpals.is_none()
         && audit
@@ -322,7 +328,21 @@ fn options(args: &Args) -> Result<AuditOptions, Error> {
         )?,
         measure_tip: args.tip == Tip::Auto,
         hold: args.hold.clone(),
+        shape: None,
     })
+}
+
+/// `--prior-hands`, checked: a finite number of hands from 0 to 100,000.
+pub(crate) fn prior_hands(n: f64) -> Result<f64, Error> {
+    if n.is_finite() && (0.0..=100_000.0).contains(&n) {
+        Ok(n)
+    } else {
+        Err(Error::Usage(format!(
+            "--prior-hands {n}: give a number of hands from 0 (the X-rays' own shape) to 100000 \
+             (default {})",
+            crate::analysis::region::PRIOR_HANDS
+        )))
+    }
 }
 
 /// What `--brief` says of the warnings it does not print, on the result line.

@@ -37,6 +37,10 @@ pub struct AuditRequest<'a> {
     /// `--moves`: list the nodes the fix moves ([`super::fix::moves`]), for a rig
     /// of any format (an FBX rig cannot be fixed in place).
     pub moves: bool,
+    /// `--prior-hands`: the weight, in hands, of the shape each finger's joint
+    /// region borrows from `metacarpals` (the atlas;
+    /// [`crate::analysis::region::ShapePriors`]); 0 keeps the X-rays' own.
+    pub prior_hands: f64,
 }
 
 /// A finished audit.
@@ -215,6 +219,8 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         }
         None => None,
     };
+    let options = with_shape(&req.options, atlas.as_ref(), req.prior_hands);
+    let options = &options;
     // The atlas's landmarks beside its measurements give the wrist-to-MCP
     // ratios of the wrist judgement; without them it is skipped with a note.
     let wrist = match req.metacarpals {
@@ -226,7 +232,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         &rig.chains,
         &rig.notes,
         &analysis,
-        &req.options,
+        options,
         rig.weights.as_ref(),
     );
     if let Some(atlas) = &atlas {
@@ -234,7 +240,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
             atlas,
             wrist.as_ref(),
             &analysis,
-            &req.options,
+            options,
             rig.weights.as_ref(),
         );
     }
@@ -250,12 +256,8 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         };
         let placed = match &atlas {
             Some(_) if req.mcp_from_atlas => {
-                let placed = judge::ray::mcp_from_base(
-                    &audited,
-                    &analysis,
-                    &audited.tips,
-                    &req.options.hold,
-                );
+                let placed =
+                    judge::ray::mcp_from_base(&audited, &analysis, &audited.tips, &options.hold);
                 show_placed(&mut audited, &placed);
                 placed
             }
@@ -273,14 +275,13 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     };
     let fix = match (req.fix, fixed) {
         (Some(out), Some(fixed)) => {
-            let mut reaudit =
-                write_checked(&rig, &fixed, out, map.as_ref(), &analysis, &req.options)?;
+            let mut reaudit = write_checked(&rig, &fixed, out, map.as_ref(), &analysis, options)?;
             if let Some(atlas) = &atlas {
                 reaudit.judge_rays(
                     atlas,
                     wrist.as_ref(),
                     &analysis,
-                    &req.options,
+                    options,
                     rig.weights.as_ref(),
                 );
             }
@@ -303,6 +304,17 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         moves,
         fbx: rig.file.fbx.clone(),
     })
+}
+
+/// `options` with each finger's joint region shaped by `atlas`'s correlations
+/// weighted as `hands` hands ([`Analysis::shape_priors`]); as given without an
+/// atlas, with a weight of 0, or when `options` already has a shape.
+pub fn with_shape(options: &AuditOptions, atlas: Option<&Analysis>, hands: f64) -> AuditOptions {
+    let mut options = options.clone();
+    if options.shape.is_none() && hands > 0.0 {
+        options.shape = atlas.map(|a| a.shape_priors(hands));
+    }
+    options
 }
 
 /// With `--fix-mcp atlas`, what the audit says each finger's fix does is
@@ -409,10 +421,14 @@ fn fix_loaded(
 ) -> Result<FixedInMemory, Error> {
     // `audit --fix OUT.glb` with its default options: the same judgement
     // (skin tips, bends from the skin weights) and the same fix.
-    let options = AuditOptions {
-        soft_tissue: soft_tissue.clone(),
-        ..AuditOptions::default()
-    };
+    let options = with_shape(
+        &AuditOptions {
+            soft_tissue: soft_tissue.clone(),
+            ..AuditOptions::default()
+        },
+        atlas.map(|(a, _)| a),
+        crate::analysis::region::PRIOR_HANDS,
+    );
     refuse_unlike_tips(
         &JudgeOptions::new(options.rig_tip, options.soft_tissue.clone(), analysis),
         analysis,

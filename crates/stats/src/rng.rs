@@ -55,6 +55,38 @@ pub fn standard_normal(rng: &mut ChaCha8Rng) -> f64 {
     (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
 }
 
+/// A chi-squared draw with `df` > 0 degrees of freedom: 2 Gamma(df / 2, 1) by
+/// Marsaglia and Tsang's squeeze method (ACM TOMS 26(3), 2000), boosted by
+/// U^(1/a) for a shape a < 1. Written out here, as [`index`] is, because the
+/// algorithm `rand_distr` uses may change between its versions, and one seed
+/// must give the same numbers on every machine and version. O(1) expected
+/// (about 1.03 normal draws per call for a >= 1). NaN for `df` <= 0 or not finite.
+pub fn chi_squared(rng: &mut ChaCha8Rng, df: f64) -> f64 {
+    if !(df.is_finite() && df > 0.0) {
+        return f64::NAN;
+    }
+    let shape = df / 2.0;
+    let (a, boost) = if shape < 1.0 {
+        (shape + 1.0, unit_open(rng).powf(1.0 / shape))
+    } else {
+        (shape, 1.0)
+    };
+    let d = a - 1.0 / 3.0;
+    let c = 1.0 / (9.0 * d).sqrt();
+    loop {
+        let x = standard_normal(rng);
+        let v = 1.0 + c * x;
+        if v <= 0.0 {
+            continue;
+        }
+        let v = v * v * v;
+        let u = unit_open(rng);
+        if u < 1.0 - 0.0331 * x.powi(4) || u.ln() < 0.5 * x * x + d * (1.0 - v + v.ln()) {
+            return 2.0 * d * v * boost;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -104,5 +136,28 @@ mod tests {
         let second: Vec<u32> = (0..4).map(|_| index(&mut again, 1000)).collect();
         assert_eq!(first, second);
         assert!(first.iter().all(|&i| i < 1000));
+    }
+
+    #[test]
+    fn chi_squared_has_its_mean_and_variance() {
+        // chi2(k): mean k, variance 2k; over 40,000 draws the mean's SE is
+        // sqrt(2k / 40000), so 4 SEs allow 0.02 sqrt(2k); the variance's
+        // relative SE is about sqrt(2 / 40000 (1 + 6/k)) (the fourth moment).
+        for df in [1.0, 3.0, 4.0, 9.0, 908.0] {
+            let mut r = stream(11, 3, df as u64);
+            let xs: Vec<f64> = (0..40_000).map(|_| chi_squared(&mut r, df)).collect();
+            let n = xs.len() as f64;
+            let mean = xs.iter().sum::<f64>() / n;
+            let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+            assert!(
+                (mean - df).abs() < 0.02 * (2.0 * df).sqrt(),
+                "df {df}: mean {mean}"
+            );
+            let rel = 4.0 * (2.0 / n * (1.0 + 6.0 / df)).sqrt();
+            assert!((var / (2.0 * df) - 1.0).abs() < rel, "df {df}: var {var}");
+            assert!(xs.iter().all(|x| x.is_finite() && *x > 0.0));
+        }
+        assert!(chi_squared(&mut stream(1, 1, 1), 0.0).is_nan());
+        assert!(chi_squared(&mut stream(1, 1, 1), f64::NAN).is_nan());
     }
 }

@@ -13,6 +13,7 @@ use super::standing::{
 };
 use crate::analysis::Analysis;
 use crate::analysis::placement::Joint;
+use crate::analysis::region::ShapePriors;
 use crate::dataset::Finger;
 use crate::rig::read::FingerChain;
 use crate::rig::read::weights::SkinWeights;
@@ -35,6 +36,8 @@ pub struct AuditOptions {
     pub measure_tip: bool,
     /// Joints the artist pins (`--hold`): never moved by the explanation or the fix.
     pub hold: Vec<Joint>,
+    /// The joint regions' prior shape (`None`: the X-rays' own covariance).
+    pub shape: Option<ShapePriors>,
 }
 
 impl Default for AuditOptions {
@@ -45,6 +48,7 @@ impl Default for AuditOptions {
             bend_tolerance: bend::BEND_TOLERANCE_MM / 1000.0,
             measure_tip: true,
             hold: Vec::new(),
+            shape: None,
         }
     }
 }
@@ -233,6 +237,7 @@ fn guard_holding(
                 None,
             ));
         } else if j.moves
+            && j.held.is_none()
             && let Some(from) = at(j.joint)
         {
             j.held = hold_reason(bends, j.joint, from, j.suggested);
@@ -483,7 +488,8 @@ impl AuditedRig {
         opts: &AuditOptions,
         weights: Option<&SkinWeights>,
     ) -> AuditedRig {
-        let judge = JudgeOptions::new(opts.rig_tip, opts.soft_tissue.clone(), a);
+        let judge = JudgeOptions::new(opts.rig_tip, opts.soft_tissue.clone(), a)
+            .with_shape(opts.shape.clone());
         let mut notes = notes.to_vec();
         let mut fingers = Vec::new();
         let mut lengths = Vec::new();

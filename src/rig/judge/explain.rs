@@ -5,8 +5,9 @@
 use super::chain::{arc_positions, backward_at, on_chain, point_at};
 use super::standing::{Basis, ChainInput, Standing, normalised, value_of};
 use crate::analysis::placement::Joint;
-use crate::analysis::region::JointRegion;
+use crate::analysis::region::{FIX_LEVEL, JointRegion};
 use crate::analysis::{Interval, Quantity, QuantityStats};
+use crate::stats::describe::t_quantile;
 use glam::DVec3;
 
 /// The line the joints move along: the first segment's backward extension,
@@ -56,7 +57,11 @@ impl Axis {
 /// An explanation as solved, with the joints' arc positions.
 pub(super) struct Solved {
     pub(super) moved: Vec<Joint>,
+    /// True when the moved joints, at their best place, bring the finger
+    /// inside the fix's inner region ([`Judge::inner`]); for no move, when
+    /// the finger is inside the region as it is.
     pub(super) consistent: bool,
+    /// The fit after the moves: the normalised distance at the best place.
     pub(super) score: f64,
     /// The fit at the joints' best place (where the score is least), which
     /// chooses among explanations of one size.
@@ -74,9 +79,35 @@ pub(super) struct Solved {
 pub(super) struct Judge<'a> {
     pub(super) quantities: &'a [(Quantity, &'a QuantityStats)],
     pub(super) region: Option<&'a JointRegion>,
+    /// The normalised distance of the fix's inner region ([`FIX_LEVEL`]):
+    /// sqrt(bound_50 / bound_95) with a region (0.30 at n = 5), else
+    /// t(0.75; n - 1) / t(c; n - 1), the 50% prediction interval's share of
+    /// the 95% one (0.27 at n = 5).
+    pub(super) inner: f64,
 }
 
-impl Judge<'_> {
+impl<'a> Judge<'a> {
+    /// The judge of `quantities` (from `n` X-rays) and `region`, at
+    /// `confidence`, with its inner region.
+    pub(super) fn new(
+        quantities: &'a [(Quantity, &'a QuantityStats)],
+        region: Option<&'a JointRegion>,
+        n: usize,
+        confidence: f64,
+    ) -> Judge<'a> {
+        let inner = match region {
+            Some(r) => r.bound_at(FIX_LEVEL).map(|b| (b / r.bound).sqrt()),
+            None => n
+                .checked_sub(1)
+                .and_then(|df| Some(t_quantile(FIX_LEVEL, df)? / t_quantile(confidence, df)?)),
+        };
+        Judge {
+            quantities,
+            region,
+            inner: inner.filter(|x| x.is_finite() && *x > 0.0).unwrap_or(1.0),
+        }
+    }
+
     /// The normalised distance of `segments` from the reference hands (0 at
     /// their mean, 1 at the edge of the 95% region or of a prediction
     /// interval) and whether they are inside. With a region the distance is
@@ -121,19 +152,24 @@ pub(super) fn explain(axis: &Axis, judge: Judge, basis: Basis, hold: &[Joint]) -
         .collect();
     let free = |k: usize| !hold.contains(&kinds[k]);
     // An explanation is chosen by how well its joints can fit at their best
-    // place, and placed by the smallest move that fits: from the rig's place
-    // towards the best one, as far as just inside the region's edge.
+    // place, and placed there: where they are most likely given the joints
+    // that stay (the conditional mode of the predictive distribution along
+    // their moves), not at the region's edge, so that the fixed finger is
+    // still inside once more X-rays narrow the region. It counts when that
+    // place lies inside the inner region ([`FIX_LEVEL`]).
     let solved = |moved: Vec<Joint>, best: Vec<f64>| {
-        let rank = judge.fit(&axis.segments(&best)).0;
-        let u = towards_edge(axis, judge, &u0, best);
-        let s = axis.segments(&u);
+        let s = axis.segments(&best);
         let (score, inside) = judge.fit(&s);
         Solved {
+            consistent: if moved.is_empty() {
+                inside
+            } else {
+                score <= judge.inner
+            },
             moved,
-            consistent: inside,
             score,
-            rank,
-            arcs: Some(u),
+            rank: score,
+            arcs: Some(best),
             segments: Some(s),
             also: Vec::new(),
         }
@@ -274,35 +310,6 @@ fn solve_one(axis: &Axis, judge: Judge, u0: &[f64], k: usize) -> Option<Vec<f64>
     let mut out = u0.to_vec();
     out[k] = x;
     Some(out)
-}
-
-/// How far inside a moved joint is placed: the normalised distance (1 at
-/// the region's edge or the prediction limit) the smallest move aims at,
-/// just inside the edge so that the fixed rig, stored as f32, reads inside.
-const EDGE: f64 = 0.999;
-
-/// The arc positions on the straight way from `u0` to `u1` (a placement that
-/// fits) nearest `u0` where the fit reaches [`EDGE`], by bisection; `u1` when
-/// it does not fit that well, `u0` when the rig already does.
-fn towards_edge(axis: &Axis, judge: Judge, u0: &[f64], u1: Vec<f64>) -> Vec<f64> {
-    let at = |t: f64| -> Vec<f64> { u0.iter().zip(&u1).map(|(a, b)| a + t * (b - a)).collect() };
-    let eval = |t: f64| judge.fit(&axis.segments(&at(t))).0;
-    if eval(1.0) > EDGE {
-        return u1;
-    }
-    if eval(0.0) <= EDGE {
-        return u0.to_vec();
-    }
-    let (mut out, mut inside) = (0.0, 1.0);
-    for _ in 0..60 {
-        let mid = 0.5 * (out + inside);
-        if eval(mid) <= EDGE {
-            inside = mid;
-        } else {
-            out = mid;
-        }
-    }
-    at(inside)
 }
 
 /// The arc positions with the joints `pair` (of MCP 0, PIP 1, DIP 2; a finger

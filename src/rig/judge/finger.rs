@@ -63,8 +63,8 @@ use super::chain::point_at;
 use super::expected::{StandingInput, ratio_standings, relative_standings};
 use super::explain::{Axis, Judge, Solved, explain};
 use super::standing::{
-    Basis, ChainInput, Explanation, FingerAudit, JointCheck, JudgeOptions, RegionCheck, Standing,
-    chain_kinds, stats, value_check, value_of,
+    Basis, ChainInput, Explanation, FingerAudit, Held, HoldReason, JointCheck, JudgeOptions,
+    OwnRegion, RegionCheck, RegionShape, Standing, chain_kinds, stats, value_check, value_of,
 };
 use crate::analysis::placement::Joint;
 use crate::analysis::{Analysis, Quantity, QuantityStats};
@@ -192,21 +192,35 @@ fn judge_finger(
     // The proportions as one vector with their covariance, for a finger with a
     // tip: the joint region of the X-rays' relative joint positions.
     let region = match basis {
-        Basis::Relative => fa.joint_region(a.settings.confidence),
+        Basis::Relative => fa.joint_region(a.settings.confidence, opts.shape_of(finger)),
         _ => None,
     };
-    let judge = Judge {
-        quantities: &quantities,
-        region: region.as_ref(),
-    };
+    let judge = Judge::new(&quantities, region.as_ref(), fa.n, a.settings.confidence);
     let region_check = region.as_ref().map(|r| {
         let t2 = r.distance_of_segments(&compared);
+        let shape = match (r.correlation, r.own_correlation) {
+            (Some(correlation), Some(own)) => {
+                let own_t2 = r.own_distance_of_segments(&compared);
+                Some(RegionShape {
+                    correlation,
+                    prior: r.prior,
+                    prior_source: r.prior.and(opts.shape.as_ref()).map(|s| s.source.clone()),
+                    own: OwnRegion {
+                        correlation: own,
+                        t2: own_t2,
+                        inside: own_t2 <= r.bound,
+                    },
+                })
+            }
+            _ => None,
+        };
         RegionCheck {
             t2,
             bound: r.bound,
             confidence: r.confidence,
             n: r.n,
             inside: t2 <= r.bound,
+            shape,
         }
     });
     let axis = Axis::new(chain, &compared, tip_correction);
@@ -263,6 +277,7 @@ fn joint_checks(
             ),
             _ => (chain.points[k], 0.0),
         };
+        let shift = chain.points[k].distance(suggested);
         joints.push(JointCheck {
             joint,
             measured,
@@ -272,9 +287,10 @@ fn joint_checks(
             standing: Standing::of(measured, range, pi),
             moves,
             suggested,
-            shift: chain.points[k].distance(suggested),
+            shift,
             shift_along,
-            held: None,
+            // Moves that leave the finger outside the inner region are not made.
+            held: (moves && !solved.consistent).then(|| Held::new(HoldReason::Short, shift, None)),
         });
     }
     Some(joints)

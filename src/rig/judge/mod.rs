@@ -31,6 +31,6 @@ pub use ray_base::{
 };
 pub use standing::{
     BEND_GUARD, Basis, ChainInput, Explanation, FingerAudit, FingerSoftTissue, Held, HoldReason,
-    JointCheck, JudgeOptions, MOVE_TOLERANCE, RegionCheck, SOFT_TISSUE_TABLE, SoftTissue, Standing,
-    TipKind, ValueCheck, data_tip_of,
+    JointCheck, JudgeOptions, MOVE_TOLERANCE, OwnRegion, RegionCheck, RegionShape,
+    SOFT_TISSUE_TABLE, SoftTissue, Standing, TipKind, ValueCheck, data_tip_of,
 };

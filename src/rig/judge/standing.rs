@@ -4,6 +4,7 @@
 //! interval), with the small arithmetic they share.
 
 use crate::analysis::placement::Joint;
+use crate::analysis::region::{ShapePrior, ShapePriors};
 use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
 pub use crate::dataset::TipKind;
 use crate::dataset::{Finger, Segment, SummaryTable, TipCounts};
@@ -146,6 +147,11 @@ pub struct JudgeOptions {
     pub data_tips: TipCounts,
     /// The soft tissue between bone tip and skin tip, used when the two differ.
     pub soft_tissue: SoftTissue,
+    /// The prior shape of each finger's joint region (`None`: the X-rays'
+    /// own covariance); each finger's region check names what it used.
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub shape: Option<ShapePriors>,
 }
 
 impl JudgeOptions {
@@ -157,7 +163,19 @@ impl JudgeOptions {
             data_tip: data_tip_of(&a.tips),
             data_tips: a.tips,
             soft_tissue,
+            shape: None,
         }
+    }
+
+    /// These options with the joint regions' prior shape `shape`.
+    pub fn with_shape(mut self, shape: Option<ShapePriors>) -> JudgeOptions {
+        self.shape = shape;
+        self
+    }
+
+    /// The prior shape of finger `finger`'s joint region, if any.
+    pub fn shape_of(&self, finger: Finger) -> Option<ShapePrior> {
+        self.shape.as_ref().and_then(|s| s.of(finger))
     }
 
     /// Skin tips against `a`'s tips, with no soft tissue figure: what
@@ -357,6 +375,12 @@ pub enum HoldReason {
     /// explanation sought among the other joints
     /// ([`super::AuditedRig::judge_rays`]).
     BaseOpposes,
+    /// The explanation's moves, the joints at their best place, would not
+    /// bring the finger inside the X-rays' inner region, where a fix puts a
+    /// finger ([`crate::analysis::region::FIX_LEVEL`]): a finger moved only
+    /// to the edge of the 95% region is out again after a few more X-rays,
+    /// so the fix moves none of its joints.
+    Short,
 }
 
 impl HoldReason {
@@ -372,6 +396,10 @@ impl HoldReason {
             HoldReason::Pinned => "pinned by --hold".into(),
             HoldReason::Base => "in range from its base".into(),
             HoldReason::BaseOpposes => "its base puts it the other way".into(),
+            HoldReason::Short => format!(
+                "would leave the finger outside the X-rays' {} region",
+                crate::format::level(crate::analysis::region::FIX_LEVEL)
+            ),
         }
     }
 }
@@ -426,6 +454,13 @@ impl Held {
             (HoldReason::Pinned, _) => "held: pinned by --hold".to_string(),
             (HoldReason::Base, _) => base_words(GENERIC_BASE, None, shift),
             (HoldReason::BaseOpposes, _) => base_words(GENERIC_BASE, Some(None), shift),
+            (HoldReason::Short, _) => format!(
+                "held: moved {} mm with the others the explanation names, the finger would \
+                 still lie outside the X-rays' {} joint region, where the fix puts a finger, so \
+                 it is not moved",
+                mm(shift),
+                crate::format::level(crate::analysis::region::FIX_LEVEL)
+            ),
             _ => format!(
                 "held: the move, {} mm, is under the {} mm tolerance",
                 mm(shift),
@@ -510,17 +545,50 @@ impl JointCheck {
 }
 
 /// A finger's relative joint positions against the X-rays' joint prediction
-/// region ([`crate::analysis::region::JointRegion`]), as the rig is.
+/// region ([`crate::analysis::region::JointRegion`]), as the rig is: the
+/// verdict on the model's shape, and beside it the X-rays' own.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct RegionCheck {
-    /// Hotelling's T^2 of the positions u = (J~1, J~1 + J~2) (the thumb's J~1).
+    /// Hotelling's T^2 of the positions u = (J~1, J~1 + J~2) (the thumb's
+    /// J~1) under the model's covariance S* (the verdict's).
     pub t2: f64,
     /// The region's bound on T^2: p (n - 1) / (n - p) F(confidence; p, n - p).
     pub bound: f64,
     pub confidence: f64,
     /// X-rays behind the region.
     pub n: usize,
-    /// T^2 at most the bound.
+    /// T^2 at most the bound: the finger's verdict.
+    pub inside: bool,
+    /// The shape the verdict used and the X-rays' own (a finger with two
+    /// positions; the thumb's one position has no shape).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shape: Option<RegionShape>,
+}
+
+/// The shape of a finger's joint region: the model's correlation, the
+/// X-rays' own, the prior's, and the verdict under the X-rays' own S.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct RegionShape {
+    /// S*'s correlation of the two positions (the verdict's).
+    pub correlation: f64,
+    /// The prior's correlation r0 and weight in hands, when one was used.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prior: Option<ShapePrior>,
+    /// Where the prior came from (the prior cohort's path).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prior_source: Option<String>,
+    /// The verdict on the X-rays' own covariance S.
+    pub own: OwnRegion,
+}
+
+/// The finger against the region on the X-rays' own covariance S.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct OwnRegion {
+    /// S's correlation of the two positions.
+    pub correlation: f64,
+    /// T^2 under S (1 + 1/n).
+    pub t2: f64,
+    /// T^2 at most the same bound.
     pub inside: bool,
 }
 
