@@ -396,6 +396,16 @@ fn json(audit: &Audit) -> Result<Vec<u8>, Error> {
             })
             .collect(),
         new_bend_defects: &fix.new_defects,
+        fingers: fix
+            .fingers
+            .iter()
+            .map(|f| report::json::MovedFingerView {
+                finger: &f.label,
+                t2: f.t2.map(|t| t.0),
+                bound: f.t2.map(|t| t.1),
+                inside: f.inside,
+            })
+            .collect(),
     });
     report::json::audit(&audit.analysis, &audit.rig, audit.fbx.as_ref(), fix)
 }
@@ -445,6 +455,6 @@ fn fix_summary(fix: &FixOutcome, confidence: f64) -> String {
             count(rays, "MCP", "MCPs")
         ));
     }
-    line.push_str(&report::audit::fix_bend_words(fix));
+    line.push_str(&report::audit::fix_after_words(fix));
     line
 }

@@ -4,6 +4,7 @@
 
 use super::layout::{Align, Give, Grid, Hidden, Width};
 use crate::analysis::placement::Joint;
+use crate::analysis::region::FIX_LEVEL;
 use crate::analysis::{Interval, Quantity};
 use crate::format::{level, num, percent};
 use crate::rig::bend::Bend;
@@ -242,7 +243,7 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
                 ""
             };
             format!(
-                "the {} sits {} mm {side} of the nearest place the X-rays allow{web}",
+                "the {} sits {} mm {side} of where the X-rays put it given the other joints{web}",
                 j.joint.name(),
                 num(j.shift_along.abs() * MM, 1)
             )
@@ -288,8 +289,17 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
         }
     } else {
         format!(
-            "No move of up to two joints fits the X-rays; the closest: {}.",
-            and_list(&moved)
+            "No move of up to two of the joints free to move lands the finger inside the X-rays' \
+             {} joint region, where the fix puts a finger, so the fix moves none; the closest: {}{}.",
+            level(FIX_LEVEL),
+            and_list(&moved),
+            e.score.map_or(String::new(), |x| format!(
+                " (then {} of the way to the {} region's edge)",
+                num(x, 2),
+                a.region
+                    .as_ref()
+                    .map_or(String::new(), |r| level(r.confidence))
+            ))
         )
     };
     out.push_str(&held_words(a));
@@ -500,9 +510,28 @@ fn given(a: &FingerAudit, as_is: String, consistent: bool) -> String {
     )
 }
 
-/// A region check's T^2 against its bound: "T^2 9.0 of at most 7.7".
-fn t2_words(r: &RegionCheck) -> String {
-    format!("T^2 {} of at most {}", num(r.t2, 1), num(r.bound, 1))
+/// A region check's T^2 against its bound, and, for a finger with a shape,
+/// T^2 on the X-rays' own covariance beside it: "T^2 9.0 of at most 7.7",
+/// "T^2 7.5 of at most 25.5; on the X-rays' own shape (r 0.97, not 0.74):
+/// 57.3, outside".
+pub(crate) fn t2_words(r: &RegionCheck) -> String {
+    let mut out = format!("T^2 {} of at most {}", num(r.t2, 1), num(r.bound, 1));
+    if let Some(shape) = &r.shape
+        && shape.prior.is_some()
+    {
+        out.push_str(&format!(
+            "; on the X-rays' own shape (r {}, not {}): {}, {}",
+            num(shape.own.correlation, 2),
+            num(shape.correlation, 2),
+            num(shape.own.t2, 1),
+            if shape.own.inside {
+                "inside"
+            } else {
+                "outside"
+            }
+        ));
+    }
+    out
 }
 
 /// The joint region's row: T^2 of the relative joint positions as the rig is,
@@ -785,6 +814,27 @@ pub(crate) fn brief(
     out
 }
 
+/// How the joint regions' shape was made, for the methods paragraph: S*
+/// with the correlation pooled with the prior cohort's, or the X-rays' own S.
+pub(crate) fn shape_words(rig: &AuditedRig) -> String {
+    match &rig.tips.shape {
+        Some(shape) if shape.hands > 0.0 => format!(
+            "S* is the X-rays' covariance of u with their variances and its correlation pooled \
+             with {}'s ({} hands, weighted as {}): r* = (m r0 + (n - 1) r_S) / (m + n - 1), \
+             since 5 X-rays hardly fix the correlation (the prior borrows no variance, so the \
+             bound stays the X-rays'; simulated, at most 5% of normal fingers fall outside \
+             whatever the true correlation, ARCHITECTURE.md). Each verdict also gives T^2 on \
+             the X-rays' own S (--prior-hands 0 judges on it).",
+            shape.source,
+            crate::format::xrays(shape.n).replace(" X-rays", ""),
+            crate::format::count(shape.hands.round() as usize, "hand", "hands")
+        ),
+        _ => "S* is the X-rays' own covariance of u (no prior shape: --prior-hands 0, or no \
+              atlas found)."
+            .to_string(),
+    }
+}
+
 /// The terminal report of `phalanx audit`, fitted to `width` (tables give way
 /// as [`super::layout`] says; the other lines wrap): the [`opening`] (with
 /// `only_outside` as `--only-outside` with a fix), then the details and the
@@ -820,11 +870,15 @@ pub(crate) fn text(
             &format!(
                 "A finger with a tip is judged as one vector: its relative joint positions u = \
                  (J~1, J~1 + J~2) (the thumb's J~1) against the X-rays' {c} joint prediction \
-                 region, T^2 = (u - u_bar)' [S (1 + 1/n)]^-1 (u - u_bar) at most p (n - 1) / \
-                 (n - p) times the {c} quantile of F(p, n - p), S the X-rays' covariance of u \
-                 (normal proportions, independent hands); its explanation is the fewest joints, \
-                 moved as little as brings it inside. Each row gives one joint or value against \
-                 its own interval, read against that verdict."
+                 region, T^2 = (u - u_bar)' [S* (1 + 1/n)]^-1 (u - u_bar) at most p (n - 1) / \
+                 (n - p) times the {c} quantile of F(p, n - p) (normal proportions, independent \
+                 hands). {} Its explanation is the fewest joints, each placed where the finger \
+                 is most likely given the joints that stay, that bring it inside the X-rays' {} \
+                 region (as typical as half of all hands, so that it stays inside as X-rays are \
+                 added); a move that would leave it outside that is not made. Each row gives \
+                 one joint or value against its own interval, read against that verdict.",
+                shape_words(rig),
+                level(FIX_LEVEL)
             ),
             "",
         ));
@@ -970,17 +1024,43 @@ pub(crate) fn value_of(a: &FingerAudit, q: Quantity) -> Option<f64> {
         .map(|v| v.measured)
 }
 
-/// What the result line of `audit --fix` adds on bends: every moved joint's
-/// distance to where its skin bends before and after ("; bends before -> after
-/// the fix: right index PIP 0.2 -> 0.4 mm, ..."), and any bend defect the
-/// re-audit flags that the rig as given did not have.
-pub(crate) fn fix_bend_words(fix: &crate::rig::session::FixOutcome) -> String {
+/// What the result line of `audit --fix` adds after its counts: each moved
+/// finger's T^2 against its bound in the re-audit ("; each moved finger
+/// after the fix: right index T^2 1.2 of 25.5 (0.05)"), every moved joint's
+/// distance to where its skin bends before and after ("right index PIP 0.2
+/// mm -> 0.4 mm"), and any bend defect the re-audit flags that the rig as
+/// given did not have.
+pub(crate) fn fix_after_words(fix: &crate::rig::session::FixOutcome) -> String {
     let mm = |d: Option<f64>| {
         d.map_or("not found".to_string(), |x| {
             format!("{} mm", num(x * MM, 1))
         })
     };
     let mut out = String::new();
+    if !fix.fingers.is_empty() {
+        let each: Vec<String> = fix
+            .fingers
+            .iter()
+            .map(|f| match f.t2 {
+                Some((t2, bound)) => format!(
+                    "{} T^2 {} of {} ({})",
+                    f.label,
+                    num(t2, 1),
+                    num(bound, 1),
+                    num(t2 / bound, 2)
+                ),
+                None => format!(
+                    "{} {}",
+                    f.label,
+                    if f.inside { "inside" } else { "outside" }
+                ),
+            })
+            .collect();
+        out.push_str(&format!(
+            "; each moved finger after the fix: {}",
+            each.join(", ")
+        ));
+    }
     if !fix.bends.is_empty() {
         let each: Vec<String> = fix
             .bends

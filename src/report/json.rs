@@ -356,6 +356,21 @@ pub struct FixView<'a> {
     pub bends: Vec<MovedBendView<'a>>,
     /// Joints the re-audit flags as far from their bend that the rig as given did not.
     pub new_bend_defects: &'a [String],
+    /// Every finger with a moved joint, judged again from the written copy.
+    pub fingers: Vec<MovedFingerView<'a>>,
+}
+
+/// A finger the fix moved, as the re-audit judges it.
+#[derive(Serialize, JsonSchema)]
+pub struct MovedFingerView<'a> {
+    /// The finger, as "right index".
+    pub finger: &'a str,
+    /// T^2 of its relative joint positions after the fix (null: judged on J2/J1).
+    pub t2: Option<f64>,
+    /// The region's bound (null: judged on J2/J1).
+    pub bound: Option<f64>,
+    /// Inside the region (or J2/J1's prediction interval) after the fix.
+    pub inside: bool,
 }
 
 /// A moved joint's distance to where its skin bends, in rig units (`null`: no bend found).

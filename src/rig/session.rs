@@ -74,6 +74,40 @@ pub struct FixOutcome {
     /// Joints (as "right index PIP") the re-audit flags as far from their
     /// bend that the rig as given did not.
     pub new_defects: Vec<String>,
+    /// Every finger with a moved joint, as the re-audit judges it.
+    pub fingers: Vec<MovedFinger>,
+}
+
+/// A finger the fix moved, judged again from the written copy.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MovedFinger {
+    /// The finger, as "right index".
+    pub label: String,
+    /// Its T^2 and the region's bound in the re-audit (`None`: judged
+    /// without a region, on J2/J1).
+    pub t2: Option<(f64, f64)>,
+    /// Inside the region (or J2/J1's interval) after the fix.
+    pub inside: bool,
+}
+
+/// The fingers of `after` (the written copy, judged) that hold a node of
+/// `moved`, in the copy's order.
+pub fn moved_fingers(after: &AuditedRig, moved: &[(String, f64)]) -> Vec<MovedFinger> {
+    after
+        .fingers
+        .iter()
+        .filter(|f| {
+            f.chain
+                .joints
+                .iter()
+                .any(|j| moved.iter().any(|(node, d)| *d > 0.0 && *node == j.name))
+        })
+        .map(|f| MovedFinger {
+            label: f.chain.label(),
+            t2: f.audit.region.as_ref().map(|r| (r.t2, r.bound)),
+            inside: f.audit.is_consistent(),
+        })
+        .collect()
 }
 
 /// A moved joint and its distance to where its skin bends, in rig units.
@@ -286,6 +320,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
                 );
             }
             let (bends, new_defects) = bends_across(&audited, &reaudit, &fixed.moved);
+            let fingers = moved_fingers(&reaudit, &fixed.moved);
             Some(FixOutcome {
                 output: out.to_path_buf(),
                 moved: fixed.moved,
@@ -293,6 +328,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
                 reaudit,
                 bends,
                 new_defects,
+                fingers,
             })
         }
         _ => None,
