@@ -1043,11 +1043,12 @@ pub(crate) fn fix_after_words(fix: &crate::rig::session::FixOutcome) -> String {
             .iter()
             .map(|f| match f.t2 {
                 Some((t2, bound)) => format!(
-                    "{} T^2 {} of {} ({})",
+                    "{} T^2 {} of {} ({}{})",
                     f.label,
                     num(t2, 1),
                     num(bound, 1),
-                    num(t2 / bound, 2)
+                    num(t2 / bound, 2),
+                    if f.inside { "" } else { ", outside" }
                 ),
                 None => format!(
                     "{} {}",

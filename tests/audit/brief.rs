@@ -2,7 +2,7 @@
 //! `--brief`, and `--hold`, the joints the artist pins.
 
 use super::hand::{HandSpec, Naming, build, read_glb};
-use super::{assert_held, finger_of, fingers, joint_of, ring_pip_inside_yet_explaining};
+use super::{assert_held, finger_of, fingers, index_dip_inside_yet_explaining, joint_of};
 use crate::common::*;
 use serde_json::Value;
 use std::path::PathBuf;
@@ -62,6 +62,7 @@ fn expected_line(finger: &Value) -> String {
                 "pinned" => "pinned by --hold",
                 "base" => "in range from its base",
                 "base_opposes" => "its base puts it the other way",
+                "short" => "would leave the finger outside the X-rays' 50% region",
                 other => panic!("unknown hold reason {other}"),
             };
             held.push(format!("the {name} {} mm ({why})", mm(&h["shift"])));
@@ -295,10 +296,16 @@ fn hold_pip_keeps_the_pip_in_the_json_and_the_fixed_file() {
         .ok()
         .json();
     assert_eq!(doc["fix"]["moved"][0]["node"], pip, "{}", doc["fix"]);
-    // Back towards where it was built, as far as the joint region's edge
-    // (3.5 of the 5 mm it was pushed).
+    // Back towards where it was built, to where the X-rays put it given the
+    // other joints: near the 5 mm it was pushed (within 2 mm: the built
+    // finger is not at the X-rays' mean), not only to the region's edge.
     let free = num(&joint_of(finger_of(&doc, "index"), "PIP")["shift"]);
-    assert!(free > 0.003 && free < 0.005, "{free}");
+    assert!(free > 0.003 && free < 0.007, "{free}");
+    assert!(
+        num(&doc["fix"]["fingers"][0]["t2"]) / num(&doc["fix"]["fingers"][0]["bound"]) < 0.1,
+        "{}",
+        doc["fix"]
+    );
 
     let doc = wd
         .run(&[
@@ -374,31 +381,27 @@ fn a_bad_hold_exits_2_naming_the_value() {
 #[test]
 fn with_only_outside_the_opening_holds_a_joint_inside_its_interval() {
     let wd = Workdir::with_paper_data();
-    // With the DIP pinned the PIP alone explains the misfit, yet stands
-    // inside its own interval, so --only-outside leaves it (the fix writes 0
-    // moves).
-    let input = ring_pip_inside_yet_explaining();
-    wd.write("ring.glb", &input);
-    let ring = |args: &[&str]| -> String {
-        let mut args = args.to_vec();
-        args.extend_from_slice(&super::RING_HOLD);
-        let run = wd.run(&args);
+    // The DIP alone explains the misfit, yet stands inside its own
+    // interval, so --only-outside leaves it (the fix writes 0 moves).
+    let input = index_dip_inside_yet_explaining();
+    wd.write("index.glb", &input);
+    let index = |args: &[&str]| -> String {
+        let run = wd.run(args);
         opening(&run.ok().stdout)
             .into_iter()
-            .find(|l| l.starts_with("right ring"))
+            .find(|l| l.starts_with("right index"))
             .unwrap()
     };
-    let free = ring(&["audit", "ring.glb", "--fix", "a.glb"]);
-    assert!(free.contains("move the PIP "), "{free}");
-    let held = ring(&["audit", "ring.glb", "--fix", "b.glb", "--only-outside"]);
+    let free = index(&["audit", "index.glb", "--fix", "a.glb"]);
+    assert!(free.contains("move the DIP "), "{free}");
+    let held = index(&["audit", "index.glb", "--fix", "b.glb", "--only-outside"]);
     assert!(
-        held.contains("held: the PIP ")
-            && held.contains("mm (inside its own prediction interval; --only-outside)")
-            && held.ends_with("the DIP 1.2 mm (pinned by --hold)"),
+        held.contains("held: the DIP ")
+            && held.ends_with("mm (inside its own prediction interval; --only-outside)"),
         "{held}"
     );
     // Without a fix --only-outside decides nothing, and the line is the plain one.
-    assert_eq!(ring(&["audit", "ring.glb", "--only-outside"]), free);
+    assert_eq!(index(&["audit", "index.glb", "--only-outside"]), free);
 }
 
 #[test]

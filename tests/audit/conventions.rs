@@ -133,10 +133,11 @@ fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
     let mcp = joint_of(idx, "MCP");
     assert_eq!(mcp["standing"], "above");
     super::assert_knuckle_held(mcp);
-    // Moved back towards the root it would be, less than the 10 mm it was
-    // pushed: as far as the joint region's edge (5.1 mm).
+    // Moved back towards the root it would be, to where the X-rays put it
+    // given the other joints: near the 10 mm it was pushed (the built hand's
+    // index is not at the X-rays' mean), not only to the region's edge (5.1 mm).
     let back = num(&mcp["held"]["shift"]);
-    assert!((0.004..0.010).contains(&back), "{back}");
+    assert!((0.008..0.012).contains(&back), "{back}");
     assert_eq!(joint_of(idx, "PIP")["moves"], false);
     assert_eq!(joint_of(idx, "DIP")["moves"], false);
     // The words, however the lines wrap.
@@ -149,7 +150,8 @@ fn an_mcp_at_the_finger_web_is_named_not_the_pip() {
         .join(" ");
     for needle in [
         "Explanation: the MCP sits ",
-        " mm distal of the nearest place the X-rays allow (at the finger web, not the knuckle?); PIP, DIP and \
+        " mm distal of where the X-rays put it given the other joints (at the finger web, not the \
+         knuckle?); PIP, DIP and \
          the tip are consistent with the X-rays once the MCP is accounted for.",
         "The MCP is held: where the skin over a knuckle bends cannot be located, so it is not \
          moved",

@@ -392,35 +392,32 @@ fn channels_with_unknown_paths_are_reported_and_left_alone() {
 #[test]
 fn only_outside_moves_only_joints_outside_their_interval() {
     let wd = Workdir::with_paper_data();
-    let input = super::ring_pip_inside_yet_explaining();
-    wd.write("ring.glb", &input);
-    let hold = super::RING_HOLD;
-    let mut args = vec!["audit", "ring.glb", "--format", "json"];
-    args.extend_from_slice(&hold);
-    let doc = wd.run(&args).ok().json();
-    let ring = finger_of(&doc, "ring");
+    let input = super::index_dip_inside_yet_explaining();
+    wd.write("index.glb", &input);
+    let doc = wd
+        .run(&["audit", "index.glb", "--format", "json"])
+        .ok()
+        .json();
+    let index = finger_of(&doc, "index");
     assert_eq!(
-        ring["audit"]["explanation"]["moved"],
-        serde_json::json!(["PIP"])
+        index["audit"]["explanation"]["moved"],
+        serde_json::json!(["DIP"])
     );
-    assert_eq!(ring["audit"]["region"]["inside"], false);
-    assert_eq!(super::joint_of(ring, "PIP")["standing"], "in_prediction");
+    assert_eq!(index["audit"]["region"]["inside"], false);
+    assert_eq!(super::joint_of(index, "DIP")["standing"], "in_prediction");
     assert_eq!(doc["fingers_outside"], 1);
     assert_eq!(
-        moved_nodes(&wd, "ring.glb", "all.glb", &hold),
-        ["mixamorig:RightHandRing2"]
+        moved_nodes(&wd, "index.glb", "all.glb", &[]),
+        ["mixamorig:RightHandIndex3"]
     );
-    let only = [hold[0], hold[1], "--only-outside"];
-    assert!(moved_nodes(&wd, "ring.glb", "outside.glb", &only).is_empty());
+    assert!(moved_nodes(&wd, "index.glb", "outside.glb", &["--only-outside"]).is_empty());
     wd.run(&[
         "audit",
-        "ring.glb",
+        "index.glb",
         "--fix",
         "outside.glb",
         "--only-outside",
         "--force",
-        hold[0],
-        hold[1],
     ])
     .ok()
     .stderr_has("0 joints moved; re-audited, 1 of 5 fingers outside");

@@ -49,7 +49,25 @@ fn the_daz_like_middle_finger_moves_its_pip_and_dip_not_the_mcp_the_wrist_puts_i
         middle["audit"]["explanation"]
     );
 
+    // With the atlas's shape of the joint region (the default), the finger
+    // alone already moves the PIP and the DIP, not the MCP: the two kinds of
+    // evidence agree without weighing.
     let doc = audit_json(&wd, "daz.glb");
+    let middle = finger_of(&doc, "middle");
+    assert_eq!(
+        middle["audit"]["explanation"]["moved"],
+        serde_json::json!(["PIP", "DIP"]),
+        "{}",
+        middle["audit"]["explanation"]
+    );
+    assert_eq!(joint_of(middle, "MCP")["moves"], false);
+    assert!(joint_of(middle, "MCP").get("held").is_none());
+    // On the X-rays' own shape (--prior-hands 0) the finger alone names the
+    // MCP, and the wrist's evidence holds it: the weighing this test is about.
+    let doc = wd
+        .run(&["audit", "daz.glb", "--prior-hands", "0", "--format", "json"])
+        .ok()
+        .json();
     let middle = finger_of(&doc, "middle");
     let check = &middle["metacarpal_check"];
     assert_eq!(check["base"], "wrist", "{check}");
@@ -75,7 +93,11 @@ fn the_daz_like_middle_finger_moves_its_pip_and_dip_not_the_mcp_the_wrist_puts_i
 
     // The text: the opening holds the MCP for its base and moves the PIP, and
     // adds no base clause (the base agrees with the line).
-    let text = wd.run(&["audit", "daz.glb"]).ok().stdout.clone();
+    let text = wd
+        .run(&["audit", "daz.glb", "--prior-hands", "0"])
+        .ok()
+        .stdout
+        .clone();
     let line = text
         .lines()
         .find(|l| l.starts_with("right middle") || l.starts_with("middle"))
@@ -98,7 +120,16 @@ fn the_daz_like_middle_finger_moves_its_pip_and_dip_not_the_mcp_the_wrist_puts_i
 
     // --fix writes the PIP's move and leaves the MCP where it is.
     let out = wd
-        .run(&["audit", "daz.glb", "--fix", "fixed.glb", "--format", "json"])
+        .run(&[
+            "audit",
+            "daz.glb",
+            "--prior-hands",
+            "0",
+            "--fix",
+            "fixed.glb",
+            "--format",
+            "json",
+        ])
         .ok()
         .json();
     let written: Vec<String> = out["fix"]["moved"]
@@ -210,8 +241,20 @@ fn an_mcp_the_finger_and_its_base_would_move_opposite_ways_is_held() {
     };
     // The Daz-like finger (which alone reads its MCP as too distal) on a palm
     // 8% shorter than built: the wrist puts the MCP too proximal.
+    // On the X-rays' own shape (--prior-hands 0), where the finger alone
+    // names the MCP (with the atlas's shape it moves the PIP and DIP alone).
     wd.write("short.glb", build(&daz_spec(0.92)));
-    let doc = audit_json(&wd, "short.glb");
+    let doc = wd
+        .run(&[
+            "audit",
+            "short.glb",
+            "--prior-hands",
+            "0",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
     let middle = finger_of(&doc, "middle");
     assert_eq!(
         middle["metacarpal_check"]["standing"], "below",
@@ -223,7 +266,11 @@ fn an_mcp_the_finger_and_its_base_would_move_opposite_ways_is_held() {
     assert!(num(&mcp["held"]["shift"]) > 0.005, "{mcp}");
     let moved = middle["audit"]["explanation"]["moved"].as_array().unwrap();
     assert!(!moved.contains(&Value::from("MCP")), "{moved:?}");
-    let text = wd.run(&["audit", "short.glb"]).ok().stdout.clone();
+    let text = wd
+        .run(&["audit", "short.glb", "--prior-hands", "0"])
+        .ok()
+        .stdout
+        .clone();
     // The opening, its wrapped lines joined.
     let opening = text
         .lines()

@@ -243,6 +243,14 @@ fn guard_holding(
             j.held = hold_reason(bends, j.joint, from, j.suggested);
         }
     }
+    // The moves the fix makes must land the finger inside the inner region
+    // on their own: a move whose companions are held (a knuckle, a short
+    // move) is judged as it would be made, and not made when it falls short.
+    if !finger::lands_inside(a, input, judge, &audit) {
+        for j in audit.joints.iter_mut().filter(|j| j.fix_moves()) {
+            j.held = Some(Held::new(HoldReason::Short, j.shift, None));
+        }
+    }
     audit
 }
 

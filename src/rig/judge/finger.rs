@@ -258,6 +258,46 @@ fn judge_finger(
     })
 }
 
+/// True when the fix's moves of `audit` (its joints that [`JointCheck::fix_moves`],
+/// at their suggested places; the others where `chain` has them) land the
+/// finger inside the inner region a fix aims at
+/// ([`crate::analysis::region::FIX_LEVEL`]), judged as `audit` was (`a`,
+/// `opts`, its tip correction held); also true when it moves nothing. For a
+/// move made without the rest of its explanation (a companion held at a
+/// knuckle or a bend). O(p^2) after the region is built.
+pub(super) fn lands_inside(
+    a: &Analysis,
+    chain: &ChainInput,
+    opts: &JudgeOptions,
+    audit: &FingerAudit,
+) -> bool {
+    if !audit.joints.iter().any(|j| j.fix_moves()) {
+        return true;
+    }
+    let kinds = chain_kinds(chain.finger, chain.has_tip);
+    let mut points = chain.points.clone();
+    for j in audit.joints.iter().filter(|j| j.fix_moves()) {
+        if let Some(k) = kinds.iter().position(|&x| x == j.joint)
+            && let Some(p) = points.get_mut(k)
+        {
+            *p = j.suggested;
+        }
+    }
+    let mut compared: Vec<f64> = points.windows(2).map(|w| w[0].distance(w[1])).collect();
+    if let Some(last) = compared.last_mut() {
+        *last -= audit.tip_correction;
+    }
+    let (Some(fa), Some(quantities)) = (a.finger(chain.finger), judged_quantities(a, chain)) else {
+        return false;
+    };
+    let region = match audit.basis {
+        Basis::Relative => fa.joint_region(a.settings.confidence, opts.shape_of(chain.finger)),
+        _ => None,
+    };
+    let judge = Judge::new(&quantities, region.as_ref(), fa.n, a.settings.confidence);
+    judge.fit(&compared).0 <= judge.inner
+}
+
 /// Each judged joint's check, with where the explanation puts it.
 fn joint_checks(
     chain: &ChainInput,

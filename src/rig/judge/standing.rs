@@ -455,9 +455,8 @@ impl Held {
             (HoldReason::Base, _) => base_words(GENERIC_BASE, None, shift),
             (HoldReason::BaseOpposes, _) => base_words(GENERIC_BASE, Some(None), shift),
             (HoldReason::Short, _) => format!(
-                "held: moved {} mm with the others the explanation names, the finger would \
-                 still lie outside the X-rays' {} joint region, where the fix puts a finger, so \
-                 it is not moved",
+                "held: the moves the fix could make (this one {} mm) would leave the finger \
+                 outside the X-rays' {} joint region, where the fix puts a finger, so none is made",
                 mm(shift),
                 crate::format::level(crate::analysis::region::FIX_LEVEL)
             ),
