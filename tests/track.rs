@@ -1984,7 +1984,7 @@ fn rows_without_a_tip_into_unrecorded_tips_are_refused_with_the_fix_and_nothing_
 }
 
 #[test]
-fn rows_without_a_tip_into_mixed_tips_are_refused() {
+fn rows_without_a_tip_into_mixed_tips_are_refused_and_stats_names_the_unrecorded_rows() {
     // The issue's lab: new X-rays added to the paper's data before add recorded tips, so
     // 4 of its rows record none (lines 27-30).
     let wd = Workdir::new();
@@ -1996,6 +1996,13 @@ fn rows_without_a_tip_into_mixed_tips_are_refused() {
           5b,thumb,268.4,236.1,,,,,,image units,\n",
     );
     wd.write(DATA, &data);
+    wd.run_env(&["stats"], WIDE).ok().stdout_has(
+        "\nnote: fingertips: mixed: 25 rows at the skin, 4 rows not recorded (lines 27-30 of \
+         data/measurements.csv); the statistics pool the rows without a tip with the others as \
+         if measured to the same tip, and 'phalanx audit' and the report's rigs take every tip \
+         here as a bone tip, so their verdicts rest on that assumption. Record where they were \
+         measured in their tip column (bone or skin)\n",
+    );
     wd.write(
         "more.csv",
         "xray,finger,j1,j2,j3\n6a,index,349.0,197.2,177.1\n6b,index,347.3,195.0,175.2\n",
@@ -2016,4 +2023,13 @@ fn rows_without_a_tip_into_mixed_tips_are_refused() {
         read_opt(&wd, HISTORY).is_none(),
         "a refused add wrote a history"
     );
+    // A dataset with no tip at all says so too.
+    untipped_paper(&wd, "lab.csv", &[]);
+    wd.run_env(&["stats", "--data", "lab.csv"], WIDE)
+        .ok()
+        .stdout_has(
+            "\nnote: fingertips: not recorded (no row of lab.csv gives a tip); 'phalanx audit' \
+             and the report's rigs take every tip here as a bone tip, so their verdicts rest on \
+             that assumption. Record where they were measured in a tip column (bone or skin)\n",
+        );
 }
