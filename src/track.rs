@@ -19,6 +19,7 @@ use crate::analysis::{self, Settings};
 use crate::atomic;
 use crate::dataset::append::{self, DatasetLock};
 use crate::dataset::history::{self, ChangeRecord, Event, FlaggedRow, Snapshot};
+use crate::dataset::tip::{self, TipKind};
 use crate::dataset::{DataError, Dataset, Finger, Problem, Row, csvinput};
 use crate::error::Error;
 use std::path::{Path, PathBuf};
@@ -47,6 +48,10 @@ pub(crate) struct AddRequest {
     pub note: Option<String>,
     /// Pool new rows whose fingertips differ from the dataset's (bone with skin).
     pub mixed_tips: bool,
+    /// Where the fingertips of every new row that gives none were measured (`--tip`);
+    /// without it such a row takes the tip every row of the dataset records, and is
+    /// refused when they do not all record one ([`tip::record_new`]).
+    pub tip: Option<TipKind>,
     pub settings: Settings,
 }
 
@@ -61,8 +66,9 @@ pub(crate) struct AddOutcome {
     /// Warnings to show, each starting with the file and line it is about
     /// (`new.csv:24: ...`, or the file alone for rows without a line of their own).
     pub warnings: Vec<String>,
-    /// Fingers whose new rows could not be checked fully (too few current X-rays, or
-    /// none in the new rows' unit).
+    /// What the reader should know of the new rows: the tip that rows giving none took
+    /// from the dataset, fingers whose new rows could not be checked fully (too few
+    /// current X-rays, or none in the new rows' unit).
     pub notes: Vec<String>,
     /// Header columns the dataset gained (the new rows fill them).
     pub added_columns: Vec<&'static str>,
@@ -123,16 +129,28 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     let current_bytes = csvinput::read_input(&req.data)?;
     let label = req.data.display().to_string();
     let current = Dataset::from_bytes(&label, &current_bytes)?;
+    let tipped = tip::record_new(&current, new, req.tip, from_file);
+    let new = &tipped.rows;
+    // Conflicting metadata and missing tips are refused before anything else is said
+    // about the rows, every problem at once.
+    let mut problems = tipped.problems;
+    if let Err(e) = append::check_fits(&current, new) {
+        problems.extend(e.problems);
+    }
+    if !problems.is_empty() {
+        problems.sort_by_key(|p| (p.line.is_none(), p.line));
+        if !from_file {
+            problems.iter_mut().for_each(|p| p.line = None);
+        }
+        return Err(DataError {
+            file: new.path.clone(),
+            problems,
+        }
+        .into());
+    }
     refuse_mixed_tips(&current, new, req.mixed_tips)?;
     let n = current.xray_count() + new.xray_count();
     analysis::budget::check_bootstrap(n, req.settings.resamples).map_err(Error::Usage)?;
-    // Conflicting metadata is refused before anything else is said about the rows.
-    append::check_fits(&current, new).map_err(|mut e| {
-        if !from_file {
-            e.problems.iter_mut().for_each(|p| p.line = None);
-        }
-        e
-    })?;
     let filled = append::with_defaults(new, &current);
     let new = &filled;
     let before = analysis::analyse(&current, &req.settings);
@@ -141,6 +159,9 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         return Err(refusal(new, &flags, from_file).into());
     }
     let mut notes: Vec<String> = Vec::new();
+    if let Some((kind, rows)) = &tipped.from_dataset {
+        notes.push(taken_tip_note(&req.rows, new, &current, *kind, rows));
+    }
     for r in &new.rows {
         if let Some(note) = outliers::limits(&before, r.finger)
             && !notes.contains(&note)
@@ -232,6 +253,64 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
         notes,
         added_columns,
     })
+}
+
+/// What `add` says of new rows that gave no tip and took the one every row of the dataset
+/// records: "50 rows of new.csv give no tip: recorded at the skin, as every row of
+/// data/measurements.csv is; give --tip bone if these were measured to the bone (take them
+/// out first: phalanx remove --xray n1,n2)".
+fn taken_tip_note(
+    source: &NewRows,
+    new: &Dataset,
+    current: &Dataset,
+    kind: TipKind,
+    rows: &[usize],
+) -> String {
+    let other = match kind {
+        TipKind::Bone => TipKind::Skin,
+        TipKind::Skin => TipKind::Bone,
+    };
+    let n = rows.len();
+    let mut seen = std::collections::HashSet::new();
+    let ids: Vec<&str> = rows
+        .iter()
+        .filter_map(|&i| new.rows.get(i))
+        .map(|r| &*r.xray)
+        .filter(|x| seen.insert(*x))
+        .take(11)
+        .collect();
+    // Ids a shell and the option parser take as they are.
+    let plain = |x: &&str| {
+        x.starts_with(|c: char| c.is_ascii_alphanumeric())
+            && x.chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-'))
+    };
+    let (subject, these, them) = match source {
+        NewRows::Fields(_) => ("the new row gives".to_string(), "it was", "it"),
+        _ => (
+            format!(
+                "{} of {} give{}",
+                crate::format::count(n, "row", "rows"),
+                new.path,
+                if n == 1 { "s" } else { "" }
+            ),
+            if n == 1 { "it was" } else { "these were" },
+            if n == 1 { "it" } else { "them" },
+        ),
+    };
+    let remove = if ids.len() <= 10 && ids.iter().all(plain) {
+        format!("phalanx remove --xray {}", ids.join(","))
+    } else {
+        "phalanx remove --xray with their ids".to_string()
+    };
+    format!(
+        "{subject} no tip: recorded at the {}, as every row of {} is; give --tip {} if {these} \
+         measured to the {} (take {them} out first: {remove})",
+        kind.name(),
+        current.path,
+        other.name(),
+        other.name()
+    )
 }
 
 /// The flag of a new row, if the rules flagged it.

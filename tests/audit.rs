@@ -3,6 +3,7 @@
 mod bend_guard;
 mod brief;
 mod conventions;
+mod data_tips;
 mod fixing;
 pub(crate) mod hand;
 mod mesh_tip;

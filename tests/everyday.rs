@@ -38,7 +38,7 @@ fn conflicting_metadata_says_what_to_do_and_omitting_it_takes_the_xrays_value() 
     let wd = Workdir::new();
     wd.write(
         DATA,
-        "xray,finger,j1,j2,j3,sex,age,side,source,unit\na,index,339.96,188.83,169.67,female,34,right,,\nb,index,342.47,195.24,186.70,,,,,\n",
+        "xray,finger,j1,j2,j3,sex,age,side,source,unit,tip\na,index,339.96,188.83,169.67,female,34,right,,,skin\nb,index,342.47,195.24,186.70,,,,,,skin\n",
     );
     let before = wd.read(DATA);
     wd.run(&[
@@ -71,7 +71,7 @@ fn conflicting_metadata_says_what_to_do_and_omitting_it_takes_the_xrays_value() 
     ])
     .ok();
     assert!(
-        text(&wd, DATA).ends_with("a,ring,358.4,226.47,191.09,female,34,right,,\n"),
+        text(&wd, DATA).ends_with("a,ring,358.4,226.47,191.09,female,34,right,,,skin\n"),
         "{}",
         text(&wd, DATA)
     );
@@ -92,9 +92,8 @@ fn numbers_are_kept_as_typed() {
     ])
     .ok();
     assert!(
-        // The dataset names one unit, so the new row is written in it; its tip, not
-        // given, is left unknown (it pools with either kind).
-        text(&wd, DATA).ends_with("2a,thumb,275.00,231.10,,,,,,image units,\n"),
+        // The dataset names one unit and one tip, so the new row is written with them.
+        text(&wd, DATA).ends_with("2a,thumb,275.00,231.10,,,,,,image units,skin\n"),
         "{}",
         text(&wd, DATA)
     );
@@ -104,7 +103,7 @@ fn numbers_are_kept_as_typed() {
     );
     wd.run(&["add", "new.csv"]).ok();
     assert!(
-        text(&wd, DATA).ends_with("2b,index,352.10,201.40,1.78e2,,,,,image units,\n"),
+        text(&wd, DATA).ends_with("2b,index,352.10,201.40,1.78e2,,,,,image units,skin\n"),
         "{}",
         text(&wd, DATA)
     );
@@ -221,7 +220,7 @@ fn report_out_naming_a_file_says_it_is_a_file() {
 fn one_warning_per_flagged_row_consistent_with_its_interval() {
     let wd = Workdir::new();
     wd.copy_paper_data();
-    // A genuine-looking row: no warning at all.
+    // A genuine-looking row (at the skin, as the paper's): no warning or note at all.
     let run = wd.run(&[
         "add",
         "--xray",
@@ -230,6 +229,8 @@ fn one_warning_per_flagged_row_consistent_with_its_interval() {
         "index",
         "--lengths",
         "352.1,201.4,178.0",
+        "--tip",
+        "skin",
     ]);
     run.ok();
     assert!(run.stderr.is_empty(), "{}", run.stderr);

@@ -1,7 +1,7 @@
 //! Tracking a growing dataset through the binary: `phalanx add` (statistics of
 //! the larger dataset, refusals that change nothing, concurrent additions,
-//! SIGKILL in the middle of an addition, typo flags), `snapshot` and `history`,
-//! and `stats --group-by`.
+//! SIGKILL in the middle of an addition, typo flags, the fingertip it records
+//! for every row), `snapshot` and `history`, and `stats --group-by`.
 
 use crate::common;
 
@@ -133,15 +133,15 @@ const NEW_FILE: &str = "xray,finger,j1,j2,j3\n\
     2b,thumb,262.7,240.5,\n";
 
 /// The same rows as the dataset's columns would hold them, typed by hand (in the
-/// dataset's one unit, which rows without one take; the tip, not given, left unknown).
-const NEW_ROWS_IN_DATASET: &str = "2a,index,352.1,201.4,178.0,,,,,image units,\n\
-    2a,middle,391.5,250.2,190.7,,,,,image units,\n\
-    2a,ring,370.3,230.9,205.4,,,,,image units,\n\
-    2a,little,290.2,170.4,175.8,,,,,image units,\n\
-    2a,thumb,268.4,236.1,,,,,,image units,\n\
-    2b,index,345.9,193.3,176.2,,,,,image units,\n\
-    2b,thumb,262.7,240.5,,,,,,image units,\n\
-    2c,index,361.2,199.9,181.3,female,34,left,,image units,\n";
+/// dataset's one unit and at its one tip, the skin, which rows without them take).
+const NEW_ROWS_IN_DATASET: &str = "2a,index,352.1,201.4,178.0,,,,,image units,skin\n\
+    2a,middle,391.5,250.2,190.7,,,,,image units,skin\n\
+    2a,ring,370.3,230.9,205.4,,,,,image units,skin\n\
+    2a,little,290.2,170.4,175.8,,,,,image units,skin\n\
+    2a,thumb,268.4,236.1,,,,,,image units,skin\n\
+    2b,index,345.9,193.3,176.2,,,,,image units,skin\n\
+    2b,thumb,262.7,240.5,,,,,,image units,skin\n\
+    2c,index,361.2,199.9,181.3,female,34,left,,image units,skin\n";
 
 #[test]
 fn add_then_stats_equals_stats_of_the_concatenated_file() {
@@ -176,6 +176,11 @@ fn add_then_stats_equals_stats_of_the_concatenated_file() {
     );
     let mut cat = paper_data();
     cat.extend_from_slice(NEW_ROWS_IN_DATASET.as_bytes());
+    assert_eq!(
+        String::from_utf8(data).unwrap(),
+        String::from_utf8(cat.clone()).unwrap(),
+        "the dataset is not the paper's rows and the new ones"
+    );
     wd.write("cat.csv", &cat);
 
     // At most 8 X-rays per finger: every bootstrap is exact enumeration, so
@@ -629,7 +634,7 @@ fn eight_concurrent_adds_all_land_exactly_once() {
     let text = String::from_utf8(wd.read(DATA)).unwrap();
     assert!(text.as_bytes().starts_with(&paper_data()));
     for i in 0..8 {
-        let row = format!("c{i},index,{},190.5,171.25,,,,,image units,", 345 + i);
+        let row = format!("c{i},index,{},190.5,171.25,,,,,image units,skin", 345 + i);
         let n = text.lines().filter(|l| *l == row).count();
         assert_eq!(n, 1, "row {row} appears {n} times:\n{text}");
     }
@@ -651,9 +656,10 @@ fn eight_concurrent_adds_all_land_exactly_once() {
 // 4. Crash safety
 // ---------------------------------------------------------------------------
 
-/// A dataset of `n` X-rays with five fingers each, lengths from the generator.
+/// A dataset of `n` X-rays with five fingers each, lengths from the generator, every
+/// tip at the bone (so a row added without one takes it, appended as `...,bone`).
 fn big_dataset(n: usize, rng: &mut Lcg) -> String {
-    let mut out = String::from("xray,finger,j1,j2,j3\n");
+    let mut out = String::from("xray,finger,j1,j2,j3,tip\n");
     for i in 0..n {
         for (f, j1, j2, j3) in [
             ("thumb", 255.0, 225.0, None),
@@ -664,7 +670,7 @@ fn big_dataset(n: usize, rng: &mut Lcg) -> String {
         ] {
             let j3 = j3.map_or_else(String::new, |l| rng.length(l, 200));
             out.push_str(&format!(
-                "x{i},{f},{},{},{j3}\n",
+                "x{i},{f},{},{},{j3},bone\n",
                 rng.length(j1, 300),
                 rng.length(j2, 200)
             ));
@@ -729,7 +735,7 @@ fn a_killed_add_leaves_the_old_or_the_new_dataset_never_a_torn_one() {
             rng.length(165.0, 200),
         );
         let xray = format!("k{i}");
-        let row = format!("{xray},index,{j1},{j2},{j3}\n");
+        let row = format!("{xray},index,{j1},{j2},{j3},bone\n");
         let mut child = add_big(&wd, &xray, &format!("{j1},{j2},{j3}"))
             .spawn()
             .unwrap();
@@ -846,7 +852,7 @@ fn warnings(run: &Run) -> Vec<&str> {
 fn a_tenfold_typo_is_refused_unless_accepted() {
     let wd = Workdir::new();
     wd.copy_paper_data();
-    // A plausible row: no warning at all.
+    // A plausible row (at the skin, as the paper's): no warning or note at all.
     let run = wd.run(&[
         "add",
         "--xray",
@@ -855,6 +861,8 @@ fn a_tenfold_typo_is_refused_unless_accepted() {
         "index",
         "--lengths",
         "352.1,201.4,178.0",
+        "--tip",
+        "skin",
     ]);
     run.ok();
     assert!(run.stderr.is_empty(), "{}", run.stderr);
@@ -906,7 +914,10 @@ fn a_tenfold_typo_is_refused_unless_accepted() {
         // Kept as typed, in the dataset's unit, with why it was flagged.
         let j: Vec<String> = lengths.split(',').map(str::to_string).collect();
         let j3 = j.get(2).cloned().unwrap_or_default();
-        let row = format!("{xray},{finger},{},{},{j3},,,,,image units,,", j[0], j[1]);
+        let row = format!(
+            "{xray},{finger},{},{},{j3},,,,,image units,skin,",
+            j[0], j[1]
+        );
         let last = text.lines().last().unwrap();
         assert!(last.starts_with(&row), "{row:?} not added:\n{text}");
         assert!(
@@ -1118,7 +1129,7 @@ fn add_through_a_symlinked_dataset_updates_its_target() {
     let link = std::fs::symlink_metadata(wd.path().join(DATA)).unwrap();
     let target = String::from_utf8(wd.read("real/m.csv")).unwrap();
     assert!(
-        target.ends_with("z,index,350,190,170,,,,,image units,\n"),
+        target.ends_with("z,index,350,190,170,,,,,image units,skin\n"),
         "the link's target was not updated"
     );
     assert!(link.file_type().is_symlink(), "the link was replaced");
@@ -1411,7 +1422,7 @@ fn add_then_remove_restores_the_dataset_and_its_statistics_bit_for_bit() {
         .stdout_has("removed 1 row from data/measurements.csv: 4b ring (line 30); 7 -> 7 X-rays");
     let text = String::from_utf8(wd.read(DATA)).unwrap();
     assert!(
-        text.ends_with("4b,index,345.9,193.3,176.2,,,right,lab,image units,\n"),
+        text.ends_with("4b,index,345.9,193.3,176.2,,,right,lab,image units,skin\n"),
         "{text}"
     );
 }
@@ -1543,10 +1554,10 @@ fn filling_an_empty_sex_age_or_side_is_no_conflict() {
     assert_eq!(
         rows,
         [
-            "7a,index,352.1,201.4,178.0,,,,,image units,",
-            "7a,middle,390.0,250.1,200.2,female,41,,,image units,",
-            "7a,ring,370.2,231.0,205.9,female,41,left,,image units,",
-            "7a,little,290.1,170.2,175.3,female,41,left,,image units,",
+            "7a,index,352.1,201.4,178.0,,,,,image units,skin",
+            "7a,middle,390.0,250.1,200.2,female,41,,,image units,skin",
+            "7a,ring,370.2,231.0,205.9,female,41,left,,image units,skin",
+            "7a,little,290.1,170.2,175.3,female,41,left,,image units,skin",
         ]
     );
     // Grouped, 7a is one female hand (its index row leaves sex empty).
@@ -1743,4 +1754,282 @@ fn the_report_says_what_changed_since_any_record() {
     wd.run(&["report", "--out", "rep", "--since", "3"])
         .expect_code(2)
         .stderr_has("--since 3: data/history.jsonl has 3 snapshots");
+}
+
+// ---------------------------------------------------------------------------
+// 9. The fingertips `add` records
+// ---------------------------------------------------------------------------
+
+/// Two new X-rays measured without a tip column (lines 2-5).
+const TIPLESS: &str = "xray,finger,j1,j2,j3\n\
+    5a,index,352.1,201.4,178.0\n\
+    5a,ring,370.2,231.0,205.9\n\
+    5b,index,345.9,193.3,176.2\n\
+    5b,thumb,268.4,236.1,\n";
+
+/// Terminal text unwrapped, so each note is one line.
+const WIDE: &[(&str, &str)] = &[("COLUMNS", "400")];
+
+/// The paper's rows without their tip column (and, with `drop`, without some of them),
+/// written to `name`: a lab's dataset whose fingertips are not recorded.
+fn untipped_paper(wd: &Workdir, name: &str, drop: &[(&str, &str)]) {
+    let rows: Vec<PaperRow> = paper_rows()
+        .into_iter()
+        .filter(|r| !drop.contains(&(r.xray.as_str(), r.finger.as_str())))
+        .collect();
+    wd.write(name, measurement_csv(&rows));
+}
+
+#[test]
+fn rows_without_a_tip_take_the_papers_skin_and_add_says_so() {
+    let wd = Workdir::with_paper_data();
+    wd.write("new.csv", TIPLESS);
+    let run = wd.run(&["add", "new.csv"]);
+    run.ok()
+        .stdout_has("added 4 rows to data/measurements.csv: 5 -> 7 X-rays");
+    assert_eq!(
+        run.stderr,
+        "note: 4 rows of new.csv give no tip: recorded at the skin, as every row of \
+         data/measurements.csv is; give --tip bone if these were measured to the bone (take \
+         them out first: phalanx remove --xray 5a,5b)\n"
+    );
+    let mut want = paper_data();
+    want.extend_from_slice(
+        b"5a,index,352.1,201.4,178.0,,,,,image units,skin\n\
+          5a,ring,370.2,231.0,205.9,,,,,image units,skin\n\
+          5b,index,345.9,193.3,176.2,,,,,image units,skin\n\
+          5b,thumb,268.4,236.1,,,,,,image units,skin\n",
+    );
+    assert_eq!(
+        String::from_utf8(wd.read(DATA)).unwrap(),
+        String::from_utf8(want).unwrap()
+    );
+    // One row given as options says it of itself.
+    let run = wd.run(&[
+        "add",
+        "--xray",
+        "5c",
+        "--finger",
+        "index",
+        "--lengths",
+        "349.0,197.2,177.1",
+    ]);
+    run.ok();
+    assert_eq!(
+        run.stderr,
+        "note: the new row gives no tip: recorded at the skin, as every row of \
+         data/measurements.csv is; give --tip bone if it was measured to the bone (take it out \
+         first: phalanx remove --xray 5c)\n"
+    );
+    // Every row still records the one tip, and stats says so.
+    wd.run_env(&["stats"], WIDE)
+        .ok()
+        .stdout_has("\nnote: fingertips: at the skin's outline (soft tissue included)\n");
+}
+
+#[test]
+fn tip_bone_into_the_papers_skin_is_refused_unless_mixed_tips_and_a_contradiction_is_named() {
+    let wd = Workdir::with_paper_data();
+    wd.write("new.csv", TIPLESS);
+    wd.run(&["add", "new.csv", "--tip", "bone"])
+        .data_error()
+        .stderr_has(
+            "nothing added: the rows measure the last segment to different fingertips: 4 rows \
+             of new.csv (lines 2-5) at the end of the bone, 25 rows of data/measurements.csv \
+             (lines 2-26) at the skin's outline.",
+        )
+        .stderr_has("or give --mixed-tips to pool them anyway");
+    assert_eq!(
+        wd.read(DATA),
+        paper_data(),
+        "a refused add changed the dataset"
+    );
+    assert!(
+        read_opt(&wd, HISTORY).is_none(),
+        "a refused add wrote a history"
+    );
+    // A row whose own tip is not --tip's: refused at its field, whatever the dataset.
+    wd.write(
+        "own.csv",
+        "xray,finger,j1,j2,j3,tip\n5a,index,352.1,201.4,178.0,\n5b,index,345.9,193.3,176.2,skin\n",
+    );
+    let run = wd.run(&["add", "own.csv", "--tip", "bone", "--mixed-tips"]);
+    run.data_error();
+    assert_eq!(
+        run.problem_lines(),
+        [
+            "own.csv:3:6: tip: is 'skin', but --tip bone records every row of own.csv at the bone; \
+          leave this field empty (the row then takes --tip bone), or give no --tip"
+        ]
+    );
+    assert_eq!(wd.read(DATA), paper_data());
+    // Pooled on demand: recorded at the bone, and no note (the tip was given).
+    let run = wd.run(&["add", "new.csv", "--tip", "bone", "--mixed-tips"]);
+    run.ok();
+    assert!(run.stderr.is_empty(), "{}", run.stderr);
+    let text = String::from_utf8(wd.read(DATA)).unwrap();
+    let added: Vec<&str> = text.lines().skip(26).collect();
+    assert_eq!(added.len(), 4, "{text}");
+    assert!(added.iter().all(|l| l.ends_with(",bone")), "{text}");
+}
+
+#[test]
+fn rows_without_a_tip_into_unrecorded_tips_are_refused_with_the_fix_and_nothing_written() {
+    let wd = Workdir::new();
+    // The paper's rows but X-ray 1a's thumb, with no tip column; and a history to keep.
+    untipped_paper(&wd, "lab/lab.csv", &[("1a", "thumb")]);
+    wd.run(&["snapshot", "--data", "lab/lab.csv"]).ok();
+    let data = wd.read("lab/lab.csv");
+    let hist = wd.read("lab/history.jsonl");
+    let unchanged = |what: &str| {
+        assert!(
+            wd.read("lab/lab.csv") == data,
+            "{what}: the dataset changed"
+        );
+        assert!(
+            wd.read("lab/history.jsonl") == hist,
+            "{what}: the history changed"
+        );
+        assert!(
+            temp_files(&wd.path().join("lab")).is_empty(),
+            "{what}: temporary file left"
+        );
+    };
+    wd.write("new.csv", TIPLESS);
+    let run = wd.run(&["add", "new.csv", "--data", "lab/lab.csv"]);
+    run.data_error();
+    assert_eq!(
+        run.problem_lines(),
+        [
+            "new.csv: 4 rows (lines 2-5) give no tip, and lab/lab.csv has no one tip for them to \
+          take (its fingertips: not recorded). Give --tip skin or --tip bone: where their \
+          fingertips were measured (or add a tip column); nothing was added"
+        ]
+    );
+    unchanged("a file without tips");
+    // One row given as options names its X-ray.
+    let one = [
+        "add",
+        "--xray",
+        "5c",
+        "--finger",
+        "index",
+        "--lengths",
+        "349.0,197.2,177.1",
+        "--data",
+        "lab/lab.csv",
+    ];
+    let run = wd.run(&one);
+    run.data_error();
+    assert_eq!(
+        run.problem_lines(),
+        [
+            "<command line>: 1 row of X-ray '5c' gives no tip, and lab/lab.csv has no one tip for \
+          it to take (its fingertips: not recorded). Give --tip skin or --tip bone: where its \
+          fingertip was measured; nothing was added"
+        ]
+    );
+    unchanged("a row without a tip");
+    // A new finger of an X-ray whose rows record no tip: one hand has one tip, so it is
+    // recorded there first, with or without --tip.
+    let thumb = [
+        "add",
+        "--xray",
+        "1a",
+        "--finger",
+        "thumb",
+        "--lengths",
+        "270.83,230.95",
+        "--data",
+        "lab/lab.csv",
+    ];
+    let run = wd.run(&thumb);
+    run.data_error();
+    assert_eq!(
+        run.problem_lines(),
+        [
+            "<command line>: 1 row of X-ray '1a' gives no tip, and the X-ray's rows in lab/lab.csv \
+          (lines 2-5) record none; one hand has one tip, so record it in their tip column there \
+          first (bone or skin), and the new rows take it; nothing was added"
+        ]
+    );
+    let mut with_tip = thumb.to_vec();
+    with_tip.extend(["--tip", "skin"]);
+    wd.run(&with_tip).data_error().stderr_has(
+        "<command line>: tip is 'skin' but lab/lab.csv line 2 records no tip for the same X-ray \
+         '1a'; one hand has one tip, and every row added records one: record it on the X-ray's \
+         rows of lab/lab.csv first (edit line 2), then add this row",
+    );
+    unchanged("a finger of an X-ray without a tip");
+    // With --tip: added, the header gaining the column.
+    let run = wd.run(&["add", "new.csv", "--data", "lab/lab.csv", "--tip", "bone"]);
+    run.ok()
+        .stdout_has("added 4 rows to lab/lab.csv: 5 -> 7 X-rays")
+        .stderr_has(
+            "note: the dataset's header gained the column tip (empty on its existing rows)",
+        );
+    let text = String::from_utf8(wd.read("lab/lab.csv")).unwrap();
+    assert!(
+        text.starts_with("xray,finger,j1,j2,j3,tip\n1a,index,"),
+        "{text}"
+    );
+    assert!(
+        text.ends_with(
+            "5a,index,352.1,201.4,178.0,bone\n5a,ring,370.2,231.0,205.9,bone\n\
+             5b,index,345.9,193.3,176.2,bone\n5b,thumb,268.4,236.1,,bone\n"
+        ),
+        "{text}"
+    );
+    assert_eq!(history_at(&wd.path().join("lab/history.jsonl")).len(), 2);
+}
+
+#[test]
+fn rows_without_a_tip_into_mixed_tips_are_refused_and_stats_names_the_unrecorded_rows() {
+    // The issue's lab: new X-rays added to the paper's data before add recorded tips, so
+    // 4 of its rows record none (lines 27-30).
+    let wd = Workdir::new();
+    let mut data = paper_data();
+    data.extend_from_slice(
+        b"5a,index,352.1,201.4,178.0,,,,,image units,\n\
+          5a,ring,370.2,231.0,205.9,,,,,image units,\n\
+          5b,index,345.9,193.3,176.2,,,,,image units,\n\
+          5b,thumb,268.4,236.1,,,,,,image units,\n",
+    );
+    wd.write(DATA, &data);
+    wd.run_env(&["stats"], WIDE).ok().stdout_has(
+        "\nnote: fingertips: mixed: 25 rows at the skin, 4 rows not recorded (lines 27-30 of \
+         data/measurements.csv); the statistics pool the rows without a tip with the others as \
+         if measured to the same tip, and 'phalanx audit' and the report's rigs take every tip \
+         here as a bone tip, so their verdicts rest on that assumption. Record where they were \
+         measured in their tip column (bone or skin)\n",
+    );
+    wd.write(
+        "more.csv",
+        "xray,finger,j1,j2,j3\n6a,index,349.0,197.2,177.1\n6b,index,347.3,195.0,175.2\n",
+    );
+    let run = wd.run(&["add", "more.csv"]);
+    run.data_error();
+    assert_eq!(
+        run.problem_lines(),
+        [
+            "more.csv: 2 rows (lines 2-3) give no tip, and data/measurements.csv has no one tip \
+          for them to take (its fingertips: mixed: 25 rows at the skin, 4 rows not recorded). \
+          Give --tip skin or --tip bone: where their fingertips were measured (or add a tip \
+          column); nothing was added"
+        ]
+    );
+    assert_eq!(wd.read(DATA), data, "a refused add changed the dataset");
+    assert!(
+        read_opt(&wd, HISTORY).is_none(),
+        "a refused add wrote a history"
+    );
+    // A dataset with no tip at all says so too.
+    untipped_paper(&wd, "lab.csv", &[]);
+    wd.run_env(&["stats", "--data", "lab.csv"], WIDE)
+        .ok()
+        .stdout_has(
+            "\nnote: fingertips: not recorded (no row of lab.csv gives a tip); 'phalanx audit' \
+             and the report's rigs take every tip here as a bone tip, so their verdicts rest on \
+             that assumption. Record where they were measured in a tip column (bone or skin)\n",
+        );
 }

@@ -31,6 +31,7 @@ pub(crate) mod tracking;
 pub use crate::dataset::Quantity;
 pub use crate::stats::Interval;
 
+use crate::dataset::tip::LineRuns;
 use crate::dataset::{Dataset, Finger, Row, TipCounts, is_pixel_unit};
 use crate::stats::Intervals;
 use crate::stats::bootstrap::{self, Plan, Sorted};
@@ -305,6 +306,8 @@ pub struct Analysis {
     pub units: Vec<(Option<String>, usize)>,
     /// Where the rows put their fingertips.
     pub tips: TipCounts,
+    /// The lines of the rows that record no tip ([`Dataset::untipped`]).
+    pub untipped: LineRuns,
     /// Rows added though flagged as likely errors (`add --accept-flagged`), file order.
     pub flagged: Vec<FlaggedRow>,
 }
@@ -606,6 +609,7 @@ fn analyse_inner(
             .map(|(u, n)| (u.map(str::to_string), n))
             .collect(),
         tips: data.tips(),
+        untipped: data.untipped(),
         flagged: data
             .flagged()
             .map(|r| FlaggedRow {

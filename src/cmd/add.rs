@@ -1,6 +1,6 @@
 //! `phalanx add`: new X-rays into the dataset, with a snapshot in the history.
 
-use super::args::{BootArgs, DataArgs, HistoryArgs};
+use super::args::{BootArgs, DataArgs, HistoryArgs, TipArg};
 use super::out;
 use crate::error::Error;
 use crate::track::{self, AddRequest, NewRows};
@@ -18,7 +18,13 @@ use std::path::PathBuf;
                   'flagged' column and in the history. 'phalanx remove' takes rows out again.\n\n\
                   Rows may give their lengths in another unit than the dataset's (relative values pool across units), \
                   and columns the dataset lacks (mc, tip, unit, ...): they are added to its header.\n\n\
-                  Examples:\n  phalanx add new_xrays.csv --note \"batch 2 from the March session\"\n  phalanx add --xray 2a --finger index --lengths 352.1,201.4,178.0 --sex female --age 34\n  phalanx add --accept-flagged --xray 2a --finger thumb --lengths 270.1,233.9"
+                  Every row is written with where its fingertip was measured (the tip column): its own tip, else --tip, \
+                  else the one its X-ray's rows record, else the one every row of the dataset records, which add then \
+                  names. Into a dataset whose tips are mixed or not recorded, rows without a tip are refused: give \
+                  --tip bone or --tip skin. A row whose own tip differs from --tip is refused, and so are rows at the \
+                  bone into a dataset at the skin (or the reverse) unless --mixed-tips.\n\n\
+                  Examples:\n  phalanx add new_xrays.csv --note \"batch 2 from the March session\"\n  \
+                  phalanx add lab_xrays.csv --tip bone --data lab.csv\n  phalanx add --xray 2a --finger index --lengths 352.1,201.4,178.0 --sex female --age 34\n  phalanx add --accept-flagged --xray 2a --finger thumb --lengths 270.1,233.9"
 )]
 pub(crate) struct Args {
     /// CSV file of new rows, in the dataset's format (with a header)
@@ -48,9 +54,9 @@ pub(crate) struct Args {
     /// Unit of the lengths (e.g. mm; another than the dataset's is fine)
     #[arg(long)]
     unit: Option<String>,
-    /// Where the fingertip landmark is: bone or skin
-    #[arg(long)]
-    tip: Option<String>,
+    /// Where the fingertips of the new rows were measured; rows that give no tip take it
+    #[arg(long, value_enum)]
+    tip: Option<TipArg>,
     /// Add rows flagged as likely errors too (refused otherwise); they are recorded as flagged
     #[arg(long)]
     accept_flagged: bool,
@@ -81,6 +87,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
         accept_flagged: args.accept_flagged && !args.strict,
         note: args.note.clone(),
         mixed_tips: args.mixed_tips,
+        tip: args.tip.map(TipArg::kind),
         settings: args.boot.settings()?,
     })?;
     print_outcome(&outcome);
@@ -172,7 +179,6 @@ fn row_fields(
         ("side", &args.side),
         ("source", &args.source),
         ("unit", &args.unit),
-        ("tip", &args.tip),
     ] {
         if let Some(v) = v {
             fields.push((name, v.clone()));

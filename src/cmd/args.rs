@@ -287,6 +287,23 @@ fn parse_correlation(text: &str) -> Result<f64, String> {
     }
 }
 
+/// Where fingertip landmarks are, as an option (`--tip bone|skin`).
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum TipArg {
+    Bone,
+    Skin,
+}
+
+impl TipArg {
+    /// The tip kind named.
+    pub(crate) fn kind(self) -> crate::dataset::TipKind {
+        match self {
+            TipArg::Bone => crate::dataset::TipKind::Bone,
+            TipArg::Skin => crate::dataset::TipKind::Skin,
+        }
+    }
+}
+
 /// Whether rows whose fingertips differ (bone with skin) may be pooled.
 #[derive(Args, Debug, Clone, Copy)]
 pub(crate) struct TipArgs {

@@ -1,9 +1,8 @@
 //! `phalanx import`: landmark annotations in, measurement rows out.
 
-use super::args::{BootArgs, ForceArgs, HistoryArgs, check_output_file};
+use super::args::{BootArgs, ForceArgs, HistoryArgs, TipArg, check_output_file};
 use super::out;
 use crate::dataset::Dataset;
-use crate::dataset::TipKind;
 use crate::dataset::landmarks::{self, ImportOptions, Layout, Side};
 use crate::error::Error;
 use crate::track::{self, AddRequest, NewRows};
@@ -94,12 +93,6 @@ enum SideArg {
     Right,
 }
 
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-enum TipArg {
-    Bone,
-    Skin,
-}
-
 impl Args {
     /// The import options, checked: a usage error names what is wrong.
     fn options(&self) -> Result<ImportOptions, Error> {
@@ -111,10 +104,7 @@ impl Args {
             pixel_spacing: self.pixel_spacing,
             unit: self.unit.clone(),
             source: self.source.clone(),
-            tip: self.tip.map(|t| match t {
-                TipArg::Bone => TipKind::Bone,
-                TipArg::Skin => TipKind::Skin,
-            }),
+            tip: self.tip.map(TipArg::kind),
         };
         options.validate().map_err(Error::Usage)?;
         Ok(options)
@@ -166,6 +156,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
                 accept_flagged: args.accept_flagged && !args.strict,
                 note: args.note.clone(),
                 mixed_tips: false,
+                tip: None,
                 settings,
             })?;
             super::add::print_outcome(&outcome);

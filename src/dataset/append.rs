@@ -349,6 +349,19 @@ fn metadata_conflicts(r: &Row, old: &[&Row], path: &str, problems: &mut Vec<Prob
         if ours == theirs {
             continue;
         }
+        if name == "tip" && theirs.is_empty() {
+            problems.push(Problem::line(
+                r.line,
+                format!(
+                    "tip is {} but {path} line {line} records no tip for the same X-ray {}; one \
+                     hand has one tip, and every row added records one: record it on the X-ray's \
+                     rows of {path} first (edit line {line}), then add this row",
+                    quote(&ours),
+                    quote(&r.xray),
+                ),
+            ));
+            continue;
+        }
         let theirs = if theirs.is_empty() {
             "empty".into()
         } else {

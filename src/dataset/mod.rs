@@ -299,6 +299,17 @@ impl Dataset {
     pub fn tips(&self) -> TipCounts {
         TipCounts::of(self.rows.iter().map(|r| r.meta.tip))
     }
+
+    /// The lines of the rows that record no tip, the first 6 runs of them. O(rows).
+    pub fn untipped(&self) -> tip::LineRuns {
+        tip::LineRuns::of(
+            self.rows
+                .iter()
+                .filter(|r| r.meta.tip.is_none())
+                .map(|r| r.line),
+            6,
+        )
+    }
 }
 
 /// True for a unit of per-image pixels (`px`, `pixel`, `pixels`, any case), the unit

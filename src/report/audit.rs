@@ -18,12 +18,54 @@ use crate::rig::{AuditedFinger, AuditedRig};
 /// Millimetres per rig unit (glTF units are metres).
 pub(crate) const MM: f64 = 1000.0;
 
-/// The caveats every audit carries.
-pub(crate) const CAVEATS: [&str; 3] = [
-    "The statistics come from X-rays of right hands; a left hand is judged as their mirror image.",
-    "A rig's joints are rotation centres, while the X-ray lengths run between bone ends; the two differ by a few per cent, so read the prediction interval as a guide, not a verdict.",
-    "A rig's tip usually sits at the skin, and so do the paper's X-ray tips (their tip column: inferred from Buryanov & Kotiuk 2010, not stated by the paper), so such a rig is compared as it is. Where a rig's tips and the data's differ (one at the bone, the other at the skin), the last segment is corrected by the fingertip's soft tissue Buryanov & Kotiuk measured for that finger (66 adults, 3.7 to 5.7 mm), as a share of the rig's finger; --tip-soft-tissue MM sets one length for every finger instead.",
-];
+/// The caveats every audit carries, the last one on the fingertips of the data (`data`,
+/// its path) as their tip column records them (`tips`): what they are, or, when the
+/// column does not record one kind, what the audit takes them as and that its verdicts
+/// rest on that.
+pub(crate) fn caveats(tips: &JudgeOptions, data: &str) -> Vec<String> {
+    const SOFT_TISSUE: &str = "the fingertip's soft tissue Buryanov & Kotiuk measured for \
+        that finger (66 adults, 3.7 to 5.7 mm), as a share of the rig's finger; \
+        --tip-soft-tissue MM sets one length for every finger instead";
+    let tip = match tips.data_tips.single() {
+        Some(TipKind::Skin) => format!(
+            "A rig's tip usually sits at the skin, and so do the paper's X-ray tips (their tip \
+             column: inferred from Buryanov & Kotiuk 2010, not stated by the paper), so such a \
+             rig is compared as it is. Where a rig's tips and the data's differ (one at the \
+             bone, the other at the skin), the last segment is corrected by {SOFT_TISSUE}."
+        ),
+        Some(TipKind::Bone) => format!(
+            "A rig's tip usually sits at the skin, while the X-ray tips of {data} are at the \
+             bone (its tip column), so a rig's skin tip is compared with them corrected by \
+             {SOFT_TISSUE}. A rig whose tips mark the bone (--tip bone) is compared as it is."
+        ),
+        None => {
+            let described = tips.data_tips.describe();
+            let recorded = match described.strip_prefix("mixed: ") {
+                Some(rest) => format!("mixed ({rest})"),
+                None => described,
+            };
+            format!(
+                "A rig's tip usually sits at the skin. The X-ray tips of {data} are {recorded}, \
+                 so they are all taken as {kind} tips (the usual landmark on an X-ray), and a \
+                 rig's tips at the {other} are compared with them corrected by \
+                 {SOFT_TISSUE}. \
+                 The verdicts of the fingers with a tip rest on that assumption, since a last \
+                 segment to the skin is longer than one to the bone by that soft tissue: record \
+                 where the X-rays' tips were measured in the tip column (bone or skin).",
+                kind = tips.data_tip.name(),
+                other = match tips.data_tip {
+                    TipKind::Bone => "skin",
+                    TipKind::Skin => "bone",
+                }
+            )
+        }
+    };
+    vec![
+        "The statistics come from X-rays of right hands; a left hand is judged as their mirror image.".to_string(),
+        "A rig's joints are rotation centres, while the X-ray lengths run between bone ends; the two differ by a few per cent, so read the prediction interval as a guide, not a verdict.".to_string(),
+        tip,
+    ]
+}
 
 /// `text` as one line starting with `first`; [`super::layout::fit_text`]
 /// wraps it to the terminal's width at the end, continuing two columns further in.
@@ -793,6 +835,17 @@ pub(crate) fn summary(rig: &AuditedRig, confidence: f64) -> String {
             num(rig.bend_tolerance * MM, 1)
         ));
     }
+    if rig.tips.data_tip_assumed() && rig.fingers.iter().any(|f| f.audit.basis == Basis::Relative) {
+        summary.push_str(&format!(
+            " The verdicts of the fingers with a tip take the X-rays' fingertips as {} tips, an \
+             assumption: their tip column records {}.",
+            rig.tips.data_tip.name(),
+            match rig.tips.data_tips.describe().strip_prefix("mixed: ") {
+                Some(rest) => format!("a mix ({rest})"),
+                None => "none".to_string(),
+            }
+        ));
+    }
     summary
 }
 
@@ -924,8 +977,8 @@ pub(crate) fn text(
     out.push('\n');
     out.push_str(&para(&summary(rig, confidence), ""));
     out.push_str("Caveats:\n");
-    for c in CAVEATS {
-        out.push_str(&para(c, "  - "));
+    for c in caveats(&rig.tips, data) {
+        out.push_str(&para(&c, "  - "));
     }
     hidden.append_to(&mut out, width);
     super::layout::fit_text(&out, width)

@@ -405,7 +405,9 @@ pub(crate) struct AuditDocument<'a> {
     rig: &'a crate::rig::AuditedRig,
     /// Fingers with a joint or value outside the prediction interval.
     fingers_outside: usize,
-    caveats: &'static [&'static str],
+    /// What to bear in mind, the last on the data's fingertips: what the audit took them
+    /// as when their tip column does not record one kind, and that the verdicts rest on it.
+    caveats: Vec<String>,
     /// What `--fix` did (only with `--fix`).
     #[serde(skip_serializing_if = "Option::is_none")]
     fix: Option<FixView<'a>>,
@@ -445,7 +447,7 @@ pub fn audit(
         }),
         rig,
         fingers_outside: rig.outside(),
-        caveats: &super::audit::CAVEATS,
+        caveats: super::audit::caveats(&rig.tips, &a.dataset.path),
         fix,
     })
 }

@@ -11,6 +11,7 @@ use crate::format::{
     decimals, exact, interval, interval_cells, length_decimals, level, num, opt, percent, signed,
     xrays,
 };
+use crate::rig::judge::data_tip_of;
 
 /// The statistics of every finger, 4 decimals for relative values as in the paper.
 ///
@@ -86,10 +87,39 @@ pub fn dataset_notes(a: &Analysis) -> Vec<String> {
     if let Some(n) = units_note(a) {
         notes.push(n);
     }
-    if a.tips.bone + a.tips.skin > 0 {
-        notes.push(format!("fingertips: {}", a.tips.describe()));
-    }
+    notes.push(tips_note(a));
     notes
+}
+
+/// Where the dataset's fingertips are, when its rows record it, and what is assumed of
+/// the rows that do not: they pool with the others, and the rig audits take every tip as
+/// [`data_tip_of`]'s kind, which their verdicts rest on.
+pub fn tips_note(a: &Analysis) -> String {
+    let t = &a.tips;
+    if t.single().is_some() {
+        return format!("fingertips: {}", t.describe());
+    }
+    let assumed = data_tip_of(t).name();
+    let audits = format!(
+        "'phalanx audit' and the report's rigs take every tip here as a {assumed} tip, \
+         so their verdicts rest on that assumption"
+    );
+    match (t.bone + t.skin, t.unknown) {
+        (_, 0) => format!("fingertips: {}; {audits}", t.describe()),
+        (0, _) => format!(
+            "fingertips: not recorded (no row of {} gives a tip); {audits}. Record where they \
+             were measured in a tip column (bone or skin)",
+            a.dataset.path
+        ),
+        _ => format!(
+            "fingertips: {} ({} of {}); the statistics pool the rows without a tip with the \
+             others as if measured to the same tip, and {audits}. Record where they were \
+             measured in their tip column (bone or skin)",
+            t.describe(),
+            a.untipped.with_word(),
+            a.dataset.path
+        ),
+    }
 }
 
 /// What a dataset whose rows are in several units means for its statistics, when it is:

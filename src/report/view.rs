@@ -696,7 +696,7 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         coverage: coverage(inputs),
         tracking: tracking(inputs),
         groups: groups_view(inputs.groups, a.settings.confidence),
-        rigs: rigs_view(inputs.rigs, a.settings.confidence),
+        rigs: rigs_view(inputs.rigs, &a.dataset.path, a.settings.confidence),
         atlas: inputs.atlas.map(|x| atlas_view(a, x)),
         literature: inputs.literature.map(literature_view),
         deform: inputs.deform.map(|d| d.view.clone()),
@@ -1687,12 +1687,11 @@ fn group_difference(d: &GroupDifference, i: usize) -> GroupDifferenceView {
     }
 }
 
-fn rigs_view(rigs: &[ReferenceAudit], confidence: f64) -> Option<RigsView> {
+/// The section on reference rigs, judged against the data at `data` (its path).
+fn rigs_view(rigs: &[ReferenceAudit], data: &str, confidence: f64) -> Option<RigsView> {
     use super::audit::{finger_summary, value_of};
     use crate::rig::judge::Basis;
-    if rigs.is_empty() {
-        return None;
-    }
+    let first = rigs.first()?;
     let views = rigs
         .iter()
         .map(|r| {
@@ -1747,10 +1746,7 @@ fn rigs_view(rigs: &[ReferenceAudit], confidence: f64) -> Option<RigsView> {
         .collect();
     Some(RigsView {
         rigs: views,
-        caveats: super::audit::CAVEATS
-            .iter()
-            .map(|c| c.to_string())
-            .collect(),
+        caveats: super::audit::caveats(&first.audit.tips, data),
     })
 }
 

@@ -8,7 +8,7 @@ use super::finger;
 use super::ray_base::{self, MetacarpalCheck, WRIST_DEFINITION, WristRatios};
 use super::sanity;
 use super::standing::{
-    BEND_GUARD, ChainInput, FingerAudit, Held, HoldReason, JudgeOptions, MOVE_TOLERANCE,
+    BEND_GUARD, Basis, ChainInput, FingerAudit, Held, HoldReason, JudgeOptions, MOVE_TOLERANCE,
     SoftTissue, Standing, TipKind, chain_kinds,
 };
 use crate::analysis::Analysis;
@@ -597,13 +597,17 @@ impl AuditedRig {
                 )),
             }
         }
+        let mut warnings = geometry_warnings(chains, weights, &lengths);
+        if fingers.iter().any(|f| f.audit.basis == Basis::Relative) {
+            warnings.extend(judge.assumption(&a.dataset.path));
+        }
         AuditedRig {
             label: label.to_string(),
             tips: judge,
             bend_tolerance: opts.bend_tolerance,
             fingers,
             notes,
-            warnings: geometry_warnings(chains, weights, &lengths),
+            warnings,
         }
     }
 

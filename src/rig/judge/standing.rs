@@ -141,7 +141,8 @@ pub fn data_tip_of(tips: &TipCounts) -> TipKind {
 pub struct JudgeOptions {
     /// What the rig's tip nodes mark.
     pub rig_tip: TipKind,
-    /// What the data's tips mark, from its `tip` column ([`data_tip_of`]).
+    /// What the data's tips mark, from its `tip` column ([`data_tip_of`]): assumed (bone)
+    /// when the column does not record one kind for every row (see `data_tips`).
     pub data_tip: TipKind,
     /// Where the data's rows put their tips, as their `tip` column says.
     pub data_tips: TipCounts,
@@ -205,6 +206,30 @@ impl JudgeOptions {
             .soft_tissue
             .correction(self.rig_tip, data_tip_of(tips), finger, length)?;
         Some(length - c)
+    }
+
+    /// True when the data's tip column does not record one kind for every row, so that
+    /// [`JudgeOptions::data_tip`] is assumed ([`data_tip_of`]), not read.
+    pub fn data_tip_assumed(&self) -> bool {
+        self.data_tips.single().is_none()
+    }
+
+    /// What the audit assumed of the tips of the data (`data`, its path) when their tip
+    /// column does not record one kind for every row, and that the verdicts rest on it;
+    /// `None` when it records one.
+    pub fn assumption(&self, data: &str) -> Option<String> {
+        if !self.data_tip_assumed() {
+            return None;
+        }
+        Some(format!(
+            "{data}'s fingertips are {}, so the audit takes them all as {kind} tips (the usual \
+             landmark on an X-ray), and the verdicts of the fingers with a tip rest on that \
+             assumption: a last segment to the skin is longer than one to the bone by the \
+             fingertip's soft tissue. Record where the X-rays' tips were measured in {data}'s \
+             tip column (bone or skin)",
+            self.data_tips.describe(),
+            kind = self.data_tip.name(),
+        ))
     }
 
     /// True when the rig's tips and the data's differ and no soft tissue figure is known at all.
