@@ -205,6 +205,17 @@ fn paper_numbers_appear_in_the_report() {
     );
     assert!(md.contains("give mean 0.4846, not 0.4946"));
     assert!(md.contains("30 claims: 20 match, 2 match from rounded values"));
+    // X-rays needed, on a stated basis: index J~2 (SD 0.0039 at n = 5) needs 27 with 80%
+    // assurance at the upper end of the SD's 95% interval (0.0113), not the plug-in's 5
+    // (tests/independent/xrays_needed.py); the plug-in stays, labelled optimistic.
+    assert!(
+        md.contains("| index (the paper's 'grooming' finger) | J\\~2 = J2/J | 5 | 0.0039 | 0.0113 | 0.0049 | 27 | 22 more | 5 |"),
+        "{md}"
+    );
+    assert!(md.contains("| X-rays needed | Still to measure | Plug-in (optimistic) |"));
+    assert!(md.contains(
+        "with σ at the upper end of the SD's 95% confidence interval, s · √((n − 1) / q), q the 2.5% quantile of χ²(n − 1). The true SD lies below that limit with 97.5% confidence"
+    ));
     let json = file(&files, "stats.json");
     let v: serde_json::Value = serde_json::from_str(json).unwrap();
     assert_eq!(v["schema_version"], 4);
@@ -507,6 +518,14 @@ fn the_report_compares_the_paper_with_the_atlas() {
     assert!(md.contains("### Coverage measured on real hands"));
     assert!(md.contains("| 5 | atlas hands |"));
     assert!(md.contains("### Whole-hand proportions from the metacarpals"));
+    // X-rays needed: where the atlas's SD is larger, its figure on the same basis beside
+    // the paper's (tests/independent/xrays_needed.txt: index J~2, atlas SD 0.0092, 21).
+    assert!(md.contains("| X-rays needed | Still to measure | The atlas, where its SD is larger | Plug-in (optimistic) |"), "{md}");
+    assert!(
+        md.contains("| index (the paper's 'grooming' finger) | J\\~2 = J2/J | 5 | 0.0039 | 0.0113 | 0.0049 | 27 | 22 more | SD 0.0092: 21 | 5 |"),
+        "{md}"
+    );
+    assert!(md.contains("Where the atlas (section 11: 910 X-rays of children's left hands, tips at the bone) gives a larger SD"));
 }
 
 /// Section 13 and the key result: the fingertip table with its intervals (the issue's
