@@ -213,6 +213,10 @@ fn paper_numbers_appear_in_the_report() {
         "{md}"
     );
     assert!(md.contains("| X-rays needed | Still to measure | Plug-in (optimistic) |"));
+    // J in image units: the paper's numbers kept, and the caption says why their spread is
+    // no physical length and where the images' lack of a common scale comes from.
+    assert!(md.contains("| J (total length) | 756.57 | 698.46 | 826.53 | 128.07 | 52.36 | 23.41 | [691.56, 821.58] |"), "{md}");
+    assert!(md.contains("J is in image units, pixels of each X-ray as published: the paper took its X-ray images \"from internet and hospitals\" (its section 2) and gives no scale, so an image unit need not be the same length on two X-rays; the index's J runs from 698.46 to 826.53. J's spread therefore pools the images' scales with the hands' sizes, and its SD, t interval and prediction interval describe no physical length"), "{md}");
     assert!(md.contains(
         "with σ at the upper end of the SD's 95% confidence interval, s · √((n − 1) / q), q the 2.5% quantile of χ²(n − 1). The true SD lies below that limit with 97.5% confidence"
     ));

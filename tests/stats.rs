@@ -571,6 +571,16 @@ fn table_format_names_the_paper_and_its_numbers() {
         .stdout_has("index (the paper's 'grooming' finger) - n = 5")
         .stdout_has("[0.4683, 0.5010]")
         .stdout_has("0.4846");
+    // J in image units keeps the paper's numbers (the index's mean 756.57 and t interval),
+    // with a note that its spread describes no physical length.
+    let flat = run.stdout.replace("\n  ", " ");
+    assert!(flat.contains("note: J (total length) is in image units, pixels of X-ray images with no common scale: its SD and intervals pool the images' scales with the hands' sizes and describe no physical length."), "{}", run.stdout);
+    assert!(
+        flat.contains("| J (total length) | 756.57 |"),
+        "{}",
+        run.stdout
+    );
+    assert!(flat.contains("[691.56, 821.58]"), "{}", run.stdout);
     // Exactly one table per finger.
     assert_eq!(run.stdout.matches("| quantity").count(), 5);
 }

@@ -787,15 +787,43 @@ fn flagged_rows(a: &Analysis) -> Vec<FlaggedView> {
         .collect()
 }
 
-/// What unit the totals J are in, as the statistics section says it.
-fn length_unit(a: &Analysis) -> String {
+/// What unit the totals J are in, as the statistics section says it. In image units
+/// (pixels of images of no common scale) it says that J's spread, intervals and
+/// prediction interval describe no physical length, and where that is seen; `paper`: the
+/// data are the paper's X-rays, whose sources its section 2 names.
+fn length_unit(a: &Analysis, paper: bool) -> String {
     if a.mixed_units() {
         "The rows give their lengths in more than one unit: J is shown only for a finger whose X-rays share one.".to_string()
     } else if a.pixel_lengths() {
         "The lengths are per-image pixels, so J is not averaged.".to_string()
     } else {
         match &a.unit {
-            Some(u) if u == "image units" => "J is in image units.".to_string(),
+            Some(u) if u == "image units" => {
+                let sources = if paper {
+                    "the paper took its X-ray images \"from internet and hospitals\" (its section 2) and gives no scale"
+                } else {
+                    "the rows give no scale"
+                };
+                // The spread of one finger's J, as the table below prints it.
+                let seen = a
+                    .fingers
+                    .iter()
+                    .find(|f| f.finger == Finger::Index)
+                    .or(a.fingers.first())
+                    .and_then(|f| {
+                        let q = f.quantities.iter().find(|q| q.name == Quantity::Total)?;
+                        Some(format!(
+                            "; the {}'s J runs from {} to {}",
+                            f.finger.name(),
+                            num(q.min, decimals(false)),
+                            num(q.max, decimals(false))
+                        ))
+                    })
+                    .unwrap_or_default();
+                format!(
+                    "J is in image units, pixels of each X-ray as published: {sources}, so an image unit need not be the same length on two X-rays{seen}. J's spread therefore pools the images' scales with the hands' sizes, and its SD, t interval and prediction interval describe no physical length: they are shown because the paper gives J, not as sizes of hands. The relative values are ratios within one image, so the scale cancels from them."
+                )
+            }
             Some(u) => format!("J is in {u}."),
             None => "J is in the dataset's unit (the rows name none).".to_string(),
         }
@@ -815,7 +843,7 @@ fn settings_text(inputs: &ReportInputs<'_>) -> SettingsText {
         bootstrap: plans.join("; "),
         model_length: exact(inputs.model_length),
         width_reason: width_reason(a),
-        length_unit: length_unit(a),
+        length_unit: length_unit(a, is_paper(inputs.paper_xrays)),
     }
 }
 
