@@ -21,7 +21,7 @@ pub(crate) const MM: f64 = 1000.0;
 pub(crate) const CAVEATS: [&str; 3] = [
     "The statistics come from X-rays of right hands; a left hand is judged as their mirror image.",
     "A rig's joints are rotation centres, while the X-ray lengths run between bone ends; the two differ by a few per cent, so read the prediction interval as a guide, not a verdict.",
-    "A rig's tip usually sits at the skin, and so do the paper's X-ray tips (their tip column: inferred from Buryanov & Kotiuk 2010, not stated by the paper), so such a rig is compared as it is. Where a rig's tips and the data's differ (one at the bone, the other at the skin), the last segment is corrected by the fingertip's soft tissue Buryanov & Kotiuk measured for that finger (66 adults, 3.7 to 5.7 mm), as a share of the rig's finger; --tip-soft-tissue MM sets one length for every finger instead.",
+    "A rig's tip usually sits at the skin, and so do the paper's X-ray tips (their tip column, not stated by the paper: a test against Buryanov & Kotiuk 2010 rejects bone tips and does not reject skin tips), so such a rig is compared as it is. Where a rig's tips and the data's differ (one at the bone, the other at the skin), the last segment is corrected by the fingertip's soft tissue Buryanov & Kotiuk measured for that finger (66 adults, 3.7 to 5.7 mm), as a share of the rig's finger; --tip-soft-tissue MM sets one length for every finger instead.",
 ];
 
 /// `text` as one line starting with `first`; [`super::layout::fit_text`]

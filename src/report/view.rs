@@ -1462,7 +1462,8 @@ fn key_results(inputs: &ReportInputs<'_>, claims: &ClaimsView) -> KeyResults {
     }
 }
 
-/// The key result on the fingertips: where the paper's are, and the evidence in one sentence.
+/// The key result on the fingertips: where the paper's are taken, and what the test does
+/// and does not show, in one paragraph.
 fn key_fingertips(l: &LiteratureInputs) -> Option<String> {
     let v = l.paper.tips.as_ref()?;
     let name = table_name(&l.paper.b);
@@ -1473,20 +1474,26 @@ fn key_fingertips(l: &LiteratureInputs) -> Option<String> {
         (lo, hi)
     };
     let (slo, shi) = ranges(|t| t.soft_share);
+    let nearest = v.nearest_to_rejection().map_or(String::new(), |(t, i)| {
+        format!(
+            "; the {}'s interval ends at {}",
+            t.finger.name(),
+            crate::format::signed(i.high, decimals(true))
+        )
+    });
     Some(match v.overall {
         Some(crate::analysis::literature::Fit::Skin) => format!(
-            "The paper's fingertips are at the skin, not at the end of the bone. On all {} fingers its last segment agrees with the bone plus the fingertip's soft tissue of {name} and lies outside its own {} interval against bone alone, at every assumed correlation from 0 to 0.9. The soft tissue is {} to {} of a finger measured to the skin, so a rig's tip at the skin compares with the paper as it is, and a tip at the bone needs that share added.",
+            "The paper's fingertips are taken at the skin, not at the end of the bone. Against {name}, a Welch test of each finger's last segment rejects bone alone on all {} fingers at every assumed correlation from 0 to 0.9, and does not reject bone plus the fingertip's soft tissue (not rejected is not shown equal{nearest}). The paper does not say where its tips are; its rows record the skin because of this test. The soft tissue is {} to {} of a finger measured to the skin, so a rig's tip at the skin compares with the paper as it is, and a tip at the bone needs that share added.",
             v.fingers.len(),
-            level(l.paper.confidence),
             percent(slo),
             percent(shi),
         ),
         Some(crate::analysis::literature::Fit::Bone) => format!(
-            "The paper's fingertips are at the end of the bone: on all {} fingers its last segment agrees with the bone alone of {name} and not with bone plus soft tissue.",
+            "The paper's fingertips are taken at the end of the bone: against {name}, its last segment rejects bone plus soft tissue on all {} fingers and does not reject bone alone (not rejected is not shown equal).",
             v.fingers.len()
         ),
         _ => format!(
-            "Where the paper's fingertips are is not settled by {name}: the fingers do not agree on one tip at every assumed correlation from 0 to 0.9."
+            "Where the paper's fingertips are is not settled by {name}: the fingers do not reject one tip and leave the other at every assumed correlation from 0 to 0.9."
         ),
     })
 }
@@ -1932,7 +1939,7 @@ fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
             format!("The atlas: {}", cohort_line(&c.b)),
         ],
         differs: format!(
-            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with {}; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin, and its data record them at the skin, inferred from published adult measurements (section 12). A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
+            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with {}; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin, and its data record them at the skin because a test against published adult measurements rejects bone tips and does not reject skin tips (section 12). A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
             c.b.xrays,
             crate::dataset::landmarks::ATLAS_LANDMARKS,
             c.a.xrays
@@ -2095,7 +2102,8 @@ fn literature_view(l: &LiteratureInputs) -> LiteratureView {
                 .iter()
                 .map(|t| tip_finding_sentence(t, names, p.confidence))
                 .chain(std::iter::once(format!(
-                    "Each difference is {name}'s ratio minus the paper's mean, with its {conf} Welch-type interval (both uncertainties); it agrees when that interval holds 0."
+                    "Each difference is {name}'s ratio minus the paper's mean, with its {conf} Welch-type interval (both uncertainties): a tip is rejected when that interval excludes 0, and not rejected when it holds 0, which at {} is not a finding that the two are equal.",
+                    xrays(p.a.n.unwrap_or(0))
                 )))
                 .collect(),
         ),
@@ -2142,7 +2150,7 @@ fn literature_view(l: &LiteratureInputs) -> LiteratureView {
         _ => "to the end of the bone",
     };
     let side_intro = format!(
-        "Each cohort beside {name} measured to the same fingertip: the paper's X-rays (mean and {conf} t interval) against {name}'s ratios of means {tip_word}; the atlas (bone tips) against {name} to the bone. A verdict says whether the {conf} interval of the difference holds 0 (agrees) or not (differs), the same at correlations 0, the assumed one and 0.9 unless each is named."
+        "Each cohort beside {name} measured to the same fingertip: the paper's X-rays (mean and {conf} t interval) against {name}'s ratios of means {tip_word}; the atlas (bone tips) against {name} to the bone. A verdict says whether the {conf} interval of the difference excludes 0 (differs) or holds it (not rejected: no difference shown, which is not equality shown), the same at correlations 0, the assumed one and 0.9 unless each is named."
     );
     LiteratureView {
         title: "The paper against published measurements".to_string(),
