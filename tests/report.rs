@@ -604,9 +604,9 @@ fn the_report_holds_the_paper_against_published_measurements() {
     assert!(md.contains(
         "> **Where the paper's fingertips are.** The paper's fingertips are taken at the skin"
     ));
-    assert!(
-        md.contains("What it changes for a rig audit: the paper's last segment ends at the skin")
-    );
+    assert!(md.contains(
+        "What it changes for a rig audit: the paper's last segment is taken to end at the skin"
+    ));
     assert!(md.contains("| index | J\\~3 | 0.2428 [0.2242, 0.2614] | 0.2403 [0.2375, 0.2430] | not rejected | 0.2185 ["), "{md}");
     // The tip finding: bone rejected, skin not rejected with the weakest interval named, the
     // record consistent with the test and not confirmed by it.
