@@ -117,7 +117,19 @@ fn compare_with_bk_reproduces_the_fingertip_table_against_scipy() {
     }
     // Sentences wrap at 100 columns, continued with two spaces.
     let flat = text.replace("\n  ", " ");
-    assert!(flat.contains("A's fingertips are at the skin's outline (its rows record the tips at the skin, which this confirms)"), "{text}");
+    // The tip finding says what the test does: bone rejected, skin not rejected (the ring's
+    // interval nearest to rejecting it, ending at +0.00012 in SciPy: 0.0001), and never that
+    // it confirms a record which rests on this very test.
+    assert!(flat.contains("Against B, A's last segment rejects bone alone on all 5 fingers at every correlation from 0 to 0.9 (each Welch interval of the difference excludes 0) and does not reject bone plus soft tissue on any (the interval nearest to rejecting it: the ring finger's, [-0.0205, 0.0001], at the assumed correlation). So A's fingertips are taken at the skin's outline (soft tissue included): not rejected is not shown equal. Its rows record the tips at the skin: consistent with this test, not confirmed by it."), "{text}");
+    assert!(
+        !flat.contains("confirms") && !flat.contains("agree"),
+        "{text}"
+    );
+    assert!(
+        flat.contains("kept: the tip not rejected where the other is)")
+            && text.contains("|    B bone + soft tissue | kept |"),
+        "{text}"
+    );
     assert!(
         flat.contains("thumb 0.82, index 0.85, middle 0.87, ring 0.87, little 0.78"),
         "{text}"
@@ -215,8 +227,8 @@ fn the_verdict_at_correlations_0_and_0_9() {
     let high: f64 = ring[col("high")].parse().unwrap();
     assert_close(low, at09.4.0, 1e-8, "ring skin low at 0.9");
     assert_close(high, at09.4.1, 1e-8, "ring skin high at 0.9");
-    assert_eq!(ring[col("agrees")], "true");
-    assert_eq!(ring[col("agrees_at_0")], "true");
+    assert_eq!(ring[col("not_rejected")], "true");
+    assert_eq!(ring[col("not_rejected_at_0")], "true");
     let text = wd
         .run(&[
             "compare",
@@ -233,6 +245,101 @@ fn the_verdict_at_correlations_0_and_0_9() {
             .contains("Assumed (given with --correlation): 0.9 for every finger"),
         "{text}"
     );
+}
+
+/// A joint-centre table without SDs (tests/fixtures/joint-centre-table.csv: shares of hand
+/// length, no SD, no n) can test nothing: the headline says so instead of "0 differ", and
+/// counts its point values outside the paper's t intervals (19 of 23, from
+/// tests/independent/untestable_table.py); the JSON counts the same, and no verdict reads
+/// "not rejected".
+#[test]
+fn a_table_without_sds_tests_nothing_and_says_how_far_its_values_lie() {
+    let wd = Workdir::with_paper_data();
+    let fixture = "tests/fixtures/joint-centre-table.csv";
+    wd.write("joints.csv", vendored(fixture).unwrap());
+    let text = wd
+        .run(&[
+            "compare",
+            "data/measurements.csv",
+            "joints.csv",
+            "--correlation",
+            "0.5",
+        ])
+        .ok()
+        .stdout
+        .clone();
+    let flat = text.replace("\n  ", " ");
+    assert!(
+        flat.contains("Overall: 0 of 23 quantities can be tested (B gives no SD or no n for the segments they need); 19 of B's 23 point values lie outside A's 95% t intervals."),
+        "{text}"
+    );
+    assert!(
+        !flat.contains("differ between") && !flat.contains("no verdict changes"),
+        "{text}"
+    );
+    assert!(
+        flat.contains("- index finger: cannot test J~1, J~2, J~3, J2/J1, J3/J2 (no interval)."),
+        "{text}"
+    );
+    let doc = wd
+        .run(&[
+            "compare",
+            "data/measurements.csv",
+            "joints.csv",
+            "--correlation",
+            "0.5",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    assert_eq!(doc["untestable"]["quantities"], 23);
+    assert_eq!(doc["untestable"]["intervals_of"], "a");
+    assert_eq!(doc["untestable"]["checked"], 23);
+    assert_eq!(doc["untestable"]["outside"], 19);
+    assert!(
+        doc["conclusion"][0]
+            .as_str()
+            .unwrap()
+            .starts_with("Overall: 0 of 23 quantities can be tested"),
+        "{doc}"
+    );
+    // The same table beside one with SDs for the index alone: the tested and the untestable
+    // are counted apart (the index's 5 quantities tested, the other 18 not, 14 of those
+    // outside: 19 minus the index's 5, all outside).
+    let mut partial = String::from_utf8(vendored(fixture).unwrap()).unwrap();
+    for (seg, sd) in [
+        ("proximal", "0.015"),
+        ("middle", "0.010"),
+        ("distal", "0.008"),
+    ] {
+        let line_start = partial.find(&format!("index,{seg},")).unwrap();
+        let line_end = line_start + partial[line_start..].find('\n').unwrap();
+        let line = &partial[line_start..line_end];
+        let fixed = line.replacen(",,,", &format!(",{sd},50,"), 1);
+        partial.replace_range(line_start..line_end, &fixed);
+    }
+    wd.write("partial.csv", partial.as_bytes());
+    let doc = wd
+        .run(&[
+            "compare",
+            "data/measurements.csv",
+            "partial.csv",
+            "--correlation",
+            "0.5",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    assert_eq!(doc["untestable"]["quantities"], 18);
+    assert_eq!(doc["untestable"]["outside"], 14);
+    let overall = doc["conclusion"][0].as_str().unwrap();
+    assert!(
+        overall.contains(" of 5 quantities tested differ between A and B"),
+        "{overall}"
+    );
+    assert!(overall.contains("18 more quantities cannot be tested (B gives no SD or no n for the segments they need); 14 of B's 18 point values for them lie outside A's 95% t intervals."), "{overall}");
 }
 
 /// A bad table: every problem with its line and column, exit 2, nothing on standard output.

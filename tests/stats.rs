@@ -8,7 +8,7 @@ use serde_json::Value;
 
 /// SHA-256 of the shipped data/measurements.csv, as printed by
 /// `sha256sum data/measurements.csv` (a change of Table 1 must be deliberate).
-const PAPER_SHA256: &str = "d4056ac75b4ae5b0cbeaa6e0476b4dcf0450e3434c3e683d600f88acc481b05b";
+const PAPER_SHA256: &str = "4613281c408387af469c7a86cecea68af5aa0fa1765dff774be7dc8538219c64";
 
 const FINGERS: [&str; 5] = ["thumb", "index", "middle", "ring", "little"];
 const INTERVALS: [&str; 4] = ["ci_t", "ci_percentile", "ci_bca", "pi"];
@@ -571,6 +571,16 @@ fn table_format_names_the_paper_and_its_numbers() {
         .stdout_has("index (the paper's 'grooming' finger) - n = 5")
         .stdout_has("[0.4683, 0.5010]")
         .stdout_has("0.4846");
+    // J in image units keeps the paper's numbers (the index's mean 756.57 and t interval),
+    // with a note that its spread describes no physical length.
+    let flat = run.stdout.replace("\n  ", " ");
+    assert!(flat.contains("note: J (total length) is in image units, pixels of X-ray images with no common scale: its SD and intervals pool the images' scales with the hands' sizes and describe no physical length."), "{}", run.stdout);
+    assert!(
+        flat.contains("| J (total length) | 756.57 |"),
+        "{}",
+        run.stdout
+    );
+    assert!(flat.contains("[691.56, 821.58]"), "{}", run.stdout);
     // Exactly one table per finger.
     assert_eq!(run.stdout.matches("| quantity").count(), 5);
 }

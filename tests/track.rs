@@ -1585,7 +1585,7 @@ fn rows_in_another_unit_pool_their_relative_values_and_gain_columns() {
         .stderr_has("the dataset's header gained the column mc (empty on its existing rows)")
         .stderr_has("no current X-ray gives index lengths in 'mm', so the new rows in 'mm' are checked on their relative values only");
     let text = String::from_utf8(wd.read(DATA)).unwrap();
-    assert!(text.starts_with("xray,finger,j1,j2,j3,sex,age,side,source,unit,tip,mc\n1a,index,339.96,188.83,169.67,,,right,\"Figure 1a, Table 1; tip at the skin inferred from Buryanov & Kotiuk 2010 (phalanx compare), not stated by the paper\",image units,skin,\n"), "{text}");
+    assert!(text.starts_with("xray,finger,j1,j2,j3,sex,age,side,source,unit,tip,mc\n1a,index,339.96,188.83,169.67,,,right,\"Figure 1a, Table 1; tip at the skin: bone tips rejected against Buryanov & Kotiuk 2010 Table I (Welch test of the last segment's share, every correlation 0-0.9), skin tips not rejected; not stated by the paper\",image units,skin,\n"), "{text}");
     assert!(
         text.ends_with("mm1,index,33.996,18.883,16.967,,,,,mm,skin,60.1\n"),
         "{text}"

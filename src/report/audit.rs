@@ -29,9 +29,10 @@ pub(crate) fn caveats(tips: &JudgeOptions, data: &str) -> Vec<String> {
     let tip = match tips.data_tips.single() {
         Some(TipKind::Skin) => format!(
             "A rig's tip usually sits at the skin, and so do the paper's X-ray tips (their tip \
-             column: inferred from Buryanov & Kotiuk 2010, not stated by the paper), so such a \
-             rig is compared as it is. Where a rig's tips and the data's differ (one at the \
-             bone, the other at the skin), the last segment is corrected by {SOFT_TISSUE}."
+             column, not stated by the paper: a test against Buryanov & Kotiuk 2010 rejects bone \
+             tips and does not reject skin tips), so such a rig is compared as it is. Where a \
+             rig's tips and the data's differ (one at the bone, the other at the skin), the last \
+             segment is corrected by {SOFT_TISSUE}."
         ),
         Some(TipKind::Bone) => format!(
             "A rig's tip usually sits at the skin, while the X-ray tips of {data} are at the \

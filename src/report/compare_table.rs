@@ -14,7 +14,7 @@ use crate::analysis::literature::{
 };
 use crate::dataset::{CohortNotes, Finger, TipCounts, TipKind, is_pixel_unit};
 use crate::error::Error;
-use crate::format::{decimals, full, interval, level, num, signed};
+use crate::format::{count, decimals, full, interval, level, num, signed};
 
 /// What is known of a cohort, each line for people; "not recorded" where nothing is.
 #[derive(Debug, Clone, PartialEq)]
@@ -151,20 +151,21 @@ pub fn estimate_cell(e: &Estimate, q: Quantity) -> String {
     }
 }
 
-/// "agrees" / "differs" / "n/a".
-fn verdict(x: Option<bool>) -> &'static str {
-    match x {
-        Some(true) => "agrees",
+/// The verdict on equal means: "differs" (the interval excludes 0), "not rejected" (it holds
+/// 0: no difference shown, which is not equality shown), "n/a" (no interval).
+fn verdict(not_rejected: Option<bool>) -> &'static str {
+    match not_rejected {
+        Some(true) => "not rejected",
         Some(false) => "differs",
         None => "n/a",
     }
 }
 
-/// "differs at 0, 0.85 and 0.9" or "agrees at 0; differs at 0.85, 0.9".
+/// "differs at 0, 0.85 and 0.9" or "not rejected at 0; differs at 0.85, 0.9".
 pub fn sweep_cell(sweep: &[Difference]) -> String {
     let mut groups: Vec<(&'static str, Vec<String>)> = Vec::new();
     for x in sweep {
-        let v = verdict(x.agrees);
+        let v = verdict(x.not_rejected);
         let r = trim_rho(x.rho);
         match groups.last_mut() {
             Some((w, rs)) if *w == v => rs.push(r),
@@ -178,12 +179,12 @@ pub fn sweep_cell(sweep: &[Difference]) -> String {
         .join("; ")
 }
 
-/// "agrees" or "differs" when the verdict is the same at every correlation of the sweep,
-/// else each correlation's ([`sweep_cell`]).
+/// "not rejected" or "differs" when the verdict is the same at every correlation of the
+/// sweep, else each correlation's ([`sweep_cell`]).
 pub fn verdict_cell(sweep: &[Difference]) -> String {
     match sweep.first() {
-        Some(first) if sweep.iter().all(|d| d.agrees == first.agrees) => {
-            verdict(first.agrees).to_string()
+        Some(first) if sweep.iter().all(|d| d.not_rejected == first.not_rejected) => {
+            verdict(first.not_rejected).to_string()
         }
         _ => sweep_cell(sweep),
     }
@@ -201,20 +202,33 @@ fn finger_name(f: Finger) -> String {
     }
 }
 
-/// The fit in words: "the skin (bone plus soft tissue)".
+/// What the test leaves standing, in words: "bone plus soft tissue (tip at the skin); bone
+/// alone rejected".
 pub fn fit_words(f: Option<Fit>) -> &'static str {
     match f {
-        Some(Fit::Skin) => "bone plus soft tissue (tip at the skin)",
-        Some(Fit::Bone) => "bone only (tip at the bone)",
-        Some(Fit::Both) => "both (the data cannot tell)",
-        Some(Fit::Neither) => "neither",
+        Some(Fit::Skin) => "bone plus soft tissue (tip at the skin); bone alone rejected",
+        Some(Fit::Bone) => "bone alone (tip at the bone); bone plus soft tissue rejected",
+        Some(Fit::Both) => "both: neither rejected, the data cannot tell",
+        Some(Fit::Neither) => "neither: both rejected",
         None => "n/a (no interval)",
     }
 }
 
+/// The finding of one finger as a clause: "bone alone is rejected and bone plus soft tissue
+/// is not".
+fn fit_clause(f: Option<Fit>) -> &'static str {
+    match f {
+        Some(Fit::Skin) => "Bone alone is rejected and bone plus soft tissue is not",
+        Some(Fit::Bone) => "Bone plus soft tissue is rejected and bone alone is not",
+        Some(Fit::Both) => "Neither is rejected, so the data cannot tell",
+        Some(Fit::Neither) => "Both are rejected",
+        None => "Without an interval neither is tested",
+    }
+}
+
 /// The fingertip sentence of one finger: the data's last segment against the table's bone
-/// only and bone plus soft tissue, and which it fits. `names.a` is the data, `names.b` the
-/// table; differences are the table's value minus the data's.
+/// only and bone plus soft tissue, and which the test rejects. `names.a` is the data,
+/// `names.b` the table; differences are the table's value minus the data's.
 pub fn tip_finding_sentence(t: &TipFinding, names: Names<'_>, confidence: f64) -> String {
     let q = t.quantity;
     let inside = |e: &Estimate| t.data.ci.is_some_and(|ci| ci.contains(e.mean));
@@ -231,7 +245,7 @@ pub fn tip_finding_sentence(t: &TipFinding, names: Names<'_>, confidence: f64) -
     };
     let holds = t.sweep.iter().all(|(_, f)| *f == t.fit);
     format!(
-        "{}: {}'s {} is {} ({} t CI {}); {}'s bone only gives {}, {} that interval ({}), bone plus soft tissue {}, {} it ({}). It fits {}{}.",
+        "{}: {}'s {} is {} ({} t CI {}); {}'s bone only gives {}, {} that interval ({}), bone plus soft tissue {}, {} it ({}). {}{}.",
         finger_name(t.finger),
         names.a,
         q.symbol(),
@@ -245,7 +259,7 @@ pub fn tip_finding_sentence(t: &TipFinding, names: Names<'_>, confidence: f64) -
         num(t.skin.mean, d(q)),
         where_(&t.skin),
         diff(&t.skin_difference),
-        fit_words(t.fit),
+        fit_clause(t.fit),
         if holds {
             " at every correlation from 0 to 0.9"
         } else {
@@ -254,7 +268,9 @@ pub fn tip_finding_sentence(t: &TipFinding, names: Names<'_>, confidence: f64) -
     )
 }
 
-/// The overall fingertip sentence.
+/// The overall fingertip sentence: which tip the test rejects and which it does not, the
+/// weakest "not rejected" with its interval, and the rows' record beside it (consistent
+/// with it or not; never "confirmed": the record may rest on this very test).
 pub fn tip_overall(v: &TipVerdict, names: Names<'_>) -> String {
     let (data, table) = if v.data == "a" {
         (names.a, names.b)
@@ -262,43 +278,57 @@ pub fn tip_overall(v: &TipVerdict, names: Names<'_>) -> String {
         (names.b, names.a)
     };
     let n = v.fingers.len();
-    let record = match v.recorded {
-        Some(t) => format!("its rows record the tips at the {}", t.name()),
-        None => "its rows do not record where the tips are".to_string(),
+    let (rejected, kept, tip) = match v.overall {
+        Some(Fit::Skin) => ("bone alone", "bone plus soft tissue", TipKind::Skin),
+        Some(Fit::Bone) => ("bone plus soft tissue", "bone alone", TipKind::Bone),
+        _ => {
+            let record = match v.recorded {
+                Some(t) => format!("its rows record the tips at the {}", t.name()),
+                None => "its rows do not record where the tips are".to_string(),
+            };
+            return format!(
+                "Against {table}, the fingers do not reject one tip and leave the other at every correlation from 0 to 0.9, so where {data}'s fingertips are is not settled ({record})."
+            );
+        }
     };
-    match v.overall {
-        Some(Fit::Skin) => format!(
-            "On all {n} fingers {data}'s last segment agrees with {table}'s bone plus soft tissue and not with bone alone, at every correlation from 0 to 0.9: {data}'s fingertips are at the skin's outline ({record}{}).",
-            if v.recorded == Some(TipKind::Skin) {
-                ", which this confirms"
-            } else {
-                "; record tip = skin"
-            }
+    let nearest = v.nearest_to_rejection().map_or(String::new(), |(t, i)| {
+        format!(
+            " (the interval nearest to rejecting it: the {}'s, {}, at the assumed correlation)",
+            finger_name(t.finger),
+            interval(Some(i), d(t.quantity))
+        )
+    });
+    let record = match v.recorded {
+        Some(r) if r == tip => format!(
+            "Its rows record the tips at the {}: consistent with this test, not confirmed by it.",
+            r.name()
         ),
-        Some(Fit::Bone) => format!(
-            "On all {n} fingers {data}'s last segment agrees with {table}'s bone alone and not with bone plus soft tissue, at every correlation from 0 to 0.9: {data}'s fingertips are at the end of the bone ({record}{}).",
-            if v.recorded == Some(TipKind::Bone) {
-                ", which this confirms"
-            } else {
-                "; record tip = bone"
-            }
+        Some(r) => format!(
+            "Its rows record the tips at the {}, which this test rejects: record tip = {}.",
+            r.name(),
+            tip.name()
         ),
-        _ => format!(
-            "The fingers do not agree on one tip at every correlation from 0 to 0.9, so where {data}'s fingertips are is not settled by {table} ({record})."
+        None => format!(
+            "Its rows do not record where the tips are: record tip = {}.",
+            tip.name()
         ),
-    }
+    };
+    format!(
+        "Against {table}, {data}'s last segment rejects {rejected} on all {n} fingers at every correlation from 0 to 0.9 (each Welch interval of the difference excludes 0) and does not reject {kept} on any{nearest}. So {data}'s fingertips are taken {}: not rejected is not shown equal. {record}",
+        tip.phrase()
+    )
 }
 
-/// The sentence of one finger: which quantities differ, which agree, and whether the
-/// verdicts depend on the correlation.
+/// The sentence of one finger: which quantities differ, on which equality is not rejected,
+/// which cannot be tested, and whether the verdicts depend on the correlation.
 pub fn table_finger_sentence(f: &TableFinger, names: Names<'_>) -> String {
     let mut differ: Vec<String> = Vec::new();
-    let mut agree: Vec<&str> = Vec::new();
+    let mut not_rejected: Vec<&str> = Vec::new();
     let mut none: Vec<&str> = Vec::new();
     let mut moved: Vec<&str> = Vec::new();
     for q in &f.quantities {
         let s = q.quantity.symbol();
-        match q.difference.agrees {
+        match q.difference.not_rejected {
             Some(false) => differ.push(format!(
                 "{s} ({} {} by {})",
                 names.b,
@@ -309,7 +339,7 @@ pub fn table_finger_sentence(f: &TableFinger, names: Names<'_>) -> String {
                 },
                 num(q.difference.difference.abs(), d(q.quantity))
             )),
-            Some(true) => agree.push(s),
+            Some(true) => not_rejected.push(s),
             None => none.push(s),
         }
         if !q.verdict_holds() {
@@ -326,14 +356,19 @@ pub fn table_finger_sentence(f: &TableFinger, names: Names<'_>) -> String {
             differ.join(", ")
         ));
     }
-    if !agree.is_empty() {
-        parts.push(format!("agree on {}", agree.join(", ")));
+    if !not_rejected.is_empty() {
+        parts.push(format!(
+            "equality not rejected on {}",
+            not_rejected.join(", ")
+        ));
     }
     if !none.is_empty() {
-        parts.push(format!("have no interval for {}", none.join(", ")));
+        parts.push(format!("cannot test {} (no interval)", none.join(", ")));
     }
     s.push_str(&parts.join("; "));
-    if moved.is_empty() {
+    if differ.is_empty() && not_rejected.is_empty() {
+        s.push('.');
+    } else if moved.is_empty() {
         s.push_str(&format!(
             " (correlation {}; the same verdicts at 0 and 0.9).",
             trim_rho(f.rho)
@@ -348,30 +383,85 @@ pub fn table_finger_sentence(f: &TableFinger, names: Names<'_>) -> String {
     s
 }
 
-/// The overall sentence of a comparison with a table.
+/// The overall sentence of a comparison with a table: how many quantities could be tested
+/// and how many of those differ; for the untestable ones, how many of the table's point
+/// values lie outside the data's t intervals ([`Untestable`]).
 pub fn table_overall(c: &TableCohorts, names: Names<'_>) -> String {
     let all: Vec<_> = c.fingers.iter().flat_map(|f| &f.quantities).collect();
-    let differ = all
+    let tested: Vec<_> = all
         .iter()
-        .filter(|q| q.difference.agrees == Some(false))
+        .filter(|q| q.difference.not_rejected.is_some())
+        .collect();
+    let differ = tested
+        .iter()
+        .filter(|q| q.difference.not_rejected == Some(false))
         .count();
-    let moved = all.iter().filter(|q| !q.verdict_holds()).count();
-    let mut s = format!(
-        "Overall: {} of {} quantities differ between {} and {} at the assumed correlation",
-        differ,
-        all.len(),
-        names.a,
-        names.b
-    );
-    if moved == 0 {
-        s.push_str(", and no verdict changes between correlations 0 and 0.9.");
+    let moved = tested.iter().filter(|q| !q.verdict_holds()).count();
+    let u = &c.untestable;
+    // Who lacks the spread, and how the point values sit against the other side's intervals.
+    let (why, points) = match u.intervals_of.filter(|_| u.checked > 0) {
+        Some(side) => {
+            let (with_ci, without) = if side == "a" {
+                (names.a, names.b)
+            } else {
+                (names.b, names.a)
+            };
+            (
+                format!("{without} gives no SD or no n for the segments they need"),
+                format!(
+                    "; {} of {without}'s {} point values{} lie outside {with_ci}'s {} t intervals",
+                    u.outside,
+                    u.checked,
+                    if tested.is_empty() { "" } else { " for them" },
+                    level(c.confidence)
+                ),
+            )
+        }
+        None => (
+            "no SD or no n for the segments they need".to_string(),
+            String::new(),
+        ),
+    };
+    let mut s = if tested.is_empty() {
+        format!(
+            "Overall: 0 of {} quantities can be tested ({why}){points}.",
+            all.len()
+        )
     } else {
-        s.push_str(&format!(
-            "; {moved} verdict{} change{} between correlations 0 and 0.9, so those rest on the assumption.",
-            if moved == 1 { "" } else { "s" },
-            if moved == 1 { "s" } else { "" }
-        ));
-    }
+        let mut s = format!(
+            "Overall: {differ} of {} quantities {} differ between {} and {} at the assumed correlation",
+            tested.len(),
+            if u.quantities > 0 {
+                "tested"
+            } else {
+                "compared"
+            },
+            names.a,
+            names.b
+        );
+        let rest = tested.len() - differ;
+        if rest > 0 {
+            s.push_str(&format!(
+                "; on the other {rest} equality is not rejected, which is not equality shown"
+            ));
+        }
+        if moved == 0 {
+            s.push_str(", and no verdict changes between correlations 0 and 0.9.");
+        } else {
+            s.push_str(&format!(
+                "; {moved} verdict{} change{} between correlations 0 and 0.9, so those rest on the assumption.",
+                if moved == 1 { "" } else { "s" },
+                if moved == 1 { "s" } else { "" }
+            ));
+        }
+        if u.quantities > 0 {
+            s.push_str(&format!(
+                " {} cannot be tested ({why}){points}.",
+                count(u.quantities, "more quantity", "more quantities")
+            ));
+        }
+        s
+    };
     if let Some(v) = &c.tips {
         s.push(' ');
         s.push_str(&tip_overall(v, names));
@@ -461,14 +551,14 @@ pub fn text(c: &TableCohorts, width: Width) -> String {
             ("B", "A")
         };
         out.push_str(&format!(
-            "\nWhere {dn}'s fingertips are: its last segment against {tn}'s, bone only and bone plus soft tissue ({conf} intervals; differences {tn} - {dn})\n"
+            "\nWhere {dn}'s fingertips are: its last segment against {tn}'s, bone only and bone plus soft tissue ({conf} intervals; differences {tn} - {dn}; kept: the tip not rejected where the other is)\n"
         ));
         let mut g = Grid::new()
             .col("finger", Align::Left, Give::Keep)
             .col(format!("{dn}, mean [t CI]"), Align::Right, Give::Keep)
             .col(format!("{tn} bone only"), Align::Right, Give::Keep)
             .col(format!("{tn} bone + soft tissue"), Align::Right, Give::Keep)
-            .col("fits", Align::Left, Give::Keep);
+            .col("kept", Align::Left, Give::Keep);
         for t in &v.fingers {
             g.row(vec![
                 format!("{} {}", t.finger.name(), t.quantity.symbol()),
@@ -498,7 +588,7 @@ pub fn text(c: &TableCohorts, width: Width) -> String {
         }
     }
     out.push_str(&format!(
-        "\nThe tables: A's and B's estimates with {conf} t intervals (a dataset: its mean over X-rays; a table: its ratio of means, delta-method SE at the assumed correlation), B - A with a Welch-type {conf} interval, and the verdict at the assumed correlation: agrees when that interval holds 0. A verdict marked * changes between correlations 0 and 0.9 (--format csv gives each).\n"
+        "\nThe tables: A's and B's estimates with {conf} t intervals (a dataset: its mean over X-rays; a table: its ratio of means, delta-method SE at the assumed correlation), B - A with a Welch-type {conf} interval, and the verdict at the assumed correlation: differs when that interval excludes 0, not rejected when it holds 0 (no difference shown, which is not equality shown). A verdict marked * changes between correlations 0 and 0.9 (--format csv gives each).\n"
     ));
     for f in &c.fingers {
         let mut g = Grid::new()
@@ -520,7 +610,7 @@ pub fn text(c: &TableCohorts, width: Width) -> String {
                 ),
                 format!(
                     "{}{}",
-                    verdict(q.difference.agrees),
+                    verdict(q.difference.not_rejected),
                     if q.verdict_holds() { "" } else { " *" }
                 ),
             ]);
@@ -575,9 +665,9 @@ pub const CSV_COLUMNS: [&str; 20] = [
     "df",
     "low",
     "high",
-    "agrees",
-    "agrees_at_0",
-    "agrees_at_0.9",
+    "not_rejected",
+    "not_rejected_at_0",
+    "not_rejected_at_0.9",
     "notes",
 ];
 
@@ -593,7 +683,7 @@ pub fn csv(c: &TableCohorts) -> Result<Vec<u8>, Error> {
                 q.sweep
                     .iter()
                     .find(|s| (s.rho - r).abs() < 1e-12)
-                    .and_then(|s| s.agrees)
+                    .and_then(|s| s.not_rejected)
             };
             let notes: Vec<String> = [q.a.why.clone(), q.b.why.clone()]
                 .into_iter()
@@ -616,7 +706,7 @@ pub fn csv(c: &TableCohorts) -> Result<Vec<u8>, Error> {
                 full(q.difference.df),
                 full(q.difference.interval.map(|i| i.low)),
                 full(q.difference.interval.map(|i| i.high)),
-                b(q.difference.agrees),
+                b(q.difference.not_rejected),
                 b(at(0.0)),
                 b(at(0.9)),
                 safe_cell(&notes.join("; ")),

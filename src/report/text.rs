@@ -78,11 +78,15 @@ fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden, head: bool) -> St
 }
 
 /// What a reader must know about a dataset's lengths before reading its statistics:
-/// that pixel lengths are not averaged, and where the fingertips are when recorded.
+/// that pixel lengths are not averaged, that J in image units describes no physical
+/// length, and where the fingertips are when recorded.
 pub fn dataset_notes(a: &Analysis) -> Vec<String> {
     let mut notes = Vec::new();
     if a.pixel_lengths() {
         notes.push(PIXEL_NOTE.to_string());
+    }
+    if a.unit.as_deref() == Some("image units") {
+        notes.push(IMAGE_UNITS_NOTE.to_string());
     }
     if let Some(n) = units_note(a) {
         notes.push(n);
@@ -157,6 +161,9 @@ pub fn units_note(a: &Analysis) -> Option<String> {
         }
     ))
 }
+
+/// The note on J in image units (the paper's unit), which is averaged as the paper does.
+pub const IMAGE_UNITS_NOTE: &str = "J (total length) is in image units, pixels of X-ray images with no common scale: its SD and intervals pool the images' scales with the hands' sizes and describe no physical length. The relative values and ratios are ratios within one image, so the scale cancels from them";
 
 /// Why a dataset in pixels has no total length J.
 pub const PIXEL_NOTE: &str = "lengths are in pixels (px) of images whose scale differs, so the total length J and the metacarpal are not comparable across X-rays and are not averaged; the relative values and ratios are. Import with --pixel-spacing MM for lengths in millimetres";

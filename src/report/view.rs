@@ -136,6 +136,11 @@ pub struct TrackingView {
     pub records: Vec<RecordView>,
     pub changes: Vec<ChangeRow>,
     pub target: String,
+    /// The caption of the X-rays-needed table: its basis, named.
+    pub needed_caption: String,
+    /// The column of the second cohort's larger SD ("Atlas, where its SD is larger");
+    /// `None`: no second cohort, no column.
+    pub needed_other: Option<String>,
     pub needed: Vec<NeededRow>,
 }
 
@@ -168,13 +173,18 @@ pub struct NeededRow {
     pub quantity: String,
     pub n: String,
     pub sd: String,
+    /// The upper end of the SD's confidence interval.
+    pub sd_upper: String,
     pub half_width: String,
-    /// Plug-in: the current SD taken as the truth.
+    /// The headline: 80% assurance with sigma at `sd_upper` (Kupper and Hafner 1989).
     pub needed: String,
-    /// With 80% assurance (Kupper and Hafner 1989).
-    pub assured: String,
-    /// X-rays still to measure for the assured n.
+    /// X-rays still to measure for `needed`.
     pub more: String,
+    /// The second cohort's larger SD and its figure on the same basis, "SD 0.0092: 21";
+    /// empty where its SD is not larger.
+    pub other: String,
+    /// Plug-in, optimistic: the current SD taken as the truth.
+    pub plug_in: String,
 }
 
 /// A label and its value.
@@ -777,15 +787,43 @@ fn flagged_rows(a: &Analysis) -> Vec<FlaggedView> {
         .collect()
 }
 
-/// What unit the totals J are in, as the statistics section says it.
-fn length_unit(a: &Analysis) -> String {
+/// What unit the totals J are in, as the statistics section says it. In image units
+/// (pixels of images of no common scale) it says that J's spread, intervals and
+/// prediction interval describe no physical length, and where that is seen; `paper`: the
+/// data are the paper's X-rays, whose sources its section 2 names.
+fn length_unit(a: &Analysis, paper: bool) -> String {
     if a.mixed_units() {
         "The rows give their lengths in more than one unit: J is shown only for a finger whose X-rays share one.".to_string()
     } else if a.pixel_lengths() {
         "The lengths are per-image pixels, so J is not averaged.".to_string()
     } else {
         match &a.unit {
-            Some(u) if u == "image units" => "J is in image units.".to_string(),
+            Some(u) if u == "image units" => {
+                let sources = if paper {
+                    "the paper took its X-ray images \"from internet and hospitals\" (its section 2) and gives no scale"
+                } else {
+                    "the rows give no scale"
+                };
+                // The spread of one finger's J, as the table below prints it.
+                let seen = a
+                    .fingers
+                    .iter()
+                    .find(|f| f.finger == Finger::Index)
+                    .or(a.fingers.first())
+                    .and_then(|f| {
+                        let q = f.quantities.iter().find(|q| q.name == Quantity::Total)?;
+                        Some(format!(
+                            "; the {}'s J runs from {} to {}",
+                            f.finger.name(),
+                            num(q.min, decimals(false)),
+                            num(q.max, decimals(false))
+                        ))
+                    })
+                    .unwrap_or_default();
+                format!(
+                    "J is in image units, pixels of each X-ray as published: {sources}, so an image unit need not be the same length on two X-rays{seen}. J's spread therefore pools the images' scales with the hands' sizes, and its SD, t interval and prediction interval describe no physical length: they are shown because the paper gives J, not as sizes of hands. The relative values are ratios within one image, so the scale cancels from them."
+                )
+            }
             Some(u) => format!("J is in {u}."),
             None => "J is in the dataset's unit (the rows name none).".to_string(),
         }
@@ -805,7 +843,7 @@ fn settings_text(inputs: &ReportInputs<'_>) -> SettingsText {
         bootstrap: plans.join("; "),
         model_length: exact(inputs.model_length),
         width_reason: width_reason(a),
-        length_unit: length_unit(a),
+        length_unit: length_unit(a, is_paper(inputs.paper_xrays)),
     }
 }
 
@@ -1424,7 +1462,8 @@ fn key_results(inputs: &ReportInputs<'_>, claims: &ClaimsView) -> KeyResults {
     }
 }
 
-/// The key result on the fingertips: where the paper's are, and the evidence in one sentence.
+/// The key result on the fingertips: where the paper's are taken, and what the test does
+/// and does not show, in one paragraph.
 fn key_fingertips(l: &LiteratureInputs) -> Option<String> {
     let v = l.paper.tips.as_ref()?;
     let name = table_name(&l.paper.b);
@@ -1435,20 +1474,26 @@ fn key_fingertips(l: &LiteratureInputs) -> Option<String> {
         (lo, hi)
     };
     let (slo, shi) = ranges(|t| t.soft_share);
+    let nearest = v.nearest_to_rejection().map_or(String::new(), |(t, i)| {
+        format!(
+            "; the {}'s interval ends at {}",
+            t.finger.name(),
+            crate::format::signed(i.high, decimals(true))
+        )
+    });
     Some(match v.overall {
         Some(crate::analysis::literature::Fit::Skin) => format!(
-            "The paper's fingertips are at the skin, not at the end of the bone. On all {} fingers its last segment agrees with the bone plus the fingertip's soft tissue of {name} and lies outside its own {} interval against bone alone, at every assumed correlation from 0 to 0.9. The soft tissue is {} to {} of a finger measured to the skin, so a rig's tip at the skin compares with the paper as it is, and a tip at the bone needs that share added.",
+            "The paper's fingertips are taken at the skin, not at the end of the bone. Against {name}, a Welch test of each finger's last segment rejects bone alone on all {} fingers at every assumed correlation from 0 to 0.9, and does not reject bone plus the fingertip's soft tissue (not rejected is not shown equal{nearest}). The paper does not say where its tips are; its rows record the skin because of this test. The soft tissue is {} to {} of a finger measured to the skin, so a rig's tip at the skin compares with the paper as it is, and a tip at the bone needs that share added.",
             v.fingers.len(),
-            level(l.paper.confidence),
             percent(slo),
             percent(shi),
         ),
         Some(crate::analysis::literature::Fit::Bone) => format!(
-            "The paper's fingertips are at the end of the bone: on all {} fingers its last segment agrees with the bone alone of {name} and not with bone plus soft tissue.",
+            "The paper's fingertips are taken at the end of the bone: against {name}, its last segment rejects bone plus soft tissue on all {} fingers and does not reject bone alone (not rejected is not shown equal).",
             v.fingers.len()
         ),
         _ => format!(
-            "Where the paper's fingertips are is not settled by {name}: the fingers do not agree on one tip at every assumed correlation from 0 to 0.9."
+            "Where the paper's fingertips are is not settled by {name}: the fingers do not reject one tip and leave the other at every assumed correlation from 0 to 0.9."
         ),
     })
 }
@@ -1545,7 +1590,15 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
         records: listed,
         changes,
         target: num(inputs.target, 4),
-        needed: needed_rows(inputs.analysis, inputs.target),
+        needed_caption: needed_caption(inputs),
+        needed_other: inputs
+            .atlas
+            .map(|_| "The atlas, where its SD is larger".to_string()),
+        needed: needed_rows(
+            inputs.analysis,
+            inputs.atlas.map(|x| &x.analysis),
+            inputs.target,
+        ),
     }
 }
 
@@ -1586,12 +1639,36 @@ fn change_rows(before: &Snapshot, after: &Snapshot) -> Vec<ChangeRow> {
         .collect()
 }
 
-/// The X-rays needed for a t interval of half-width `target`, plug-in and
-/// with 80% assurance, per finger and relative quantity
+/// The caption of the X-rays-needed table: the target, the basis of the headline
+/// figure, the second cohort beside it, and the plug-in named as optimistic.
+fn needed_caption(inputs: &ReportInputs<'_>) -> String {
+    use crate::analysis::tracking::ASSURANCE;
+    let a = inputs.analysis;
+    let c = a.settings.confidence;
+    let atlas = inputs.atlas.map_or(String::new(), |x| {
+        format!(
+            " Where the atlas (section 11: {} of children's left hands, tips at the bone) gives a larger SD for the same finger and quantity, its SD and its figure on the same basis stand beside it: another cohort's spread, not this one's, but one measured on enough hands to pin it.",
+            xrays(x.analysis.dataset.xrays)
+        )
+    });
+    format!(
+        "X-rays needed for a {conf} t interval of half-width {w} or less. {n} measure the SD itself only roughly, so the figure does not take the SD as the truth: it is the smallest n with P(t · S / √n ≤ W) ≥ {assurance} (Kupper and Hafner 1989, where (n − 1) S² / σ² is χ²(n − 1)) with σ at the upper end of the SD's {conf} confidence interval, s · √((n − 1) / q), q the {tail} quantile of χ²(n − 1). The true SD lies below that limit with {one_sided} confidence, and then a study of that size meets the target in at least {assurance} of cases. “Still to measure” counts towards that n.{atlas} The plug-in n takes the current SD as exact: it is optimistic, and meets the target in only about 50-65% of studies even when the SD is right.",
+        conf = level(c),
+        w = num(inputs.target, 4),
+        n = xrays(a.dataset.xrays),
+        assurance = level(ASSURANCE),
+        tail = level((1.0 - c) / 2.0),
+        one_sided = level((1.0 + c) / 2.0),
+    )
+}
+
+/// The X-rays needed for a t interval of half-width `target`, per finger and
+/// relative quantity: the headline (80% assurance at the SD's upper limit), the
+/// second cohort's where its SD is larger, and the plug-in
 /// ([`crate::analysis::tracking::needed_per_quantity`]).
-fn needed_rows(a: &Analysis, target: f64) -> Vec<NeededRow> {
+fn needed_rows(a: &Analysis, other: Option<&Analysis>, target: f64) -> Vec<NeededRow> {
     let count = |n: Option<usize>| n.map_or_else(|| "n/a".to_string(), |n| n.to_string());
-    crate::analysis::tracking::needed_per_quantity(a, target)
+    crate::analysis::tracking::needed_per_quantity(a, other, target)
         .into_iter()
         .map(|r| {
             let q = r.quantity;
@@ -1600,14 +1677,18 @@ fn needed_rows(a: &Analysis, target: f64) -> Vec<NeededRow> {
                 quantity: q.name.label().to_string(),
                 n: q.n.to_string(),
                 sd: opt(q.sd, 4),
+                sd_upper: opt(r.sd_upper, 4),
                 half_width: opt(q.intervals.ci_t.map(|i| i.width() / 2.0), 4),
                 needed: count(r.needed),
-                assured: count(r.assured),
-                more: match r.assured {
+                more: match r.needed {
                     Some(n) if n <= q.n => "reached".to_string(),
                     Some(n) => format!("{} more", n - q.n),
                     None => "n/a".to_string(),
                 },
+                other: r.larger.map_or(String::new(), |o| {
+                    format!("SD {}: {}", num(o.sd, 4), count(o.needed))
+                }),
+                plug_in: count(r.plug_in),
             }
         })
         .collect()
@@ -1854,7 +1935,7 @@ fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
             format!("The atlas: {}", cohort_line(&c.b)),
         ],
         differs: format!(
-            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with {}; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin, and its data record them at the skin, inferred from published adult measurements (section 12). A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
+            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with {}; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin, and its data record them at the skin because a test against published adult measurements rejects bone tips and does not reject skin tips (section 12). A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
             c.b.xrays,
             crate::dataset::landmarks::ATLAS_LANDMARKS,
             c.a.xrays
@@ -2017,7 +2098,8 @@ fn literature_view(l: &LiteratureInputs) -> LiteratureView {
                 .iter()
                 .map(|t| tip_finding_sentence(t, names, p.confidence))
                 .chain(std::iter::once(format!(
-                    "Each difference is {name}'s ratio minus the paper's mean, with its {conf} Welch-type interval (both uncertainties); it agrees when that interval holds 0."
+                    "Each difference is {name}'s ratio minus the paper's mean, with its {conf} Welch-type interval (both uncertainties): a tip is rejected when that interval excludes 0, and not rejected when it holds 0, which at {} is not a finding that the two are equal.",
+                    xrays(p.a.n.unwrap_or(0))
                 )))
                 .collect(),
         ),
@@ -2034,7 +2116,7 @@ fn literature_view(l: &LiteratureInputs) -> LiteratureView {
         .map(|t| format!("{} {}", t.finger.name(), percent(t.soft_share)))
         .collect();
     let audit = format!(
-        "What it changes for a rig audit: the paper's last segment ends at the skin, so a rig's last segment is compared with it as it is when the rig's tips are at the skin (the end of the finger's mesh), and no soft tissue is to be trimmed off. A rig whose tips sit at the end of the bone needs the fingertip's soft tissue added before it is compared: {name} measures it at {} of a finger measured to the skin, a share that scales with the rig's finger in any unit. A fixed offset in millimetres does not: a rig in the wrong unit would lose most of a segment to it. The audits of section 13 follow this: they read each dataset's tips from its tip column, compare skin tips with skin tips as they are, and where one side's tips are at the bone (the atlas's, for the MCP judged from its CMC or the wrist) correct the last segment by that finger's share.",
+        "What it changes for a rig audit: the paper's last segment is taken to end at the skin, so a rig's last segment is compared with it as it is when the rig's tips are at the skin (the end of the finger's mesh), and no soft tissue is to be trimmed off. A rig whose tips sit at the end of the bone needs the fingertip's soft tissue added before it is compared: {name} measures it at {} of a finger measured to the skin, a share that scales with the rig's finger in any unit. A fixed offset in millimetres does not: a rig in the wrong unit would lose most of a segment to it. The audits of section 13 follow this: they read each dataset's tips from its tip column, compare skin tips with skin tips as they are, and where one side's tips are at the bone (the atlas's, for the MCP judged from its CMC or the wrist) correct the last segment by that finger's share.",
         soft.join(", ")
     );
     let mut side = Vec::new();
@@ -2064,7 +2146,7 @@ fn literature_view(l: &LiteratureInputs) -> LiteratureView {
         _ => "to the end of the bone",
     };
     let side_intro = format!(
-        "Each cohort beside {name} measured to the same fingertip: the paper's X-rays (mean and {conf} t interval) against {name}'s ratios of means {tip_word}; the atlas (bone tips) against {name} to the bone. A verdict says whether the {conf} interval of the difference holds 0 (agrees) or not (differs), the same at correlations 0, the assumed one and 0.9 unless each is named."
+        "Each cohort beside {name} measured to the same fingertip: the paper's X-rays (mean and {conf} t interval) against {name}'s ratios of means {tip_word}; the atlas (bone tips) against {name} to the bone. A verdict says whether the {conf} interval of the difference excludes 0 (differs) or holds it (not rejected: no difference shown, which is not equality shown), the same at correlations 0, the assumed one and 0.9 unless each is named."
     );
     LiteratureView {
         title: "The paper against published measurements".to_string(),
@@ -2271,5 +2353,54 @@ fn plan_short(p: Plan) -> String {
     match p {
         Plan::Exact { distinct } => format!("exact ({distinct})"),
         Plan::Random { resamples } => format!("random ({resamples})"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::{Settings, analyse};
+    use crate::dataset::Dataset;
+    use std::path::Path;
+
+    /// The X-rays-needed rows with the atlas beside them: the headline on the SD's upper
+    /// limit, the atlas's larger SD on the same basis (figures from
+    /// tests/independent/xrays_needed.txt), nothing where the atlas's SD is smaller.
+    #[test]
+    fn needed_rows_name_the_atlas_where_its_sd_is_larger() {
+        let Ok(atlas) = Dataset::load(Path::new("data/atlas/measurements.csv")) else {
+            println!("skipped: data/atlas/measurements.csv could not be read");
+            return;
+        };
+        let paper = Dataset::load(Path::new("data/measurements.csv")).unwrap();
+        let a = analyse(&paper, &Settings::default());
+        let atlas = analyse(&atlas, &Settings::default());
+        let rows = needed_rows(&a, Some(&atlas), 0.005);
+        let row = |finger: &str, q: &str| {
+            rows.iter()
+                .find(|r| r.finger.starts_with(finger) && r.quantity.starts_with(q))
+                .unwrap()
+        };
+        let j2 = row("index", "J~2");
+        assert_eq!(
+            (
+                j2.sd.as_str(),
+                j2.sd_upper.as_str(),
+                j2.needed.as_str(),
+                j2.more.as_str(),
+                j2.other.as_str(),
+                j2.plug_in.as_str()
+            ),
+            ("0.0039", "0.0113", "27", "22 more", "SD 0.0092: 21", "5")
+        );
+        assert_eq!(row("ring", "J~1").other, "SD 0.0103: 25");
+        assert_eq!(row("thumb", "J~1").other, "SD 0.0182: 67");
+        // The atlas's index J~1 SD (0.0111) is below the paper's (0.0131): nothing beside.
+        assert_eq!(row("index", "J~1").other, "");
+        assert!(
+            needed_rows(&a, None, 0.005)
+                .iter()
+                .all(|r| r.other.is_empty())
+        );
     }
 }
