@@ -165,7 +165,34 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let paper_data = dataset;
     // The fingertip's soft tissue of the published table, for rigs whose tips differ from the data's.
     let soft_tissue = super::soft_tissue_from(&args.literature)?;
-    let rigs = audit_references(references, &a, &soft_tissue);
+    // The joint regions' shape borrows the atlas's correlations, as `audit`
+    // does (its default metacarpals' dataset), over any data.
+    let shape = match &atlas_data {
+        Some(atlas) => Some(crate::analysis::analyse_without_bootstrap(atlas, &settings)),
+        None if args.atlas.is_file() => Some(crate::analysis::analyse_without_bootstrap(
+            &Dataset::load(&args.atlas)?,
+            &settings,
+        )),
+        None => None,
+    }
+    .map(|atlas| atlas.shape_priors(crate::analysis::region::PRIOR_HANDS));
+    let rigs = audit_references(references, &a, &soft_tissue, shape.as_ref());
+    // The region's calibration, simulated for the index finger (the paper's
+    // worked example) with its prior, as the report's methods show it.
+    let calibration = crate::analysis::region::calibration::Setup::of(
+        &a,
+        crate::dataset::Finger::Index,
+        shape
+            .as_ref()
+            .and_then(|s| s.of(crate::dataset::Finger::Index)),
+        crate::analysis::region::calibration::SIMULATIONS,
+    )
+    .map(|setup| {
+        (
+            setup,
+            crate::analysis::region::calibration::simulate(&setup),
+        )
+    });
     // The coverage curve and the atlas section are independent (their random streams are
     // keyed by seed, size and simulation, not by thread), so they run side by side: the
     // same numbers, with the serial parts of one overlapping the other.
@@ -239,6 +266,8 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         atlas: atlas.as_ref(),
         literature: literature.as_ref(),
         deform: deform.as_ref(),
+        shape: shape.as_ref(),
+        calibration: calibration.as_ref().map(|(s, c)| (s, c.as_slice())),
     };
     let files = report::render(&inputs, formats, &templates)?;
     write(&args.out, &files)?;
@@ -355,9 +384,11 @@ fn audit_references(
     references: Vec<ReferenceRig>,
     a: &Analysis,
     soft_tissue: &SoftTissue,
+    shape: Option<&crate::analysis::region::ShapePriors>,
 ) -> Vec<ReferenceAudit> {
     let options = AuditOptions {
         soft_tissue: soft_tissue.clone(),
+        shape: shape.cloned(),
         ..AuditOptions::default()
     };
     references

@@ -13,6 +13,7 @@ pub mod json;
 pub mod layout;
 pub mod plots;
 pub(crate) mod progress;
+pub mod region;
 pub mod render;
 pub mod render3d;
 pub(crate) mod schema;

@@ -54,6 +54,8 @@ pub struct ReportView {
     /// Set when the deformation rig was found: its audit and its skin as it is
     /// and as `audit --fix` writes it.
     pub deform: Option<DeformView>,
+    /// The joint region rigs are judged against: its shape and calibration.
+    pub region: Option<super::region::RegionView>,
     pub plots: Vec<PlotView>,
 }
 
@@ -529,6 +531,15 @@ pub struct ReportInputs<'a> {
     /// A real rig audited and deformed (`data/rigs/webxr-generic-hand/right.glb`);
     /// `None`: no such part.
     pub deform: Option<&'a DeformSection>,
+    /// The joint regions' prior shape (the atlas's correlations); `None`: the
+    /// X-rays' own.
+    pub shape: Option<&'a crate::analysis::region::ShapePriors>,
+    /// The region's calibration simulated for the index finger: its setup and
+    /// table ([`crate::analysis::region::calibration`]).
+    pub calibration: Option<(
+        &'a crate::analysis::region::calibration::Setup,
+        &'a [crate::analysis::region::calibration::Cell],
+    )>,
 }
 
 /// A real rig in the report: its audit (the metacarpals included) and its
@@ -710,6 +721,7 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         atlas: inputs.atlas.map(|x| atlas_view(a, x)),
         literature: inputs.literature.map(literature_view),
         deform: inputs.deform.map(|d| d.view.clone()),
+        region: super::region::region_view(a, inputs.shape, inputs.calibration),
         plots: plots.iter().map(plot).collect(),
     }
 }

@@ -12,6 +12,7 @@ pub mod delta;
 pub mod describe;
 pub mod estimate;
 pub mod interval;
+pub mod region;
 pub mod rng;
 
 pub use estimate::Intervals;

@@ -7,11 +7,9 @@
 //! A true population of positions u ~ N(mu, Sigma), Sigma = D R D with the
 //! data's SDs D and a correlation r from [`CORRELATIONS`] (the paper's index
 //! finger's Fisher 95% interval, [0.60, 0.998], and points inside it). Each
-//! simulation draws n reference hands as their sufficient statistics (the
-//! mean u_bar = mu + L z / sqrt(n), the covariance S = L A A' L' / (n - 1) by
-//! Bartlett's decomposition, A lower triangular with A11^2 ~ chi2(n - 1),
-//! A22^2 ~ chi2(n - 2), A21 ~ N(0, 1); Sigma = L L'), builds the region
-//! from them, and judges one new normal hand (a false alarm when it is
+//! simulation draws n reference hands as their sufficient statistics
+//! ([`crate::stats::region::simulate`], Bartlett's decomposition), builds the
+//! region from them, and judges one new normal hand (a false alarm when it is
 //! outside) and the same hand with one joint moved on a [`FINGER_MM`]
 //! finger (found when outside): the PIP d towards the tip (u1 + d / L), the
 //! DIP likewise (u2 + d / L), the MCP d towards the tip with the tip held
@@ -22,9 +20,9 @@
 //! the table is the same on every machine and thread count.
 //! Cost: O(sizes x correlations x simulations).
 
-use super::{Shape, ShapePrior, bound_at, quadratic};
+use super::{ShapePrior, bound_at};
 use crate::analysis::placement::Joint;
-use crate::stats::rng;
+use crate::stats::region::{self, Population, Shift};
 use rayon::prelude::*;
 
 /// The numbers of reference hands the table is drawn at.
@@ -84,6 +82,53 @@ pub struct Cell {
     pub power: [[Rate; 3]; 3],
 }
 
+impl Setup {
+    /// The setup for `finger` of `a`: the true mean and SDs of u are the
+    /// X-rays' own, the prior `prior`, the region's level and the seed the
+    /// analysis's; `None` for a finger without two positions or with fewer
+    /// than 3 X-rays. O(n).
+    pub fn of(
+        a: &crate::analysis::Analysis,
+        finger: crate::dataset::Finger,
+        prior: Option<ShapePrior>,
+        simulations: usize,
+    ) -> Option<Setup> {
+        let u = a.finger(finger)?.positions()?;
+        if u.len() < 3 || u.iter().any(|h| h.as_ref().len() != 2) {
+            return None;
+        }
+        let column = |k: usize| -> Vec<f64> { u.iter().map(|h| h.as_ref()[k]).collect() };
+        let (x, y) = (column(0), column(1));
+        let stat = |v: &[f64]| -> Option<(f64, f64)> {
+            Some((
+                crate::stats::describe::mean(v)?,
+                crate::stats::describe::sd(v)?,
+            ))
+        };
+        let ((m1, s1), (m2, s2)) = (stat(&x)?, stat(&y)?);
+        Some(Setup {
+            prior,
+            mean: [m1, m2],
+            sd: [s1, s2],
+            confidence: a.settings.confidence,
+            simulations,
+            seed: a.settings.seed,
+        })
+    }
+}
+
+/// The Fisher 95% interval of a correlation `r` from `n` pairs, tanh(atanh r
+/// +- z / sqrt(n - 3)) at `confidence`; `None` for n <= 3 or |r| >= 1.
+pub fn fisher_interval(r: f64, n: usize, confidence: f64) -> Option<(f64, f64)> {
+    if n <= 3 || !(r.abs() < 1.0) || !(confidence > 0.0 && confidence < 1.0) {
+        return None;
+    }
+    let z = crate::stats::describe::normal_quantile(0.5 + confidence / 2.0);
+    let half = z / ((n - 3) as f64).sqrt();
+    let centre = r.atanh();
+    Some(((centre - half).tanh(), (centre + half).tanh()))
+}
+
 /// The Monte Carlo standard error of a rate `p` from `sims` simulations.
 pub fn monte_carlo_se(p: f64, sims: usize) -> f64 {
     (p * (1.0 - p) / sims.max(1) as f64).sqrt()
@@ -115,53 +160,33 @@ pub fn simulate(setup: &Setup) -> Vec<Cell> {
 /// One cell, from stream `stream`; `None` when n is too small for a region.
 fn cell(setup: &Setup, n: usize, r: f64, stream: u64) -> Option<Cell> {
     let bound = bound_at(2, n, setup.confidence)?;
-    let mut g = rng::stream(setup.seed, KEY, stream);
-    let [s1, s2] = setup.sd;
-    // Sigma = L L', L lower triangular.
-    let (l11, l21, l22) = (s1, r * s2, s2 * (1.0 - r * r).max(0.0).sqrt());
-    let mu = setup.mean;
-    let df = (n - 1) as f64;
-    let mut alarms = [0usize; 2];
-    let mut found = [[[0usize; 2]; 3]; 3];
-    let mut sims = 0usize;
-    for _ in 0..setup.simulations {
-        let (z1, z2) = (rng::standard_normal(&mut g), rng::standard_normal(&mut g));
-        let root = (n as f64).sqrt();
-        let mean = [
-            mu[0] + l11 * z1 / root,
-            mu[1] + (l21 * z1 + l22 * z2) / root,
-        ];
-        let a11 = rng::chi_squared(&mut g, df).sqrt();
-        let a22 = rng::chi_squared(&mut g, df - 1.0).sqrt();
-        let a21 = rng::standard_normal(&mut g);
-        // B = L A; S = B B' / (n - 1).
-        let (b11, b21, b22) = (l11 * a11, l21 * a11 + l22 * a21, l22 * a22);
-        let moments = [b11 * b11 / df, b11 * b21 / df, (b21 * b21 + b22 * b22) / df];
-        let (w1, w2) = (rng::standard_normal(&mut g), rng::standard_normal(&mut g));
-        let new = [mu[0] + l11 * w1, mu[1] + l21 * w1 + l22 * w2];
-        let Some(shape) = Shape::of(2, n, moments, setup.prior) else {
-            continue;
-        };
-        sims += 1;
-        let outside = |u: [f64; 2]| -> [bool; 2] {
-            let d = [u[0] - mean[0], u[1] - mean[1]];
-            [
-                quadratic(&d, &shape.inverse) > bound,
-                quadratic(&d, &shape.own_inverse) > bound,
-            ]
-        };
-        for (count, out) in alarms.iter_mut().zip(outside(new)) {
-            *count += usize::from(out);
-        }
-        for (j, joint) in JOINTS.iter().enumerate() {
-            for (m, &mm) in MOVES_MM.iter().enumerate() {
-                let moved = moved(new, *joint, mm / FINGER_MM);
-                for (count, out) in found[j][m].iter_mut().zip(outside(moved)) {
-                    *count += usize::from(out);
+    let shifts: Vec<Shift> = JOINTS
+        .iter()
+        .flat_map(|joint| {
+            MOVES_MM.iter().map(move |mm| {
+                let d = mm / FINGER_MM;
+                match joint {
+                    Joint::Pip => Shift::Add([d, 0.0]),
+                    Joint::Dip => Shift::Add([0.0, d]),
+                    _ => Shift::Start(d),
                 }
-            }
-        }
-    }
+            })
+        })
+        .collect();
+    let counts = region::simulate(
+        &Population {
+            mean: setup.mean,
+            sd: setup.sd,
+            correlation: r,
+        },
+        n,
+        setup.prior.map(|q| (q.correlation, q.hands)),
+        bound,
+        &shifts,
+        setup.simulations,
+        (setup.seed, KEY, stream),
+    );
+    let sims = counts.simulations;
     if sims == 0 {
         return None;
     }
@@ -169,22 +194,19 @@ fn cell(setup: &Setup, n: usize, r: f64, stream: u64) -> Option<Cell> {
         model: c[0] as f64 / sims as f64,
         own: c[1] as f64 / sims as f64,
     };
+    let mut power = [[Rate {
+        model: 0.0,
+        own: 0.0,
+    }; 3]; 3];
+    for (k, c) in counts.shifted.iter().enumerate() {
+        power[k / MOVES_MM.len()][k % MOVES_MM.len()] = rate(*c);
+    }
     Some(Cell {
         n,
         correlation: r,
-        false_alarms: rate(alarms),
-        power: found.map(|row| row.map(rate)),
+        false_alarms: rate(counts.outside),
+        power,
     })
-}
-
-/// The positions `u` with `joint` moved a share `d` of the finger towards the
-/// tip (see the module notes).
-fn moved(u: [f64; 2], joint: Joint, d: f64) -> [f64; 2] {
-    match joint {
-        Joint::Pip => [u[0] + d, u[1]],
-        Joint::Dip => [u[0], u[1] + d],
-        _ => [(u[0] - d) / (1.0 - d), (u[1] - d) / (1.0 - d)],
-    }
 }
 
 #[cfg(test)]
@@ -283,5 +305,100 @@ mod tests {
             })
             .is_empty()
         );
+    }
+
+    #[test]
+    fn the_fisher_interval_of_the_papers_index() {
+        // r = 0.969219 from 5 hands: tanh(atanh(r) +- 1.959964 / sqrt(2)) =
+        // [0.6001, 0.9980] (numpy; the issue's [0.60, 0.998]).
+        let (lo, hi) = fisher_interval(0.969218586749469, 5, 0.95).unwrap();
+        assert!(
+            (lo - 0.600121).abs() < 1e-5 && (hi - 0.998046).abs() < 1e-5,
+            "{lo} {hi}"
+        );
+        assert_eq!(fisher_interval(0.5, 3, 0.95), None);
+        assert_eq!(fisher_interval(1.0, 10, 0.95), None);
+    }
+
+    #[test]
+    fn the_table_agrees_with_the_independent_brute_force_draws() {
+        // tests/independent/region_calibration.py draws every hand with NumPy
+        // (and the true SDs varying within their 95% intervals, which the
+        // rule's scale invariance makes irrelevant to the false alarms); each
+        // rate of both tables has a Monte Carlo SE of at most 0.0035 (at 0.5,
+        // 20,000 simulations), so the two agree within 4 x sqrt(2) of it.
+        let text = std::fs::read_to_string("tests/independent/region_calibration.txt").unwrap();
+        let paper = crate::analysis::analyse_without_bootstrap(
+            &crate::dataset::Dataset::load(std::path::Path::new("data/measurements.csv")).unwrap(),
+            &crate::analysis::Settings::default(),
+        );
+        let atlas = crate::analysis::analyse_without_bootstrap(
+            &crate::dataset::Dataset::load(std::path::Path::new("data/atlas/measurements.csv"))
+                .unwrap(),
+            &crate::analysis::Settings::default(),
+        );
+        let prior = atlas.shape_priors(10.0).of(crate::dataset::Finger::Index);
+        let setup = Setup::of(&paper, crate::dataset::Finger::Index, prior, SIMULATIONS).unwrap();
+        let table = simulate(&setup);
+        let tolerance = 4.0 * 2f64.sqrt() * monte_carlo_se(0.5, SIMULATIONS);
+        let numbers = |line: &str| -> Vec<f64> {
+            line.split(|c: char| !(c.is_ascii_digit() || c == '.'))
+                .filter(|w| w.contains('.'))
+                .map(|w| w.parse().unwrap())
+                .collect()
+        };
+        let mut checked = 0;
+        for &n in &SIZES {
+            let line = text
+                .lines()
+                .find(|l| l.starts_with(&format!("{n:<4} ")))
+                .unwrap();
+            let values = numbers(line);
+            assert_eq!(values.len(), 2 * CORRELATIONS.len(), "{line}");
+            for (k, c) in table.iter().filter(|c| c.n == n).enumerate() {
+                assert!(
+                    (c.false_alarms.model - values[2 * k]).abs() < tolerance,
+                    "{n} {c:?}"
+                );
+                assert!(
+                    (c.false_alarms.own - values[2 * k + 1]).abs() < tolerance,
+                    "{n} {c:?}"
+                );
+                checked += 2;
+            }
+        }
+        for (j, joint) in JOINTS.iter().enumerate() {
+            for (m, mm) in MOVES_MM.iter().enumerate() {
+                let head = format!("{} {} mm", joint.name(), mm);
+                let line = text.lines().find(|l| l.starts_with(&head)).unwrap();
+                let values = numbers(line.trim_start_matches(&head));
+                assert_eq!(values.len(), 4 * SIZES.len(), "{line}");
+                for (k, &n) in SIZES.iter().enumerate() {
+                    let rates: Vec<Rate> = table
+                        .iter()
+                        .filter(|c| c.n == n)
+                        .map(|c| c.power[j][m])
+                        .collect();
+                    let lo = |f: fn(&Rate) -> f64| rates.iter().map(f).fold(1.0, f64::min);
+                    let hi = |f: fn(&Rate) -> f64| rates.iter().map(f).fold(0.0, f64::max);
+                    let want = &values[4 * k..4 * k + 4];
+                    let got = [
+                        lo(|r| r.model),
+                        hi(|r| r.model),
+                        lo(|r| r.own),
+                        hi(|r| r.own),
+                    ];
+                    for (g, w) in got.iter().zip(want) {
+                        // The text gives two decimals: half a unit of rounding more.
+                        assert!(
+                            (g - w).abs() < tolerance + 0.005,
+                            "{head} n {n}: {got:?} {want:?}"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(checked, 2 * 28 + 4 * 9 * 4);
     }
 }

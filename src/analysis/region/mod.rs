@@ -41,6 +41,7 @@
 pub mod calibration;
 
 use crate::dataset::Finger;
+use crate::stats::region::Shape;
 use schemars::JsonSchema;
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
@@ -196,87 +197,6 @@ pub struct JointRegion {
     pub confidence: f64,
 }
 
-/// The inverse of a symmetric 2 x 2 (or 1 x 1) covariance `[a, b, d]` grown
-/// by `grow`, row-major; `None` when it is not positive definite.
-fn inverse_of(p: usize, a: f64, b: f64, d: f64, grow: f64) -> Option<Vec<f64>> {
-    if p == 1 {
-        let v = a * grow;
-        return (v.is_finite() && v > 0.0).then(|| vec![1.0 / v]);
-    }
-    let (a, b, d) = (a * grow, b * grow, d * grow);
-    let det = a * d - b * b;
-    (det.is_finite() && det > 0.0 && a > 0.0).then(|| vec![d / det, -b / det, -b / det, a / det])
-}
-
-/// The region's shape: the model's S* and the X-rays' own S, inverted and
-/// grown by 1 + 1/n (see the module notes). O(1).
-pub(super) struct Shape {
-    pub(super) inverse: Vec<f64>,
-    pub(super) own_inverse: Vec<f64>,
-    pub(super) correlation: Option<f64>,
-    pub(super) own_correlation: Option<f64>,
-    pub(super) prior: Option<ShapePrior>,
-}
-
-impl Shape {
-    /// The shape of n hands with sample covariance `[s11, s12, s22]` (p = 1:
-    /// `[s11, _, _]`) and the prior `prior` (used for p = 2); `None` for p
-    /// not 1 or 2, n <= p, a covariance that is not positive definite, or a
-    /// prior whose correlation is not inside [-1, 1] or whose weight is
-    /// negative or not finite.
-    pub(super) fn of(
-        p: usize,
-        n: usize,
-        [a, b, d]: [f64; 3],
-        prior: Option<ShapePrior>,
-    ) -> Option<Shape> {
-        if !(p == 1 || p == 2)
-            || n <= p
-            || prior.is_some_and(|q| {
-                !(q.correlation.abs() <= 1.0 && q.hands.is_finite() && q.hands >= 0.0)
-            })
-        {
-            return None;
-        }
-        let grow = 1.0 + 1.0 / n as f64;
-        let own_inverse = inverse_of(p, a, b, d, grow)?;
-        let own_correlation = (p == 2).then(|| b / (a * d).sqrt());
-        let prior = prior.filter(|_| p == 2);
-        // S* = (m D R0 D + (n - 1) S) / (m + n - 1): S's variances, the
-        // correlation pooled (see the module notes).
-        let correlation = own_correlation.map(|r| match prior {
-            Some(q) => {
-                let w = (n - 1) as f64;
-                (q.hands * q.correlation + w * r) / (q.hands + w)
-            }
-            None => r,
-        });
-        let inverse = match correlation {
-            Some(r) => inverse_of(p, a, r * (a * d).sqrt(), d, grow)?,
-            None => own_inverse.clone(),
-        };
-        Some(Shape {
-            inverse,
-            own_inverse,
-            correlation,
-            own_correlation,
-            prior,
-        })
-    }
-}
-
-/// T^2 of the difference `d` under the inverse `inverse` (p x p, row-major).
-pub(super) fn quadratic(d: &[f64], inverse: &[f64]) -> f64 {
-    let p = d.len();
-    (0..p)
-        .map(|i| {
-            (0..p)
-                .map(|j| d[i] * inverse[i * p + j] * d[j])
-                .sum::<f64>()
-        })
-        .sum()
-}
-
 impl JointRegion {
     /// The region from the reference hands' position vectors `hands` (each of
     /// the same length p, 1 or 2) at `confidence`, on their own covariance S.
@@ -327,10 +247,9 @@ impl JointRegion {
 
     /// The region of n hands with mean `mean` (p = its length, 1 or 2) and
     /// sample covariance `[s11, s12, s22]` (for p = 1, `[s11, _, _]`), the
-    /// shape borrowed from `prior` ([`with_prior`](Self::with_prior) from
-    /// the hands' moments; the calibration's simulation from drawn ones).
+    /// shape borrowed from `prior` ([`crate::stats::region::Shape`]).
     /// `None` as [`with_prior`](Self::with_prior).
-    pub fn from_moments(
+    fn from_moments(
         n: usize,
         mean: &[f64],
         [a, b, d]: [f64; 3],
@@ -341,16 +260,16 @@ impl JointRegion {
         if mean.iter().any(|x| !x.is_finite()) {
             return None;
         }
-        let shape = Shape::of(p, n, [a, b, d], prior)?;
+        let shape = Shape::of(p, n, [a, b, d], prior.map(|q| (q.correlation, q.hands)))?;
         let bound = bound_at(p, n, confidence)?;
         Some(JointRegion {
             n,
             mean: mean.to_vec(),
-            inverse: shape.inverse,
-            own_inverse: shape.own_inverse,
+            inverse: shape.inverse[..p * p].to_vec(),
+            own_inverse: shape.own_inverse[..p * p].to_vec(),
             correlation: shape.correlation,
             own_correlation: shape.own_correlation,
-            prior: shape.prior,
+            prior: prior.filter(|_| p == 2),
             bound,
             confidence,
         })
@@ -378,7 +297,7 @@ impl JointRegion {
             return f64::INFINITY;
         }
         let d: Vec<f64> = u.iter().zip(&self.mean).map(|(x, m)| x - m).collect();
-        quadratic(&d, inverse)
+        crate::stats::region::quadratic(&d, inverse)
     }
 
     /// T^2 of a finger with segments `segments` (J1, J2[, J3]): the
