@@ -11,6 +11,7 @@ mod one_ray;
 mod ray;
 mod region;
 mod sanity;
+mod survival;
 mod validator;
 mod webxr;
 

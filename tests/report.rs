@@ -55,6 +55,19 @@ fn render_with_literature(
                 view::ReferenceAudit { rig, audit }
             })
             .collect();
+    // The joint region's calibration, at a tenth of the report's simulations
+    // (the snapshot holds its layout; its numbers are checked against
+    // tests/independent/region_calibration.txt).
+    let setup = phalanx::analysis::region::calibration::Setup::of(
+        &a,
+        phalanx::dataset::Finger::Index,
+        None,
+        2_000,
+    );
+    let cells = setup
+        .as_ref()
+        .map(phalanx::analysis::region::calibration::simulate)
+        .unwrap_or_default();
     let inputs = ReportInputs {
         analysis: &a,
         claims_file: &claims.path,
@@ -75,6 +88,8 @@ fn render_with_literature(
         atlas: None,
         literature,
         deform: None,
+        shape: None,
+        calibration: setup.as_ref().map(|s| (s, cells.as_slice())),
     };
     let files = report::render(&inputs, Formats::ALL, &Templates::builtin().unwrap()).unwrap();
     let plots = plots::all(&a, &places).unwrap();
@@ -132,6 +147,9 @@ fn html_holds_every_table_and_a_plot_of_each_kind() {
         "rigs-table",
         "coverage-table",
         "tracking-needed",
+        "region-shapes",
+        "region-false-alarms",
+        "region-power",
     ];
     for id in tables {
         let t = html

@@ -162,12 +162,16 @@ pub fn region_view(
     let max_own = own_alarms.iter().copied().fold(0.0, f64::max);
     let min_own = own_alarms.iter().copied().fold(1.0, f64::min);
     let se = calibration::monte_carlo_se(0.05, setup.simulations);
+    // The largest of 28 cells lies about 2 SEs above its mean by chance
+    // alone, so the target is read within 3.
     let verdict = if max_model <= 0.05 {
         "the target, at most 5%, is met in every cell".to_string()
-    } else if max_model <= 0.05 + 2.0 * se {
+    } else if max_model <= 0.05 + 3.0 * se {
         format!(
-            "the target, at most 5%, is met in every cell within 2 Monte Carlo SEs, {} points",
-            num(2.0 * se * 100.0, 2)
+            "the target, at most 5%, is met in every cell within Monte Carlo error (3 SEs, {} \
+             points, for the largest of {} cells)",
+            num(3.0 * se * 100.0, 2),
+            cells.len()
         )
     } else {
         "the target, at most 5%, is not met".to_string()
@@ -194,14 +198,21 @@ pub fn region_view(
         ),
         format!(
             "The most false alarms in any cell: {} ({verdict}; Hotelling's region on the X-rays' \
-             own S, exact for normal hands, gives {} to {} across the table). Where the true \
-             correlation is high the prior costs power at small n, the price of not hanging the \
-             region's shape on one correlation from {} hands; at 910 X-rays the two agree. \
+             own S, exact for normal hands, gives {} to {} across the table).{} \
              tests/independent/region_calibration.py draws the same table without phalanx's code.",
             percent(max_model),
             percent(min_own),
             percent(max_own),
-            a.dataset.xrays,
+            if setup.prior.is_some() {
+                format!(
+                    " Where the true correlation is high the prior costs power at small n, the \
+                     price of not hanging the region's shape on one correlation from {} hands; \
+                     at 910 X-rays the two agree.",
+                    a.dataset.xrays
+                )
+            } else {
+                String::new()
+            },
         ),
     ];
     Some(RegionView {

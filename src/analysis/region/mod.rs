@@ -476,7 +476,8 @@ mod tests {
 
     #[test]
     fn a_new_hand_falls_inside_about_as_often_as_the_confidence_says() {
-        // The calibration the per-quantity rule fails (83% at n = 5, see
+        // The calibration the per-quantity rule fails (83% at n = 5 with the
+        // atlas's covariance, 86% with the paper's, see
         // tests/independent/calibration.py): simulated reference sets of n
         // hands and one new hand from the same population (the atlas index
         // finger's scale of spread, correlated positions); the new hand is
