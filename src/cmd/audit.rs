@@ -259,7 +259,8 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         TextFormat::Table => table(&audit, only_outside, width).into_bytes(),
         TextFormat::Json => json(&audit)?,
     };
-    if let (Some(path), Some((moves, warnings))) = (&args.moves, &audit.moves) {
+    if let (Some(path), Some(outcome)) = (&args.moves, &audit.moves) {
+        let (moves, warnings) = (&outcome.moves, &outcome.warnings);
         let csv = report::csv_out::moves(moves)?;
         crate::atomic::replace(path, &csv).map_err(Error::write(path))?;
         if !quiet {
@@ -421,8 +422,11 @@ fn moves_summary(audit: &Audit, path: &std::path::Path, n: usize) -> String {
         ),
         None => "new translations in metres, each in its parent's frame".into(),
     };
+    let after = audit.moves.as_ref().map_or(String::new(), |m| {
+        report::audit::moved_fingers_words(&m.fingers, "with the moves made")
+    });
     format!(
-        "wrote {}: {n} node{} to move (world positions in metres, +Y up; {units})",
+        "wrote {}: {n} node{} to move (world positions in metres, +Y up; {units}){after}",
         path.display(),
         if n == 1 { "" } else { "s" }
     )

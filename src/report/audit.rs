@@ -1078,6 +1078,37 @@ pub(crate) fn value_of(a: &FingerAudit, q: Quantity) -> Option<f64> {
         .map(|v| v.measured)
 }
 
+/// Each moved finger's T^2 against its bound, judged again `when` ("after
+/// the fix"): "; each moved finger after the fix: right index T^2 1.2 of 25.5
+/// (0.05), right ring T^2 30.1 of 25.5 (1.18, outside)"; empty for none.
+pub(crate) fn moved_fingers_words(
+    fingers: &[crate::rig::session::MovedFinger],
+    when: &str,
+) -> String {
+    if fingers.is_empty() {
+        return String::new();
+    }
+    let each: Vec<String> = fingers
+        .iter()
+        .map(|f| match f.t2 {
+            Some((t2, bound)) => format!(
+                "{} T^2 {} of {} ({}{})",
+                f.label,
+                num(t2, 1),
+                num(bound, 1),
+                num(t2 / bound, 2),
+                if f.inside { "" } else { ", outside" }
+            ),
+            None => format!(
+                "{} {}",
+                f.label,
+                if f.inside { "inside" } else { "outside" }
+            ),
+        })
+        .collect();
+    format!("; each moved finger {when}: {}", each.join(", "))
+}
+
 /// What the result line of `audit --fix` adds after its counts: each moved
 /// finger's T^2 against its bound in the re-audit ("; each moved finger
 /// after the fix: right index T^2 1.2 of 25.5 (0.05)"), every moved joint's
@@ -1090,32 +1121,7 @@ pub(crate) fn fix_after_words(fix: &crate::rig::session::FixOutcome) -> String {
             format!("{} mm", num(x * MM, 1))
         })
     };
-    let mut out = String::new();
-    if !fix.fingers.is_empty() {
-        let each: Vec<String> = fix
-            .fingers
-            .iter()
-            .map(|f| match f.t2 {
-                Some((t2, bound)) => format!(
-                    "{} T^2 {} of {} ({}{})",
-                    f.label,
-                    num(t2, 1),
-                    num(bound, 1),
-                    num(t2 / bound, 2),
-                    if f.inside { "" } else { ", outside" }
-                ),
-                None => format!(
-                    "{} {}",
-                    f.label,
-                    if f.inside { "inside" } else { "outside" }
-                ),
-            })
-            .collect();
-        out.push_str(&format!(
-            "; each moved finger after the fix: {}",
-            each.join(", ")
-        ));
-    }
+    let mut out = moved_fingers_words(&fix.fingers, "after the fix");
     if !fix.bends.is_empty() {
         let each: Vec<String> = fix
             .bends

@@ -51,11 +51,18 @@ pub struct Audit {
     pub rig: AuditedRig,
     /// What the fix wrote, when one was asked for.
     pub fix: Option<FixOutcome>,
-    /// The nodes the fix moves, when asked for ([`AuditRequest::moves`]),
-    /// with the warnings that go with them.
-    pub moves: Option<(Vec<fix::moves::Move>, Vec<String>)>,
+    /// The nodes the fix moves, when asked for ([`AuditRequest::moves`]).
+    pub moves: Option<MovesOutcome>,
     /// What the rig file was, when it was FBX.
     pub fbx: Option<super::read::source::FbxSource>,
+}
+
+/// What `--moves` lists: the nodes the fix moves, the warnings that go with
+/// them, and each moved finger judged again with the moves made (in memory).
+pub struct MovesOutcome {
+    pub moves: Vec<fix::moves::Move>,
+    pub warnings: Vec<String>,
+    pub fingers: Vec<MovedFinger>,
 }
 
 /// What the fix wrote.
@@ -303,22 +310,44 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     } else {
         None
     };
+    let rays = atlas.as_ref().map(|a| (a, wrist.as_ref()));
     let moves = match &fixed {
-        Some(fixed) if req.moves => Some(moves_of(&rig.file, fixed)?),
+        Some(fixed) if req.moves => {
+            let (moves, warnings) = moves_of(&rig.file, fixed)?;
+            // The copy the moves make, judged again in memory (an FBX rig
+            // cannot be written): each moved finger's standing after them.
+            let label = format!("{} (with the moves)", rig.file.label);
+            let after = reaudit(
+                &rig,
+                fixed,
+                &label,
+                None,
+                map.as_ref(),
+                &analysis,
+                options,
+                rays,
+            )?;
+            Some(MovesOutcome {
+                moves,
+                warnings,
+                fingers: moved_fingers(&after, &fixed.moved),
+            })
+        }
         _ => None,
     };
     let fix = match (req.fix, fixed) {
         (Some(out), Some(fixed)) => {
-            let mut reaudit = write_checked(&rig, &fixed, out, map.as_ref(), &analysis, options)?;
-            if let Some(atlas) = &atlas {
-                reaudit.judge_rays(
-                    atlas,
-                    wrist.as_ref(),
-                    &analysis,
-                    options,
-                    rig.weights.as_ref(),
-                );
-            }
+            let label = out.display().to_string();
+            let reaudit = reaudit(
+                &rig,
+                &fixed,
+                &label,
+                Some(out),
+                map.as_ref(),
+                &analysis,
+                options,
+                rays,
+            )?;
             let (bends, new_defects) = bends_across(&audited, &reaudit, &fixed.moved);
             let fingers = moved_fingers(&reaudit, &fixed.moved);
             Some(FixOutcome {
@@ -558,19 +587,22 @@ fn fix_container(rig: &Path, out: &Path) -> Result<bool, Error> {
     }
 }
 
-/// Reads the fixed copy back, writes it to `out` atomically and judges it again.
-fn write_checked(
+/// Reads the fixed copy back (as `label`), writes it to `out` atomically when
+/// given, and judges it again as the rig was (`options`; the rays against
+/// `atlas` with its wrist ratios, when given). A copy that would not read back
+/// is refused before anything is written.
+#[allow(clippy::too_many_arguments)]
+fn reaudit(
     rig: &Rig,
     fixed: &Fixed,
-    out: &Path,
+    label: &str,
+    out: Option<&Path>,
     map: Option<&NameMap>,
     analysis: &Analysis,
     options: &AuditOptions,
+    atlas: Option<(&Analysis, Option<&judge::WristRatios>)>,
 ) -> Result<AuditedRig, Error> {
-    // Read the new file back before it is written: a copy that would not
-    // load is never left on disk.
-    let out_label = out.display().to_string();
-    let re = GltfFile::from_bytes(&out_label, &fixed.bytes)
+    let re = GltfFile::from_bytes(label, &fixed.bytes)
         .and_then(|f| Rig::from_file(f, map))
         .map_err(|e| {
             Error::render(
@@ -581,15 +613,21 @@ fn write_checked(
                 e,
             )
         })?;
-    crate::atomic::replace(out, &fixed.bytes).map_err(Error::write(out))?;
-    Ok(AuditedRig::with(
+    if let Some(out) = out {
+        crate::atomic::replace(out, &fixed.bytes).map_err(Error::write(out))?;
+    }
+    let mut audited = AuditedRig::with(
         &re.file.label,
         &re.chains,
         &re.notes,
         analysis,
         options,
         re.weights.as_ref(),
-    ))
+    );
+    if let Some((atlas, wrist)) = atlas {
+        audited.judge_rays(atlas, wrist, analysis, options, re.weights.as_ref());
+    }
+    Ok(audited)
 }
 
 /// True when `a` and `b` name the same file (`b` may not exist yet).

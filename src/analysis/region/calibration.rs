@@ -120,7 +120,7 @@ impl Setup {
 /// The Fisher 95% interval of a correlation `r` from `n` pairs, tanh(atanh r
 /// +- z / sqrt(n - 3)) at `confidence`; `None` for n <= 3 or |r| >= 1.
 pub fn fisher_interval(r: f64, n: usize, confidence: f64) -> Option<(f64, f64)> {
-    if n <= 3 || !(r.abs() < 1.0) || !(confidence > 0.0 && confidence < 1.0) {
+    if n <= 3 || r.is_nan() || r.abs() >= 1.0 || !(confidence > 0.0 && confidence < 1.0) {
         return None;
     }
     let z = crate::stats::describe::normal_quantile(0.5 + confidence / 2.0);
