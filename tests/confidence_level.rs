@@ -57,6 +57,8 @@ fn a_level_of_0_9999_reads_99_99_percent_everywhere() {
     assert!(md.matches(SHOWN).count() >= 10, "{md}");
     let md_rest = without(&md, "## 8. ", "## 9. ");
     let md_rest = without(&md_rest, "> ## Key results", "**Contents:**");
+    // The joint region's calibration shows simulated rates too.
+    let md_rest = without(&md_rest, "- **Joint region of a rig's finger**", "## 13. ");
     assert!(md_rest.contains(&format!("the {SHOWN} Student-t")), "{md}");
     assert!(
         md_rest.contains(&format!("| Confidence | `{SHOWN}` |")),
@@ -69,6 +71,11 @@ fn a_level_of_0_9999_reads_99_99_percent_everywhere() {
     // (The style sheet's "max-width: 100%" is no level.)
     let html_rest = without(&html, "<h2>8. ", "<h2>9. ");
     let html_rest = without(&html_rest, "id=\"key-results\"", "<nav");
+    let html_rest = without(
+        &html_rest,
+        "<strong>Joint region of a rig's finger</strong>",
+        "<h2>13. ",
+    );
     assert_no_hundred(&without(&html_rest, "<style>", "</style>"), "index.html");
 
     let plots: Vec<_> = std::fs::read_dir(wd.path().join("out/plots"))

@@ -161,20 +161,23 @@ pub fn region_view(
         .fold(0.0, f64::max);
     let max_own = own_alarms.iter().copied().fold(0.0, f64::max);
     let min_own = own_alarms.iter().copied().fold(1.0, f64::min);
-    let se = calibration::monte_carlo_se(0.05, setup.simulations);
+    // The target: at most the region's own miss rate, 1 - c (5% at 95%).
+    let target = 1.0 - c;
+    let se = calibration::monte_carlo_se(target, setup.simulations);
     // The largest of 28 cells lies about 2 SEs above its mean by chance
     // alone, so the target is read within 3.
-    let verdict = if max_model <= 0.05 {
-        "the target, at most 5%, is met in every cell".to_string()
-    } else if max_model <= 0.05 + 3.0 * se {
+    let goal = format!("the target, at most {}", level(target));
+    let verdict = if max_model <= target {
+        format!("{goal}, is met in every cell")
+    } else if max_model <= target + 3.0 * se {
         format!(
-            "the target, at most 5%, is met in every cell within Monte Carlo error (3 SEs, {} \
-             points, for the largest of {} cells)",
+            "{goal}, is met in every cell within Monte Carlo error (3 SEs, {} points, for the \
+             largest of {} cells)",
             num(3.0 * se * 100.0, 2),
             cells.len()
         )
     } else {
-        "the target, at most 5%, is not met".to_string()
+        format!("{goal}, is not met")
     };
     let notes = vec![
         format!(
@@ -182,7 +185,7 @@ pub fn region_view(
              drawn from a normal population of u with the paper's index SDs ({} and {}) and the \
              true correlation of the column (the ends of the Fisher {} interval of the paper's \
              r = {} from its 5 index fingers, and points between), one new normal hand judged \
-             against their region; the Monte Carlo SE of a rate near 5% is {} points. The rule \
+             against their region; the Monte Carlo SE of a rate near {} is {} points. The rule \
              does not change when either position is rescaled (S*'s variances are S's), so the \
              false alarms depend on the correlation alone.",
             setup.simulations,
@@ -194,6 +197,7 @@ pub fn region_view(
                 .iter()
                 .find(|s| s.finger == "index")
                 .map_or("n/a".to_string(), |s| s.own.clone()),
+            level(target),
             num(se * 100.0, 2),
         ),
         format!(
@@ -231,7 +235,7 @@ pub fn region_view(
              the true correlations above; in parentheses, on the X-rays' own S.",
             num(FINGER_MM, 0)
         ),
-        sizes: sizes.iter().map(|n| format!("n = {n}")).collect(),
+        sizes: sizes.iter().map(|&n| crate::format::xrays(n)).collect(),
         power,
         notes,
     })
