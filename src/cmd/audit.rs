@@ -114,6 +114,12 @@ pub(crate) struct Args {
     /// [default: data/atlas/measurements.csv, when it exists]
     #[arg(long, value_name = "DATASET")]
     metacarpals: Option<PathBuf>,
+    /// With --fix or --moves: leave the skin weights as painted. Without it the fix moves each
+    /// finger's weights with its joints, so the skin bends at the new joint; a joint whose
+    /// weights cannot follow (too few vertices around it, or vertices shared with another finger)
+    /// is held. A rig with no skin at all has nothing to carry: its joints move alone
+    #[arg(long)]
+    keep_weights: bool,
     /// How many hands the atlas's shape of each joint region counts as (--metacarpals' dataset):
     /// its correlation of the PIP's and DIP's positions is pooled with the X-rays' own, their
     /// variances kept; 0 judges on the X-rays' covariance alone (0 to 100000)
@@ -330,6 +336,7 @@ fn options(args: &Args) -> Result<AuditOptions, Error> {
         measure_tip: args.tip == Tip::Auto,
         hold: args.hold.clone(),
         shape: None,
+        carry_weights: !args.keep_weights,
     })
 }
 

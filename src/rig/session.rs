@@ -305,8 +305,9 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
             _ => audited.fingers.clone(),
         };
         let glb = fix_glb.unwrap_or(true);
-        // The skin weights stay as painted (`None`): see `fix_loaded`.
-        Some(fix::fix_with(&rig.file, &placed, None, dir, glb, &opts)?)
+        // The skin weights move with the joints, unless `--keep-weights`.
+        let weights = rig.weights.as_ref().filter(|_| options.carry_weights);
+        Some(fix::fix_with(&rig.file, &placed, weights, dir, glb, &opts)?)
     } else {
         None
     };
@@ -513,12 +514,8 @@ fn fix_loaded(
     let out = fix::fix_with(
         &loaded.file,
         &audited.fingers,
-        // The skin weights stay as painted: the judge's bend guard keeps every
-        // moved joint within 1 mm of where they make the skin bend, and moving
-        // the weights with the joint would carry the bend off the edge loops
-        // the mesh was modelled with (measured with `deform --fix`: the fixed
-        // rigs deformed worse at more joints with the weights moved).
-        None,
+        // As `audit --fix` does: the weights move with the joints.
+        loaded.weights.as_ref().filter(|_| options.carry_weights),
         dir,
         true,
         &fix::FixOptions::default(),

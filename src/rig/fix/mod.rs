@@ -61,6 +61,9 @@ pub struct Fixed {
     pub moved: Vec<(String, f64)>,
     /// Remarks for the user (animations that drive moved joints, external images).
     pub warnings: Vec<String>,
+    /// Each moved joint's node and how many of its finger's vertices took
+    /// new weights nearest it (empty when the weights stay as painted).
+    pub reweighted: Vec<(String, usize)>,
 }
 
 fn pad4(v: &mut Vec<u8>) {
@@ -120,17 +123,24 @@ pub fn fix_with(
         .map(|(&n, &(old, new))| (n, (old, new - old)))
         .collect();
     let mut warnings = anim::offset_translations(&mut json, &mut bin, &delta);
+    let mut reweighted = Vec::new();
     if let Some(w) = weights {
-        let moves: Vec<remap::FingerMove<'_>> = plan
-            .fingers
-            .iter()
-            .map(|(i, new_positions)| remap::FingerMove {
+        let mut remapped = remap::Remapped::new();
+        for (i, new_positions, anchors) in &plan.fingers {
+            let m = remap::FingerMove {
                 chain: &fingers[*i].chain,
                 new_positions: new_positions.clone(),
-            })
-            .collect();
-        let (remapped, notes) = remap::remap(w, &moves);
-        warnings.extend(notes);
+                anchors: anchors.clone(),
+            };
+            let (carried, _, notes) = crate::rig::judge::carry::carry_finger(
+                w,
+                &m,
+                crate::rig::bend::BEND_TOLERANCE_MM / 1000.0,
+            );
+            warnings.extend(notes);
+            reweighted.extend(remap::changed_per_joint(w, &m, &carried));
+            remapped.extend(carried);
+        }
         warnings.extend(remap::write(&mut json, &mut bin, w, &remapped));
     }
     let mut buffer = json!({"byteLength": bin.len()});
@@ -149,6 +159,7 @@ pub fn fix_with(
         bytes,
         moved: plan.moved,
         warnings,
+        reweighted,
     })
 }
 
@@ -161,9 +172,9 @@ struct Plan {
     targets: Vec<Target>,
     /// The moved joints' (name, distance).
     moved: Vec<(String, f64)>,
-    /// Fingers (index into the audited fingers) with a moved joint, and
-    /// every joint's new position.
-    fingers: Vec<(usize, Vec<DVec3>)>,
+    /// Fingers (index into the audited fingers) with a moved joint, every
+    /// joint's new position, and where each moved joint's skin bends now.
+    fingers: Vec<(usize, Vec<DVec3>, Vec<Option<DVec3>>)>,
 }
 
 /// Where each chain node goes: the joints the explanation moves to their
@@ -189,9 +200,16 @@ fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
         }
         let mut after_moved = false;
         let mut positions = Vec::new();
+        let mut anchors = Vec::new();
         for rj in &chain.joints {
             let m = moves(rj);
             positions.push(m.map_or(rj.position, |j| j.suggested));
+            anchors.push(m.and_then(|_| {
+                f.bends
+                    .iter()
+                    .find(|b| b.joint == rj.joint)
+                    .and_then(|b| b.at)
+            }));
             let Some(node) = rj.node else { continue };
             match m {
                 Some(j) => {
@@ -204,7 +222,7 @@ fn targets(fingers: &[AuditedFinger], only_outside: bool) -> Plan {
                 None => {}
             }
         }
-        plan.fingers.push((i, positions));
+        plan.fingers.push((i, positions, anchors));
     }
     plan
 }

@@ -38,6 +38,9 @@ pub struct AuditOptions {
     pub hold: Vec<Joint>,
     /// The joint regions' prior shape (`None`: the X-rays' own covariance).
     pub shape: Option<ShapePriors>,
+    /// The fix moves each finger's skin weights with its joints (true), or
+    /// leaves them as painted (`--keep-weights`): the guards follow.
+    pub carry_weights: bool,
 }
 
 impl Default for AuditOptions {
@@ -49,6 +52,7 @@ impl Default for AuditOptions {
             measure_tip: true,
             hold: Vec::new(),
             shape: None,
+            carry_weights: true,
         }
     }
 }
@@ -91,7 +95,16 @@ pub struct AuditedFinger {
     /// the chain's metacarpal node.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub metacarpal_check: Option<MetacarpalCheck>,
+    /// With the weights carried by the fix: for each joint, why its skin
+    /// cannot follow it (`None`: it can, or there is no skin to carry);
+    /// `None` when the weights stay as painted (`--keep-weights`).
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub carry: Option<Carry>,
 }
+
+/// Per joint, why its skin weights cannot follow a move ([`bend::cannot_carry`]).
+pub type Carry = Vec<(Joint, Option<String>)>;
 
 impl AuditedFinger {
     /// The chain's geometry as it was judged: with the skin's end as its tip
@@ -141,6 +154,32 @@ pub(super) fn hold_reason(
     (shift > 0.0 && shift < MOVE_TOLERANCE).then(|| Held::new(HoldReason::Small, shift, bend))
 }
 
+/// Why a move of `joint` from `from` to `to` is not made, by the skin's
+/// rule: with the weights carried (`carry`), when they cannot follow it
+/// ([`HoldReason::Carry`]) or the move is under the tolerance; with the
+/// weights as painted, [`hold_reason`] against the bends.
+pub(super) fn hold_for(
+    carry: Option<&Carry>,
+    bends: &[bend::Bend],
+    joint: Joint,
+    from: DVec3,
+    to: DVec3,
+) -> Option<Held> {
+    let Some(carry) = carry else {
+        return hold_reason(bends, joint, from, to);
+    };
+    let shift = from.distance(to);
+    if shift > 0.0
+        && let Some(why) = carry
+            .iter()
+            .find(|(j, _)| *j == joint)
+            .and_then(|(_, why)| why.as_deref())
+    {
+        return Some(Held::carry(shift, why));
+    }
+    (shift > 0.0 && shift < MOVE_TOLERANCE).then(|| Held::new(HoldReason::Small, shift, None))
+}
+
 /// `audit` (of `input`, judged with `judge` against `a`) with the fix's
 /// rules applied to its explanation: an MCP the explanation would move is
 /// held unless `pinned` holds it already (the caller places it itself, as
@@ -160,10 +199,10 @@ pub(super) fn guard(
     input: &ChainInput,
     judge: &JudgeOptions,
     audit: FingerAudit,
-    bends: &[bend::Bend],
+    (bends, carry): (&[bend::Bend], Option<&Carry>),
     pinned: &[Joint],
 ) -> FingerAudit {
-    guard_holding(a, input, judge, audit, bends, pinned, &[])
+    guard_holding(a, input, judge, audit, (bends, carry), pinned, &[])
 }
 
 /// [`guard`] with the joints `pre` held from the start, each with its reason.
@@ -172,7 +211,7 @@ fn guard_holding(
     input: &ChainInput,
     judge: &JudgeOptions,
     mut audit: FingerAudit,
-    bends: &[bend::Bend],
+    (bends, carry): (&[bend::Bend], Option<&Carry>),
     pinned: &[Joint],
     pre: &[(Joint, Held)],
 ) -> FingerAudit {
@@ -204,8 +243,8 @@ fn guard_holding(
                 if j.joint == Joint::Mcp && !pinned.contains(&Joint::Mcp) {
                     return None;
                 }
-                let h = hold_reason(bends, j.joint, from, j.suggested)?;
-                (h.reason == HoldReason::Bend).then_some((j.joint, h))
+                let h = hold_for(carry, bends, j.joint, from, j.suggested)?;
+                matches!(h.reason, HoldReason::Bend | HoldReason::Carry).then_some((j.joint, h))
             })
             .filter(|(joint, _)| !held.iter().any(|(k, _)| k == joint))
             .collect();
@@ -240,7 +279,7 @@ fn guard_holding(
             && j.held.is_none()
             && let Some(from) = at(j.joint)
         {
-            j.held = hold_reason(bends, j.joint, from, j.suggested);
+            j.held = hold_for(carry, bends, j.joint, from, j.suggested);
         }
     }
     // The moves the fix makes must land the finger inside the inner region
@@ -282,17 +321,38 @@ fn guard_on_weights(
     input: &ChainInput,
     judge: &JudgeOptions,
     first: FingerAudit,
-    bends: &[bend::Bend],
+    (bends, carry): (&[bend::Bend], Option<&Carry>),
     chain: &FingerChain,
     skin: Option<(&SkinWeights, f64)>,
     hold: &[Joint],
 ) -> FingerAudit {
     let pinned = pins(&first, hold);
-    let mut audit = guard_holding(a, input, judge, first.clone(), bends, hold, &pinned);
+    let mut audit = guard_holding(
+        a,
+        input,
+        judge,
+        first.clone(),
+        (bends, carry),
+        hold,
+        &pinned,
+    );
     let mut held = pinned;
     let Some((w, tolerance)) = skin else {
         return audit;
     };
+    if carry.is_some() {
+        // Carried weights: the question is whether the skin would bend at
+        // the moved joint, not whether the joint leaves its painted bend.
+        for _ in 0..3 {
+            let new = carried_short(&audit, bends, chain, w, tolerance);
+            if new.is_empty() {
+                break;
+            }
+            held.extend(new);
+            audit = guard_holding(a, input, judge, first.clone(), (bends, carry), hold, &held);
+        }
+        return audit;
+    }
     for _ in 0..3 {
         let mut moved = chain.clone();
         for rj in &mut moved.joints {
@@ -334,9 +394,69 @@ fn guard_on_weights(
             break;
         }
         held.extend(new);
-        audit = guard_holding(a, input, judge, first.clone(), bends, hold, &held);
+        audit = guard_holding(a, input, judge, first.clone(), (bends, carry), hold, &held);
     }
     audit
+}
+
+/// For each joint of `chain`, why its skin weights cannot follow a move
+/// ([`bend::cannot_carry`], against the other `chains`' nodes); every joint
+/// can when the rig has no weights (nothing to carry).
+fn carry_of(chain: &FingerChain, chains: &[FingerChain], weights: Option<&SkinWeights>) -> Carry {
+    let others: Vec<usize> = chains
+        .iter()
+        .filter(|c| !std::ptr::eq(*c, chain))
+        .flat_map(|c| c.joints.iter().filter_map(|j| j.node))
+        .collect();
+    chain
+        .joints
+        .iter()
+        .map(|j| {
+            let why = weights.and_then(|w| bend::cannot_carry(chain, w, &others, j.joint));
+            (j.joint, why)
+        })
+        .collect()
+}
+
+/// The fix's moves of `audit`, their weights carried
+/// ([`super::carry::carry_finger`]): each moved joint whose skin would then
+/// bend more than [`super::carry::CARRY_TOLERANCE`] from it (or nowhere near
+/// it), held with that distance. A mesh bends only where it has vertices.
+fn carried_short(
+    audit: &FingerAudit,
+    bends: &[bend::Bend],
+    chain: &FingerChain,
+    weights: &SkinWeights,
+    tolerance: f64,
+) -> Vec<(Joint, Held)> {
+    let moving: Vec<&super::standing::JointCheck> =
+        audit.joints.iter().filter(|j| j.fix_moves()).collect();
+    if moving.is_empty() {
+        return Vec::new();
+    }
+    let carried = super::carry::FingerMove::of(chain, bends, |joint| {
+        moving
+            .iter()
+            .find(|j| j.joint == joint)
+            .map(|j| j.suggested)
+    });
+    let (_, offsets, _) = super::carry::carry_finger(weights, &carried, tolerance);
+    offsets
+        .into_iter()
+        .filter_map(|(k, offset)| {
+            let j = moving.iter().find(|j| j.joint == chain.joints[k].joint)?;
+            let why = match offset {
+                Some(o) if o.abs() <= super::carry::CARRY_TOLERANCE => return None,
+                Some(o) => format!(
+                    "its skin would bend {} mm {} of it",
+                    crate::format::num(o.abs() * 1000.0, 1),
+                    if o < 0.0 { "proximal" } else { "distal" }
+                ),
+                None => "no bend of its skin would be found near it".to_string(),
+            };
+            Some((j.joint, Held::carry(j.shift, &why)))
+        })
+        .collect()
 }
 
 /// Every finger of a rig judged against the statistics.
@@ -558,12 +678,13 @@ impl AuditedRig {
                     let bends = weights
                         .map(|w| bend::bends(chain, w, opts.bend_tolerance))
                         .unwrap_or_default();
+                    let carry = opts.carry_weights.then(|| carry_of(chain, chains, weights));
                     let audit = guard_on_weights(
                         a,
                         &input,
                         &judge,
                         audit,
-                        &bends,
+                        (&bends, carry.as_ref()),
                         chain,
                         weights.map(|w| (w, opts.bend_tolerance)),
                         &opts.hold,
@@ -572,6 +693,7 @@ impl AuditedRig {
                         chain: chain.clone(),
                         audit,
                         bends,
+                        carry,
                         skin_tip,
                         metacarpal_check: None,
                     });
@@ -798,7 +920,7 @@ impl AuditedRig {
                 &input,
                 &judge,
                 first,
-                &f.bends,
+                (&f.bends, f.carry.as_ref()),
                 &f.chain,
                 weights.map(|w| (w, opts.bend_tolerance)),
                 &hold,

@@ -169,11 +169,28 @@ pub fn finger_vertices<'a>(
     nodes: &[usize],
     before: &[usize],
 ) -> Vec<FingerVertex<'a>> {
+    finger_vertices_with(axis, weights, nodes, before, None)
+}
+
+/// [`finger_vertices`] with some vertices' influences replaced by
+/// `overrides` ((primitive, vertex) -> influences: weights carried to moved
+/// joints, [`super::carry`]).
+pub fn finger_vertices_with<'a>(
+    axis: &FingerAxis,
+    weights: &'a SkinWeights,
+    nodes: &[usize],
+    before: &[usize],
+    overrides: Option<&'a super::carry::Remapped>,
+) -> Vec<FingerVertex<'a>> {
     let mut seen = FxHashSet::default();
     let mut out = Vec::new();
     let wanted = NodeMask::of(nodes, before);
-    for p in &weights.primitives {
-        for (pos, infl) in p.rest.iter().zip(&p.influences) {
+    for (pi, p) in weights.primitives.iter().enumerate() {
+        for (v, (pos, painted)) in p.rest.iter().zip(&p.influences).enumerate() {
+            let infl: &'a [(usize, f64)] = match overrides.and_then(|o| o.get(&(pi, v))) {
+                Some(carried) => carried,
+                None => painted,
+            };
             if !wanted.any(infl) {
                 continue;
             }
@@ -373,9 +390,12 @@ pub const MESH_END_RANGE: (f64, f64) = (0.25, 1.5);
 /// ring of vertices, whose vertices' shares straddle its mean, counts as one
 /// sample), the bins' means are fitted by the closest non-decreasing sequence
 /// (pool-adjacent-violators, weighted by the bins' counts), and the crossing
-/// is interpolated between the centres (mean arc positions) of the last
-/// pooled block below 1/2 and the first at or above it. `None` without a
-/// crossing (all on one side). O(n log n).
+/// is interpolated between the two neighbouring bins where the fit passes
+/// 1/2: the last bin of the last pooled block below 1/2 and the first bin of
+/// the first block at or above it, at their centres (mean arc positions),
+/// by the fitted values (the blocks' means). A long pooled block (a
+/// violation far from the crossing) so moves the crossing no further than
+/// its own end. `None` without a crossing (all on one side). O(n log n).
 pub fn crossing(samples: &mut [(f64, f64)], bin: f64) -> Option<f64> {
     samples.sort_by(|a, b| a.0.total_cmp(&b.0));
     let index = |u: f64| if bin > 0.0 { (u / bin).floor() } else { u };
@@ -391,10 +411,12 @@ pub fn crossing(samples: &mut [(f64, f64)], bin: f64) -> Option<f64> {
             *b = (b.0 + s, b.1 + 1.0, b.2 + u);
         }
     }
-    // Pool adjacent violators over the bins: (sum s, count, sum u).
-    let mut blocks: Vec<(f64, f64, f64)> = Vec::new();
+    // Pool adjacent violators over the bins: (sum s, count, centre of its
+    // first bin, centre of its last bin).
+    let mut blocks: Vec<(f64, f64, f64, f64)> = Vec::new();
     for b in bins {
-        blocks.push(b);
+        let c = b.2 / b.1;
+        blocks.push((b.0, b.1, c, c));
         while blocks.len() >= 2 {
             let (y, x) = (blocks[blocks.len() - 1], blocks[blocks.len() - 2]);
             if x.0 / x.1 <= y.0 / y.1 {
@@ -402,24 +424,105 @@ pub fn crossing(samples: &mut [(f64, f64)], bin: f64) -> Option<f64> {
             }
             blocks.pop();
             let last = blocks.len() - 1;
-            blocks[last] = (x.0 + y.0, x.1 + y.1, x.2 + y.2);
+            blocks[last] = (x.0 + y.0, x.1 + y.1, x.2, y.3);
         }
     }
-    let mean = |b: &(f64, f64, f64)| b.0 / b.1;
-    let centre = |b: &(f64, f64, f64)| b.2 / b.1;
+    let mean = |b: &(f64, f64, f64, f64)| b.0 / b.1;
     let i = blocks.iter().position(|b| mean(b) >= 0.5)?;
     if i == 0 {
         return None;
     }
     let (lo, hi) = (blocks[i - 1], blocks[i]);
     let t = (0.5 - mean(&lo)) / (mean(&hi) - mean(&lo));
-    Some(centre(&lo) + t * (centre(&hi) - centre(&lo)))
+    Some(lo.3 + t * (hi.2 - lo.3))
+}
+
+/// Fewer finger vertices than this around a joint cannot carry its bend: a
+/// skin that coarse (a vertex or two per bone) has no blend for a moved
+/// joint to take with it, and no bend to check it by.
+pub const CARRY_VERTICES: usize = 8;
+
+/// A vertex weighted this much to another finger's bones is shared with it.
+const SHARED_WEIGHT: f64 = 0.2;
+
+/// Why the skin weights of `chain` cannot follow its joint `joint` when a
+/// fix moves it (`--fix` moves a finger's weights with its joints): too few
+/// vertices around it (within half the way to each neighbouring joint,
+/// [`CARRY_VERTICES`]), or more than a tenth of them
+/// weighted at least [`SHARED_WEIGHT`] to the bones of another finger
+/// (`others`: the nodes of the rig's other fingers), whose skin would move
+/// too. `None` when they can follow, and when the finger has no weighted
+/// vertex at all (nothing to carry). O(V m).
+pub fn cannot_carry(
+    chain: &FingerChain,
+    weights: &SkinWeights,
+    others: &[usize],
+    joint: Joint,
+) -> Option<String> {
+    let (nodes, before) = finger_nodes(chain)?;
+    let points: Vec<DVec3> = chain.joints.iter().map(|j| j.position).collect();
+    let axis = FingerAxis::new(&points, chain.has_tip)?;
+    let k = chain.joints.iter().position(|j| j.joint == joint)?;
+    let vertices = finger_vertices(&axis, weights, &nodes, &before);
+    if vertices.is_empty() {
+        return None;
+    }
+    let lo = if k == 0 {
+        axis.start()
+    } else {
+        axis.joint(k - 1)
+    };
+    let hi = if k + 1 < nodes.len() {
+        axis.joint(k + 1)
+    } else {
+        axis.arcs[axis.arcs.len() - 1] - axis.joint_arcs[0]
+    };
+    // Around the joint: half the way to each neighbour, the span whose
+    // weights a move carries (the web, shared between fingers, lies further
+    // back, at the MCP's side of the proximal phalanx).
+    let c = axis.joint(k);
+    let (lo, hi) = (c - 0.5 * (c - lo), c + 0.5 * (hi - c));
+    let near: Vec<&FingerVertex<'_>> = vertices.iter().filter(|v| v.u >= lo && v.u <= hi).collect();
+    if near.len() < CARRY_VERTICES {
+        return Some(format!(
+            "{} vertices around it, too few to carry a bend (a skin of a vertex or two per bone)",
+            near.len()
+        ));
+    }
+    let shared = near
+        .iter()
+        .filter(|v| {
+            v.influences
+                .iter()
+                .filter(|(n, _)| others.contains(n))
+                .map(|(_, w)| w)
+                .sum::<f64>()
+                >= SHARED_WEIGHT
+        })
+        .count();
+    (10 * shared > near.len()).then(|| {
+        format!(
+            "{shared} of its {} vertices are weighted to another finger too, whose skin would move with it",
+            near.len()
+        )
+    })
 }
 
 /// The bend at every joint of `chain` that has a bone on both sides (the
 /// MCP only with a metacarpal or wrist bone), flagged beyond `tolerance`
 /// (rig units). Empty without nodes or a usable axis.
 pub fn bends(chain: &FingerChain, weights: &SkinWeights, tolerance: f64) -> Vec<Bend> {
+    bends_with(chain, weights, tolerance, None)
+}
+
+/// [`bends`] with some vertices' influences replaced by `overrides`
+/// ([`finger_vertices_with`]): where carried weights would bend the skin.
+pub fn bends_with(
+    chain: &FingerChain,
+    weights: &SkinWeights,
+    tolerance: f64,
+    overrides: Option<&super::carry::Remapped>,
+) -> Vec<Bend> {
     let Some((nodes, before)) = finger_nodes(chain) else {
         return Vec::new();
     };
@@ -427,7 +530,7 @@ pub fn bends(chain: &FingerChain, weights: &SkinWeights, tolerance: f64) -> Vec<
     let Some(axis) = FingerAxis::new(&points, chain.has_tip) else {
         return Vec::new();
     };
-    let vertices = finger_vertices(&axis, weights, &nodes, &before);
+    let vertices = finger_vertices_with(&axis, weights, &nodes, &before, overrides);
     let last = nodes.len() - usize::from(chain.has_tip);
     let first = if before.is_empty() { 1 } else { 0 };
     let mut out = Vec::new();

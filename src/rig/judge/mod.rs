@@ -12,6 +12,7 @@
 
 pub mod audited;
 pub mod bend;
+pub mod carry;
 pub(crate) mod chain;
 mod expected;
 mod explain;

@@ -17,7 +17,7 @@
 //! Joints the artist pins (`--hold`) stay pinned: a pinned MCP keeps the
 //! finger's own explanation, and pinned inner joints are held in the new one.
 
-use super::audited::{AuditedFinger, AuditedRig, guard, hold_reason};
+use super::audited::{AuditedFinger, AuditedRig, guard, hold_for};
 use super::finger::audit_holding;
 use super::standing::{HoldReason, JudgeOptions};
 use crate::analysis::Analysis;
@@ -56,7 +56,15 @@ fn placed(
     // The atlas's MCP is guarded as the finger's own moves are: not made when
     // it would take the MCP off its skin bend, or when it is too short.
     let held = (!m.standing.is_consistent())
-        .then(|| hold_reason(&f.bends, Joint::Mcp, original, m.suggested))
+        .then(|| {
+            hold_for(
+                f.carry.as_ref(),
+                &f.bends,
+                Joint::Mcp,
+                original,
+                m.suggested,
+            )
+        })
         .flatten();
     let outside = !m.standing.is_consistent() && held.is_none();
     if outside {
@@ -66,7 +74,14 @@ fn placed(
         .chain(hold.iter().copied())
         .collect();
     let audit = audit_holding(a, &input, opts, &pinned)?;
-    let mut audit = guard(a, &input, opts, audit, &f.bends, &pinned);
+    let mut audit = guard(
+        a,
+        &input,
+        opts,
+        audit,
+        (&f.bends, f.carry.as_ref()),
+        &pinned,
+    );
     // The artist's pins say what they give up as in the finger's own judgement.
     for j in &mut audit.joints {
         if let Some(h) = f

@@ -406,6 +406,10 @@ pub enum HoldReason {
     /// to the edge of the 95% region is out again after a few more X-rays,
     /// so the fix moves none of its joints.
     Short,
+    /// The fix moves a finger's skin weights with its joints, and this
+    /// joint's cannot follow: too few vertices around it to carry a bend, or
+    /// vertices shared with another finger ([`super::bend::cannot_carry`]).
+    Carry,
 }
 
 impl HoldReason {
@@ -421,6 +425,7 @@ impl HoldReason {
             HoldReason::Pinned => "pinned by --hold".into(),
             HoldReason::Base => "in range from its base".into(),
             HoldReason::BaseOpposes => "its base puts it the other way".into(),
+            HoldReason::Carry => "its skin cannot follow it".into(),
             HoldReason::Short => format!(
                 "would leave the finger outside the X-rays' {} region",
                 crate::format::level(crate::analysis::region::FIX_LEVEL)
@@ -445,6 +450,22 @@ pub struct Held {
 }
 
 impl Held {
+    /// A move of `shift` not made because the joint's skin weights cannot
+    /// follow it, for the reason `why` ([`HoldReason::Carry`]).
+    pub fn carry(shift: f64, why: &str) -> Held {
+        Held {
+            reason: HoldReason::Carry,
+            before: None,
+            after: None,
+            shift,
+            words: format!(
+                "held: its skin cannot follow it, {why}, so it is not moved (it would be moved {} \
+                 mm; --keep-weights moves it and leaves the weights)",
+                crate::format::num(shift * 1000.0, 1)
+            ),
+        }
+    }
+
     /// A move of `shift` not made: for `reason`, with the distances to the bend `bend` (before, after).
     pub fn new(reason: HoldReason, shift: f64, bend: Option<(f64, f64)>) -> Held {
         let mm = |x: f64| crate::format::num(x * 1000.0, 1);
