@@ -126,12 +126,21 @@ pub fn fix_with(
     let mut reweighted = Vec::new();
     if let Some(w) = weights {
         let mut remapped = remap::Remapped::new();
-        for (i, new_positions, anchors) in &plan.fingers {
-            let m = remap::FingerMove {
-                chain: &fingers[*i].chain,
-                new_positions: new_positions.clone(),
-                anchors: anchors.clone(),
-            };
+        for (i, new_positions, _) in &plan.fingers {
+            let f = &fingers[*i];
+            let m = remap::FingerMove::of(&f.chain, &f.bends, |joint| {
+                f.chain
+                    .joints
+                    .iter()
+                    .position(|rj| rj.joint == joint)
+                    .map(|k| new_positions[k])
+                    .filter(|p| {
+                        f.chain
+                            .joints
+                            .iter()
+                            .any(|rj| rj.joint == joint && rj.position != *p)
+                    })
+            });
             let (carried, _, notes) = crate::rig::judge::carry::carry_finger(
                 w,
                 &m,

@@ -73,7 +73,18 @@ pub struct Bend {
     /// True when the bend lies further from the joint than the tolerance
     /// (inner joints only; see the module notes).
     pub flagged: bool,
+    /// The blend around the bend: from the first to the last vertex whose
+    /// share of the distal side is strictly between [`BLEND_EDGE`] and 1 -
+    /// [`BLEND_EDGE`], as arc offsets from the bend (the first negative);
+    /// `None` without a bend or with hard weights.
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub blend: Option<(f64, f64)>,
 }
+
+/// A vertex whose share of the distal side lies within this of 0 or 1 is
+/// not in a joint's blend ([`Bend::blend`]).
+pub const BLEND_EDGE: f64 = 0.02;
 
 /// A finger's axis: the joints' polyline, extended before the MCP (and past
 /// the last joint without a tip).
@@ -564,12 +575,23 @@ pub fn bends_with(
         let count = samples.len();
         let at = crossing(&mut samples, BIN * axis.joint(nodes.len() - 1));
         let offset = at.map(|u| u - axis.joint(k));
+        let blend = at.and_then(|c| {
+            let inside = samples
+                .iter()
+                .filter(|(_, s)| *s > BLEND_EDGE && *s < 1.0 - BLEND_EDGE)
+                .map(|(u, _)| u - c);
+            let (lo, hi) = inside.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            });
+            (lo.is_finite() && hi.is_finite()).then_some((lo.min(0.0), hi.max(0.0)))
+        });
         out.push(Bend {
             joint: chain.joints[k].joint,
             offset,
             at: at.map(|u| axis.point(u)),
             vertices: count,
             flagged: k > 0 && offset.is_some_and(|o| o.abs() > tolerance),
+            blend,
         });
     }
     out

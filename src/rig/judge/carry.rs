@@ -12,7 +12,8 @@
 //! and keeps its width; linear between those pieces (the segments stretch or
 //! shrink); an unmoved joint keeps its own place; the axis' start and whatever
 //! lies past the tip stay. r_k is a quarter of the shorter of the joint's
-//! neighbouring segments, old or new. A vertex at u takes the weights the old
+//! neighbouring segments, old or new, for a moved joint, and 0.45 of it for
+//! an unmoved one (whose blend, over a knuckle often wide, stays as painted). A vertex at u takes the weights the old
 //! rig had at phi(u) on its own side of the finger: the vertices around the
 //! axis are sorted into 8 sectors of 45 degrees (angles about the MCP-to-tip
 //! direction), and within the vertex's sector the old weights are
@@ -48,6 +49,9 @@ pub struct FingerMove<'a> {
     pub chain: &'a FingerChain,
     pub new_positions: Vec<DVec3>,
     pub anchors: Vec<Option<DVec3>>,
+    /// Each joint's blend, as arc offsets from where its skin bends
+    /// ([`bend::Bend::blend`]): the span the map keeps whole.
+    pub blends: Vec<Option<(f64, f64)>>,
 }
 
 impl<'a> FingerMove<'a> {
@@ -61,20 +65,19 @@ impl<'a> FingerMove<'a> {
     ) -> FingerMove<'a> {
         let mut new_positions = Vec::new();
         let mut anchors = Vec::new();
+        let mut blends = Vec::new();
         for rj in &chain.joints {
             let target = to(rj.joint);
+            let bend = bends.iter().find(|b| b.joint == rj.joint);
             new_positions.push(target.unwrap_or(rj.position));
-            anchors.push(target.and_then(|_| {
-                bends
-                    .iter()
-                    .find(|b| b.joint == rj.joint)
-                    .and_then(|b| b.at)
-            }));
+            anchors.push(target.and_then(|_| bend.and_then(|b| b.at)));
+            blends.push(bend.and_then(|b| b.blend));
         }
         FingerMove {
             chain,
             new_positions,
             anchors,
+            blends,
         }
     }
 }
@@ -84,30 +87,49 @@ pub type Remapped = BTreeMap<(usize, usize), Vec<(usize, f64)>>;
 
 /// The map phi from the new joint layout to the old, as knots (new u, old u),
 /// increasing in both; `None` when the joints' order would not be kept.
-fn knots(old: &[f64], new: &[f64], start: f64, end: Option<f64>) -> Option<Vec<(f64, f64)>> {
+fn knots(
+    old: &[f64],
+    new: &[f64],
+    blends: &[Option<(f64, f64)>],
+    start: f64,
+    end: Option<f64>,
+) -> Option<Vec<(f64, f64)>> {
     let n = old.len();
     let mut k = vec![(start, start)];
     for i in 0..n {
-        let mut gap = f64::INFINITY;
-        for (lo, hi) in [
-            (i.checked_sub(1), Some(i)),
-            (Some(i), (i + 1 < n).then_some(i + 1)),
-        ] {
-            if let (Some(a), Some(b)) = (lo, hi) {
-                gap = gap.min(old[b] - old[a]).min(new[b] - new[a]);
+        // The room each side: under half of the shorter segment there, old or new.
+        let side = |a: Option<usize>, b: Option<usize>| -> f64 {
+            match (a, b) {
+                (Some(a), Some(b)) => (old[b] - old[a]).min(new[b] - new[a]),
+                _ => f64::INFINITY,
             }
-        }
+        };
+        let mut below = side(i.checked_sub(1), Some(i));
+        let above = side(Some(i), (i + 1 < n).then_some(i + 1));
         if i == 0 {
-            gap = gap.min(old[0] - start).min(new[0] - start);
+            below = below.min(old[0] - start).min(new[0] - start);
         }
-        let r = 0.25 * gap;
-        if r.is_nan() || r <= 0.0 {
+        let gap = below.min(above);
+        // An unmoved joint keeps its blend: the map is the identity almost to
+        // the midpoints of its segments. A moved joint carries its blend whole
+        // (the span where the skin's share is neither 0 nor 1, and a little),
+        // a quarter segment where the blend is not known.
+        let unmoved = (old[i] - new[i]).abs() < 1e-12;
+        let (lo, hi) = match blends.get(i).copied().flatten() {
+            Some((a, b)) if !unmoved => (-a + 0.05 * gap, b + 0.05 * gap),
+            _ => {
+                let r = if unmoved { 0.45 } else { 0.25 } * gap;
+                (r, r)
+            }
+        };
+        let (lo, hi) = (lo.min(0.45 * below), hi.min(0.45 * above));
+        if lo.is_nan() || hi.is_nan() || lo <= 0.0 || hi <= 0.0 {
             return None;
         }
         k.extend([
-            (new[i] - r, old[i] - r),
+            (new[i] - lo, old[i] - lo),
             (new[i], old[i]),
-            (new[i] + r, old[i] + r),
+            (new[i] + hi, old[i] + hi),
         ]);
     }
     if let Some(e) = end {
@@ -163,8 +185,8 @@ pub fn remap(weights: &SkinWeights, moves: &[FingerMove<'_>]) -> (Remapped, Vec<
             })
             .collect();
         let end = (!chain.has_tip).then(|| axis.arcs[axis.arcs.len() - 1] - axis.joint_arcs[0]);
-        let Some(knots) = knots(&old, &new, axis.start(), end)
-            .or_else(|| knots(&joints, &new, axis.start(), end))
+        let Some(knots) = knots(&old, &new, &m.blends, axis.start(), end)
+            .or_else(|| knots(&joints, &new, &[], axis.start(), end))
         else {
             notes.push(format!(
                 "{}: the joints' new order along the finger cannot carry the weights; they are \
@@ -538,7 +560,7 @@ mod tests {
         // 25: r = 6.25), phi translates by 5.
         let old = [0.0, 40.0, 65.0, 85.0];
         let new = [0.0, 35.0, 65.0, 85.0];
-        let k = knots(&old, &new, -40.0, None).unwrap();
+        let k = knots(&old, &new, &[], -40.0, None).unwrap();
         assert!((phi(&k, 35.0) - 40.0).abs() < 1e-12);
         assert!((phi(&k, 37.0) - 42.0).abs() < 1e-12);
         assert!((phi(&k, 65.0) - 65.0).abs() < 1e-12);
@@ -552,6 +574,6 @@ mod tests {
             last = y;
         }
         // A joint passing its neighbour cannot be mapped.
-        assert!(knots(&old, &[0.0, 70.0, 65.0, 85.0], -40.0, None).is_none());
+        assert!(knots(&old, &[0.0, 70.0, 65.0, 85.0], &[], -40.0, None).is_none());
     }
 }
