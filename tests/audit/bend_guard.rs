@@ -107,17 +107,16 @@ fn skinned(path: &Path) -> Skinned {
 /// (node indices, MCP first; `before` the metacarpal or wrist nodes): along
 /// the bone axis through the joint (from the point before it, the
 /// metacarpal's node or, without one, the first segment mirrored, to the
-/// joint after it), the vertices carrying at least half their weight on the
-/// finger's bones, binned by their projection to 0.5 mm, and the position
-/// where the bins' mean share of weight on the distal bones (the joint's node
-/// and later ones) first exceeds that on the proximal ones, interpolated
-/// with the bin before. Returns the signed distance from the joint (+
+/// joint after it, or the last segment mirrored past the last joint), the
+/// vertices carrying at least half their weight on the finger's bones,
+/// binned by their projection to 0.5 mm; the bins' mean shares of weight on
+/// the distal bones (the joint's node and later ones) are made
+/// non-decreasing by pooling adjacent violators (weighted by the bins'
+/// counts), and the bend is where that fit passes 1/2, interpolated between
+/// the two bins either side. Returns the signed distance from the joint (+
 /// towards the tip), `None` without a crossing.
 fn bend(s: &Skinned, chain: &[usize], before: &[usize], k: usize) -> Option<f64> {
     let p = |i: usize| s.world[chain[i]];
-    if k + 1 >= chain.len() {
-        return None;
-    }
     let prev = if k > 0 {
         p(k - 1)
     } else {
@@ -126,7 +125,12 @@ fn bend(s: &Skinned, chain: &[usize], before: &[usize], k: usize) -> Option<f64>
             None => p(0) - (p(1) - p(0)),
         }
     };
-    let (a, b) = (prev, p(k + 1));
+    let next = if k + 1 < chain.len() {
+        p(k + 1)
+    } else {
+        p(k) + (p(k) - prev)
+    };
+    let (a, b) = (prev, next);
     let dir = (b - a).normalize();
     let at = (p(k) - a).dot(dir);
     let len = (b - a).length();
@@ -154,17 +158,29 @@ fn bend(s: &Skinned, chain: &[usize], before: &[usize], k: usize) -> Option<f64>
         e.0 += d / (d + q);
         e.1 += 1.0;
     }
-    let means: Vec<(f64, f64)> = bins
-        .into_iter()
-        .map(|(i, (sum, c))| ((i as f64 + 0.5) * 0.0005, sum / c))
-        .collect();
-    let i = means.iter().position(|m| m.1 > 0.5)?;
-    let x = if i == 0 {
-        means[0].0
-    } else {
-        let (lo, hi) = (means[i - 1], means[i]);
-        lo.0 + (0.5 - lo.1) / (hi.1 - lo.1) * (hi.0 - lo.0)
-    };
+    // (position, share sum, count), then pooled: (first position, last
+    // position, share sum, count).
+    let mut blocks: Vec<(f64, f64, f64, f64)> = Vec::new();
+    for (i, (sum, c)) in bins {
+        let x = (i as f64 + 0.5) * 0.0005;
+        blocks.push((x, x, sum, c));
+        while blocks.len() > 1 {
+            let n = blocks.len();
+            let (l, r) = (blocks[n - 2], blocks[n - 1]);
+            if l.2 / l.3 <= r.2 / r.3 {
+                break;
+            }
+            blocks.pop();
+            blocks[n - 2] = (l.0, r.1, l.2 + r.2, l.3 + r.3);
+        }
+    }
+    let i = blocks.iter().position(|b| b.2 / b.3 >= 0.5)?;
+    if i == 0 {
+        return None;
+    }
+    let (lo, hi) = (blocks[i - 1], blocks[i]);
+    let (ylo, yhi) = (lo.2 / lo.3, hi.2 / hi.3);
+    let x = lo.1 + (0.5 - ylo) / (yhi - ylo) * (hi.0 - lo.1);
     Some(x - at)
 }
 
@@ -260,50 +276,76 @@ fn moved_joints(doc: &Value, rig: &Path) -> Vec<MovedJoint> {
     out
 }
 
+/// Every moved joint's skin bend, by this test's own reading of the written
+/// weights: with the weights carried (the default), within 1 mm of the new
+/// joint; left as painted (`--keep-weights`), no farther from it than the
+/// joint was from its bend before, plus the 1 mm the guard allows.
 #[test]
-fn no_moved_joint_ends_farther_from_its_skin_bend_by_the_tests_own_reading() {
+fn every_moved_joints_skin_bends_at_it_by_the_tests_own_reading() {
     let wd = Workdir::with_paper_data();
-    let (mut checked, mut unguarded) = (0, Vec::new());
-    for (i, rig) in rigs(&wd).iter().enumerate() {
-        let out = wd.path().join(format!("fixed-{i}.glb"));
-        let (r, o) = (rig.to_str().unwrap(), out.to_str().unwrap());
-        let doc = wd
-            .run(&["audit", r, "--fix", o, "--format", "json"])
-            .ok()
-            .json();
-        let (a, b) = (skinned(rig), skinned(&out));
-        for (node, chain, before, k, found) in moved_joints(&doc, rig) {
-            // A known gap, left open: where the audit finds no bend (hard
-            // weights on two-vertex rings, as hard.glb's), the guard has
-            // nothing to act on and the joint moves. Listed, not asserted.
-            if !found {
-                unguarded.push(format!("{}: {node}", rig.display()));
-                continue;
+    for keep in [false, true] {
+        let (mut checked, mut unguarded) = (0, Vec::new());
+        for (i, rig) in rigs(&wd).iter().enumerate() {
+            let out = wd.path().join(format!("fixed-{i}-{keep}.glb"));
+            let (r, o) = (rig.to_str().unwrap(), out.to_str().unwrap());
+            let mut args = vec!["audit", r, "--fix", o, "--format", "json"];
+            if keep {
+                args.push("--keep-weights");
             }
-            let (Some(d0), Some(d1)) = (bend(&a, &chain, &before, k), bend(&b, &chain, &before, k))
-            else {
-                eprintln!("{}: {node}: no bend found by the test", rig.display());
-                continue;
-            };
-            eprintln!(
-                "{}: {node} {:.1} mm from its bend before, {:.1} mm after",
-                rig.display(),
-                d0.abs() * 1e3,
-                d1.abs() * 1e3
-            );
-            assert!(
-                d1.abs() <= d0.abs() + 0.001 + 1e-4,
-                "{}: {node} went from {d0} to {d1} m from its skin bend",
-                rig.display()
-            );
-            checked += 1;
+            let doc = wd.run(&args).ok().json();
+            let (a, b) = (skinned(rig), skinned(&out));
+            for (node, chain, before, k, found) in moved_joints(&doc, rig) {
+                // Where the audit finds no bend in the painted weights (hard
+                // weights on two-vertex rings, as hard.glb's), the guard has
+                // nothing to act on: with the weights kept the joint moves
+                // unguarded (listed, not asserted); carried, it is held.
+                if !found {
+                    assert!(
+                        keep,
+                        "{}: {node} moved with its weights carried but no bend found",
+                        rig.display()
+                    );
+                    unguarded.push(format!("{}: {node}", rig.display()));
+                    continue;
+                }
+                let (Some(d0), Some(d1)) =
+                    (bend(&a, &chain, &before, k), bend(&b, &chain, &before, k))
+                else {
+                    panic!("{}: {node}: no bend found by the test", rig.display());
+                };
+                eprintln!(
+                    "{}{}: {node} {:.1} mm from its bend before, {:.1} mm after",
+                    rig.display(),
+                    if keep { " (--keep-weights)" } else { "" },
+                    d0.abs() * 1e3,
+                    d1.abs() * 1e3
+                );
+                if keep {
+                    assert!(
+                        d1.abs() <= d0.abs() + 0.001 + 1e-4,
+                        "{}: {node} went from {d0} to {d1} m from its skin bend",
+                        rig.display()
+                    );
+                } else {
+                    assert!(
+                        d1.abs() <= 0.001,
+                        "{}: {node} bends {d1} m from its new place",
+                        rig.display()
+                    );
+                }
+                checked += 1;
+            }
+        }
+        eprintln!(
+            "{checked} moved joints checked (keep weights: {keep}); moved without a bend the \
+             audit found: {unguarded:?}"
+        );
+        // With the weights carried, the shared rigs' inner joints move (13 on
+        // XR Tools, GDQuest and Godot OpenXR) and the tests' smooth hand's.
+        if !keep {
+            assert!(checked >= 3, "{checked}");
         }
     }
-    eprintln!(
-        "{checked} moved joints checked; moved without a bend the audit found: {unguarded:?}"
-    );
-    // The plain fix now holds every joint of the shared rigs (at their bends,
-    // or MCPs); tests/audit/fixing.rs checks rigs built to need moves.
 }
 
 /// The finger label and joint of every "move X" line of the audit's text.

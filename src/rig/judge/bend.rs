@@ -58,6 +58,11 @@ pub const BEND_TOLERANCE_MM: f64 = 3.0;
 /// ring's vertices straddle its mean position.
 pub(super) const BIN: f64 = 0.01;
 
+/// New influences by node for vertices of `SkinWeights::primitives`:
+/// (primitive, vertex) -> influences (weights carried to moved joints,
+/// `super::carry`), read over the painted ones where given.
+pub type Remapped = std::collections::BTreeMap<(usize, usize), Vec<(usize, f64)>>;
+
 /// Where the skin bends at one joint.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct Bend {
@@ -185,13 +190,13 @@ pub fn finger_vertices<'a>(
 
 /// [`finger_vertices`] with some vertices' influences replaced by
 /// `overrides` ((primitive, vertex) -> influences: weights carried to moved
-/// joints, [`super::carry`]).
+/// joints).
 pub fn finger_vertices_with<'a>(
     axis: &FingerAxis,
     weights: &'a SkinWeights,
     nodes: &[usize],
     before: &[usize],
-    overrides: Option<&'a super::carry::Remapped>,
+    overrides: Option<&'a Remapped>,
 ) -> Vec<FingerVertex<'a>> {
     let mut seen = FxHashSet::default();
     let mut out = Vec::new();
@@ -532,7 +537,7 @@ pub fn bends_with(
     chain: &FingerChain,
     weights: &SkinWeights,
     tolerance: f64,
-    overrides: Option<&super::carry::Remapped>,
+    overrides: Option<&Remapped>,
 ) -> Vec<Bend> {
     let Some((nodes, before)) = finger_nodes(chain) else {
         return Vec::new();
@@ -609,10 +614,26 @@ mod tests {
         // Hard weights: 0 up to u = 4, 1 from u = 6: midway, 5.
         let mut s = vec![(0.0, 0.0), (2.0, 0.0), (4.0, 0.0), (6.0, 1.0), (8.0, 1.0)];
         assert!((crossing(&mut s, 0.1).unwrap() - 5.0).abs() < 1e-12);
-        // A dip out of order pools: (3, 0.6), (4, 0.4) pool to 0.5 centred at
-        // 3.5; the fit reaches 1/2 there.
+        // A dip out of order pools: (3, 0.6), (4, 0.4) pool to 0.5 over
+        // 3-4; the fit rises from 0.2 at 2 to 0.5 at the pooled block's first
+        // bin, 3, and reaches 1/2 there.
         let mut s = vec![(1.0, 0.1), (2.0, 0.2), (3.0, 0.6), (4.0, 0.4), (5.0, 0.9)];
-        assert!((crossing(&mut s, 0.1).unwrap() - 3.5).abs() < 1e-12);
+        assert!((crossing(&mut s, 0.1).unwrap() - 3.0).abs() < 1e-12);
+        // A violation far from the crossing pools a long block below 1/2
+        // (0.06 at 1, 0.0 at 2-6); the crossing lies between that block's
+        // last bin (6, fit 0.01) and the next (8, 0.81): 6 + (0.49 / 0.8) x 2
+        // = 7.225, not pulled back towards the block's centre.
+        let mut s = vec![
+            (1.0, 0.06),
+            (2.0, 0.0),
+            (3.0, 0.0),
+            (4.0, 0.0),
+            (5.0, 0.0),
+            (6.0, 0.0),
+            (8.0, 0.81),
+        ];
+        let x = crossing(&mut s, 0.1).unwrap();
+        assert!((x - 7.225).abs() < 1e-12, "{x}");
         // A ring of vertices at 2.1-2.3 with shares 0.2-0.6 is one sample of
         // 0.4 at 2.2 in a bin 1 wide; the next ring, 0.8 at 3.05: crossing at
         // 2.2 + (0.1 / 0.4) x 0.85 = 2.4125.

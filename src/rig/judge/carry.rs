@@ -82,8 +82,7 @@ impl<'a> FingerMove<'a> {
     }
 }
 
-/// New influences by node for vertices of `SkinWeights::primitives`: (primitive, vertex) -> influences.
-pub type Remapped = BTreeMap<(usize, usize), Vec<(usize, f64)>>;
+pub use super::bend::Remapped;
 
 /// The map phi from the new joint layout to the old, as knots (new u, old u),
 /// increasing in both; `None` when the joints' order would not be kept.
@@ -229,9 +228,11 @@ pub fn remap(weights: &SkinWeights, moves: &[FingerMove<'_>]) -> (Remapped, Vec<
 }
 
 /// How far from a moved joint its carried weights may bend the skin (metres):
-/// within the bend guard (1 mm), less a fifth for the bins the bend is found
-/// in and the precision the file stores weights at.
-pub const CARRY_TOLERANCE: f64 = 0.8 * super::standing::BEND_GUARD;
+/// half the bend guard (1 mm), the other half left for the bins a bend is
+/// found in, the precision the file stores weights at, and other readers of
+/// the same weights (a bin of 0.5 mm read without pooling puts a bend up to
+/// 0.3 mm from where this one does).
+pub const CARRY_TOLERANCE: f64 = 0.5 * super::standing::BEND_GUARD;
 
 /// The weights of one finger carried to its moved joints: warped
 /// ([`remap`]), and across a moved joint whose warped blend would not bend
