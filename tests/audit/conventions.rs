@@ -78,6 +78,8 @@ fn sibling_joints_are_read_by_name_and_through_a_map() {
     let mut spec = HandSpec::new(Naming::WebXr).moved("index", 1, 1.0);
     spec.siblings = true;
     spec.metacarpals = true;
+    // A skin that bends at each joint, so the fix carries the weights.
+    spec.smooth = Some(Vec::new());
     let input = build(&spec);
     wd.write("xr.glb", &input);
     let doc = audit_json(&wd, "xr.glb");
@@ -96,6 +98,7 @@ fn sibling_joints_are_read_by_name_and_through_a_map() {
     // Anonymous siblings, named by a map.
     let mut spec = HandSpec::new(Naming::Anonymous).moved("index", 1, 1.0);
     spec.siblings = true;
+    spec.smooth = Some(Vec::new());
     let input = build(&spec);
     wd.write("bones.glb", &input);
     let doc = audit_json_mapped(&wd, "bones.glb");

@@ -310,6 +310,7 @@ fn varying_translation_keys_move_the_joints_as_before() {
     let mut spec = HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0);
     spec.animate = true;
     spec.varying = vec![("index", 1), ("index", 2)];
+    spec.smooth = Some(Vec::new());
     let input = build(&spec);
     wd.write("anim.glb", &input);
     wd.run(&["audit", "anim.glb", "--fix", "fixed.glb"])

@@ -24,6 +24,8 @@ fn daz_spec(palm: f64) -> HandSpec {
         .moved("middle", 2, 0.2)
         .moved("middle", 3, 0.6);
     spec.palm = palm;
+    // A skin that bends at each joint, so the fix carries the weights.
+    spec.smooth = Some(Vec::new());
     spec
 }
 

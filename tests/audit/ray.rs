@@ -246,19 +246,19 @@ fn fix_mcp_atlas_places_the_mcp_from_its_base_and_keeps_the_mesh() {
     run.ok();
     // Read as words, across the wrap.
     let words = run.stderr.split_whitespace().collect::<Vec<_>>().join(" ");
-    // Every MCP placed inside; the fingers' PIPs and DIPs, at their bends,
-    // are held, so the longer J1s leave 3 fingers outside (the thumb has no
-    // metacarpal check here and fits as built; the index, on the region's
-    // shape pooled with the atlas's, lies inside at 0.76 of its bound). The
-    // line says so finger by finger: an MCP placed from its base is the
-    // atlas's move, made even where the finger then lies outside.
+    // Every MCP placed inside; with the weights carried, the middle, ring
+    // and little fingers' PIPs and DIPs then move to where the X-rays put
+    // them given the placed MCPs (the index, on the region's shape pooled
+    // with the atlas's, lies inside at 0.76 of its bound with its MCP alone
+    // placed, and keeps its own; the thumb has no metacarpal check here and
+    // fits as built). The line says so finger by finger.
     assert!(
-        words.contains("4 joints moved; re-audited, 3 of 5 fingers outside the 95% joint region, 0 of 4 MCPs outside"),
+        words.contains("10 joints moved; re-audited, 0 of 5 fingers outside the 95% joint region, 0 of 4 MCPs outside"),
         "{}",
         run.stderr
     );
     assert!(
-        words.contains("each moved finger after the fix: right index T^2 19.3 of 25.5 (0.76), right middle T^2 36.8 of 25.5 (1.44, outside)"),
+        words.contains("each moved finger after the fix: right index T^2 19.3 of 25.5 (0.76), right middle T^2 0.0 of 25.5 (0.00)"),
         "{}",
         run.stderr
     );

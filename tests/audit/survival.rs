@@ -21,6 +21,8 @@ fn displaced() -> Vec<(String, Vec<u8>)> {
             spec = spec.moved(finger, joint, cm).moved(finger, joint + 1, -cm);
         }
         spec = spec.moved("thumb", 2, cm).moved("thumb", 3, -cm);
+        // A skin that bends at each joint, so the fix carries the weights.
+        spec.smooth = Some(Vec::new());
         out.push((format!("displaced-{h}.glb"), build(&spec)));
     }
     out
