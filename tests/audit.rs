@@ -34,7 +34,9 @@ pub(crate) const KEEP: &str = "--keep-weights";
 
 /// [`audit_json`] with the weights left as painted ([`KEEP`]).
 fn audit_json_kept(wd: &Workdir, file: &str) -> Value {
-    wd.run(&["audit", file, KEEP, "--format", "json"]).ok().json()
+    wd.run(&["audit", file, KEEP, "--format", "json"])
+        .ok()
+        .json()
 }
 
 fn fingers(doc: &Value) -> &Vec<Value> {

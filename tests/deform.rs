@@ -372,13 +372,26 @@ fn fix_compares_with_what_audit_fix_writes_without_writing_it() {
             .unwrap()
             .contains("audit --fix")
     );
-    // The built hand's weight bands are centred on its joints, so every
-    // joint the X-rays would move sits at its skin bend and the fix holds it
-    // (the MCPs as every MCP is without --fix-mcp atlas): nothing moves, and
-    // the audit says why for each.
-    assert_eq!(fix["moved"], serde_json::json!([]), "{}", fix["moved"]);
+    // The built hand's weight bands are centred on its joints: with its
+    // weights left as painted (--keep-weights) every joint the X-rays would
+    // move sits at its skin bend and the fix holds it (the MCPs as every MCP
+    // is without --fix-mcp atlas), so nothing moves, and the audit says why
+    // for each; with the weights carried (the default) the index PIP moves,
+    // its weights with it.
+    let kept = wd
+        .run(&[
+            "deform",
+            "right.glb",
+            "--fix",
+            "--keep-weights",
+            "--format",
+            "json",
+        ])
+        .ok()
+        .json();
+    assert_eq!(kept["moved"], serde_json::json!([]), "{}", kept["moved"]);
     let audit = wd
-        .run(&["audit", "right.glb", "--format", "json"])
+        .run(&["audit", "right.glb", "--keep-weights", "--format", "json"])
         .ok()
         .json();
     let mut held = 0;
@@ -393,6 +406,18 @@ fn fix_compares_with_what_audit_fix_writes_without_writing_it() {
     assert!(
         held > 0,
         "the X-rays move no joint of the built hand: {audit}"
+    );
+    let moved: Vec<&str> = fix["moved"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["node"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        moved,
+        ["index-finger-phalanx-intermediate"],
+        "{}",
+        fix["moved"]
     );
     // The same as deforming the file audit --fix writes.
     wd.run(&["audit", "right.glb", "--fix", "fixed-right.glb"])
@@ -759,30 +784,45 @@ fn the_fix_deforms_worse_at_no_more_joints_than_better_on_every_shared_rig() {
     };
     assert!(!rigs.is_empty(), "no rigs in ../shared/rigs");
     let wd = Workdir::new();
+    // Each rig against what `audit --fix` writes, in the fist and the grip,
+    // skinned by linear blend and by dual quaternions, the verdicts of the
+    // four counted together.
     for rig in &rigs {
-        let run = wd
-            .command(&[
-                "deform",
-                &rig.display().to_string(),
-                "--fix",
-                "--format",
-                "json",
-            ])
-            .current_dir(manifest_dir())
-            .output()
-            .unwrap();
-        assert!(run.status.success(), "{}: {:?}", rig.display(), run);
-        let doc: Value = serde_json::from_slice(&run.stdout).unwrap();
         let (mut a, mut b) = (0, 0);
-        for hand in doc["verdicts"].as_array().unwrap() {
-            for j in hand["joints"].as_array().unwrap() {
-                match j["overall"].as_str() {
-                    Some("a") => a += 1,
-                    Some("b") => b += 1,
-                    _ => {}
+        for pose in ["fist", "grip"] {
+            for skinning in ["lbs", "dqs"] {
+                let run = wd
+                    .command(&[
+                        "deform",
+                        &rig.display().to_string(),
+                        "--fix",
+                        "--pose",
+                        pose,
+                        "--skinning",
+                        skinning,
+                        "--format",
+                        "json",
+                    ])
+                    .current_dir(manifest_dir())
+                    .output()
+                    .unwrap();
+                assert!(run.status.success(), "{}: {:?}", rig.display(), run);
+                let doc: Value = serde_json::from_slice(&run.stdout).unwrap();
+                for hand in doc["verdicts"].as_array().unwrap() {
+                    for j in hand["joints"].as_array().unwrap() {
+                        match j["overall"].as_str() {
+                            Some("a") => a += 1,
+                            Some("b") => b += 1,
+                            _ => {}
+                        }
+                    }
                 }
             }
         }
+        eprintln!(
+            "{}: fixed better at {b} joints, worse at {a}",
+            rig.display()
+        );
         assert!(
             a <= b,
             "{}: the fixed rig is worse at {a} joints and better at {b}",

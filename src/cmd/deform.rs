@@ -56,6 +56,9 @@ pub(crate) struct Args {
     /// Compare with what `audit --fix` would write (B), made in memory
     #[arg(long)]
     fix: bool,
+    /// With --fix: the fix leaves the skin weights as painted, as `audit --fix --keep-weights`
+    #[arg(long, requires = "fix")]
+    keep_weights: bool,
     /// Named pose
     #[arg(long, value_enum, default_value_t = PoseName::Fist, conflicts_with = "angles")]
     pose: PoseName,
@@ -282,6 +285,7 @@ fn deform_rigs(args: &Args, req: &DeformRequest<'_>) -> Result<Deformed, Error> 
             args.boot.settings()?,
             &super::soft_tissue_table()?,
             metacarpals.as_deref(),
+            !args.keep_weights,
         )?;
         let (a, b, verdicts) = compare_fixed(&fixed, &args.rig, req)?;
         (a, Some(b), verdicts, Some(fixed.moved))

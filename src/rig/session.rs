@@ -445,6 +445,7 @@ pub fn fix_in_memory(
     settings: Settings,
     soft_tissue: &SoftTissue,
     metacarpals: Option<&Path>,
+    carry_weights: bool,
 ) -> Result<FixedInMemory, Error> {
     let map = map.map(NameMap::load).transpose()?;
     let loaded = Rig::load(rig, map.as_ref())?;
@@ -461,7 +462,7 @@ pub fn fix_in_memory(
         None => None,
     };
     let atlas = atlas.as_ref().map(|(a, w)| (a, w.as_ref()));
-    fix_loaded(rig, loaded, &analysis, soft_tissue, atlas)
+    fix_loaded(rig, loaded, &analysis, soft_tissue, atlas, carry_weights)
 }
 
 /// [`fix_in_memory`] against statistics already computed (the report's),
@@ -475,7 +476,7 @@ pub fn fix_in_memory_with(
 ) -> Result<FixedInMemory, Error> {
     let map = map.map(NameMap::load).transpose()?;
     let loaded = Rig::load(rig, map.as_ref())?;
-    fix_loaded(rig, loaded, analysis, soft_tissue, atlas)
+    fix_loaded(rig, loaded, analysis, soft_tissue, atlas, true)
 }
 
 fn fix_loaded(
@@ -484,12 +485,14 @@ fn fix_loaded(
     analysis: &Analysis,
     soft_tissue: &SoftTissue,
     atlas: Option<(&Analysis, Option<&judge::WristRatios>)>,
+    carry_weights: bool,
 ) -> Result<FixedInMemory, Error> {
     // `audit --fix OUT.glb` with its default options: the same judgement
     // (skin tips, bends from the skin weights) and the same fix.
     let options = with_shape(
         &AuditOptions {
             soft_tissue: soft_tissue.clone(),
+            carry_weights,
             ..AuditOptions::default()
         },
         atlas.map(|(a, _)| a),

@@ -70,7 +70,13 @@ impl<'a> FingerMove<'a> {
             let target = to(rj.joint);
             let bend = bends.iter().find(|b| b.joint == rj.joint);
             new_positions.push(target.unwrap_or(rj.position));
-            anchors.push(target.and_then(|_| bend.and_then(|b| b.at)));
+            // The blend is carried from where it bent the skin; a joint
+            // that sat at its bend (within the carry tolerance) keeps its
+            // own small offset to it, as the artist painted it.
+            anchors.push(target.and_then(|_| {
+                bend.filter(|b| b.offset.is_some_and(|o| o.abs() > CARRY_TOLERANCE))
+                    .and_then(|b| b.at)
+            }));
             blends.push(bend.and_then(|b| b.blend));
         }
         FingerMove {
