@@ -93,7 +93,9 @@ pub(crate) struct Args {
     #[arg(long, value_name = "OUT")]
     fix: Option<PathBuf>,
     /// Write the joints the fix moves to this CSV: node, old and new world position (m), new local
-    /// translation in the file's units and axes (FBX: Lcl Translation), to apply in a DCC
+    /// translation in the file's units and axes (FBX: Lcl Translation), to apply in a DCC; and the
+    /// vertices whose skin weights move with them to FILE.weights.csv beside it (mesh, primitive,
+    /// vertex, node, weight)
     #[arg(long, value_name = "FILE.csv")]
     moves: Option<PathBuf>,
     /// With --fix or --moves: move only joints that are themselves outside the prediction interval
@@ -198,6 +200,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
     }
     if let Some(path) = &args.moves {
         check_output_file("--moves", path, args.force.force)?;
+        check_output_file("--moves", &weights_path(path), args.force.force)?;
     }
     let metacarpals = metacarpals_or_default(args.metacarpals.as_deref());
     let options = options(args)?;
@@ -268,7 +271,10 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
     if let (Some(path), Some(outcome)) = (&args.moves, &audit.moves) {
         let (moves, warnings) = (&outcome.moves, &outcome.warnings);
         let csv = report::csv_out::moves(moves)?;
+        let weights = report::csv_out::weight_changes(&outcome.weights)?;
         crate::atomic::replace(path, &csv).map_err(Error::write(path))?;
+        let beside = weights_path(path);
+        crate::atomic::replace(&beside, &weights).map_err(Error::write(&beside))?;
         if !quiet {
             let mut line = moves_summary(&audit, path, moves.len());
             if args.brief {
@@ -401,6 +407,7 @@ fn json(audit: &Audit) -> Result<Vec<u8>, Error> {
                 joint: &b.joint,
                 before: b.before,
                 after: b.after,
+                reweighted: b.reweighted,
             })
             .collect(),
         new_bend_defects: &fix.new_defects,
@@ -418,6 +425,15 @@ fn json(audit: &Audit) -> Result<Vec<u8>, Error> {
     report::json::audit(&audit.analysis, &audit.rig, audit.fbx.as_ref(), fix)
 }
 
+/// Where `--moves FILE.csv` writes the vertices whose weights the fix
+/// changes: `FILE.weights.csv` beside it.
+fn weights_path(moves: &Path) -> PathBuf {
+    let stem = moves
+        .file_stem()
+        .map_or_else(|| "moves".into(), |s| s.to_string_lossy().into_owned());
+    moves.with_file_name(format!("{stem}.weights.csv"))
+}
+
 /// The line on standard error saying what `--moves` wrote.
 fn moves_summary(audit: &Audit, path: &std::path::Path, n: usize) -> String {
     let units = match &audit.fbx {
@@ -432,10 +448,15 @@ fn moves_summary(audit: &Audit, path: &std::path::Path, n: usize) -> String {
     let after = audit.moves.as_ref().map_or(String::new(), |m| {
         report::audit::moved_fingers_words(&m.fingers, "with the moves made")
     });
+    let vertices = audit.moves.as_ref().map_or(0, |m| m.weights.len());
     format!(
-        "wrote {}: {n} node{} to move (world positions in metres, +Y up; {units}){after}",
+        "wrote {}: {n} node{} to move (world positions in metres, +Y up; {units}){after}; and {}: \
+         {} whose skin weights move with the joints (mesh, primitive, vertex: for FBX the mesh's \
+         control point; one row per node and weight)",
         path.display(),
-        if n == 1 { "" } else { "s" }
+        if n == 1 { "" } else { "s" },
+        weights_path(path).display(),
+        count(vertices, "vertex", "vertices"),
     )
 }
 

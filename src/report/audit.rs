@@ -1126,7 +1126,13 @@ pub(crate) fn fix_after_words(fix: &crate::rig::session::FixOutcome) -> String {
         let each: Vec<String> = fix
             .bends
             .iter()
-            .map(|b| format!("{} {} -> {}", b.joint, mm(b.before), mm(b.after)))
+            .map(|b| {
+                let carried = match b.reweighted {
+                    0 => String::new(),
+                    n => format!(" ({n} vertices reweighted)"),
+                };
+                format!("{} {} -> {}{carried}", b.joint, mm(b.before), mm(b.after))
+            })
             .collect();
         out.push_str(&format!(
             "; each moved joint's distance to where its skin bends, before -> after: {}",

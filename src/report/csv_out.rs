@@ -61,6 +61,32 @@ pub(crate) fn moves(moves: &[crate::rig::fix::moves::Move]) -> Result<Vec<u8>, E
         .map_err(|e| Error::render("cannot write CSV", e.to_string()))
 }
 
+/// `audit --moves`' second file: one row per influence of each vertex whose
+/// skin weights the fix changed ([`crate::rig::fix::moves::WEIGHTS_HEADER`]),
+/// weights to nine decimals, names as the file has them.
+pub(crate) fn weight_changes(
+    changes: &[crate::rig::fix::moves::WeightChange],
+) -> Result<Vec<u8>, Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let err = |e| Error::render("cannot write CSV", e);
+    w.write_record(crate::rig::fix::moves::WEIGHTS_HEADER)
+        .map_err(err)?;
+    for c in changes {
+        for (node, weight) in &c.influences {
+            w.write_record([
+                c.mesh.clone(),
+                c.primitive.to_string(),
+                c.vertex.to_string(),
+                node.clone(),
+                crate::format::num(*weight, 9),
+            ])
+            .map_err(err)?;
+        }
+    }
+    w.into_inner()
+        .map_err(|e| Error::render("cannot write CSV", e.to_string()))
+}
+
 /// The statistics as CSV bytes; empty cells where a value is null. With groups
 /// (`--group-by`), two leading columns `group_by` and `group` name each row's
 /// group (`all` for the whole dataset).

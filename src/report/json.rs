@@ -381,6 +381,9 @@ pub struct MovedBendView<'a> {
     pub joint: &'a str,
     pub before: Option<f64>,
     pub after: Option<f64>,
+    /// Vertices whose weights the fix changed, nearest this joint (0: the
+    /// weights stay as painted).
+    pub reweighted: usize,
 }
 
 /// One moved joint.

@@ -58,10 +58,12 @@ pub struct Audit {
 }
 
 /// What `--moves` lists: the nodes the fix moves, the warnings that go with
-/// them, and each moved finger judged again with the moves made (in memory).
+/// them, the vertices whose weights it changes, and each moved finger judged
+/// again with the moves made (in memory).
 pub struct MovesOutcome {
     pub moves: Vec<fix::moves::Move>,
     pub warnings: Vec<String>,
+    pub weights: Vec<fix::moves::WeightChange>,
     pub fingers: Vec<MovedFinger>,
 }
 
@@ -128,6 +130,9 @@ pub struct MovedBend {
     pub before: Option<f64>,
     /// After it: from the moved joint to its bend in the fixed copy.
     pub after: Option<f64>,
+    /// Vertices whose weights the fix changed, counted for the moved joint
+    /// nearest each (0 with the weights as painted).
+    pub reweighted: usize,
 }
 
 /// The distance from joint `node` of `rig` to where its skin bends, with the
@@ -163,6 +168,7 @@ pub fn bends_across(
                 joint,
                 before: d0,
                 after: d1,
+                reweighted: 0,
             })
         })
         .collect();
@@ -314,7 +320,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
     let rays = atlas.as_ref().map(|a| (a, wrist.as_ref()));
     let moves = match &fixed {
         Some(fixed) if req.moves => {
-            let (moves, warnings) = moves_of(&rig.file, fixed)?;
+            let (moves, warnings, weights) = moves_of(&rig.file, fixed)?;
             // The copy the moves make, judged again in memory (an FBX rig
             // cannot be written): each moved finger's standing after them.
             let label = format!("{} (with the moves)", rig.file.label);
@@ -331,6 +337,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
             Some(MovesOutcome {
                 moves,
                 warnings,
+                weights,
                 fingers: moved_fingers(&after, &fixed.moved),
             })
         }
@@ -349,7 +356,14 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
                 options,
                 rays,
             )?;
-            let (bends, new_defects) = bends_across(&audited, &reaudit, &fixed.moved);
+            let (mut bends, new_defects) = bends_across(&audited, &reaudit, &fixed.moved);
+            for b in &mut bends {
+                b.reweighted = fixed
+                    .reweighted
+                    .iter()
+                    .find(|(node, _)| *node == b.node)
+                    .map_or(0, |(_, n)| *n);
+            }
             let fingers = moved_fingers(&reaudit, &fixed.moved);
             Some(FixOutcome {
                 output: out.to_path_buf(),
@@ -405,17 +419,21 @@ fn show_placed(audited: &mut AuditedRig, placed: &[judge::AuditedFinger]) {
 
 /// The nodes `fixed` (the fix of `original`, as `--fix` writes it) moves,
 /// read back from its bytes ([`fix::moves`]), with their warnings.
-fn moves_of(
-    original: &GltfFile,
-    fixed: &Fixed,
-) -> Result<(Vec<fix::moves::Move>, Vec<String>), Error> {
+type MovesRead = (
+    Vec<fix::moves::Move>,
+    Vec<String>,
+    Vec<fix::moves::WeightChange>,
+);
+
+fn moves_of(original: &GltfFile, fixed: &Fixed) -> Result<MovesRead, Error> {
     let copy = GltfFile::from_bytes(&original.label, &fixed.bytes).map_err(|e| {
         Error::render(
             format!("the fixed copy of {} did not read back", original.label),
             e,
         )
     })?;
-    Ok(fix::moves::moves(original, &copy))
+    let (moves, warnings) = fix::moves::moves(original, &copy);
+    Ok((moves, warnings, fix::moves::weight_changes(original, &copy)))
 }
 
 /// A rig as `audit --fix` would write it, in memory: the parsed rig and its

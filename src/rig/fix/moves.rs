@@ -144,6 +144,75 @@ pub fn moves(original: &GltfFile, fixed: &GltfFile) -> (Vec<Move>, Vec<String>) 
     (out, warnings)
 }
 
+/// A vertex whose skin weights the fix changed: its mesh (the glTF mesh's
+/// name, or the FBX mesh's), its primitive and index there (for FBX, the
+/// mesh's control point), and its new influences by node name, largest
+/// first, summing to 1.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WeightChange {
+    pub mesh: String,
+    pub primitive: usize,
+    pub vertex: usize,
+    pub influences: Vec<(String, f64)>,
+}
+
+/// The header of the weights CSV `--moves` writes beside its moves
+/// (`report::csv_out::weight_changes`): one row per influence of a changed
+/// vertex, so a script sets each listed vertex's weights to its rows.
+pub const WEIGHTS_HEADER: [&str; 5] = ["mesh", "primitive", "vertex", "node", "weight"];
+
+/// Influences this close are the same (the fix writes f32 weights).
+const SAME_WEIGHT: f64 = 1e-6;
+
+/// Every vertex whose influences differ between `original` and `fixed` (its
+/// fixed copy, whose primitives are the original's, in order), with its new
+/// influences. O(vertices x influences).
+pub fn weight_changes(original: &GltfFile, fixed: &GltfFile) -> Vec<WeightChange> {
+    use crate::rig::read::weights::SkinWeights;
+    let (Some(da), Some(db)) = (original.buffer_data(), fixed.buffer_data()) else {
+        return Vec::new();
+    };
+    let (a, b) = (
+        SkinWeights::read(original, &da),
+        SkinWeights::read(fixed, &db),
+    );
+    let names = fixed.node_names();
+    let mesh_name = |m: usize| {
+        fixed
+            .document
+            .meshes()
+            .nth(m)
+            .and_then(|x| x.name().map(str::to_string))
+            .unwrap_or_else(|| format!("mesh {m}"))
+    };
+    let mut out = Vec::new();
+    for (pa, pb) in a.primitives.iter().zip(&b.primitives) {
+        if (pa.mesh, pa.primitive) != (pb.mesh, pb.primitive) {
+            continue;
+        }
+        for (v, (ia, ib)) in pa.influences.iter().zip(&pb.influences).enumerate() {
+            let same = ia.len() == ib.len()
+                && ia
+                    .iter()
+                    .zip(ib)
+                    .all(|(x, y)| x.0 == y.0 && (x.1 - y.1).abs() <= SAME_WEIGHT);
+            if same {
+                continue;
+            }
+            out.push(WeightChange {
+                mesh: mesh_name(pb.mesh),
+                primitive: pb.primitive,
+                vertex: v,
+                influences: ib
+                    .iter()
+                    .map(|&(n, w)| (names.get(n).cloned().unwrap_or_default(), w))
+                    .collect(),
+            });
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

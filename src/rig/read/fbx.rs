@@ -284,7 +284,14 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
         skins.push(json!({"joints": m.joints, "inverseBindMatrices": ibm}));
         let mut mesh_json =
             json!({"primitives": [{"attributes": attributes, "indices": idx, "mode": 4}]});
-        let nm = mesh.element.name.to_string();
+        // A mesh without a name of its own goes by the node that draws it
+        // (a DCC lists the object), which the moves' weights file names.
+        let mut nm = mesh.element.name.to_string();
+        if nm.is_empty()
+            && let Some(inst) = mesh.element.instances.iter().next()
+        {
+            nm = inst.element.name.to_string();
+        }
         if !nm.is_empty() {
             mesh_json["name"] = json!(nm);
         }
