@@ -433,6 +433,158 @@ fn weld(vertices: &[Vertex], triangles: &[[u32; 3]]) -> HandMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use serde_json::json;
+
+    /// A GLB of two meshes: mesh 0, a unit square (0,0,0)-(1,1,0) of two
+    /// triangles, skinned to joints 0 (node "hand") and 1 (node "finger",
+    /// below it, at y = 2): vertices 0 and 1 weighted to the hand, 2 and 3 to
+    /// the finger; the hand's inverse bind matrix identity, the finger's a
+    /// translation by -2 in y (bound where it stands). Mesh 1, an unskinned
+    /// triangle strip of 4 vertices on node "prop" translated by (10, 0, 0).
+    /// `edit` changes the JSON first.
+    fn file(edit: impl Fn(&mut serde_json::Value)) -> GltfFile {
+        let mut bin: Vec<u8> = Vec::new();
+        let mut views = Vec::new();
+        let mut push = |bytes: Vec<u8>| {
+            while bin.len() % 4 != 0 {
+                bin.push(0);
+            }
+            views.push(json!({"buffer": 0, "byteOffset": bin.len(), "byteLength": bytes.len()}));
+            bin.extend(bytes);
+            views.len() - 1
+        };
+        let f32s = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+        let square = [0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0.];
+        let p = push(f32s(&square));
+        let idx = push(
+            [0u16, 1, 2, 0, 2, 3]
+                .iter()
+                .flat_map(|x| x.to_le_bytes())
+                .collect(),
+        );
+        let joints = push([0u8, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0].to_vec());
+        let weights = push(f32s(&[
+            1., 0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0.,
+        ]));
+        let mut ibm = Vec::new();
+        for m in [
+            glam::Mat4::IDENTITY,
+            glam::Mat4::from_translation(glam::Vec3::new(0.0, -2.0, 0.0)),
+        ] {
+            ibm.extend(m.to_cols_array());
+        }
+        let ibm = push(f32s(&ibm));
+        let strip = push(f32s(&square));
+        let mut doc = json!({
+            "asset": {"version": "2.0"},
+            "nodes": [
+                {"name": "hand", "children": [1]},
+                {"name": "finger", "translation": [0.0, 2.0, 0.0]},
+                {"name": "skinned", "mesh": 0, "skin": 0},
+                {"name": "prop", "mesh": 1, "translation": [10.0, 0.0, 0.0]}
+            ],
+            "meshes": [
+                {"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 2, "WEIGHTS_0": 3}, "indices": 1}]},
+                {"primitives": [{"attributes": {"POSITION": 5}, "mode": 5}]}
+            ],
+            "skins": [{"joints": [0, 1], "inverseBindMatrices": 4}],
+            "accessors": [
+                {"bufferView": p, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 0.0]},
+                {"bufferView": idx, "componentType": 5123, "count": 6, "type": "SCALAR"},
+                {"bufferView": joints, "componentType": 5121, "count": 4, "type": "VEC4"},
+                {"bufferView": weights, "componentType": 5126, "count": 4, "type": "VEC4"},
+                {"bufferView": ibm, "componentType": 5126, "count": 2, "type": "MAT4"},
+                {"bufferView": strip, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 0.0]}
+            ],
+            "bufferViews": views,
+            "buffers": [{"byteLength": bin.len()}]
+        });
+        edit(&mut doc);
+        let bytes = crate::rig::read::gltf::glb(&doc, bin).unwrap();
+        GltfFile::from_bytes("hand.glb", &bytes).unwrap()
+    }
+
+    #[test]
+    fn skinned_and_unskinned_meshes_in_world_space() {
+        let m = hand_mesh(&file(|_| {}), &MeshSelect::Whole).unwrap();
+        // The square rests where it is stored (both skin matrices are the
+        // identity in the bind pose); the strip is moved 10 along x and
+        // unrolled into two triangles.
+        assert_eq!(m.positions.len(), 8);
+        assert_eq!(m.positions[2], DVec3::new(1.0, 1.0, 0.0));
+        assert_eq!(m.positions[5], DVec3::new(11.0, 0.0, 0.0));
+        assert_eq!(
+            m.triangles,
+            vec![[0, 1, 2], [0, 2, 3], [4, 5, 6], [6, 5, 7]]
+        );
+        assert_eq!(m.sources[5], vec![(1, 0, 1)]);
+        // Posed: the finger node moved up by 1 carries vertices 2 and 3.
+        let mut f = file(|_| {});
+        f.world[1] = DMat4::from_translation(DVec3::new(0.0, 3.0, 0.0));
+        let m = hand_mesh(&f, &MeshSelect::Whole).unwrap();
+        assert_eq!(m.positions[2], DVec3::new(1.0, 2.0, 0.0));
+        assert_eq!(m.positions[0], DVec3::ZERO);
+    }
+
+    #[test]
+    fn the_region_under_a_node() {
+        let f = file(|_| {});
+        // Under the hand: both joints, so the whole square; the prop is left out.
+        let m = hand_mesh(&f, &MeshSelect::UnderNode { node: 0 }).unwrap();
+        assert_eq!(m.positions.len(), 4);
+        assert_eq!(m.triangles.len(), 2);
+        assert!(
+            m.notes.iter().any(|n| n.contains("/nodes/3")),
+            "{:?}",
+            m.notes
+        );
+        // Under the finger: vertices 2 and 3 only, no whole triangle.
+        let e = hand_mesh(&f, &MeshSelect::UnderNode { node: 1 })
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("no triangles whose vertices are weighted mostly to node 'finger'"),
+            "{e}"
+        );
+        let e = hand_mesh(&f, &MeshSelect::UnderNode { node: 9 })
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("has no node 9"), "{e}");
+    }
+
+    #[test]
+    fn malformed_data_is_named_by_its_json_path() {
+        // Indices as 2 VEC3 of shorts: the same bytes, a shape glTF refuses.
+        let f = file(|d| {
+            d["accessors"][1]["type"] = json!("VEC3");
+            d["accessors"][1]["count"] = json!(2);
+        });
+        let e = hand_mesh(&f, &MeshSelect::Whole).unwrap_err().to_string();
+        assert!(
+            e.contains("/accessors/1 (indices of /meshes/0/primitives/0)"),
+            "{e}"
+        );
+        let f = file(|d| d["meshes"][1]["primitives"][0]["mode"] = json!(1));
+        let m = hand_mesh(&f, &MeshSelect::Whole).unwrap();
+        assert!(
+            m.notes
+                .iter()
+                .any(|n| n.contains("/meshes/1/primitives/0 is drawn as Lines"))
+        );
+        let mut f = file(|_| {});
+        f.world[3] = DMat4::from_cols_array(&[f64::NAN; 16]);
+        let e = hand_mesh(&f, &MeshSelect::Whole).unwrap_err().to_string();
+        assert!(
+            e.contains("/nodes/3 has a non-finite world transform"),
+            "{e}"
+        );
+        let f = file(|d| {
+            d["meshes"][0]["primitives"][0]["mode"] = json!(0);
+            d["meshes"][1]["primitives"][0]["mode"] = json!(0);
+        });
+        let e = hand_mesh(&f, &MeshSelect::Whole).unwrap_err().to_string();
+        assert!(e.contains("has no triangle mesh"), "{e}");
+    }
 
     fn vertex(x: f64, y: f64, z: f64, i: usize) -> Vertex {
         Vertex {
