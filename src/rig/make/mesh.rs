@@ -63,6 +63,9 @@ pub enum MeshSelect {
     UnderNode { node: usize },
 }
 
+/// A skin's joints (nodes) and their bind-pose skin matrices.
+type SkinMatrices = (Vec<usize>, Vec<DMat4>);
+
 /// One file vertex before welding: where it rests and where it came from.
 struct Vertex {
     at: DVec3,
@@ -98,7 +101,7 @@ pub fn hand_mesh(file: &GltfFile, select: &MeshSelect) -> Result<HandMesh, DataE
     let mut problems = Vec::new();
     let mut vertices: Vec<Vertex> = Vec::new();
     let mut triangles: Vec<[u32; 3]> = Vec::new();
-    let mut skins: FxHashMap<usize, Option<(Vec<usize>, Vec<DMat4>)>> = FxHashMap::default();
+    let mut skins: FxHashMap<usize, Option<SkinMatrices>> = FxHashMap::default();
     for node in file.document.nodes() {
         let Some(mesh) = node.mesh() else { continue };
         let n = node.index();
@@ -241,7 +244,7 @@ fn skin_matrices(
     data: &[Vec<u8>],
     skin: &gltf::Skin<'_>,
     problems: &mut Vec<String>,
-) -> Option<(Vec<usize>, Vec<DMat4>)> {
+) -> Option<SkinMatrices> {
     let s = skin.index();
     let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
     if joints.is_empty() || joints.len() > usize::from(u16::MAX) {
@@ -446,7 +449,7 @@ mod tests {
         let mut bin: Vec<u8> = Vec::new();
         let mut views = Vec::new();
         let mut push = |bytes: Vec<u8>| {
-            while bin.len() % 4 != 0 {
+            while !bin.len().is_multiple_of(4) {
                 bin.push(0);
             }
             views.push(json!({"buffer": 0, "byteOffset": bin.len(), "byteLength": bytes.len()}));
