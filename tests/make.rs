@@ -377,3 +377,99 @@ fn the_fingers_found_on_every_shared_rig_against_the_artists_joints() {
     }
     assert!(median(per_hand_lateral) <= 2.0, "{table}");
 }
+
+/// A GLB container of `json` and `bin`.
+fn glb(json: &serde_json::Value, bin: &[u8]) -> Vec<u8> {
+    let mut text = serde_json::to_vec(json).unwrap();
+    while text.len() % 4 != 0 {
+        text.push(b' ');
+    }
+    let mut bin = bin.to_vec();
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let total = 12 + 8 + text.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend(b"glTF");
+    out.extend(2u32.to_le_bytes());
+    out.extend((total as u32).to_le_bytes());
+    out.extend((text.len() as u32).to_le_bytes());
+    out.extend(0x4E4F_534Au32.to_le_bytes());
+    out.extend(text);
+    out.extend((bin.len() as u32).to_le_bytes());
+    out.extend(0x004E_4942u32.to_le_bytes());
+    out.extend(bin);
+    out
+}
+
+/// The JSON and binary chunk of a GLB.
+fn unglb(bytes: &[u8]) -> (serde_json::Value, Vec<u8>) {
+    let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+    let len = word(12);
+    let json = serde_json::from_slice(&bytes[20..20 + len]).unwrap();
+    let at = 20 + len;
+    let bin = bytes[at + 8..at + 8 + word(at)].to_vec();
+    (json, bin)
+}
+
+/// The finder reads the skin alone: WebXR's hands with their skins taken
+/// away (no skin on the mesh node, no joints or weights, no bones but the
+/// nodes) give the same fingers, with the wrist given and without.
+#[test]
+fn the_fingers_found_do_not_depend_on_the_bones() {
+    let Some(rigs) = shared_rig_files() else {
+        return;
+    };
+    let webxr: Vec<_> = rigs
+        .iter()
+        .filter(|p| {
+            p.parent()
+                .is_some_and(|d| d.ends_with("webxr-generic-hand"))
+        })
+        .collect();
+    assert_eq!(webxr.len(), 2, "{rigs:?}");
+    for path in webxr {
+        let bytes = std::fs::read(path).unwrap();
+        let label = path.display().to_string();
+        let skinned = phalanx::rig::GltfFile::from_bytes(&label, &bytes).unwrap();
+        let (mut json, bin) = unglb(&bytes);
+        for node in json["nodes"].as_array_mut().unwrap() {
+            node.as_object_mut().unwrap().remove("skin");
+        }
+        json.as_object_mut().unwrap().remove("skins");
+        for mesh in json["meshes"].as_array_mut().unwrap() {
+            for prim in mesh["primitives"].as_array_mut().unwrap() {
+                let attrs = prim["attributes"].as_object_mut().unwrap();
+                attrs.remove("JOINTS_0");
+                attrs.remove("WEIGHTS_0");
+            }
+        }
+        let bare = phalanx::rig::GltfFile::from_bytes(&label, &glb(&json, &bin)).unwrap();
+        let rig = Rig::from_file(
+            phalanx::rig::GltfFile::from_bytes(&label, &bytes).unwrap(),
+            None,
+        )
+        .unwrap();
+        let wrist = rig.chains.iter().find_map(|c| c.wrist.clone()).unwrap();
+        for given in [Some(wrist.position), None] {
+            let opts = FindOptions {
+                wrist: given,
+                ..FindOptions::default()
+            };
+            let a = find_hand(&hand_mesh(&skinned, &MeshSelect::Whole).unwrap(), &opts).unwrap();
+            let b = find_hand(&hand_mesh(&bare, &MeshSelect::Whole).unwrap(), &opts).unwrap();
+            assert_eq!(a.side, b.side);
+            for (f, g) in a.fingers.iter().zip(&b.fingers) {
+                assert_eq!(f.finger, g.finger);
+                assert!(
+                    f.tip.distance(g.tip) < 1e-5,
+                    "{label} {}: {} {}",
+                    f.finger,
+                    f.tip,
+                    g.tip
+                );
+                assert_eq!(f.axis.len(), g.axis.len(), "{label} {}", f.finger);
+            }
+        }
+    }
+}
