@@ -99,8 +99,10 @@ pub(crate) struct Ring {
     /// The length-weighted mean distance of the curve from its centre.
     pub radius: f64,
     pub perimeter: f64,
-    /// True when the curve ends at an edge with one triangle of those cut
-    /// (the mesh's border or the border of the triangles given).
+    /// True when the curve is no closed loop: it runs between edges with one
+    /// triangle of those cut (the mesh's border or the border of the
+    /// triangles given). Dangling pieces of a closed loop (a fin's flap) are
+    /// left out of it.
     pub open: bool,
     /// The mesh edges the curve crosses (lower vertex first).
     pub edges: Vec<(u32, u32)>,
@@ -154,6 +156,34 @@ pub(crate) fn section(
             uf.union(i, e.0);
         }
     }
+    // Dangling pieces (a fin's flap: a segment with a crossed edge no other
+    // segment shares) are pruned, leaf by leaf; what stays is the closed
+    // curve. A curve pruned away entirely is open: it ran from border to
+    // border.
+    let mut count: FxHashMap<(u32, u32), u32> = owner.iter().map(|(k, v)| (*k, v.1)).collect();
+    let mut by_edge: FxHashMap<(u32, u32), Vec<usize>> = FxHashMap::default();
+    for (i, s) in segments.iter().enumerate() {
+        for key in s.2 {
+            by_edge.entry(key).or_default().push(i);
+        }
+    }
+    let mut pruned = vec![false; segments.len()];
+    let mut queue: Vec<usize> = (0..segments.len())
+        .filter(|&i| segments[i].2.iter().any(|k| count[k] == 1))
+        .collect();
+    while let Some(i) = queue.pop() {
+        if pruned[i] || !segments[i].2.iter().any(|k| count[k] == 1) {
+            continue;
+        }
+        pruned[i] = true;
+        for key in segments[i].2 {
+            let c = count.entry(key).or_insert(1);
+            *c = c.saturating_sub(1);
+            if *c == 1 {
+                queue.extend(by_edge[&key].iter().copied().filter(|&j| !pruned[j]));
+            }
+        }
+    }
     let mut by_root: FxHashMap<usize, Vec<usize>> = FxHashMap::default();
     for i in 0..segments.len() {
         by_root.entry(uf.find(i)).or_default().push(i);
@@ -163,17 +193,18 @@ pub(crate) fn section(
     roots
         .into_iter()
         .filter_map(|r| {
-            let members = &by_root[&r];
+            let all = &by_root[&r];
+            let kept: Vec<usize> = all.iter().copied().filter(|&i| !pruned[i]).collect();
+            let open = kept.is_empty();
+            let members = if open { all } else { &kept };
             let mut length = 0.0;
             let mut sum = DVec3::ZERO;
-            let mut open = false;
             let mut edges = Vec::with_capacity(members.len());
             for &i in members {
                 let (a, b, keys) = segments[i];
                 let l = a.distance(b);
                 length += l;
                 sum += l * (a + b) / 2.0;
-                open |= keys.iter().any(|k| owner[k].1 != 2);
                 edges.extend(keys);
             }
             edges.sort_unstable();
@@ -359,6 +390,16 @@ mod tests {
         // Perimeter of a regular 24-gon of radius 2 stretched along x by
         // 1/cos: between 2 pi r and that times 1.05.
         assert!(r.perimeter > 12.5 && r.perimeter < 13.3, "{}", r.perimeter);
+        // A fin on the tube (a third triangle on one of its edges, its corner
+        // off the skin) is pruned from the ring: the same centre, closed.
+        let mut finned = t.clone();
+        let mut q = p.clone();
+        q.push(DVec3::new(3.0, 0.0, 5.5));
+        finned.push([t[240][0], t[240][1], q.len() as u32 - 1]);
+        let with = section(&q, &finned, DVec3::new(0.0, 0.0, 5.3), n);
+        assert_eq!(with.len(), 1);
+        assert!(!with[0].open);
+        assert!((with[0].centre - r.centre).length() < 1e-9, "{:?}", with[0]);
         // Cutting only the tube's first half of triangles leaves it open.
         let half: Vec<[u32; 3]> = t[..t.len() / 4].to_vec();
         let rings = section(&p, &half, DVec3::new(0.0, 0.0, 2.5), DVec3::Z);

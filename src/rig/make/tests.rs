@@ -11,7 +11,7 @@ use super::find::{FindError, FindOptions, FoundHand, find_hand};
 use super::mesh::HandMesh;
 use crate::dataset::Finger;
 use crate::rig::read::naming::Side;
-use glam::DVec3;
+use glam::{DQuat, DVec3};
 
 /// A part of a hand's distance field.
 #[derive(Debug, Clone, Copy)]
@@ -41,15 +41,26 @@ impl Part {
     }
 }
 
-/// A shape: parts joined by a smooth minimum of width `k` (0: a plain union).
+/// A shape: parts joined by a smooth minimum of width `k` (0: a plain union),
+/// turned by `turn` about the origin.
 #[derive(Debug, Clone)]
 struct Shape {
     parts: Vec<Part>,
     k: f64,
+    turn: DQuat,
 }
 
 impl Shape {
+    fn new(parts: Vec<Part>, k: f64) -> Shape {
+        Shape {
+            parts,
+            k,
+            turn: DQuat::IDENTITY,
+        }
+    }
+
     fn distance(&self, p: DVec3) -> f64 {
+        let p = self.turn.inverse() * p;
         let mut d = f64::INFINITY;
         for part in &self.parts {
             let x = part.distance(p);
@@ -87,6 +98,7 @@ impl Shape {
                 })
                 .collect(),
             k: self.k,
+            turn: self.turn,
         }
     }
 
@@ -102,6 +114,7 @@ impl Shape {
                 })
                 .collect(),
             k: self.k,
+            turn: self.turn,
         }
     }
 
@@ -118,6 +131,18 @@ impl Shape {
             };
             lo = lo.min(a);
             hi = hi.max(b);
+        }
+        // The turned box's corners.
+        let (l0, h0) = (lo, hi);
+        (lo, hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for k in 0..8 {
+            let c = DVec3::new(
+                if k & 1 == 0 { l0.x } else { h0.x },
+                if k & 2 == 0 { l0.y } else { h0.y },
+                if k & 4 == 0 { l0.z } else { h0.z },
+            );
+            lo = lo.min(self.turn * c);
+            hi = hi.max(self.turn * c);
         }
         lo -= DVec3::splat(3.0 * cell);
         hi += DVec3::splat(3.0 * cell);
@@ -236,6 +261,9 @@ struct Built {
     shape: Shape,
     fingers: Vec<(Finger, DVec3, DVec3, f64)>,
     wrist: DVec3,
+    /// The palm side's normal and the fingers' direction.
+    palm: DVec3,
+    distal: DVec3,
 }
 
 impl Built {
@@ -255,6 +283,25 @@ impl Built {
                 .map(|&(f, a, b, r)| (f, m(a), m(b), r))
                 .collect(),
             wrist: m(self.wrist),
+            palm: m(self.palm),
+            distal: m(self.distal),
+        }
+    }
+
+    /// The hand turned by `q` about the origin.
+    fn turned(&self, q: DQuat) -> Built {
+        let mut shape = self.shape.clone();
+        shape.turn = q * shape.turn;
+        Built {
+            shape,
+            fingers: self
+                .fingers
+                .iter()
+                .map(|&(f, a, b, r)| (f, q * a, q * b, r))
+                .collect(),
+            wrist: q * self.wrist,
+            palm: q * self.palm,
+            distal: q * self.distal,
         }
     }
 }
@@ -285,9 +332,11 @@ fn right_hand(long: &[(f64, f64, f64, f64)]) -> Built {
         fingers.push((Finger::ALL[k + 1], a, b, r * MM));
     }
     Built {
-        shape: Shape { parts, k: 4.0 * MM },
+        shape: Shape::new(parts, 4.0 * MM),
         fingers,
         wrist: v(0.0, -55.0, 0.0),
+        palm: -DVec3::Z,
+        distal: DVec3::Y,
     }
 }
 
@@ -343,13 +392,13 @@ fn check(found: &FoundHand, built: &Built, side: Side) {
         assert_eq!(f.axis.len(), f.radius.len());
         assert!(f.tip_direction.dot((b - a).normalize()) > 0.999);
     }
-    // The palm's normal towards the palm side (-z), the fingers along +y.
+    // The palm's normal towards the palm side, the fingers' direction.
     assert!(
-        found.palm_normal.dot(-DVec3::Z) > 0.95,
+        found.palm_normal.dot(built.palm) > 0.95,
         "{}",
         found.palm_normal
     );
-    assert!(found.distal.dot(DVec3::Y) > 0.95, "{}", found.distal);
+    assert!(found.distal.dot(built.distal) > 0.95, "{}", found.distal);
     assert!(found.wrist.is_finite());
 }
 
@@ -368,6 +417,12 @@ fn a_built_right_hand_and_its_mirror_image() {
     let left = right.mirrored();
     let found = find_hand(&left.shape.mesh(2.5 * MM), &FindOptions::default()).unwrap();
     check(&found, &left, Side::Left);
+    // Turned any way in space, the same hands.
+    let q = DQuat::from_euler(glam::EulerRot::XYZ, 0.7, -1.9, 2.6);
+    for (built, side) in [(right.turned(q), Side::Right), (left.turned(q), Side::Left)] {
+        let found = find_hand(&built.shape.mesh(2.5 * MM), &FindOptions::default()).unwrap();
+        check(&found, &built, side);
+    }
 }
 
 /// The error `find_hand` gives for `mesh` with the default options.
@@ -450,19 +505,13 @@ fn the_side_given_decides_only_when_the_skin_cannot() {
 #[test]
 fn shapes_that_are_not_a_hand_at_rest_are_refused_each_with_its_reason() {
     // A cube and a sphere: no fingers.
-    let cube = Shape {
-        parts: vec![Part::Box(DVec3::ZERO, v(50.0, 50.0, 50.0), 0.0)],
-        k: 0.0,
-    };
+    let cube = Shape::new(vec![Part::Box(DVec3::ZERO, v(50.0, 50.0, 50.0), 0.0)], 0.0);
     let e = error_of(&cube.mesh(5.0 * MM), &FindOptions::default());
     assert!(
         matches!(e, FindError::TooFew { .. } | FindError::NoWrist(_)),
         "{e}"
     );
-    let sphere = Shape {
-        parts: vec![Part::Sphere(DVec3::ZERO, 60.0 * MM)],
-        k: 0.0,
-    };
+    let sphere = Shape::new(vec![Part::Sphere(DVec3::ZERO, 60.0 * MM)], 0.0);
     let e = error_of(&sphere.mesh(5.0 * MM), &FindOptions::default());
     // The far side of a sphere from any cut is one maximum: one extremity.
     assert!(matches!(e, FindError::TooFew { found: 0 | 1, .. }), "{e}");
@@ -504,10 +553,7 @@ fn shapes_that_are_not_a_hand_at_rest_are_refused_each_with_its_reason() {
     assert!(matches!(e, FindError::Fused { .. }), "{e}");
     // A fist: every finger turned 70, 100 and 60 degrees at its joints
     // towards the palm (230 in all), its tip hanging over the palm.
-    let mut fist = Shape {
-        parts: five().shape.parts[..3].to_vec(),
-        k: 4.0 * MM,
-    };
+    let mut fist = Shape::new(five().shape.parts[..3].to_vec(), 4.0 * MM);
     for (x, r) in [(-32.0, 8.0), (-11.0, 8.5), (10.0, 8.0), (30.0, 7.0)] {
         let mut at = v(x, 30.0, 0.0);
         let mut angle: f64 = 0.0;
@@ -539,16 +585,16 @@ fn two_hands_in_one_mesh() {
     let right = five();
     let left = right.mirrored();
     let shift = v(250.0, 0.0, 0.0);
-    let both = Shape {
-        parts: right
+    let both = Shape::new(
+        right
             .shape
             .parts
             .iter()
             .copied()
             .chain(left.shape.moved(shift).parts)
             .collect(),
-        k: 4.0 * MM,
-    };
+        4.0 * MM,
+    );
     let mesh = both.mesh(2.5 * MM);
     let e = error_of(&mesh, &FindOptions::default());
     assert!(matches!(e, FindError::TwoHands { found: 10 }), "{e}");
@@ -623,16 +669,35 @@ fn bad_meshes_are_refused_without_a_panic() {
         let e = error_of(&sheet, &FindOptions { fingers, ..opts });
         assert!(matches!(e, FindError::Options(_)), "{e}");
     }
-    // A hand with fins (edges of three triangles) and stray triangles is
-    // still a hand.
+    // Fins (an edge of three triangles, the third's corner 1 mm off the
+    // skin) on every 50th triangle and a stray triangle far away leave the
+    // same hand.
     let right = five();
     let mut hand = right.shape.mesh(2.5 * MM);
-    let m = hand.positions.len() as u32;
-    hand.positions.push(DVec3::new(0.0, 0.0, 0.2));
-    for t in hand.triangles.clone().iter().step_by(97) {
+    for t in hand.triangles.clone().iter().step_by(50) {
+        let [a, b, c] = t.map(|i| hand.positions[i as usize]);
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        hand.positions.push((a + b) / 2.0 + n * MM);
+        let m = hand.positions.len() as u32 - 1;
         hand.triangles.push([t[0], t[1], m]);
     }
-    assert!(find_hand(&hand, &opts).is_err() || find_hand(&hand, &opts).is_ok());
+    let far = hand.positions.len() as u32;
+    hand.positions.extend([
+        DVec3::splat(1.0),
+        DVec3::new(1.0, 1.001, 1.0),
+        DVec3::new(1.0, 1.0, 1.001),
+    ]);
+    hand.triangles.push([far, far + 1, far + 2]);
+    let found = find_hand(&hand, &opts).unwrap();
+    check(&found, &right, Side::Right);
+    assert!(
+        found
+            .notes
+            .iter()
+            .any(|n| n.contains("too small to be a hand")),
+        "{:?}",
+        found.notes
+    );
     // Random soups of points and triangles: an answer, never a panic.
     let mut seed = 0x2545_F491_4F6C_DD1Du64;
     let mut next = || {
