@@ -84,20 +84,26 @@ impl Default for FindOptions {
 /// Why no hand was found; each prints as one line.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FindError {
+    /// An option out of range (the finger count, a wrist that is not finite).
     #[error("{0}")]
     Options(String),
+    /// No triangles at all.
     #[error("the mesh has no triangles, so there is no hand to find")]
     Empty,
+    /// A position that is NaN or infinite.
     #[error("vertex {0} of the mesh is not a finite position (NaN or infinite)")]
     NotFinite(usize),
+    /// A triangle naming a vertex the mesh does not have.
     #[error("triangle {triangle} names vertex {vertex}, but the mesh has {vertices}")]
     BadTriangle {
         triangle: usize,
         vertex: u32,
         vertices: usize,
     },
+    /// No volume: a point, a line, a plane.
     #[error("the mesh has no extent (its vertices coincide or lie on a line or a plane)")]
     Flat,
+    /// Fewer extremities beyond the wrist than the hand has fingers.
     #[error("found {found} extremit{} beyond the wrist; a hand has {wanted}{hint}",
         if *found == 1 { "y" } else { "ies" })]
     TooFew {
@@ -105,16 +111,20 @@ pub enum FindError {
         wanted: usize,
         hint: String,
     },
+    /// Two separate hands and no side given to choose.
     #[error(
         "found two hands, separate pieces of the mesh with {found} fingers in all: give --side to take one, or rig each alone"
     )]
     TwoHands { found: usize },
+    /// Two hands in one piece of skin.
     #[error(
         "found {found} extremities in two clusters, as two hands joined in one skin have: rig each hand alone (its own file, or the region under its hand bone)"
     )]
     TwoHandsJoined { found: usize },
+    /// Two hands, neither or both of the side given.
     #[error("found two hands, {0}; rig each alone (its own file, or its hand bone)")]
     TwoHandsSide(String),
+    /// A finger much wider than the others: two fused.
     #[error(
         "the {} is {width:.0} mm wide, {ratio:.1} times the other fingers: two fingers fused in one (a mitten)?",
         finger_words(*finger)
@@ -124,20 +134,25 @@ pub enum FindError {
         width: f64,
         ratio: f64,
     },
+    /// Fingers curled back towards the palm.
     #[error(
         "the hand is posed in a fist, not at rest: {0}; rig a hand at rest (fingers straight or slightly bent)"
     )]
     Fist(String),
+    /// No wrist given, no open end, and both ends alike.
     #[error("no clear wrist: {0}; name it with --wrist X,Y,Z")]
     NoWrist(String),
+    /// The wrist given is far from the mesh.
     #[error(
         "the wrist given lies {distance:.0} mm from the mesh, farther than a quarter of its length; give a point at the wrist"
     )]
     WristOff { distance: f64 },
+    /// An extremity whose rings never close around an axis.
     #[error(
         "could not trace a finger from the extremity at ({x:.1}, {y:.1}, {z:.1}) mm: its rings do not close around an axis"
     )]
     NoAxis { x: f64, y: f64, z: f64 },
+    /// The palm side, and so the side, cannot be told, and none was given.
     #[error(
         "the palm side is unclear (the thumb and the fingertips lie in the palm's plane), so a left hand cannot be told from a right: give --side"
     )]
@@ -168,7 +183,7 @@ pub(super) fn mm(x: f64) -> f64 {
 /// The error for too few extremities, with a hint at why.
 pub(super) fn too_few(found: usize, wanted: usize) -> FindError {
     let hint = match found {
-        0 => ": the mesh has no fingers; is it not a hand?".to_string(),
+        0 => ": the mesh has no fingers (is it a hand?)".to_string(),
         1 | 2 if wanted >= 4 => {
             ": are its fingers fused (a mitten), curled into a fist, or is it not a hand?"
                 .to_string()

@@ -515,7 +515,7 @@ fn shapes_that_are_not_a_hand_at_rest_are_refused_each_with_its_reason() {
     let e = error_of(&sphere.mesh(5.0 * MM), &FindOptions::default());
     // The far side of a sphere from any cut is one maximum: one extremity.
     assert!(matches!(e, FindError::TooFew { found: 0 | 1, .. }), "{e}");
-    assert!(e.to_string().contains("not a hand?"), "{e}");
+    assert!(e.to_string().contains("a hand?"), "{e}");
     // A mitten: the four fingers one slab.
     let mut mitten = five();
     mitten.shape.parts.truncate(3);
@@ -664,6 +664,20 @@ fn bad_meshes_are_refused_without_a_panic() {
         ..HandMesh::default()
     };
     assert!(find_hand(&sheet, &opts).is_err());
+    // A wrist far from the hand.
+    let hand = five().shape.mesh(2.5 * MM);
+    let far = FindOptions {
+        wrist: Some(v(0.0, -55.0, 1000.0)),
+        ..opts
+    };
+    let e = error_of(&hand, &far);
+    assert!(matches!(e, FindError::WristOff { .. }), "{e}");
+    // 1000 mm above the forearm's axis, whose skin lies 24 mm from it (by hand,
+    // within the grid's faceting).
+    assert!(
+        e.to_string().starts_with("the wrist given lies 976 mm"),
+        "{e}"
+    );
     // Options out of range.
     for fingers in [0, 1, 6] {
         let e = error_of(&sheet, &FindOptions { fingers, ..opts });
