@@ -17,6 +17,7 @@ mod fbx;
 mod import;
 mod lab;
 mod literature;
+mod make;
 mod option_ranges;
 mod options;
 mod place;

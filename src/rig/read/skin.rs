@@ -285,7 +285,7 @@ struct SetAt {
 
 /// The primitive's checked POSITION accessor read as vertices; a vertex that is not
 /// finite is added to `problems`, a missing or malformed accessor ends the read.
-fn read_positions(
+pub(crate) fn read_positions(
     prim: &gltf::Primitive<'_>,
     at: &str,
     data: &[Vec<u8>],
@@ -388,15 +388,16 @@ fn add_influences(
     (bad_joint, bad_weight)
 }
 
-/// Reads one primitive's triangles (local vertex indices), or says what is wrong.
-fn read_triangles(
+/// One primitive's vertex indices as drawn (its checked `indices` accessor, or
+/// 0..n without one, for `n` vertices), or what is wrong: an index past the
+/// last vertex is named with its accessor.
+pub(crate) fn read_indices(
     prim: &gltf::Primitive<'_>,
     at: &str,
     data: &[Vec<u8>],
     n: usize,
-    notes: &mut Vec<String>,
-) -> Result<Vec<[u32; 3]>, String> {
-    let flat: Vec<u32> = match prim.indices() {
+) -> Result<Vec<u32>, String> {
+    Ok(match prim.indices() {
         Some(acc) => {
             check_accessor(&acc, &format!("indices of {at}"), INDICES, data)?;
             let reader = prim.reader(|b| data.get(b.index()).map(Vec::as_slice));
@@ -413,7 +414,18 @@ fn read_triangles(
             idx
         }
         None => (0..u32::try_from(n).unwrap_or(u32::MAX)).collect(),
-    };
+    })
+}
+
+/// Reads one primitive's triangles (local vertex indices), or says what is wrong.
+fn read_triangles(
+    prim: &gltf::Primitive<'_>,
+    at: &str,
+    data: &[Vec<u8>],
+    n: usize,
+    notes: &mut Vec<String>,
+) -> Result<Vec<[u32; 3]>, String> {
+    let flat = read_indices(prim, at, data, n)?;
     if !flat.len().is_multiple_of(3) {
         notes.push(format!(
             "{at}: {} indices are not a whole number of triangles; the last {} are ignored",
