@@ -1,11 +1,11 @@
-//! Finds the fingers on the skin of each hand of a rig file (`phalanx::rig::make`), given
+//! Finds the fingers on the skin of each hand of a rig file (`phalanx::rig::find`), given
 //! the hand bone's origin as the wrist, and prints them with the time the finding took.
 //!
 //! Usage: `cargo run --release --example find_hand -- RIG.glb [RIG.fbx ...]`
 
 use phalanx::rig::Rig;
-use phalanx::rig::make::find::{FindOptions, find_hand};
-use phalanx::rig::make::mesh::{MeshSelect, hand_mesh};
+use phalanx::rig::find::{FindOptions, find_hand};
+use phalanx::rig::find::{MeshSelect, hand_mesh};
 use std::time::Instant;
 
 fn main() {

@@ -1,4 +1,4 @@
-//! The fingers found on the skin alone (`rig::make`), on every shared rig with
+//! The fingers found on the skin alone (`rig::find`), on every shared rig with
 //! a mesh (../shared/rigs, skipped with the reason when absent), against what
 //! the artist rigged: the labels and the side the joint names say, the skin's
 //! end the audit measures (`bend::skin_end` past a tip node inside the skin,
@@ -14,8 +14,8 @@
 use crate::common::shared_rig_files;
 use glam::DVec3;
 use phalanx::dataset::Finger;
-use phalanx::rig::make::find::{FindOptions, FoundFinger, FoundHand, find_hand};
-use phalanx::rig::make::mesh::{HandMesh, MeshSelect, hand_mesh};
+use phalanx::rig::find::{FindOptions, FoundFinger, FoundHand, find_hand};
+use phalanx::rig::find::{HandMesh, MeshSelect, hand_mesh};
 use phalanx::rig::naming::{Side, side_from_label};
 use phalanx::rig::{FingerChain, Rig, TIP_INSIDE, bend};
 use std::fmt::Write;

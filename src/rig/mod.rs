@@ -12,6 +12,7 @@
 pub mod deform;
 pub mod fix;
 pub mod judge;
+pub mod find;
 pub mod make;
 pub mod read;
 pub mod session;

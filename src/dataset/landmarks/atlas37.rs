@@ -152,6 +152,44 @@ pub(super) fn wrist_over_length(
     Ok(ratios)
 }
 
+/// Per image, the thumb's CMC in the hand's own frame: (a, b) with CMC = W + D (a d + b r),
+/// W the wrist (landmark [`WRIST`]), D = |M - W| and d = (M - W) / D for M the middle
+/// finger's MCP (landmark 25), r the unit direction square to d in the image towards the
+/// index finger's MCP (landmark 21), i.e. towards the thumb's side. The CMC sits on the
+/// carpus, so (a, b) does not move with the thumb. Images whose landmarks are not all
+/// valid, or whose middle MCP lies on the wrist, are passed over (the checks of
+/// [`wrist_over_length`] report them). Cost: O(bytes).
+pub(super) fn thumb_cmc_in_hand(
+    label: &str,
+    input: &[u8],
+    problems: &mut Vec<Problem>,
+) -> Result<Vec<[f64; 2]>, DataError> {
+    const THUMB_CMC: usize = 17;
+    const INDEX_MCP: usize = 21;
+    const MIDDLE_MCP: usize = 25;
+    let mut out = Vec::new();
+    each_line(label, input, problems, |_, _, marks, _| {
+        let Some(marks) = marks.into_iter().collect::<Option<Vec<[f64; 2]>>>() else {
+            return;
+        };
+        let sub = |a: usize, b: usize| [marks[a][0] - marks[b][0], marks[a][1] - marks[b][1]];
+        let dot = |u: [f64; 2], v: [f64; 2]| u[0] * v[0] + u[1] * v[1];
+        let m = sub(MIDDLE_MCP, WRIST);
+        let big_d = m[0].hypot(m[1]);
+        if big_d <= 0.0 {
+            return;
+        }
+        let d = [m[0] / big_d, m[1] / big_d];
+        let mut r = [-d[1], d[0]];
+        if dot(sub(INDEX_MCP, WRIST), r) < 0.0 {
+            r = [d[1], -d[0]];
+        }
+        let c = sub(THUMB_CMC, WRIST);
+        out.push([dot(c, d) / big_d, dot(c, r) / big_d]);
+    })?;
+    Ok(out)
+}
+
 /// Which chain slot (finger, index along [`CHAINS`]) each landmark fills, if any.
 fn slots() -> [Option<(Finger, usize)>; LANDMARKS] {
     let mut slot_of: [Option<(Finger, usize)>; LANDMARKS] = [None; LANDMARKS];

@@ -299,6 +299,25 @@ pub fn wrist_over_length_file(path: &Path) -> Result<Vec<(Finger, Vec<f64>)>, Da
     }
 }
 
+/// Per image of an atlas37 landmark file on disk, the thumb's CMC in the hand's frame of
+/// wrist and middle MCP (see `atlas37::thumb_cmc_in_hand`). Errors with every problem of
+/// the file. Cost: O(bytes).
+pub fn thumb_cmc_in_hand_file(path: &Path) -> Result<Vec<[f64; 2]>, DataError> {
+    let bytes = csvinput::read_input(path)?;
+    let label = path.display().to_string();
+    let mut problems = Vec::new();
+    let at = atlas37::thumb_cmc_in_hand(&label, &bytes, &mut problems)?;
+    if problems.is_empty() {
+        Ok(at)
+    } else {
+        problems.sort_by_key(|p| (p.line.unwrap_or(0), p.column.unwrap_or(0)));
+        Err(DataError {
+            file: label,
+            problems,
+        })
+    }
+}
+
 /// Where something sits in the input file: a CSV line and column with the column's name,
 /// or a JSON path (in `field`, with no line).
 #[derive(Debug, Clone, PartialEq)]

@@ -108,7 +108,10 @@ pub fn project(points: &[DVec3], arcs: &[f64], p: DVec3) -> (f64, DVec3) {
 }
 
 /// New inner points on the polyline `points` (ends fixed) whose chords have the
-/// proportions `shares` (one per segment, summing to 1), with their arc positions.
+/// proportions `shares` (summing to 1), with their arc positions: the first
+/// point, `shares.len() - 1` inner points, the last point. A chain re-laid on
+/// itself has one share per segment; a finger laid on a traced axis has
+/// fewer shares than the axis has segments.
 ///
 /// For a trial total chord C the points are laid one after the other, each the
 /// first point along the chain at chord distance share_k x C from the one
@@ -117,7 +120,8 @@ pub fn project(points: &[DVec3], arcs: &[f64], p: DVec3) -> (f64, DVec3) {
 /// the chain is degenerate (non-finite, zero length) or no such C exists.
 pub(crate) fn on_chain(points: &[DVec3], shares: &[f64]) -> Option<(Vec<DVec3>, Vec<f64>)> {
     let m = points.len().checked_sub(1)?;
-    if m < 2 || shares.len() != m || shares.iter().any(|s| !(s.is_finite() && *s > 0.0)) {
+    let k = shares.len();
+    if m < 1 || k < 2 || shares.iter().any(|s| !(s.is_finite() && *s > 0.0)) {
         return None;
     }
     let arcs = arc_positions(points);
@@ -126,14 +130,14 @@ pub(crate) fn on_chain(points: &[DVec3], shares: &[f64]) -> Option<(Vec<DVec3>, 
         return None;
     }
     let lay = |c: f64| -> Option<(Vec<f64>, f64)> {
-        let mut u = Vec::with_capacity(m - 1);
+        let mut u = Vec::with_capacity(k - 1);
         let (mut at, mut q) = (0.0, points[0]);
-        for s in &shares[..m - 1] {
+        for s in &shares[..k - 1] {
             at = forward_at(points, &arcs, at, q, s * c)?;
             q = point_at(points, at);
             u.push(at);
         }
-        Some((u, q.distance(points[m]) - shares[m - 1] * c))
+        Some((u, q.distance(points[m]) - shares[k - 1] * c))
     };
     let (mut lo, mut hi) = (0.0, arc);
     for _ in 0..200 {
@@ -147,7 +151,7 @@ pub(crate) fn on_chain(points: &[DVec3], shares: &[f64]) -> Option<(Vec<DVec3>, 
     if f.abs() > 1e-9 * arc {
         return None;
     }
-    let mut q = Vec::with_capacity(points.len());
+    let mut q = Vec::with_capacity(k + 1);
     q.push(points[0]);
     q.extend(u.iter().map(|&x| point_at(points, x)));
     q.push(points[m]);

@@ -42,6 +42,10 @@ pub struct WristRatios {
     pub source: String,
     /// Per finger: mean, SD, count and range of y over the X-rays.
     pub ratios: Vec<WristRatio>,
+    /// The thumb's CMC in the frame of the wrist and the middle finger's MCP,
+    /// (a, b) averaged over the X-rays (`landmarks::thumb_cmc_in_hand_file`):
+    /// where `rig` puts a thumb's CMC; the audit does not judge it.
+    pub thumb_cmc: Option<[f64; 2]>,
 }
 
 /// One finger's wrist-to-MCP over its length y = w/J (see [`WristRatios`]).
@@ -70,31 +74,34 @@ impl WristRatios {
     /// images. Errors with every problem of the file. O(bytes).
     pub fn load(path: &std::path::Path) -> Result<WristRatios, crate::dataset::DataError> {
         let per_image = crate::dataset::landmarks::wrist_over_length_file(path)?;
-        Ok(WristRatios::from_samples(
-            &path.display().to_string(),
-            &per_image,
-        ))
+        let cmc = crate::dataset::landmarks::thumb_cmc_in_hand_file(path)?;
+        let mut ratios = WristRatios::from_samples(&path.display().to_string(), &per_image);
+        let n = cmc.len() as f64;
+        ratios.thumb_cmc = (n > 0.0).then(|| {
+            let sum = cmc.iter().fold([0.0, 0.0], |s, c| [s[0] + c[0], s[1] + c[1]]);
+            [sum[0] / n, sum[1] / n]
+        });
+        Ok(ratios)
     }
 
     /// Mean, SD and range of each finger's per-image y; a finger without any is left out.
     pub fn from_samples(source: &str, per_image: &[(Finger, Vec<f64>)]) -> WristRatios {
         use crate::stats::describe;
-        let ratios = per_image
-            .iter()
-            .filter_map(|(finger, ys)| {
-                let (min, max) = describe::min_max(ys)?;
-                Some(WristRatio {
-                    finger: *finger,
-                    mean: describe::mean(ys)?,
-                    sd: describe::sd(ys).unwrap_or(0.0),
-                    n: ys.len(),
-                    range: Interval::new(min, max),
-                })
+        let describe = |(finger, ys): &(Finger, Vec<f64>)| {
+            let (min, max) = describe::min_max(ys)?;
+            Some(WristRatio {
+                finger: *finger,
+                mean: describe::mean(ys)?,
+                sd: describe::sd(ys).unwrap_or(0.0),
+                n: ys.len(),
+                range: Interval::new(min, max),
             })
-            .collect();
+        };
+        let ratios = per_image.iter().filter_map(describe).collect();
         WristRatios {
             source: source.to_string(),
             ratios,
+            thumb_cmc: None,
         }
     }
 

@@ -97,7 +97,7 @@ use super::palm::frame;
 use super::surface::{Object, Surface, extent, two_clusters};
 use super::wrist::wrist_ring;
 
-pub use super::hand::{FindError, FindOptions, FoundFinger, FoundHand};
+use super::hand::{FindError, FindOptions, FoundHand};
 
 /// Finds the hand on `mesh` (see the module doc).
 pub fn find_hand(mesh: &HandMesh, opts: &FindOptions) -> Result<FoundHand, FindError> {

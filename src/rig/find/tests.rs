@@ -7,7 +7,8 @@
 //! capsule's tip on the skin is its axis's end plus its radius along the
 //! axis; its rings' centres lie on the axis.
 
-use super::find::{FindError, FindOptions, FoundHand, find_hand};
+use super::find::find_hand;
+use super::hand::{FindError, FindOptions, FoundHand};
 use super::mesh::HandMesh;
 use crate::dataset::Finger;
 use crate::rig::read::naming::Side;

@@ -72,6 +72,42 @@ struct Vertex {
     source: (usize, usize, usize),
 }
 
+impl HandMesh {
+    /// The stretch of the line `at + t dir` inside the skin nearest `at`:
+    /// (t_in, t_out), t_in < t_out, from the crossings with the skin sorted
+    /// and paired in and out (crossings within 1e-9 of the mesh's size of
+    /// each other are one, a line through an edge); the pair around t = 0
+    /// when `at` is inside, else the nearest. `None` when the line misses the
+    /// skin or crosses it an odd number of times (an open mesh). O(T).
+    pub fn inside_along(&self, at: DVec3, dir: DVec3) -> Option<(f64, f64)> {
+        let mut ts = super::geometry::line_crossings(&self.positions, &self.triangles, at, dir);
+        ts.sort_by(f64::total_cmp);
+        let size = self
+            .positions
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
+        let tol = 1e-9 * (size.1 - size.0).length() / dir.length().max(f64::MIN_POSITIVE);
+        ts.dedup_by(|b, a| (*b - *a).abs() <= tol);
+        if ts.is_empty() || ts.len() % 2 == 1 {
+            return None;
+        }
+        ts.chunks(2)
+            .map(|c| (c[0], c[1]))
+            .min_by(|a, b| gap(*a).total_cmp(&gap(*b)))
+    }
+}
+
+/// How far t = 0 lies outside the stretch (t_in, t_out): 0 inside it.
+fn gap((a, b): (f64, f64)) -> f64 {
+    if a <= 0.0 && 0.0 <= b {
+        0.0
+    } else {
+        a.abs().min(b.abs())
+    }
+}
+
 /// Reads the hand's skin from `file` as one welded mesh (see the module doc).
 ///
 /// Errors name the file and each problem with its JSON path: unreadable
