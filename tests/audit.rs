@@ -796,7 +796,9 @@ fn the_readme_audit_example_is_current() {
 }
 
 /// The README's `--fix` example is what the command prints: the audit of the
-/// rig as it was on standard output, then the "wrote" line on standard error.
+/// rig as it was on standard output, then the "wrote" line on standard error;
+/// and, the example hand's skin being too coarse to carry its weights, the
+/// same fix with `--keep-weights --brief`, every line of it.
 #[test]
 fn the_readme_fix_example_is_current() {
     let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
@@ -829,7 +831,29 @@ fn the_readme_fix_example_is_current() {
             "the README's --fix example lacks the line:\n{line}\n{block}"
         );
     }
-    assert_eq!(lines, 8, "{}\n{}", run.stdout, run.stderr);
+    assert_eq!(lines, 10, "{}\n{}", run.stdout, run.stderr);
+    let kept = [
+        "audit",
+        "docs/examples/hand.glb",
+        "--fix",
+        "hand-kept.glb",
+        KEEP,
+        "--brief",
+    ];
+    assert!(
+        block.contains(&format!("$ phalanx {}", kept.join(" "))),
+        "the README's --fix example lacks its --keep-weights run\n{block}"
+    );
+    let run = wd.run(&kept);
+    run.ok();
+    let shown: Vec<&str> = run.stdout.lines().chain(run.stderr.lines()).collect();
+    assert!(shown.len() > 5, "{}\n{}", run.stdout, run.stderr);
+    for line in shown {
+        assert!(
+            block.contains(line),
+            "the README's --fix example lacks the line:\n{line}\n{block}"
+        );
+    }
 }
 
 /// A file that is not a rig, or a directory, is named for what it is; an image

@@ -532,7 +532,10 @@ fn moves_follow_the_fix_as_written_for_every_fix_option() {
     let original = translations(&glb_json(&wd.read("hand.glb")));
     let mut listed = Vec::new();
     for opts in [vec![], vec!["--only-outside"], vec!["--fix-mcp", "atlas"]] {
-        let mut args = vec!["hand.glb", "--metacarpals", atlas];
+        // The example hand's skin (a vertex or two per bone) is too coarse to
+        // carry a bend, so with the weights carried every move is held: the
+        // weights stay as painted here, as this test is about the moves.
+        let mut args = vec!["hand.glb", "--metacarpals", atlas, crate::audit::KEEP];
         args.extend(&opts);
         let mut both = args.clone();
         // One set of outputs for each option in turn: --force replaces them.

@@ -66,17 +66,23 @@ pub enum FixMcp {
                   pip,dip pins the artist's joints: the explanation moves only the others, and --fix, \
                   --moves and --fix-mcp atlas leave them (\"held: pinned by --hold\").\n\n\
                   --fix OUT.glb writes a copy with the explanation's joints moved along each finger, translation keys offset, and the inverse bind matrices updated so the mesh's rest \
-                  shape is unchanged; the input is never modified. The skin weights stay as painted, so a joint is held \
-                  (and says so) when its move would take it more than 1 mm farther from where its skin bends, and no \
-                  move under 1 mm is made. An MCP is held too: where the skin over a knuckle bends cannot be located \
+                  shape is unchanged; the input is never modified. Each finger's skin weights move with its joints, \
+                  so the skin bends at the new joint (the fix's line counts the vertices reweighted at each). A joint \
+                  whose weights cannot follow is held (\"its skin cannot follow it\"): fewer than 8 vertices around \
+                  it, more than a tenth of them weighted to another finger too, or carried weights that would not \
+                  bend the skin within 0.5 mm of it. --keep-weights leaves the weights as painted and holds instead a \
+                  joint whose move would take it more than 1 mm farther from where its skin bends. No move under \
+                  1 mm is made. An MCP is held too: where the skin over a knuckle bends cannot be located \
                   well enough to guard its move, so only --fix-mcp atlas moves MCPs. --fix-mcp atlas places each MCP where the \
                   metacarpals' dataset puts it from its CMC (or the wrist, for a rig with a hand bone and no \
                   metacarpals) when it lies outside that interval. An FBX rig is read with ufbx (metres, +Y up, the \
                   bind pose from its skin clusters) and cannot be fixed in place: --moves FILE.csv lists each node the \
                   fix moves, with its new world position and its new local translation (FBX: Lcl Translation) to \
-                  set in a DCC.\n\n\
+                  set in a DCC, and FILE.weights.csv beside it the vertices whose skin weights move with the joints \
+                  (mesh, primitive, vertex: for FBX the mesh's control point; node, weight: a row per influence), for \
+                  a script to set.\n\n\
                   --map FILE: CSV with the header node,side,finger,joint (joint MCP, PIP, DIP, IP or tip).\n\n\
-                  Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --brief\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit hand.glb --hold pip --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv\n  phalanx audit glove.fbx --moves moves.csv"
+                  Examples:\n  phalanx audit hand.glb\n  phalanx audit hand.glb --brief\n  phalanx audit hand.glb --fix hand-fixed.glb\n  phalanx audit hand.glb --hold pip --fix hand-fixed.glb\n  phalanx audit hand.glb --keep-weights --fix hand-fixed.glb\n  phalanx audit avatar.vrm --format json\n  phalanx audit rig.gltf --map my-names.csv\n  phalanx audit glove.fbx --moves moves.csv"
 )]
 pub(crate) struct Args {
     /// The rig: a .glb, .gltf or .vrm (glTF 2.0) or .fbx file
@@ -118,8 +124,9 @@ pub(crate) struct Args {
     metacarpals: Option<PathBuf>,
     /// With --fix or --moves: leave the skin weights as painted. Without it the fix moves each
     /// finger's weights with its joints, so the skin bends at the new joint; a joint whose
-    /// weights cannot follow (too few vertices around it, or vertices shared with another finger)
-    /// is held. A rig with no skin at all has nothing to carry: its joints move alone
+    /// weights cannot follow (too few vertices around it, vertices shared with another finger, or
+    /// carried weights that would not bend the skin at it) is held. A rig with no skin at all has
+    /// nothing to carry: its joints move alone
     #[arg(long)]
     keep_weights: bool,
     /// How many hands the atlas's shape of each joint region counts as (--metacarpals' dataset):

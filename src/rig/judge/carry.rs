@@ -240,6 +240,10 @@ pub fn remap(weights: &SkinWeights, moves: &[FingerMove<'_>]) -> (Remapped, Vec<
 /// 0.3 mm from where this one does).
 pub const CARRY_TOLERANCE: f64 = 0.5 * super::standing::BEND_GUARD;
 
+/// Each moved joint of a finger (its index along the chain) with where its
+/// skin bends from it on the carried weights (`None`: no bend found).
+pub type MovedBends = Vec<(usize, Option<f64>)>;
+
 /// The weights of one finger carried to its moved joints: warped
 /// ([`remap`]), and across a moved joint whose warped blend would not bend
 /// the skin within [`CARRY_TOLERANCE`] of it, blended anew
@@ -249,7 +253,7 @@ pub fn carry_finger(
     weights: &SkinWeights,
     m: &FingerMove<'_>,
     tolerance: f64,
-) -> (Remapped, Vec<(usize, Option<f64>)>, Vec<String>) {
+) -> (Remapped, MovedBends, Vec<String>) {
     let (mut out, notes) = remap(weights, std::slice::from_ref(m));
     let mut moved = m.chain.clone();
     for (rj, p) in moved.joints.iter_mut().zip(&m.new_positions) {

@@ -373,9 +373,10 @@ pub struct JointCheck {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum HoldReason {
-    /// The move would take the joint more than [`BEND_GUARD`] farther from
-    /// where its skin bends (measured on the rig's weights); the explanation
-    /// was sought again with the joint held.
+    /// With the weights left as painted (`--keep-weights`), the move would
+    /// take the joint more than [`BEND_GUARD`] farther from where its skin
+    /// bends (measured on the rig's weights); the explanation was sought
+    /// again with the joint held.
     Bend,
     /// The move is shorter than [`MOVE_TOLERANCE`].
     Small,
@@ -408,7 +409,10 @@ pub enum HoldReason {
     Short,
     /// The fix moves a finger's skin weights with its joints, and this
     /// joint's cannot follow: too few vertices around it to carry a bend, or
-    /// vertices shared with another finger ([`super::bend::cannot_carry`]).
+    /// vertices shared with another finger ([`super::bend::cannot_carry`]),
+    /// or the carried weights would not bend the skin within
+    /// [`super::carry::CARRY_TOLERANCE`] of it; the explanation was sought
+    /// again with the joint held.
     Carry,
 }
 
@@ -564,10 +568,12 @@ fn base_words(base: &str, outside: Option<Option<(f64, &str)>>, shift: f64) -> S
     )
 }
 
-/// A fix never takes a joint more than this farther from where its skin
-/// bends than it was (metres): the skin weights stay as painted, and the mesh
-/// was modelled to fold there, so a joint moved off its bend rotates skin
-/// that is not built to bend. 1 mm: a third of the bend tolerance
+/// With the skin weights left as painted (`--keep-weights`), a fix never
+/// takes a joint more than this farther from where its skin bends than it
+/// was (metres): the mesh was modelled to fold there, so a joint moved off
+/// its bend rotates skin that is not built to bend. (With the weights
+/// carried, the guard asks instead whether the skin would bend at the new
+/// joint: [`super::carry::CARRY_TOLERANCE`].) 1 mm: a third of the bend tolerance
 /// ([`super::bend::BEND_TOLERANCE_MM`]) and below a ring of a finger mesh's
 /// vertices (2-4 mm apart), so a move within it leaves the fold on the same
 /// edge loop.
