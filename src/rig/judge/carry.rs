@@ -240,6 +240,9 @@ pub fn remap(weights: &SkinWeights, moves: &[FingerMove<'_>]) -> (Remapped, Vec<
 /// 0.3 mm from where this one does).
 pub const CARRY_TOLERANCE: f64 = 0.5 * super::standing::BEND_GUARD;
 
+/// Each moved joint's bend offset on carried weights, by chain index (`None`: no bend found).
+pub type BendOffsets = Vec<(usize, Option<f64>)>;
+
 /// The weights of one finger carried to its moved joints: warped
 /// ([`remap`]), and across a moved joint whose warped blend would not bend
 /// the skin within [`CARRY_TOLERANCE`] of it, blended anew
@@ -249,7 +252,7 @@ pub fn carry_finger(
     weights: &SkinWeights,
     m: &FingerMove<'_>,
     tolerance: f64,
-) -> (Remapped, Vec<(usize, Option<f64>)>, Vec<String>) {
+) -> (Remapped, BendOffsets, Vec<String>) {
     let (mut out, notes) = remap(weights, std::slice::from_ref(m));
     let mut moved = m.chain.clone();
     for (rj, p) in moved.joints.iter_mut().zip(&m.new_positions) {
@@ -262,7 +265,7 @@ pub fn carry_finger(
             .zip(m.new_positions.get(k))
             .is_some_and(|(rj, p)| rj.position.distance(*p) > 0.0)
     };
-    let offsets = |out: &Remapped| -> Vec<(usize, Option<f64>)> {
+    let offsets = |out: &Remapped| -> BendOffsets {
         let after = bend::bends_with(&moved, weights, tolerance, Some(out));
         (0..moved.joints.len())
             .filter(|&k| is_moved(k))
