@@ -353,55 +353,9 @@ impl<'a> Edit<'a> {
         let plain_root =
             self.parent[mesh_node].is_none() && self.locals[mesh_node] == DMat4::IDENTITY;
         if !animated && (plain_root || (leaf && !is_joint)) {
-            // The node draws the skinned mesh itself, a root without a transform.
-            if let Some(p) = self.parent[mesh_node] {
-                let children = &mut self.json["nodes"][p];
-                if let Some(list) = children.get_mut("children").and_then(Value::as_array_mut) {
-                    list.retain(|c| c.as_u64() != Some(mesh_node as u64));
-                    if list.is_empty() {
-                        children.as_object_mut().map(|o| o.remove("children"));
-                    }
-                }
-                for &s in &shown {
-                    push(&mut self.json["scenes"][s]["nodes"], json!(mesh_node));
-                }
-                self.parent[mesh_node] = None;
-            }
-            if let Some(o) = self.json["nodes"][mesh_node].as_object_mut() {
-                for key in ["matrix", "translation", "rotation", "scale"] {
-                    o.remove(key);
-                }
-                o.insert("skin".into(), json!(skin));
-            }
-            self.locals[mesh_node] = DMat4::IDENTITY;
-            self.world = world_matrices(&self.parent, &self.locals)
-                .unwrap_or_else(|| std::mem::take(&mut self.world));
+            self.draw_skinned_itself(mesh_node, skin, &shown);
         } else {
-            // A new root node draws it; the node keeps its place and children.
-            let name = self.json["nodes"][mesh_node]["name"].as_str().map_or_else(
-                || format!("node {mesh_node} (skinned)"),
-                |n| format!("{n} (skinned)"),
-            );
-            let mut drawer = json!({"name": name, "mesh": mesh, "skin": skin});
-            if let Some(o) = self.json["nodes"][mesh_node].as_object_mut() {
-                o.remove("mesh");
-                if let Some(w) = o.remove("weights") {
-                    drawer["weights"] = w;
-                }
-            }
-            let index = push(&mut self.json["nodes"], drawer);
-            for &s in &shown {
-                push(&mut self.json["scenes"][s]["nodes"], json!(index));
-            }
-            for ch in channels::channels(&self.json) {
-                if ch.node == Some(mesh_node) && ch.path.as_deref() == Some("weights") {
-                    self.json["animations"][ch.animation]["channels"][ch.channel]["target"]["node"] =
-                        json!(index);
-                }
-            }
-            self.parent.push(None);
-            self.locals.push(DMat4::IDENTITY);
-            self.world.push(DMat4::IDENTITY);
+            self.draw_skinned_from_new_root(mesh_node, skin, &shown);
         }
         self.new_skins.insert(skin, rest);
         self.added
@@ -559,6 +513,66 @@ impl<'a> Edit<'a> {
         warnings.extend(other_warnings(file));
         let bytes = container(file, &json, bin, glb)?;
         Ok((bytes, warnings))
+    }
+
+    /// Node `node` draws its mesh with skin `skin`, made a root (listed in
+    /// the scenes `shown`) without a transform.
+    fn draw_skinned_itself(&mut self, node: usize, skin: usize, shown: &[usize]) {
+        if let Some(p) = self.parent[node] {
+            let children = &mut self.json["nodes"][p];
+            if let Some(list) = children.get_mut("children").and_then(Value::as_array_mut) {
+                list.retain(|c| c.as_u64() != Some(node as u64));
+                if list.is_empty()
+                    && let Some(o) = children.as_object_mut()
+                {
+                    o.remove("children");
+                }
+            }
+            for &s in shown {
+                push(&mut self.json["scenes"][s]["nodes"], json!(node));
+            }
+            self.parent[node] = None;
+        }
+        if let Some(o) = self.json["nodes"][node].as_object_mut() {
+            for key in ["matrix", "translation", "rotation", "scale"] {
+                o.remove(key);
+            }
+            o.insert("skin".into(), json!(skin));
+        }
+        self.locals[node] = DMat4::IDENTITY;
+        self.world = world_matrices(&self.parent, &self.locals)
+            .unwrap_or_else(|| std::mem::take(&mut self.world));
+    }
+
+    /// A new root node (listed in the scenes `shown`) draws node `node`'s
+    /// mesh with skin `skin`, with its morph weights and their channels; the
+    /// node keeps its place and children.
+    fn draw_skinned_from_new_root(&mut self, node: usize, skin: usize, shown: &[usize]) {
+        let mesh = self.json["nodes"][node]["mesh"].clone();
+        let name = self.json["nodes"][node]["name"].as_str().map_or_else(
+            || format!("node {node} (skinned)"),
+            |n| format!("{n} (skinned)"),
+        );
+        let mut drawer = json!({"name": name, "mesh": mesh, "skin": skin});
+        if let Some(o) = self.json["nodes"][node].as_object_mut() {
+            o.remove("mesh");
+            if let Some(w) = o.remove("weights") {
+                drawer["weights"] = w;
+            }
+        }
+        let index = push(&mut self.json["nodes"], drawer);
+        for &s in shown {
+            push(&mut self.json["scenes"][s]["nodes"], json!(index));
+        }
+        for ch in channels::channels(&self.json) {
+            if ch.node == Some(node) && ch.path.as_deref() == Some("weights") {
+                self.json["animations"][ch.animation]["channels"][ch.channel]["target"]["node"] =
+                    json!(index);
+            }
+        }
+        self.parent.push(None);
+        self.locals.push(DMat4::IDENTITY);
+        self.world.push(DMat4::IDENTITY);
     }
 
     fn fail(&self, what: impl Into<String>) -> DataError {
