@@ -33,6 +33,7 @@
 use super::accessor::{self, push};
 use super::{anim, remap};
 use crate::dataset::DataError;
+use crate::rig::judge::carry::Remapped;
 use crate::rig::read::anim as channels;
 use crate::rig::read::gltf::{GltfFile, buffers, inverse_binds, local_matrix, world_matrices};
 use crate::rig::read::weights::SkinWeights;
@@ -75,7 +76,7 @@ pub struct Edit<'a> {
 /// Weights waiting for [`Edit::finish`].
 enum Write<'a> {
     /// Influences by (primitive of the weights, vertex), as `audit --fix` carries them.
-    Carried(&'a SkinWeights, remap::Remapped),
+    Carried(&'a SkinWeights, Remapped),
     /// Every vertex of a primitive: (joint slot, weight), at most four, summing to 1.
     Set {
         mesh: usize,
@@ -455,7 +456,7 @@ impl<'a> Edit<'a> {
     /// Writes the influences `carried` (by primitive of `weights` and
     /// vertex) into their JOINTS_n/WEIGHTS_n accessors in place, as
     /// `remap::write` does, when [`Edit::finish`] runs.
-    pub fn write_carried(&mut self, weights: &'a SkinWeights, carried: remap::Remapped) {
+    pub fn write_carried(&mut self, weights: &'a SkinWeights, carried: Remapped) {
         self.writes.push(Write::Carried(weights, carried));
     }
 
