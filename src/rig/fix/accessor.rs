@@ -145,51 +145,286 @@ impl Span {
     }
 }
 
+/// A place in the JSON that may name an index, and how to make its JSON pointer.
+type Place<'p> = &'p mut dyn FnMut(&Value, &dyn Fn() -> String);
+
+/// Calls `f` on every place glTF 2.0 and its common extensions name an
+/// accessor: primitive attributes, indices and morph targets, skins' inverse
+/// bind matrices, animation samplers, and EXT_mesh_gpu_instancing
+/// attributes; with a closure that makes the place's JSON pointer. O(size of
+/// the JSON's lists).
+fn accessor_places(json: &Value, f: Place<'_>) {
+    for (m, mesh) in list(&json["meshes"]).iter().enumerate() {
+        for (p, prim) in list(&mesh["primitives"]).iter().enumerate() {
+            let at = || format!("/meshes/{m}/primitives/{p}");
+            for (k, v) in map(&prim["attributes"]) {
+                f(v, &|| format!("{}/attributes/{}", at(), escape(k)));
+            }
+            f(&prim["indices"], &|| format!("{}/indices", at()));
+            for (t, target) in list(&prim["targets"]).iter().enumerate() {
+                for (k, v) in map(target) {
+                    f(v, &|| format!("{}/targets/{t}/{}", at(), escape(k)));
+                }
+            }
+        }
+    }
+    for (s, skin) in list(&json["skins"]).iter().enumerate() {
+        f(&skin["inverseBindMatrices"], &|| {
+            format!("/skins/{s}/inverseBindMatrices")
+        });
+    }
+    for (a, anim) in list(&json["animations"]).iter().enumerate() {
+        for (k, s) in list(&anim["samplers"]).iter().enumerate() {
+            f(&s["input"], &|| {
+                format!("/animations/{a}/samplers/{k}/input")
+            });
+            f(&s["output"], &|| {
+                format!("/animations/{a}/samplers/{k}/output")
+            });
+        }
+    }
+    for (n, node) in list(&json["nodes"]).iter().enumerate() {
+        for (k, v) in map(&node["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]) {
+            f(v, &|| {
+                format!(
+                    "/nodes/{n}/extensions/EXT_mesh_gpu_instancing/attributes/{}",
+                    escape(k)
+                )
+            });
+        }
+    }
+}
+
+/// Calls `f` on every place glTF 2.0 and its common extensions name a
+/// buffer view: accessors and their sparse indices and values, images, and
+/// KHR_draco_mesh_compression primitives; as [`accessor_places`] does.
+fn view_places(json: &Value, f: Place<'_>) {
+    for (a, acc) in list(&json["accessors"]).iter().enumerate() {
+        f(&acc["bufferView"], &|| format!("/accessors/{a}/bufferView"));
+        for part in ["indices", "values"] {
+            f(&acc["sparse"][part]["bufferView"], &|| {
+                format!("/accessors/{a}/sparse/{part}/bufferView")
+            });
+        }
+    }
+    for (i, image) in list(&json["images"]).iter().enumerate() {
+        f(&image["bufferView"], &|| format!("/images/{i}/bufferView"));
+    }
+    for (m, mesh) in list(&json["meshes"]).iter().enumerate() {
+        for (p, prim) in list(&mesh["primitives"]).iter().enumerate() {
+            f(
+                &prim["extensions"]["KHR_draco_mesh_compression"]["bufferView"],
+                &|| {
+                    format!(
+                        "/meshes/{m}/primitives/{p}/extensions/KHR_draco_mesh_compression/bufferView"
+                    )
+                },
+            );
+        }
+    }
+}
+
+/// How many times each index is named at the places `each` visits.
+fn count(json: &Value, each: fn(&Value, Place<'_>)) -> HashMap<usize, usize> {
+    let mut count: HashMap<usize, usize> = HashMap::new();
+    each(json, &mut |v, _| {
+        if let Some(i) = v.as_u64() {
+            *count.entry(i as usize).or_default() += 1;
+        }
+    });
+    count
+}
+
+/// The JSON pointers of the places `each` visits that name an index.
+fn pointers(json: &Value, each: fn(&Value, Place<'_>)) -> Vec<String> {
+    let mut out = Vec::new();
+    each(json, &mut |v, at| {
+        if v.as_u64().is_some() {
+            out.push(at());
+        }
+    });
+    out
+}
+
+/// The elements of a JSON array (none when it is not one).
+fn list(v: &Value) -> &[Value] {
+    v.as_array().map(Vec::as_slice).unwrap_or_default()
+}
+
+/// The entries of a JSON object (none when it is not one).
+fn map(v: &Value) -> impl Iterator<Item = (&String, &Value)> {
+    v.as_object().into_iter().flatten()
+}
+
+/// A key as one token of a JSON pointer (RFC 6901).
+fn escape(key: &str) -> String {
+    key.replace('~', "~0").replace('/', "~1")
+}
+
 /// How many times each accessor is named where glTF 2.0 and its common
 /// extensions name accessors: primitive attributes, indices and morph
 /// targets, skins' inverse bind matrices, animation samplers, and
 /// EXT_mesh_gpu_instancing attributes. O(size of the JSON's lists).
 pub fn references(json: &Value) -> HashMap<usize, usize> {
-    let mut count: HashMap<usize, usize> = HashMap::new();
-    let mut add = |v: &Value| {
-        if let Some(i) = v.as_u64() {
-            *count.entry(i as usize).or_default() += 1;
+    count(json, accessor_places)
+}
+
+/// How many times each buffer view is named (by accessors and their sparse
+/// parts, images, and KHR_draco_mesh_compression).
+pub fn view_references(json: &Value) -> HashMap<usize, usize> {
+    count(json, view_places)
+}
+
+/// Pads the merged buffer to a multiple of 4 bytes.
+pub fn pad4(bin: &mut Vec<u8>) {
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+}
+
+/// Appends `value` to the JSON array `list` (made one when it is not); its index.
+pub fn push(list: &mut Value, value: Value) -> usize {
+    if !list.is_array() {
+        *list = serde_json::json!([]);
+    }
+    match list.as_array_mut() {
+        Some(arr) => {
+            arr.push(value);
+            arr.len() - 1
         }
-    };
-    let list = |v: &Value| v.as_array().cloned().unwrap_or_default();
-    for mesh in list(&json["meshes"]) {
-        for prim in list(&mesh["primitives"]) {
-            prim["attributes"]
-                .as_object()
-                .into_iter()
-                .flatten()
-                .for_each(|(_, v)| add(v));
-            add(&prim["indices"]);
-            for t in list(&prim["targets"]) {
-                t.as_object()
-                    .into_iter()
-                    .flatten()
-                    .for_each(|(_, v)| add(v));
+        None => 0,
+    }
+}
+
+/// Appends `bytes` to the merged buffer (from a 4-byte boundary) as a new
+/// buffer view of buffer 0, with `target` when given (34962 for vertex
+/// attributes); returns the view's index.
+pub fn append_view(
+    json: &mut Value,
+    bin: &mut Vec<u8>,
+    bytes: &[u8],
+    target: Option<u64>,
+) -> usize {
+    pad4(bin);
+    let offset = bin.len();
+    bin.extend_from_slice(bytes);
+    let mut view =
+        serde_json::json!({"buffer": 0, "byteOffset": offset, "byteLength": bytes.len()});
+    if let Some(t) = target {
+        view["target"] = t.into();
+    }
+    push(&mut json["bufferViews"], view)
+}
+
+/// Removes the accessors of `candidates` that nothing names any more, then
+/// the buffer views that only they used, renumbering every reference to the
+/// accessors and views after them; when a view goes, the merged buffer is
+/// compacted to the bytes the remaining views cover (each view keeping its
+/// offset modulo 4, views that overlapped or touched keeping their layout).
+/// Does nothing when every candidate is still named. O(JSON size + buffer).
+pub fn drop_unused(
+    json: &mut Value,
+    bin: &mut Vec<u8>,
+    candidates: &std::collections::BTreeSet<usize>,
+) {
+    let named = references(json);
+    let gone: Vec<usize> = candidates
+        .iter()
+        .copied()
+        .filter(|a| !named.contains_key(a) && json["accessors"].get(*a).is_some())
+        .collect();
+    if gone.is_empty() {
+        return;
+    }
+    let mut views: std::collections::BTreeSet<usize> = std::collections::BTreeSet::new();
+    for &a in &gone {
+        let acc = &json["accessors"][a];
+        for v in [
+            &acc["bufferView"],
+            &acc["sparse"]["indices"]["bufferView"],
+            &acc["sparse"]["values"]["bufferView"],
+        ] {
+            if let Some(v) = v.as_u64() {
+                views.insert(v as usize);
             }
         }
     }
-    for skin in list(&json["skins"]) {
-        add(&skin["inverseBindMatrices"]);
+    remove(json, "accessors", &gone, &pointers(json, accessor_places));
+    let named = view_references(json);
+    let gone: Vec<usize> = views
+        .into_iter()
+        .filter(|v| !named.contains_key(v))
+        .collect();
+    if gone.is_empty() {
+        return;
     }
-    for anim in list(&json["animations"]) {
-        for s in list(&anim["samplers"]) {
-            add(&s["input"]);
-            add(&s["output"]);
+    remove(json, "bufferViews", &gone, &pointers(json, view_places));
+    compact(json, bin);
+}
+
+/// Removes the entries `gone` (ascending) of the array `json[key]` and
+/// renumbers the indices at `slots` that name the entries after them.
+fn remove(json: &mut Value, key: &str, gone: &[usize], slots: &[String]) {
+    let renumber = |i: usize| i - gone.partition_point(|&g| g < i);
+    for at in slots {
+        if let Some(v) = json.pointer_mut(at)
+            && let Some(i) = v.as_u64()
+        {
+            *v = renumber(i as usize).into();
         }
     }
-    for node in list(&json["nodes"]) {
-        node["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]
-            .as_object()
-            .into_iter()
-            .flatten()
-            .for_each(|(_, v)| add(v));
+    if let Some(list) = json[key].as_array_mut() {
+        let mut k = 0;
+        list.retain(|_| {
+            k += 1;
+            gone.binary_search(&(k - 1)).is_err()
+        });
     }
-    count
+}
+
+/// Keeps only the bytes of the merged buffer that buffer views cover: runs
+/// of overlapping or touching views move together, each run starting at the
+/// first free offset congruent to its old one modulo 4 (so every accessor
+/// keeps its alignment).
+fn compact(json: &mut Value, bin: &mut Vec<u8>) {
+    let Some(views) = json["bufferViews"].as_array_mut() else {
+        return;
+    };
+    let span = |v: &Value| {
+        let start = v["byteOffset"].as_u64().unwrap_or(0) as usize;
+        (
+            start,
+            start + v["byteLength"].as_u64().unwrap_or(0) as usize,
+        )
+    };
+    let mut order: Vec<usize> = (0..views.len()).collect();
+    order.sort_by_key(|&k| span(&views[k]));
+    let mut out: Vec<u8> = Vec::with_capacity(bin.len());
+    let mut run: Option<(usize, usize, usize)> = None; // (old start, old end, new start)
+    for k in order {
+        let (start, end) = span(&views[k]);
+        let end = end.min(bin.len());
+        let (old, new) = match run {
+            Some((s, e, n)) if start <= e => {
+                if end > e {
+                    out.extend_from_slice(&bin[e..end]);
+                    run = Some((s, end, n));
+                }
+                (s, n)
+            }
+            _ => {
+                while out.len() % 4 != start % 4 {
+                    out.push(0);
+                }
+                let n = out.len();
+                out.extend_from_slice(&bin[start.min(end)..end]);
+                run = Some((start, end, n));
+                (start, n)
+            }
+        };
+        views[k]["byteOffset"] = (new + start - old).into();
+    }
+    *bin = out;
 }
 
 /// Recomputes an accessor's `min` and `max` from its elements, when it has them.
@@ -255,5 +490,47 @@ mod tests {
         b.write_uint(&mut bin, 0, &[255, 0, 51, 300]);
         assert_eq!(b.read(&bin, 0), vec![1.0, 0.0, 0.2, 1.0]);
         assert_eq!(references(&doc)[&0], 2);
+    }
+
+    #[test]
+    fn unused_accessors_go_with_their_views_and_bytes_and_the_rest_are_renumbered() {
+        let mut doc = json!({
+            "bufferViews": [
+                {"buffer": 0, "byteOffset": 0, "byteLength": 8},
+                {"buffer": 0, "byteOffset": 8, "byteLength": 12},
+                {"buffer": 0, "byteOffset": 20, "byteLength": 6},
+                {"buffer": 0, "byteOffset": 26, "byteLength": 4}
+            ],
+            "accessors": [
+                {"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR"},
+                {"bufferView": 1, "componentType": 5126, "count": 3, "type": "SCALAR"},
+                {"bufferView": 2, "componentType": 5123, "count": 3, "type": "SCALAR"}
+            ],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 2}]}],
+            "images": [{"bufferView": 3, "mimeType": "image/png"}]
+        });
+        let mut bin: Vec<u8> = (0..30).collect();
+        // Still named: nothing goes.
+        drop_unused(&mut doc, &mut bin, &[0, 2].into());
+        assert_eq!(bin.len(), 30);
+        drop_unused(&mut doc, &mut bin, &[1].into());
+        assert_eq!(doc["accessors"].as_array().unwrap().len(), 2);
+        assert_eq!(doc["accessors"][1]["bufferView"], json!(1));
+        assert_eq!(doc["meshes"][0]["primitives"][0]["indices"], json!(1));
+        assert_eq!(doc["images"][0]["bufferView"], json!(2));
+        // The touching views 2 and 3 move together to byte 8, each keeping
+        // its offset modulo 4.
+        let offsets: Vec<u64> = doc["bufferViews"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v["byteOffset"].as_u64().unwrap())
+            .collect();
+        assert_eq!(offsets, vec![0, 8, 14]);
+        let mut want: Vec<u8> = (0..8).collect();
+        want.extend(20..30);
+        assert_eq!(bin, want);
+        assert_eq!(references(&doc).len(), 2);
+        assert_eq!(view_references(&doc).len(), 3);
     }
 }

@@ -8,7 +8,7 @@
 //! channel that varies keeps its motion about the new rest, with a note.
 //! Cubic-spline keys offset their values, not their tangents.
 
-use super::accessor::{self, Span};
+use super::accessor::{self, Span, push};
 use crate::rig::read::anim::{Channel, animation_name, channels};
 use crate::rig::read::naming::shown;
 use glam::DVec3;
@@ -149,21 +149,14 @@ fn copy_accessor(
     acc: usize,
     span: &Span,
 ) -> Option<(usize, Span)> {
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let start = bin.len();
+    let mut bytes = Vec::with_capacity(4 * span.components * span.count);
     for i in 0..span.count {
-        let v: Vec<f32> = span.read(bin, i).into_iter().map(|x| x as f32).collect();
-        for x in v {
-            bin.extend_from_slice(&x.to_le_bytes());
+        for x in span.read(bin, i) {
+            bytes.extend_from_slice(&(x as f32).to_le_bytes());
         }
     }
-    let size = 4 * span.components;
-    let view = push(
-        &mut json["bufferViews"],
-        json!({"buffer": 0, "byteOffset": start, "byteLength": size * span.count}),
-    );
+    let view = accessor::append_view(json, bin, &bytes, None);
+    let start = bin.len() - bytes.len();
     let mut a = json["accessors"][acc].clone();
     let o = a.as_object_mut()?;
     o.insert("bufferView".into(), json!(view));
@@ -173,22 +166,8 @@ fn copy_accessor(
         new,
         Span {
             start,
-            stride: size,
+            stride: 4 * span.components,
             ..*span
         },
     ))
-}
-
-/// Appends `value` to the JSON array `list` (made one when it is not); its index.
-pub fn push(list: &mut Value, value: Value) -> usize {
-    if !list.is_array() {
-        *list = json!([]);
-    }
-    match list.as_array_mut() {
-        Some(arr) => {
-            arr.push(value);
-            arr.len() - 1
-        }
-        None => 0,
-    }
 }

@@ -163,7 +163,7 @@ fn users(json: &Value, acc: usize) -> Vec<usize> {
 /// Writes one vertex's (joint slot, weight) list over its sets: largest
 /// first, unused slots joint 0 weight 0, weights quantised so they sum to 1
 /// exactly in the stored type.
-fn write_vertex(
+pub(super) fn write_vertex(
     bin: &mut [u8],
     spans: &[(accessor::Span, accessor::Span)],
     v: usize,
@@ -181,12 +181,7 @@ fn write_vertex(
     let stored: Vec<f64> = match (ws.component, ws.normalized) {
         (5121, true) => quantise(&w, 255.0),
         (5123, true) => quantise(&w, 65535.0),
-        _ => {
-            let mut f: Vec<f32> = w.iter().map(|&x| x as f32).collect();
-            let sum: f32 = f.iter().sum();
-            f[0] += 1.0 - sum;
-            f.into_iter().map(f64::from).collect()
-        }
+        _ => float_weights(&w).into_iter().map(f64::from).collect(),
     };
     for (s, (js, wspan)) in spans.iter().enumerate() {
         let range = 4 * s..4 * s + 4;
@@ -202,6 +197,17 @@ fn write_vertex(
             }
         }
     }
+}
+
+/// Weights (summing to 1, largest first) as f32 that sum to 1 in f32: the
+/// first takes what rounding left over.
+pub(super) fn float_weights(w: &[f64]) -> Vec<f32> {
+    let mut f: Vec<f32> = w.iter().map(|&x| x as f32).collect();
+    let sum: f32 = f.iter().sum();
+    if let Some(first) = f.first_mut() {
+        *first += 1.0 - sum;
+    }
+    f
 }
 
 /// Integer parts of `w x max` summing to `max` exactly (largest remainders

@@ -266,7 +266,7 @@ pub fn carry_finger(
             .zip(m.new_positions.get(k))
             .is_some_and(|(rj, p)| rj.position.distance(*p) > 0.0)
     };
-    let offsets = |out: &Remapped| -> Vec<(usize, Option<f64>)> {
+    let offsets = |out: &Remapped| -> MovedBends {
         let after = bend::bends_with(&moved, weights, tolerance, Some(out));
         (0..moved.joints.len())
             .filter(|&k| is_moved(k))

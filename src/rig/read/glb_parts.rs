@@ -127,3 +127,9 @@ impl LeBytes for u16 {
         out.extend_from_slice(&self.to_le_bytes());
     }
 }
+
+impl LeBytes for u8 {
+    fn put(self, out: &mut Vec<u8>) {
+        out.push(self);
+    }
+}
