@@ -77,7 +77,7 @@ fn the_table_fits_and_the_closed_forms_hold_for_lbs_and_dqs() {
         ])
         .ok()
         .json();
-    assert_eq!(lbs["schema_version"], 4);
+    assert_eq!(lbs["schema_version"], 5);
     assert_eq!(lbs["rig"]["hands"][0]["side"], "right");
     for finger in ["index", "middle", "ring", "little"] {
         let l = num(&joint(&lbs, "rig", finger, "PIP")["volume_loss"]);

@@ -1,4 +1,4 @@
-//! JSON documents: the documented machine interface (`schema_version` 4).
+//! JSON documents: the documented machine interface (`schema_version` 5).
 
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
@@ -20,8 +20,9 @@ use serde::Serialize;
 /// with a tip is judged in the joint region of its relative joint positions
 /// (`audit.region`); `explanation.consistent` and `explanation.score` are read
 /// against that region, and the joints' and values' own standings stay as the
-/// rig is, each alone.
-pub const SCHEMA_VERSION: u32 = 4;
+/// rig is, each alone. 5: the fix carries the skin's weights with its joints
+/// (a moved bend's `reweighted`, `held.reason` `carry`), and `rig`'s document.
+pub const SCHEMA_VERSION: u32 = 5;
 
 /// The settings block of every JSON document.
 #[derive(Serialize, JsonSchema)]
