@@ -352,3 +352,14 @@ pub(crate) fn check_output_dir(
     crate::atomic::check_dir_targets(dir, names, force)
         .map_err(|e| Error::Usage(format!("{option} {}: {e}", dir.display())))
 }
+
+/// The metacarpals' dataset when given or when the default exists.
+pub(crate) const DEFAULT_METACARPALS: &str = "data/atlas/measurements.csv";
+
+/// The metacarpals' dataset `audit`, `deform` and `rig` use: `given`, or the default where it exists.
+pub(crate) fn metacarpals_or_default(given: Option<&Path>) -> Option<PathBuf> {
+    match given {
+        Some(path) => Some(path.to_path_buf()),
+        None => Some(PathBuf::from(DEFAULT_METACARPALS)).filter(|p| p.is_file()),
+    }
+}

@@ -1,6 +1,9 @@
 //! `phalanx audit`: judge a rigged hand against the X-ray statistics; `--fix` writes a corrected copy.
 
-use super::args::{BootArgs, DataArgs, ForceArgs, TextFormat, check_output_file};
+use super::args::{
+    BootArgs, DEFAULT_METACARPALS, DataArgs, ForceArgs, TextFormat, check_output_file,
+    metacarpals_or_default,
+};
 use super::out;
 use crate::analysis::placement::Joint;
 use crate::error::{EXIT_FAILURE, Error};
@@ -170,17 +173,6 @@ fn parse_joint(s: &str) -> Result<Joint, String> {
         _ => Err(format!(
             "no joint is called '{s}': give mcp, pip, dip, ip or tip, comma-separated"
         )),
-    }
-}
-
-/// The metacarpals' dataset when given or when the default exists.
-const DEFAULT_METACARPALS: &str = "data/atlas/measurements.csv";
-
-/// The metacarpals' dataset `audit` uses: `given`, or the default where it exists.
-pub(crate) fn metacarpals_or_default(given: Option<&Path>) -> Option<PathBuf> {
-    match given {
-        Some(path) => Some(path.to_path_buf()),
-        None => Some(PathBuf::from(DEFAULT_METACARPALS)).filter(|p| p.is_file()),
     }
 }
 

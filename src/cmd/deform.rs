@@ -277,7 +277,7 @@ fn deform_rigs(args: &Args, req: &DeformRequest<'_>) -> Result<Deformed, Error> 
     Ok(if args.fix {
         // The fix `audit --fix` writes: with the MCPs judged from their rays'
         // bases against the default metacarpals' dataset where it exists.
-        let metacarpals = super::audit::metacarpals_or_default(None);
+        let metacarpals = super::args::metacarpals_or_default(None);
         let fixed = session::fix_in_memory(
             &args.rig,
             args.map.as_deref(),

@@ -19,6 +19,7 @@ pub(crate) mod man;
 pub(crate) mod place;
 pub(crate) mod remove;
 pub(crate) mod report;
+pub(crate) mod rig;
 pub(crate) mod schema;
 pub(crate) mod snapshot;
 pub(crate) mod stats;

@@ -16,6 +16,7 @@ pub(crate) mod progress;
 pub mod region;
 pub mod render;
 pub mod render3d;
+pub(crate) mod rig;
 pub(crate) mod schema;
 pub(crate) mod text;
 pub mod view;

@@ -31,6 +31,7 @@ pub(crate) const DOCUMENTS: &[(&str, Generator)] = &[
     ("place", of::<json::PlacementDocument<'static>>),
     ("audit", of::<json::AuditDocument<'static>>),
     ("deform", of::<super::deform::DeformDocument<'static>>),
+    ("rig", of::<super::rig::RigDocument>),
     ("history", of::<json::HistoryDocument<'static>>),
     ("history-record", of::<Snapshot>),
 ];

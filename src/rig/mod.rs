@@ -10,9 +10,9 @@
 //! (`rig::GltfFile`, `rig::AuditedRig`, `rig::naming`, `rig::skin`, ...).
 
 pub mod deform;
+pub mod find;
 pub mod fix;
 pub mod judge;
-pub mod find;
 pub mod make;
 pub mod read;
 pub mod session;

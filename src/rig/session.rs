@@ -584,9 +584,15 @@ fn refuse_unlike_tips(judge: &JudgeOptions, a: &Analysis) -> Result<(), Error> {
 /// The container of a fixed copy written to `out`: `true` for GLB (.glb,
 /// .vrm), `false` for .gltf; refuses an output that is the input rig.
 fn fix_container(rig: &Path, out: &Path) -> Result<bool, Error> {
+    container("--fix", rig, out)
+}
+
+/// Whether the copy `option` names is a GLB (.glb, .vrm) or a .gltf with
+/// an embedded buffer; anything else, or the input itself, is refused.
+fn container(option: &str, rig: &Path, out: &Path) -> Result<bool, Error> {
     if same_file(rig, out) {
         return Err(Error::Usage(format!(
-            "--fix {} would overwrite the input rig; name a new file (the input is never modified)",
+            "{option} {} would overwrite the input rig; name a new file (the input is never modified)",
             out.display()
         )));
     }
@@ -599,7 +605,7 @@ fn fix_container(rig: &Path, out: &Path) -> Result<bool, Error> {
         Some("glb" | "vrm") => Ok(true),
         Some("gltf") => Ok(false),
         _ => Err(Error::Usage(format!(
-            "--fix {}: name the output .glb or .vrm (or .gltf for an embedded buffer)",
+            "{option} {}: name the output .glb or .vrm (or .gltf for an embedded buffer)",
             out.display()
         ))),
     }
@@ -672,4 +678,122 @@ pub fn wrist_ratios_beside(measurements: &Path) -> Result<Option<judge::WristRat
     } else {
         Ok(None)
     }
+}
+
+/// What to rig: a hand's file, where to write the rigged copy, and the
+/// statistics its joints are placed from.
+pub struct RigRequest<'a> {
+    /// The hand: a .glb, .gltf, .vrm or .fbx file.
+    pub input: &'a Path,
+    /// Where the rigged copy goes (.glb, or .gltf with its buffer embedded).
+    pub output: &'a Path,
+    /// The measurements the joints are placed from (the data, or `--reference`).
+    pub data: &'a Path,
+    pub settings: Settings,
+    /// The atlas: its mc/J places the thumb's MCP, its landmarks beside it
+    /// the fingers' MCPs and the thumb's CMC.
+    pub metacarpals: Option<&'a Path>,
+    /// The fingertip's soft tissue, to carry bone tips to the skin.
+    pub soft_tissue: SoftTissue,
+    /// How the hand is found and written.
+    pub make: super::make::MakeOptions,
+    /// The prior's weight in hands for the re-audit's joint regions.
+    pub prior_hands: f64,
+}
+
+/// A rigged hand: what was made and written, and the written copy read back
+/// and judged as `audit` would judge it.
+pub struct Rigged {
+    pub analysis: Analysis,
+    pub made: super::make::Made,
+    pub audit: AuditedRig,
+    pub output: PathBuf,
+}
+
+/// Rigs a hand ([`super::make::make`]) and writes the copy; it is read back
+/// and audited before it is written, so nothing is written when it would not
+/// read. A file that is not a hand, a hand already rigged (without
+/// `--replace-fingers`), two hands without `--side`: exit status 2 with the
+/// reason.
+pub fn rig(req: &RigRequest<'_>) -> Result<Rigged, Error> {
+    let glb = container("--out", req.input, req.output)?;
+    let rig = Rig::load(req.input, None)?;
+    let dataset = Dataset::load(req.data)?;
+    let analysis = analysis::analyse_without_bootstrap(&dataset, &req.settings);
+    let atlas = match req.metacarpals {
+        Some(path) => Some(analysis::analyse_without_bootstrap(
+            &Dataset::load(path)?,
+            &req.settings,
+        )),
+        None => None,
+    };
+    let wrist = match req.metacarpals {
+        Some(path) => wrist_ratios_beside(path)?,
+        None => None,
+    };
+    let proportions = super::make::place::Proportions::new(
+        &analysis,
+        atlas.as_ref(),
+        wrist.as_ref(),
+        req.soft_tissue.clone(),
+    );
+    let mut opts = req.make;
+    opts.write.glb = glb;
+    let dir = req.input.parent().unwrap_or(Path::new("."));
+    let made = super::make::make(&rig, &proportions, &opts, dir).map_err(|e| match e {
+        super::make::MakeError::File(e) => Error::Data(e),
+        super::make::MakeError::Find(e) => Error::Data(e.in_file(&rig.file.label)),
+        super::make::MakeError::Refused(why) => {
+            Error::Data(crate::dataset::DataError::whole_file(&rig.file.label, why))
+        }
+    })?;
+    let label = req.output.display().to_string();
+    let re = GltfFile::from_bytes(&label, &made.written.bytes)
+        .and_then(|f| Rig::from_file(f, None))
+        .map_err(|e| {
+            Error::render(
+                format!(
+                    "the rigged copy of {} did not read back; nothing was written",
+                    rig.file.label
+                ),
+                e,
+            )
+        })?;
+    let options = AuditOptions {
+        soft_tissue: req.soft_tissue.clone(),
+        ..AuditOptions::default()
+    };
+    let options = with_shape(&options, atlas.as_ref(), req.prior_hands);
+    // The made hand's chains only: a body's other hand is not this rig's.
+    let side = made.hand.side;
+    let chains: Vec<_> = re
+        .chains
+        .iter()
+        .filter(|c| c.side.is_none_or(|s| s == side))
+        .cloned()
+        .collect();
+    let mut audited = AuditedRig::with(
+        &re.file.label,
+        &chains,
+        &re.notes,
+        &analysis,
+        &options,
+        re.weights.as_ref(),
+    );
+    if let Some(atlas) = &atlas {
+        audited.judge_rays(
+            atlas,
+            wrist.as_ref(),
+            &analysis,
+            &options,
+            re.weights.as_ref(),
+        );
+    }
+    crate::atomic::replace(req.output, &made.written.bytes).map_err(Error::write(req.output))?;
+    Ok(Rigged {
+        analysis,
+        made,
+        audit: audited,
+        output: req.output.to_path_buf(),
+    })
 }

@@ -7,9 +7,9 @@
 //! capsule's tip on the skin is its axis's end plus its radius along the
 //! axis; its rings' centres lie on the axis.
 
-use super::find::find_hand;
 use super::hand::{FindError, FindOptions, FoundHand};
 use super::mesh::HandMesh;
+use super::search::find_hand;
 use crate::dataset::Finger;
 use crate::rig::read::naming::Side;
 use glam::{DQuat, DVec3};

@@ -78,7 +78,9 @@ impl WristRatios {
         let mut ratios = WristRatios::from_samples(&path.display().to_string(), &per_image);
         let n = cmc.len() as f64;
         ratios.thumb_cmc = (n > 0.0).then(|| {
-            let sum = cmc.iter().fold([0.0, 0.0], |s, c| [s[0] + c[0], s[1] + c[1]]);
+            let sum = cmc
+                .iter()
+                .fold([0.0, 0.0], |s, c| [s[0] + c[0], s[1] + c[1]]);
             [sum[0] / n, sum[1] / n]
         });
         Ok(ratios)

@@ -6,3 +6,181 @@
 pub mod names;
 pub mod place;
 pub mod weights;
+pub mod write;
+
+use crate::dataset::DataError;
+use crate::rig::find::{FindError, FindOptions, MeshSelect, find_hand, hand_mesh};
+use crate::rig::read::naming::Side;
+use crate::rig::read::{FingerChain, Rig};
+use glam::DVec3;
+use place::{MadeHand, Proportions};
+use std::path::Path;
+use write::{WriteOptions, Written};
+
+/// What to rig, and how.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MakeOptions {
+    /// Which hand, when the file has two (or its side is not said).
+    pub side: Option<Side>,
+    /// The wrist, when the file has no hand bone to give it.
+    pub wrist: Option<DVec3>,
+    /// How many fingers the hand has, the thumb included (default: as many
+    /// chains as the file has when replacing them, else 5).
+    pub fingers: Option<usize>,
+    pub write: WriteOptions,
+}
+
+/// A hand rigged.
+#[derive(Debug, Clone)]
+pub struct Made {
+    pub hand: MadeHand,
+    pub written: Written,
+    /// How the hand was found and what was left out.
+    pub notes: Vec<String>,
+    /// How many triangles the hand's skin has.
+    pub triangles: usize,
+}
+
+/// Why a hand could not be rigged.
+#[derive(Debug, thiserror::Error)]
+pub enum MakeError {
+    /// Reading the mesh or writing the copy failed.
+    #[error(transparent)]
+    File(#[from] DataError),
+    /// No hand was found on the skin.
+    #[error("{0}")]
+    Find(FindError),
+    /// Anything else the user must change, said whole.
+    #[error("{0}")]
+    Refused(String),
+}
+
+/// Rigs one hand of `rig`: finds it on its skin, places its joints from
+/// `proportions`, weights the skin and writes the copy's bytes (see
+/// [`place`], [`weights`], [`write`]). `dir` resolves external buffers.
+pub fn make(
+    rig: &Rig,
+    proportions: &Proportions,
+    opts: &MakeOptions,
+    dir: &Path,
+) -> Result<Made, MakeError> {
+    let mut sides: Vec<Option<Side>> = rig.chains.iter().map(|c| c.side).collect();
+    sides.extend(
+        rig.file
+            .document
+            .nodes()
+            .filter_map(|n| crate::rig::read::naming::parse_hand(n.name()?))
+            .map(|h| h.side),
+    );
+    sides.sort();
+    sides.dedup();
+    let named: Vec<Side> = sides.iter().flatten().copied().collect();
+    let side = match (opts.side, named.as_slice()) {
+        (Some(s), _) => Some(s),
+        (None, [one]) => Some(*one),
+        (None, [_, _, ..]) => {
+            return Err(MakeError::Refused(
+                "the file has two hands (bones named for both sides): give --side left or \
+                 --side right to rig one, and run again for the other"
+                    .into(),
+            ));
+        }
+        (None, []) => None,
+    };
+    let chains: Vec<&FingerChain> = rig
+        .chains
+        .iter()
+        .filter(|c| side.is_none() || c.side.is_none() || c.side == side)
+        .collect();
+    if !opts.write.replace_fingers && !chains.is_empty() {
+        let names: Vec<String> = chains.iter().map(|c| c.label()).collect();
+        return Err(MakeError::Refused(format!(
+            "the hand already has finger bones ({}): give --replace-fingers to place them anew \
+             and weight its skin to them, or rig a hand without finger bones",
+            names.join(", ")
+        )));
+    }
+    let hand_node = hand_bone(rig, side);
+    // One hand of two (a body, an avatar): the vertices its hand bone and the
+    // bones below it skin; a file of one hand: its whole mesh (its finger
+    // bones need not lie below the wrist: WebXR's are its siblings).
+    let select = match hand_node {
+        Some((node, _)) if named.len() > 1 && rig.weights.is_some() => {
+            MeshSelect::UnderNode { node }
+        }
+        _ => MeshSelect::Whole,
+    };
+    let mesh = hand_mesh(&rig.file, &select)?;
+    let fingers = opts
+        .fingers
+        .unwrap_or(if opts.write.replace_fingers && !chains.is_empty() {
+            chains.len()
+        } else {
+            5
+        });
+    let find = FindOptions {
+        fingers,
+        wrist: opts.wrist.or(hand_node.map(|(_, at)| at)),
+        side,
+    };
+    let found = find_hand(&mesh, &find).map_err(MakeError::Find)?;
+    let hand = place::place(&mesh, &found, proportions);
+    if hand.fingers.is_empty() {
+        return Err(MakeError::Refused(format!(
+            "no finger could be placed: {}",
+            hand.notes.join("; ")
+        )));
+    }
+    let w = weights::weigh(&mesh, &found, &hand);
+    let written = write::write(
+        rig,
+        &chains,
+        hand_node.map(|(n, _)| n),
+        &mesh,
+        &hand,
+        &w,
+        &opts.write,
+        dir,
+    )?;
+    // The finder calls any wrist it is handed "the point given"; say which.
+    let given = match (opts.wrist, hand_node) {
+        (None, Some((node, _))) => format!(
+            "the wrist is the hand bone's origin ({})",
+            rig.file.node_name(node)
+        ),
+        _ => "the wrist is the point given (--wrist)".to_string(),
+    };
+    let mut notes: Vec<String> = found
+        .notes
+        .iter()
+        .map(|n| n.replacen("the wrist is the point given", &given, 1))
+        .collect();
+    notes.extend(mesh.notes.iter().cloned());
+    notes.extend(hand.notes.iter().cloned());
+    Ok(Made {
+        hand,
+        written,
+        notes,
+        triangles: mesh.triangles.len(),
+    })
+}
+
+/// The file's hand (wrist) bone of `side` (any side when `None`): its node
+/// and world position, when its name says it is one.
+fn hand_bone(rig: &Rig, side: Option<Side>) -> Option<(usize, DVec3)> {
+    if let Some(w) = rig
+        .chains
+        .iter()
+        .filter(|c| side.is_none() || c.side == side)
+        .find_map(|c| c.wrist.as_ref())
+    {
+        return Some((w.node, w.position));
+    }
+    rig.file.document.nodes().find_map(|n| {
+        let h = crate::rig::read::naming::parse_hand(n.name()?)?;
+        (side.is_none() || h.side.is_none() || h.side == side).then(|| {
+            let at = rig.file.world[n.index()].w_axis.truncate();
+            (n.index(), at)
+        })
+    })
+}

@@ -6,7 +6,9 @@ use crate::dataset::Finger;
 use crate::rig::read::naming::Side;
 
 /// A naming convention for the nodes `rig` adds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, serde::Serialize, schemars::JsonSchema)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, serde::Serialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum Names {
     /// OpenXR's hand joints as Godot spells them: `Wrist_R`, `Index_Proximal_R`, `Index_Tip_R`.

@@ -31,12 +31,12 @@
 //! whose back faces across the palm, stay on its axis. Cost: O(m log) per
 //! finger for m axis points.
 
-use crate::rig::find::{FoundFinger, FoundHand, HandMesh};
 use crate::analysis::placement::Joint;
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
-use crate::rig::judge::{SoftTissue, TipKind, WristRatios, data_tip_of};
+use crate::rig::find::{FoundFinger, FoundHand, HandMesh};
 use crate::rig::judge::chain::{arc_positions, on_chain, point_at};
+use crate::rig::judge::{SoftTissue, TipKind, WristRatios, data_tip_of};
 use crate::rig::read::naming::Side;
 use glam::DVec3;
 
@@ -244,8 +244,55 @@ fn place_finger(
         .cloned()
         .ok_or("the data has no such finger")?;
     let reach = 4.0 * hand.wrist.distance(f.tip);
-    let axis = root_first(f, reach);
-    let arcs = arc_positions(&axis);
+    let mut axis = root_first(f, reach);
+    // The tip is the skin's end along the last bone, as the audit reads it
+    // (the farthest reach of the finger's skin along DIP -> tip): the axis
+    // is carried on to it, then laid again until the reach along the laid
+    // last bone is under 0.05 mm (two or three rounds).
+    let mut towards = f.tip_direction;
+    let mut chain = None;
+    for _ in 0..4 {
+        let end = axis[axis.len() - 1];
+        let past = skin_past(mesh, f, end, towards);
+        if past > 5e-5 || chain.is_none() {
+            if past > 1e-9 {
+                axis.push(end + towards * past);
+            }
+        } else {
+            break;
+        }
+        let laid = lay_finger(mesh, hand, f, p, made_so_far, &means, &axis)?;
+        let n = laid.joints.len();
+        if n >= 2 {
+            towards = (laid.joints[n - 1] - laid.joints[n - 2]).normalize_or(towards);
+        }
+        chain = Some(laid);
+    }
+    let chain = chain.ok_or("its joints cannot be laid on its axis")?;
+    finish_finger(f, chain, axis)
+}
+
+/// How far the finger's skin (its region's vertices) reaches past `end`
+/// along `dir`; 0 when it does not. O(region).
+fn skin_past(mesh: &HandMesh, f: &FoundFinger, end: DVec3, dir: DVec3) -> f64 {
+    f.vertices
+        .iter()
+        .filter_map(|&v| mesh.positions.get(v as usize))
+        .map(|&q| (q - end).dot(dir))
+        .fold(0.0, f64::max)
+}
+
+/// One finger's chain laid on `axis` (root first, ending at the tip).
+fn lay_finger(
+    mesh: &HandMesh,
+    hand: &FoundHand,
+    f: &FoundFinger,
+    p: &Proportions,
+    made_so_far: &[MadeFinger],
+    means: &[f64],
+    axis: &[DVec3],
+) -> Result<Chain, String> {
+    let arcs = arc_positions(axis);
     let total = arcs[arcs.len() - 1];
     if !(total.is_finite() && total > 0.0) {
         return Err("its axis has no length".into());
@@ -258,12 +305,8 @@ fn place_finger(
     for _ in 0..2 {
         let unknown = "the fingertip's soft tissue is not known, so the data's bone tips cannot \
                        be carried to the skin (give --tip-soft-tissue MM)";
-        let q = p
-            .soft_share(p.data_tip, f.finger, length)
-            .ok_or(unknown)?;
-        let q_atlas = p
-            .soft_share(p.atlas_tip, f.finger, length)
-            .ok_or(unknown)?;
+        let q = p.soft_share(p.data_tip, f.finger, length).ok_or(unknown)?;
+        let q_atlas = p.soft_share(p.atlas_tip, f.finger, length).ok_or(unknown)?;
         // The chords' shares of the finger to the skin (see the module notes).
         let k = means.len();
         let shares: Vec<f64> = means
@@ -274,7 +317,7 @@ fn place_finger(
         let laid = Laying {
             mesh,
             hand,
-            axis: &axis,
+            axis,
             arcs: &arcs,
             shares: &shares,
         };
@@ -297,7 +340,12 @@ fn place_finger(
         length = chain.joints.windows(2).map(|w| w[0].distance(w[1])).sum();
         made = Some(chain);
     }
-    let chain = made.ok_or("its joints cannot be laid on its axis")?;
+    made.ok_or_else(|| "its joints cannot be laid on its axis".to_string())
+}
+
+/// The made finger from its laid chain: the joints named, each one's local
+/// radius.
+fn finish_finger(f: &FoundFinger, chain: Chain, axis: Vec<DVec3>) -> Result<MadeFinger, String> {
     let kinds: &[Joint] = if f.finger == Finger::Thumb {
         &[Joint::Mcp, Joint::Ip, Joint::Tip]
     } else {

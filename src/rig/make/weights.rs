@@ -13,7 +13,8 @@
 //!
 //! S the smoothstep 3x^2 - 2x^3 on [0, 1]; h_k is cut to 0.45 of each
 //! neighbouring bone so that the blends never overlap. The bone from joint k
-//! takes R_k - R_(k+1) (the last bone R_k), and the hand bone 1 - R_0. So the
+//! takes R_k - R_(k+1) (the last bone R_k), and the palm before it 1 - R_0 (the
+//! finger's metacarpal bone where the rig has one, else the hand bone). So the
 //! weights sum to 1, at most two bones share a vertex, and a joint's next
 //! bone passes half the weight exactly at the joint: the skin bends there
 //! (as the audit reads a bend: [`crate::rig::judge::bend`]).
@@ -41,13 +42,22 @@ pub const BLEND: f64 = 0.75;
 /// from the chain).
 pub const REACH: f64 = 2.5;
 
-/// A bone of the made hand: the hand (wrist) bone, or the bone of `finger`
+/// A bone of the made hand: the hand (wrist) bone, the palm before a finger,
+/// or the bone of `finger`
 /// from its `k`-th chain point (a finger: 0 proximal, 1 intermediate, 2
 /// distal; the thumb: 0 metacarpal, 1 proximal, 2 distal).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Bone {
     Hand,
-    Finger { finger: Finger, k: usize },
+    /// The palm before `finger`'s first bone: its metacarpal where the rig
+    /// has one for it, else the hand bone.
+    Palm {
+        finger: Finger,
+    },
+    Finger {
+        finger: Finger,
+        k: usize,
+    },
 }
 
 /// A made finger's chain: its points root first (the thumb from its CMC)
@@ -119,7 +129,7 @@ impl Chain {
     /// The share past joint k at arc position s (R_k in the module notes).
     fn past(&self, k: usize, s: f64) -> f64 {
         let h = self.half[k];
-        if !(h > 0.0) {
+        if h.is_nan() || h <= 0.0 {
             return if s >= self.arcs[k] { 1.0 } else { 0.0 };
         }
         smoothstep((s - self.arcs[k] + h) / (2.0 * h))
@@ -145,7 +155,12 @@ impl Chain {
             }
         }
         if given < 1.0 {
-            out.push((Bone::Hand, 1.0 - given));
+            out.push((
+                Bone::Palm {
+                    finger: self.finger,
+                },
+                1.0 - given,
+            ));
         }
     }
 }

@@ -206,6 +206,15 @@ impl GltfFile {
             })
             .collect()
     }
+
+    /// Node `i`'s name, `#i` when it has none (or there is no such node).
+    pub fn node_name(&self, i: usize) -> String {
+        self.document
+            .nodes()
+            .nth(i)
+            .and_then(|n| n.name().map(str::to_string))
+            .unwrap_or_else(|| format!("#{i}"))
+    }
 }
 
 /// What to say of a directory given as a rig: the rig files it holds (the
