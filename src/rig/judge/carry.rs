@@ -237,16 +237,26 @@ pub fn remap(weights: &SkinWeights, moves: &[FingerMove<'_>]) -> (Remapped, Vec<
 /// half the bend guard (1 mm), the other half left for the bins a bend is
 /// found in, the precision the file stores weights at, and other readers of
 /// the same weights (a bin of 0.5 mm read without pooling puts a bend up to
-/// 0.3 mm from where this one does).
+/// 0.3 mm from where this one does). A joint within it of its bend sat at it
+/// as the artist painted it: its blend is carried from the joint.
 pub const CARRY_TOLERANCE: f64 = 0.5 * super::standing::BEND_GUARD;
+
+/// Where a carried blend is aimed (metres): a warp that lands farther than
+/// this from its joint, but within [`CARRY_TOLERANCE`], is warped again from
+/// a place shifted by its miss. Other readings of the same weights differ by
+/// more than the tolerance's other half: on Godot XR Tools' left middle DIP
+/// the warp bent 0.38 mm from the joint by this reading and 1.16 mm by
+/// blocks of vertices along the axis (where the distal share crosses 1/2).
+pub const CARRY_AIM: f64 = 0.25 * super::standing::BEND_GUARD;
 
 /// Each moved joint of a finger (its index along the chain) with where its
 /// skin bends from it on the carried weights (`None`: no bend found).
 pub type MovedBends = Vec<(usize, Option<f64>)>;
 
 /// The weights of one finger carried to its moved joints: warped
-/// ([`remap`]), and across a moved joint whose warped blend would not bend
-/// the skin within [`CARRY_TOLERANCE`] of it, blended anew
+/// ([`remap`]); a moved joint whose warped blend bends the skin a little off
+/// it (beyond [`CARRY_AIM`]) warped again from a place shifted by the miss;
+/// one that would not bend it within [`CARRY_TOLERANCE`] blended anew
 /// ([`reblend`], at most twice); with each moved joint's bend offset on the
 /// result (`None`: no bend found). O(V m) and at most three bend searches.
 pub fn carry_finger(
@@ -286,9 +296,52 @@ pub fn carry_finger(
             .map(|(k, _)| *k)
             .collect()
     };
+    let mut now = offsets(&out);
+    // A warped blend that lands off its joint is carried again from a place
+    // shifted by its miss (the map takes the new joint to where the old
+    // weights cross by that much more), so the artist's blend keeps its
+    // shape; kept when every moved joint then bends within the tolerance.
+    // A warped blend that lands a little off its joint (beyond CARRY_AIM,
+    // within the tolerance) is carried again from a place shifted
+    // by its miss: the map takes the new joint to where the old weights
+    // cross that much farther on, so the artist's blend keeps its shape. The
+    // shifted carry is kept when no moved joint then bends farther from it.
+    let small: Vec<usize> = now
+        .iter()
+        .filter(|(_, o)| o.is_some_and(|o| o.abs() > CARRY_AIM && o.abs() <= CARRY_TOLERANCE))
+        .map(|(k, _)| *k)
+        .collect();
+    if !small.is_empty() {
+        let old: Vec<DVec3> = m.chain.joints.iter().map(|j| j.position).collect();
+        let mut again = FingerMove {
+            chain: m.chain,
+            new_positions: m.new_positions.clone(),
+            anchors: m.anchors.clone(),
+            blends: m.blends.clone(),
+        };
+        for &(k, o) in &now {
+            let (Some(o), true) = (o, small.contains(&k)) else {
+                continue;
+            };
+            let (a, b) = (k.saturating_sub(1), (k + 1).min(old.len() - 1));
+            let dir = (old[b] - old[a]).normalize_or_zero();
+            let from = again.anchors[k].unwrap_or(old[k]);
+            again.anchors[k] = Some(from + dir * o);
+        }
+        let (shifted, _) = remap(weights, std::slice::from_ref(&again));
+        let then = offsets(&shifted);
+        let no_worse = now.iter().zip(&then).all(|((_, a), (_, b))| match (a, b) {
+            (Some(a), Some(b)) => b.abs() <= a.abs(),
+            (None, _) => true,
+            (Some(_), None) => false,
+        });
+        if no_worse {
+            out = shifted;
+            now = then;
+        }
+    }
     // Twice at most: a joint blended anew can shift the bend its neighbour's
     // warped weights gave.
-    let mut now = offsets(&out);
     for _ in 0..2 {
         let again = missed(&now);
         if again.is_empty() {
