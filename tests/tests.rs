@@ -24,6 +24,7 @@ mod place;
 mod properties;
 mod readable;
 mod report;
+mod rig;
 mod schema;
 mod stats;
 mod synth;

@@ -717,7 +717,7 @@ pub struct Rigged {
 /// reason.
 pub fn rig(req: &RigRequest<'_>) -> Result<Rigged, Error> {
     let glb = container("--out", req.input, req.output)?;
-    let rig = Rig::load(req.input, None)?;
+    let rig = Rig::with_any_chains(super::open(req.input)?, None)?;
     let dataset = Dataset::load(req.data)?;
     let analysis = analysis::analyse_without_bootstrap(&dataset, &req.settings);
     let atlas = match req.metacarpals {

@@ -179,12 +179,24 @@ impl Workdir {
         self.run_env(args, &[])
     }
 
+    /// Runs `phalanx` with `args` from the repository's root, where the
+    /// vendored data (the atlas, the soft-tissue table) is found; paths in
+    /// `args` are best absolute.
+    pub fn run_in_repo(&self, args: &[&str]) -> Run {
+        self.run_cmd(args, self.command(args).current_dir(manifest_dir()))
+    }
+
     /// Runs `phalanx` with `args` and extra environment variables.
     pub fn run_env(&self, args: &[&str], env: &[(&str, &str)]) -> Run {
         let mut cmd = self.command(args);
         for (k, v) in env {
             cmd.env(k, v);
         }
+        self.run_cmd(args, &mut cmd)
+    }
+
+    /// Runs a prepared `phalanx` command; no panic, no signal.
+    fn run_cmd(&self, args: &[&str], cmd: &mut Command) -> Run {
         let out = cmd.output().expect("run phalanx");
         let run = Run {
             args: args.iter().map(|s| s.to_string()).collect(),

@@ -33,9 +33,14 @@ use crate::rig::find::{FoundHand, HandMesh};
 use glam::DVec3;
 
 /// The half-width of a joint's blend, as a share of the finger's radius at
-/// the joint: 0.75, a blend 1.5 radii long (12 mm on an 8 mm finger), about
-/// the length of skin that folds over a flexed adult PIP.
-pub const BLEND: f64 = 0.75;
+/// the joint: 1.5, a blend 3 radii long (24 mm on an 8 mm finger; cut to
+/// 0.45 of each neighbouring bone). Chosen by deforming (`deform RIGGED
+/// --against ORIGINAL`, fist and grip, LBS and DQS) against the artists'
+/// weights of the shared rigs: at 0.75 the WebXR left hand's made rig was
+/// better at 0 joints and worse at 12 (its narrow blends fold the skin into
+/// itself); at 1.25, 12 and 7; at 1.5, better on every smooth-skinned rig
+/// (XR Tools left 25 and 9, SteamVR right 34 and 0); 2.0 gains little more.
+pub const BLEND: f64 = 1.5;
 
 /// How far from a finger's chain, in its radii, a vertex outside its region
 /// moves with it fully (the palm under the knuckles is 1.5-2 finger radii

@@ -219,6 +219,16 @@ impl Rig {
     /// of each finger, then each finger's chain from those, with its
     /// metacarpal and the hand's wrist bone when recognised.
     pub fn from_file(file: GltfFile, map: Option<&NameMap>) -> Result<Rig, DataError> {
+        let rig = Rig::with_any_chains(file, map)?;
+        if rig.chains.is_empty() {
+            return Err(no_hand(&rig.file.label, &rig.file.node_names(), rig.notes));
+        }
+        Ok(rig)
+    }
+
+    /// As [`Rig::from_file`], but a file with no finger chain is read too
+    /// (a hand mesh to rig: unskinned, or skinned to a hand bone alone).
+    pub fn with_any_chains(file: GltfFile, map: Option<&NameMap>) -> Result<Rig, DataError> {
         let names = file.node_names();
         let weights = skin_weights(&file);
         let weighted = weighted_nodes(weights.as_ref(), names.len());
@@ -284,9 +294,6 @@ impl Rig {
                  bind matrix",
                 by_name.join(", ")
             ));
-        }
-        if chains.is_empty() {
-            return Err(no_hand(&file.label, &names, notes));
         }
         if let Some(w) = &weights {
             notes.extend(w.notes.iter().cloned());
