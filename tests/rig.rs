@@ -741,10 +741,10 @@ fn rig_refuses_what_is_not_a_hand_at_rest_and_writes_nothing() {
     assert!(!out.exists(), "nothing written for a rigged hand");
 
     // Two hands, no side.
-    if let Some(rigs) = shared_rig_files() {
-        if let Some(body) = rigs
-            .iter()
+    if let Some(body) = shared_rig_files().and_then(|rigs| {
+        rigs.into_iter()
             .find(|r| r.to_string_lossy().contains("mannequiny"))
+    }) {
         {
             let out = wd.path().join("body.glb");
             wd.run_in_repo(&[
