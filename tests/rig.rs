@@ -761,3 +761,65 @@ fn rig_refuses_what_is_not_a_hand_at_rest_and_writes_nothing() {
         }
     }
 }
+
+/// The audit uses the same finding: the vendored WebXR hands with their tip
+/// nodes and their skin deleted (no weights give a tip) are judged on every
+/// finger, the thumb included, from the fingertips found on the skin; each
+/// found tip reaches as far past the last joint, within 2.5 mm, as the
+/// skin's end the audit reads from the weights of the whole file (the tip
+/// node and `skin_tip` past it, in the original's audit), an independent
+/// reading of the same skin.
+#[test]
+fn the_audit_judges_tipless_fingers_by_the_tips_found_on_the_skin() {
+    let wd = Workdir::with_paper_data();
+    for (n, path) in vendored_hands().iter().enumerate() {
+        let whole = wd
+            .run_in_repo(&["audit", path.to_str().unwrap(), "--format", "json"])
+            .ok()
+            .json();
+        let (json, bin) = unglb(&std::fs::read(path).unwrap());
+        let bare = without_nodes(json, |name| name.ends_with("-tip"));
+        let stem = path.file_stem().unwrap().to_string_lossy();
+        let input = wd.write(&format!("{stem}-tipless-{n}.glb"), glb(&bare, &bin));
+        let run = wd.run_in_repo(&["audit", input.to_str().unwrap(), "--format", "json"]);
+        let doc = run.ok().json();
+        let fingers = doc["rig"]["fingers"].as_array().unwrap();
+        assert_eq!(fingers.len(), 5, "{}: every finger judged", path.display());
+        for f in fingers {
+            let name = f["finger"].as_str().unwrap();
+            assert_eq!(f["has_tip"], json!(false), "{name}: the tip nodes are gone");
+            assert_eq!(f["skin_tip"]["from_mesh"], json!(true), "{name}: {f}");
+            let original = whole["rig"]["fingers"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|g| g["finger"] == f["finger"])
+                .unwrap();
+            // How far the skin reaches past the last joint: by the found tip
+            // (along the last bone); by the weights (past the tip node along
+            // the node's direction, plus the node's own distance).
+            let joints = original["joints"].as_array().unwrap();
+            let k = joints.len();
+            let (last, tip) = (
+                point(&joints[k - 2]["position"]),
+                point(&joints[k - 1]["position"]),
+            );
+            let by_weights =
+                last.distance(tip) + original["skin_tip"]["beyond_node"].as_f64().unwrap_or(0.0);
+            let found = f["skin_tip"]["beyond_node"].as_f64().unwrap();
+            eprintln!(
+                "{} {name}: the skin reaches {:.2} mm past the last joint by the found tip, {:.2} mm by the weights",
+                path.display(),
+                found * 1e3,
+                by_weights * 1e3
+            );
+            assert!(
+                (found - by_weights).abs() <= 2.5e-3,
+                "{}: {name}'s found tip reaches {:.2} mm, the weights' {:.2} mm",
+                path.display(),
+                found * 1e3,
+                by_weights * 1e3
+            );
+        }
+    }
+}

@@ -342,6 +342,7 @@ fn options(args: &Args) -> Result<AuditOptions, Error> {
         hold: args.hold.clone(),
         shape: None,
         carry_weights: !args.keep_weights,
+        found_tips: Default::default(),
     })
 }
 

@@ -266,7 +266,8 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         }
         None => None,
     };
-    let options = with_shape(&req.options, atlas.as_ref(), req.prior_hands);
+    let mut options = with_shape(&req.options, atlas.as_ref(), req.prior_hands);
+    options.found_tips = found_tips(&rig);
     let options = &options;
     // The atlas's landmarks beside its measurements give the wrist-to-MCP
     // ratios of the wrist judgement; without them it is skipped with a note.
@@ -796,4 +797,53 @@ pub fn rig(req: &RigRequest<'_>) -> Result<Rigged, Error> {
         audit: audited,
         output: req.output.to_path_buf(),
     })
+}
+
+/// The fingertips found on the skin alone (`rig::find`, as `phalanx rig`
+/// finds them) for each hand with a chain that has no tip node, so the audit
+/// can judge a tipless finger whose weights give no end; nothing when every
+/// chain has its tip. Per hand: the vertices under its hand bone in a file
+/// of two hands, else the whole mesh; the hand bone's origin as the wrist.
+fn found_tips(rig: &Rig) -> judge::audited::FoundTips {
+    use super::find::{FindOptions, MeshSelect, find_hand, hand_mesh};
+    let mut out = judge::audited::FoundTips::default();
+    let mut sides: Vec<_> = rig.chains.iter().map(|c| c.side).collect();
+    sides.sort();
+    sides.dedup();
+    for &side in &sides {
+        let chains: Vec<_> = rig.chains.iter().filter(|c| c.side == side).collect();
+        if chains.iter().all(|c| c.has_tip) {
+            continue;
+        }
+        let wrist = chains.iter().find_map(|c| c.wrist.as_ref());
+        let select = match wrist {
+            Some(w) if sides.len() > 1 && rig.weights.is_some() => {
+                MeshSelect::UnderNode { node: w.node }
+            }
+            _ => MeshSelect::Whole,
+        };
+        let found = hand_mesh(&rig.file, &select)
+            .map_err(|e| {
+                e.problems
+                    .iter()
+                    .map(|p| p.message.as_str())
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            })
+            .and_then(|mesh| {
+                let opts = FindOptions {
+                    fingers: chains.len(),
+                    wrist: wrist.map(|w| w.position),
+                    side,
+                };
+                find_hand(&mesh, &opts).map_err(|e| e.to_string())
+            });
+        match found {
+            Ok(hand) => out
+                .tips
+                .extend(hand.fingers.iter().map(|f| (side, f.finger, f.tip))),
+            Err(why) => out.why_not.push((side, why)),
+        }
+    }
+    out
 }

@@ -41,6 +41,19 @@ pub struct AuditOptions {
     /// The fix moves each finger's skin weights with its joints (true), or
     /// leaves them as painted (`--keep-weights`): the guards follow.
     pub carry_weights: bool,
+    /// The fingertips found on the skin alone (`rig::find`, as `phalanx rig`
+    /// finds them), for chains with no tip node whose weights give no end
+    /// ([`bend::mesh_end`]); and, per side, why they were not found.
+    pub found_tips: FoundTips,
+}
+
+/// The fingertips found on a rig's skin, for the audit of tipless chains.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FoundTips {
+    /// Each found finger: its side (as its chains name it), finger and tip.
+    pub tips: Vec<(Option<crate::rig::read::naming::Side>, Finger, DVec3)>,
+    /// Sides whose fingers were not found, and why.
+    pub why_not: Vec<(Option<crate::rig::read::naming::Side>, String)>,
 }
 
 impl Default for AuditOptions {
@@ -53,6 +66,7 @@ impl Default for AuditOptions {
             hold: Vec::new(),
             shape: None,
             carry_weights: true,
+            found_tips: FoundTips::default(),
         }
     }
 }
@@ -642,13 +656,13 @@ impl AuditedRig {
                         from_mesh: false,
                     });
                 }
-            } else if opts.measure_tip
-                && opts.rig_tip == TipKind::Skin
-                && !chain.has_tip
-                && n >= 2
-                && let Some(w) = weights
+            } else if opts.measure_tip && opts.rig_tip == TipKind::Skin && !chain.has_tip && n >= 2
             {
-                match bend::mesh_end(chain, w) {
+                let end = match weights {
+                    Some(w) => bend::mesh_end(chain, w),
+                    None => Err("the file has no skin weights".to_string()),
+                };
+                match end {
                     Ok(reach) => {
                         let (prev, last) = (input.points[n - 2], input.points[n - 1]);
                         let position = last + (last - prev).normalize_or_zero() * reach;
@@ -660,10 +674,65 @@ impl AuditedRig {
                             from_mesh: true,
                         });
                     }
-                    Err(why) => notes.push(format!(
-                        "{}: no tip from the mesh ({why}), so it is judged on J2/J1 alone",
-                        chain.label()
-                    )),
+                    Err(why) => {
+                        // The skin's end as `rig` finds it: the found tip's
+                        // reach along the last bone, within the range a
+                        // distal phalanx with its pulp spans.
+                        let (prev, last) = (input.points[n - 2], input.points[n - 1]);
+                        let dir = (last - prev).normalize_or_zero();
+                        let segment = prev.distance(last);
+                        let (lo, hi) = bend::MESH_END_RANGE;
+                        let found = opts
+                            .found_tips
+                            .tips
+                            .iter()
+                            .find(|t| t.0 == chain.side && t.1 == chain.finger)
+                            .map(|t| (t.2 - last).dot(dir));
+                        match found {
+                            Some(reach) if reach >= lo * segment && reach <= hi * segment => {
+                                let position = last + dir * reach;
+                                input.points.push(position);
+                                input.has_tip = true;
+                                skin_tip = Some(SkinTip {
+                                    beyond_node: reach,
+                                    position,
+                                    from_mesh: true,
+                                });
+                                notes.push(format!(
+                                    "{}: its weights give no tip ({why}); the tip is the skin's \
+                                     end found on the mesh ({:.1} mm past its last joint)",
+                                    chain.label(),
+                                    reach * 1000.0
+                                ));
+                            }
+                            Some(reach) => notes.push(format!(
+                                "{}: no tip from the mesh ({why}; the fingertip found on the skin \
+                                 lies {:.1} mm past its last joint, outside {lo}-{hi} times its \
+                                 last segment), so it is judged on J2/J1 alone",
+                                chain.label(),
+                                reach * 1000.0
+                            )),
+                            // No weights and nothing found on a skin (a rig of
+                            // nodes alone, a reference profile): nothing to say.
+                            None if weights.is_none() && opts.found_tips.why_not.is_empty() => {}
+                            None => {
+                                let also = opts
+                                    .found_tips
+                                    .why_not
+                                    .iter()
+                                    .find(|w| w.0 == chain.side)
+                                    .map(|w| {
+                                        format!("; the fingers were not found on the skin: {}", w.1)
+                                    })
+                                    .unwrap_or_default();
+                                notes.push(format!(
+                                    "{}: no tip from the mesh ({why}{also}), so it is judged on \
+                                     J2/J1 alone",
+                                    chain.label()
+                                ))
+                            }
+                        }
+                    }
                 }
             }
             lengths.push(
