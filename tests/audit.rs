@@ -12,7 +12,7 @@ mod ray;
 mod region;
 mod sanity;
 mod survival;
-mod validator;
+pub(crate) mod validator;
 mod webxr;
 
 use crate::common;

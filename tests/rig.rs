@@ -823,3 +823,61 @@ fn the_audit_judges_tipless_fingers_by_the_tips_found_on_the_skin() {
         }
     }
 }
+
+/// The Khronos glTF validator adds no issue of any severity to the files
+/// `rig` writes: the vendored WebXR hands re-rigged (`--replace-fingers`),
+/// and rigged from their bare mesh (finger bones and skin deleted), each
+/// against its input. Installed with npm by the audit's validator test; the
+/// test is skipped with the reason when it cannot be.
+#[test]
+#[ignore = "slow: installs and runs the Khronos glTF validator with npm (run by .ci/run)"]
+fn the_files_rig_writes_add_no_validator_issue() {
+    let tools = match crate::audit::validator::validator() {
+        Ok(t) => t,
+        Err(why) => {
+            eprintln!("skipped: the Khronos glTF validator is unavailable: {why}");
+            return;
+        }
+    };
+    let wd = Workdir::with_paper_data();
+    let mut pairs: Vec<(PathBuf, PathBuf)> = Vec::new();
+    for (n, path) in vendored_hands().iter().enumerate() {
+        let (_, out) = rig_replacing(&wd, path, None, 400 + n);
+        pairs.push((path.clone(), out));
+        let (json, bin) = unglb(&std::fs::read(path).unwrap());
+        let bare = without_nodes(json, |name| {
+            ["thumb", "index", "middle", "ring", "pinky"]
+                .iter()
+                .any(|f| name.starts_with(f))
+        });
+        let stem = path.file_stem().unwrap().to_string_lossy();
+        let input = wd.write(&format!("{stem}-bare-{n}.glb"), glb(&bare, &bin));
+        let out = wd.path().join(format!("{stem}-made-{n}.glb"));
+        wd.run_in_repo(&[
+            "rig",
+            input.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "-q",
+        ])
+        .ok();
+        pairs.push((input, out));
+    }
+    let files: Vec<PathBuf> = pairs
+        .iter()
+        .flat_map(|(a, b)| [a.clone(), b.clone()])
+        .collect();
+    let reports = crate::audit::validator::issues(&tools, &files);
+    for (k, (input, _)) in pairs.iter().enumerate() {
+        let (before, after) = (&reports[2 * k], &reports[2 * k + 1]);
+        for (key, &n) in after {
+            let had = before.get(key).copied().unwrap_or(0);
+            assert!(
+                n <= had,
+                "{}: rig adds {key:?} ({had} -> {n}); input {before:?}, output {after:?}",
+                input.display()
+            );
+        }
+        eprintln!("{}: input {before:?}; rigged {after:?}", input.display());
+    }
+}

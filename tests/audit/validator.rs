@@ -15,7 +15,7 @@ use std::path::Path;
 use std::process::Command;
 
 /// The tools folder with the validator installed, or why it cannot be.
-fn validator() -> Result<std::path::PathBuf, String> {
+pub(crate) fn validator() -> Result<std::path::PathBuf, String> {
     let tools = manifest_dir().join("tests/tools");
     for tool in ["node", "npm"] {
         let ok = Command::new(tool)
@@ -43,7 +43,7 @@ fn validator() -> Result<std::path::PathBuf, String> {
 }
 
 /// Issue counts by (code, severity) of each file, in order.
-fn issues(
+pub(crate) fn issues(
     tools: &std::path::Path,
     files: &[std::path::PathBuf],
 ) -> Vec<BTreeMap<(String, u64), usize>> {

@@ -143,20 +143,13 @@ pub fn write(
             parent = node;
         }
     }
-    // The bones that take weight (not the tips), the hand first.
+    // The skin's joints: the hand first, then every made node, the tips too
+    // (a leaf no skin lists is an empty node to a glTF validator; the tips
+    // take no weight).
     let bones: Vec<usize> = {
         let mut b = vec![hand];
-        for (bone, &n) in &node_of {
-            let weighted = match bone {
-                Bone::Hand => false,
-                Bone::Palm { .. } => true,
-                Bone::Finger { finger, k } => made
-                    .fingers
-                    .iter()
-                    .find(|f| f.finger == *finger)
-                    .is_some_and(|f| k + 1 < f.joints.len() + usize::from(f.cmc.is_some())),
-            };
-            if weighted && !b.contains(&n) {
+        for &n in node_of.values() {
+            if !b.contains(&n) {
                 b.push(n);
             }
         }
