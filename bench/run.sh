@@ -4,13 +4,24 @@
 # NumPy peer (bench/peer.py, the same statistics) at 1k, 10k and 100k X-rays in the
 # same run, then the report at every size from the paper's 5 X-rays to 100,000, then
 # how the cost grows with X-rays and resamples.
-# Usage: bench/run.sh [RUNS]   (default 3; best run kept). The peer runs in a virtual
+# Last, `phalanx rig` (fingers found, placed and weighted) on the largest shared rig and a
+# 50,000-triangle hand, and `audit --fix` on the GDQuest mannequin.
+# Usage: bench/run.sh [RUNS]   (default 3; best run kept). BENCH_ONLY=rig runs only that
+# last section. The peer runs in a virtual
 # environment, target/bench-venv, made here the first time with bench/requirements.txt
 # (numpy and scipy); where it cannot be made (no python3 or no registry) its rows are
 # skipped with the reason.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-3}
+only=${BENCH_ONLY:-}
+case "$only" in
+    "" | rig) ;;
+    *)
+        echo "bench: BENCH_ONLY=$only: give rig, or leave it unset for every section" >&2
+        exit 2
+        ;;
+esac
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -23,11 +34,15 @@ cargo build --release -q --example tube_hand
 bin=target/release/phalanx
 # A synthetic skinned right hand of about 30,000 triangles (32 vertices per ring, a ring every 1.44 mm).
 target/release/examples/tube_hand "$work/hand30k-right.glb" right 32 1.44 0 2> /dev/null
+# And of about 50,000 (50,016 triangles: a ring every 0.865 mm).
+target/release/examples/tube_hand "$work/hand50k-right.glb" right 32 0.865 0 2> /dev/null
 
-"$bin" synth --xrays 1000 --seed 1 --out "$work/x1k.csv"
-"$bin" synth --xrays 10000 --seed 1 --out "$work/x10k.csv"
-"$bin" synth --xrays 100000 --seed 1 --out "$work/x100k.csv"
-for n in 10 50 200 2500 5000; do "$bin" synth --xrays "$n" --seed 1 --out "$work/x$n.csv"; done
+if [ -z "$only" ]; then
+    "$bin" synth --xrays 1000 --seed 1 --out "$work/x1k.csv"
+    "$bin" synth --xrays 10000 --seed 1 --out "$work/x10k.csv"
+    "$bin" synth --xrays 100000 --seed 1 --out "$work/x100k.csv"
+    for n in 10 50 200 2500 5000; do "$bin" synth --xrays "$n" --seed 1 --out "$work/x$n.csv"; done
+fi
 
 # measure LABEL TARGET -- COMMAND...: best wall time and its peak RSS over $runs runs.
 measure() {
@@ -52,6 +67,54 @@ measure() {
     fi
 }
 
+# `phalanx rig` (see the header), each rig's fingers placed anew (--replace-fingers: every
+# hand here has finger bones), and `audit --fix` on the mannequin. The shared rigs' rows
+# are skipped with the reason when ../shared/rigs is not there.
+rig_section() {
+    echo "Rigging (\`phalanx rig\`: the fingers found on the skin, the joints placed, the skin"
+    echo "weighted, the copy written, read back and audited) and the mannequin's fix:"
+    echo
+    echo "| workload | target | wall time | peak memory |"
+    echo "|---|---|---|---|"
+    measure "rig --replace-fingers, 50,000-triangle hand (tube_hand right 32 0.865 0)" "< 1 s" -- \
+        "$bin" rig "$work/hand50k-right.glb" --replace-fingers --out "$work/rig50k.glb" --force
+    local shared=../shared/rigs
+    if [ ! -d "$shared" ]; then
+        echo
+        echo "(the shared rigs' rows skipped: $shared is not there)"
+        echo
+        return
+    fi
+    # The largest shared rig: the GDQuest mannequin (a body and two hands, 13,832
+    # triangles), its right hand; the largest hand alone: the SteamVR right glove (FBX,
+    # 4,900 triangles).
+    local mannequin=$shared/gdquest-mannequiny/mannequiny.glb glove=$shared/steamvr-gloves/vr_glove_model.fbx
+    local f
+    for f in "$mannequin" "$glove"; do
+        if [ ! -f "$f" ]; then
+            echo
+            echo "(the shared rigs' rows skipped: $f is not there)"
+            echo
+            return
+        fi
+    done
+    measure "rig --replace-fingers --side right, GDQuest mannequin (body, 13,832 triangles)" "< 1 s" -- \
+        "$bin" rig "$mannequin" --replace-fingers --side right --out "$work/rig-mannequin.glb" --force
+    measure "rig --replace-fingers, FBX (SteamVR right glove, 4,900 triangles)" "< 1 s" -- \
+        "$bin" rig "$glove" --replace-fingers --out "$work/rig-glove.glb" --force
+    measure "audit --fix, GDQuest mannequin" "< 0.5 s" -- \
+        "$bin" audit "$mannequin" --fix "$work/fixed-mannequin.glb" --force
+    echo
+}
+
+echo "Machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(uname -sr); $($bin --version)"
+echo "Date: $(date -u +%Y-%m-%d); best of $runs runs; 10,000 resamples unless noted"
+echo
+if [ "$only" = rig ]; then
+    rig_section
+    exit 0
+fi
+
 # The NumPy peer's own Python, with the pinned numpy and scipy; what venv and pip
 # printed is kept for the reason when the peer has to be skipped.
 venv=target/bench-venv
@@ -61,9 +124,6 @@ if ! peer_ready; then
     { python3 -m venv "$venv" && "$py" -m pip install -q -r bench/requirements.txt; } > "$work/venv.txt" 2>&1 || true
 fi
 
-echo "Machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(uname -sr); $($bin --version)"
-echo "Date: $(date -u +%Y-%m-%d); best of $runs runs; 10,000 resamples unless noted"
-echo
 if peer_ready; then
     echo "phalanx against the NumPy peer (bench/peer.py: chunked index matrices, bincount, BLAS"
     echo "matrix product; $("$py" -c 'import numpy, scipy; print("numpy", numpy.__version__, "scipy", scipy.__version__)')),"
@@ -133,3 +193,5 @@ echo "|---|---|---|---|"
 for b in 2500 5000 10000 20000; do
     measure "$b resamples" "" -- "$bin" stats --data "$work/x10k.csv" --format json --resamples "$b"
 done
+echo
+rig_section

@@ -2,7 +2,7 @@
 # Fills the fuzzing corpora from the test fixtures and the shipped data.
 set -euo pipefail
 cd "$(dirname "$0")"
-mkdir -p corpus/measurements corpus/claims corpus/rig corpus/fbx
+mkdir -p corpus/measurements corpus/claims corpus/rig corpus/fbx corpus/make
 cp ../data/measurements.csv corpus/measurements/paper.csv
 cp ../data/paper_claims.csv corpus/claims/paper.csv
 for f in ../tests/fixtures/bad/*.csv ../tests/fixtures/fuzz/*; do
@@ -10,6 +10,7 @@ for f in ../tests/fixtures/bad/*.csv ../tests/fixtures/fuzz/*; do
     case "$(basename "$f")" in
         claims_*) cp "$f" corpus/claims/ ;;
         rig_*) cp "$f" corpus/rig/ ;;
+        make_*) cp "$f" corpus/make/ ;;
         *) cp "$f" corpus/measurements/ ;;
     esac
 done
@@ -52,4 +53,7 @@ PY
         esac
     done
 fi
-echo "seeded: $(ls corpus/measurements | wc -l) measurement inputs, $(ls corpus/claims | wc -l) claims inputs, $(ls corpus/rig | wc -l) rigs, $(ls corpus/fbx | wc -l) FBX rigs"
+# The make target (`phalanx rig` in memory) reads any rig the others read: every
+# glTF rig and every FBX rig of theirs.
+cp corpus/rig/* corpus/fbx/* corpus/make/ 2> /dev/null || true
+echo "seeded: $(ls corpus/measurements | wc -l) measurement inputs, $(ls corpus/claims | wc -l) claims inputs, $(ls corpus/rig | wc -l) rigs, $(ls corpus/fbx | wc -l) FBX rigs, $(ls corpus/make | wc -l) rigs to make"

@@ -18,6 +18,7 @@ mod import;
 mod lab;
 mod literature;
 mod make;
+mod make_fuzz;
 mod option_ranges;
 mod options;
 mod place;
