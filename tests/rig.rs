@@ -741,6 +741,37 @@ fn rig_refuses_what_is_not_a_hand_at_rest_and_writes_nothing() {
     .stderr_has("--replace-fingers");
     assert!(!out.exists(), "nothing written for a rigged hand");
 
+    // The side given is not the side the bones name.
+    let out = wd.path().join("wrong-side.glb");
+    let left = vendored_hands()
+        .into_iter()
+        .next()
+        .expect("a vendored hand");
+    let (json, bin) = unglb(&std::fs::read(&left).unwrap());
+    let mut named = json.clone();
+    if let Some(w) = named["nodes"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|n| n["name"] == "wrist")
+    {
+        // WebXR's names say no side; a hand bone named for the left does.
+        w["name"] = json!("LeftHand");
+    }
+    let input = wd.write("named-left.glb", glb(&named, &bin));
+    wd.run_in_repo(&[
+        "rig",
+        input.to_str().unwrap(),
+        "--replace-fingers",
+        "--side",
+        "right",
+        "--out",
+        out.to_str().unwrap(),
+    ])
+    .data_error()
+    .stderr_has("give --side left");
+    assert!(!out.exists(), "nothing written for the wrong side");
+
     // Two hands, no side.
     if let Some(body) = shared_rig_files().and_then(|rigs| {
         rigs.into_iter()

@@ -76,6 +76,15 @@ pub fn make(
     sides.dedup();
     let named: Vec<Side> = sides.iter().flatten().copied().collect();
     let side = match (opts.side, named.as_slice()) {
+        (Some(s), [one]) if *one != s => {
+            return Err(MakeError::Refused(format!(
+                "--side {}: the file's bones name only its {} hand; give --side {} or leave \
+                 it out",
+                s.name(),
+                one.name(),
+                one.name()
+            )));
+        }
         (Some(s), _) => Some(s),
         (None, [one]) => Some(*one),
         (None, [_, _, ..]) => {
