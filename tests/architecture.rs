@@ -67,7 +67,10 @@ const RIG_ALLOWED: &[(&str, &[&str])] = &[
     ("fix", &["read", "judge"]),
     ("make", &["read", "find", "judge", "fix"]),
     ("deform", &["read", "judge"]),
-    ("session", &["read", "find", "judge", "fix", "make", "deform"]),
+    (
+        "session",
+        &["read", "find", "judge", "fix", "make", "deform"],
+    ),
 ];
 
 /// Crates a room must not use: the statistics know nothing of files, plots,
