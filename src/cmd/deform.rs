@@ -171,8 +171,19 @@ pub(super) fn compare_fixed(
     rig: &Path,
     req: &DeformRequest<'_>,
 ) -> Result<(FileDeformation, FileDeformation, Verdicts), Error> {
-    let a = deform_parsed(&fixed.original, rig, req)?;
-    let b = deform_parsed(&fixed.fixed, rig, req)?;
+    compare_parsed(&fixed.original, &fixed.fixed, rig, req)
+}
+
+/// Deforms two parsed versions of the rig at `rig` (A, B) alike and compares
+/// them per joint.
+pub(super) fn compare_parsed(
+    a: &GltfFile,
+    b: &GltfFile,
+    rig: &Path,
+    req: &DeformRequest<'_>,
+) -> Result<(FileDeformation, FileDeformation, Verdicts), Error> {
+    let a = deform_parsed(a, rig, req)?;
+    let b = deform_parsed(b, rig, req)?;
     let verdicts = compare(&a, &b)?;
     Ok((a, b, verdicts))
 }
@@ -240,7 +251,7 @@ pub(super) fn figures(
 /// The labels' font, read from the working directory
 /// ([`crate::report::render3d::FONT_FILE`]); without it the figures are drawn
 /// without their labels and scale numbers, and a note says so and what to do.
-fn label_font() -> Option<Vec<u8>> {
+pub(super) fn label_font() -> Option<Vec<u8>> {
     let path = crate::report::render3d::FONT_FILE;
     match std::fs::read(path) {
         Ok(bytes) => Some(bytes),

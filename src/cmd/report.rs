@@ -12,7 +12,7 @@ use crate::error::Error;
 use crate::report::deform as deform_view;
 use crate::report::render::Templates;
 use crate::report::view::{
-    AtlasInputs, DeformSection, LiteratureInputs, ReferenceAudit, ReportInputs,
+    AtlasInputs, DeformSection, LiteratureInputs, MadeSection, ReferenceAudit, ReportInputs,
 };
 use crate::report::writer::OutputFile;
 use crate::report::{self, Formats};
@@ -32,6 +32,8 @@ const DEFAULT_ATLAS: &str = "data/atlas/measurements.csv";
 const DEFAULT_LITERATURE: &str = "data/literature/buryanov-kotiuk-2010.csv";
 /// The real rig whose audit and deformation the report shows (MIT, vendored).
 const DEFAULT_DEFORM_RIG: &str = "data/rigs/webxr-generic-hand/right.glb";
+/// The rigged hand the report rigs again from its skin (MIT, vendored).
+const DEFAULT_MADE_RIG: &str = "data/rigs/webxr-generic-hand/left.glb";
 /// Sample sizes of the coverage measured on the atlas's hands.
 const ATLAS_SIZES: [usize; 5] = [3, 5, 10, 20, 50];
 /// Samples per size of that coverage, and the resamples of its random bootstraps (n of 8
@@ -89,6 +91,9 @@ pub(crate) struct Args {
     /// A rigged hand (glTF) audited and deformed as it is and as `audit --fix` writes it, in "Popular rigs"; absent = no such part
     #[arg(long, value_name = "PATH", default_value = DEFAULT_DEFORM_RIG)]
     deform_rig: PathBuf,
+    /// A rigged hand (glTF) rigged again from its skin as `rig --replace-fingers` does (in memory) and shown beside the artist's rig, in "Popular rigs" (needs --atlas); absent = no such part
+    #[arg(long, value_name = "PATH", default_value = DEFAULT_MADE_RIG)]
+    made_rig: PathBuf,
     /// Target half-width of the confidence interval of a relative mean, for "X-rays needed": greater than 0, at most 1
     #[arg(long, value_name = "W", default_value_t = 0.005, value_parser = parse_target, allow_negative_numbers = true)]
     target: f64,
@@ -165,17 +170,21 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let paper_data = dataset;
     // The fingertip's soft tissue of the published table, for rigs whose tips differ from the data's.
     let soft_tissue = super::soft_tissue_from(&args.literature)?;
-    // The joint regions' shape borrows the atlas's correlations, as `audit`
-    // does (its default metacarpals' dataset), over any data.
-    let shape = match &atlas_data {
+    // The atlas, over any data, as `audit` and `rig` take their default
+    // metacarpals' dataset: the joint regions' shape borrows its
+    // correlations, and its means place the MCPs of "A hand rigged from its
+    // skin".
+    let atlas_means = match &atlas_data {
         Some(atlas) => Some(crate::analysis::analyse_without_bootstrap(atlas, &settings)),
         None if args.atlas.is_file() => Some(crate::analysis::analyse_without_bootstrap(
             &Dataset::load(&args.atlas)?,
             &settings,
         )),
         None => None,
-    }
-    .map(|atlas| atlas.shape_priors(crate::analysis::region::PRIOR_HANDS));
+    };
+    let shape = atlas_means
+        .as_ref()
+        .map(|atlas| atlas.shape_priors(crate::analysis::region::PRIOR_HANDS));
     let rigs = audit_references(references, &a, &soft_tissue, shape.as_ref());
     // The region's calibration, simulated for the index finger (the paper's
     // worked example) with its prior, as the report's methods show it.
@@ -233,16 +242,26 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         settings.confidence,
     )?;
     drop(paper_data);
-    let wrist = match &atlas {
+    let wrist = match &atlas_means {
         Some(_) => session::wrist_ratios_beside(&args.atlas)?,
         None => None,
     };
-    let deform = deform_section(
-        &args.deform_rig,
-        &a,
-        &soft_tissue,
-        atlas.as_ref().map(|x| (&x.analysis, wrist.as_ref())),
-    )?;
+    // The two parts on real rigs are independent: made side by side.
+    let (deform, made) = rayon::join(
+        || {
+            deform_section(
+                &args.deform_rig,
+                &a,
+                &soft_tissue,
+                atlas.as_ref().map(|x| (&x.analysis, wrist.as_ref())),
+            )
+        },
+        || match &atlas_means {
+            Some(atlas) => made_section(&args.made_rig, &a, &soft_tissue, (atlas, wrist.as_ref())),
+            None => Ok(None),
+        },
+    );
+    let (deform, made) = (deform?, made?);
     let timestamp = args
         .timestamp
         .then(|| humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string());
@@ -266,6 +285,7 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
         atlas: atlas.as_ref(),
         literature: literature.as_ref(),
         deform: deform.as_ref(),
+        made: made.as_ref(),
         shape: shape.as_ref(),
         calibration: calibration.as_ref().map(|(s, c)| (s, c.as_slice())),
     };
@@ -418,21 +438,7 @@ fn deform_section(
     let fixed = session::fix_in_memory_with(rig, None, a, soft_tissue, atlas)?;
     let (da, db, verdicts) = super::deform::compare_fixed(&fixed, rig, &req)?;
     let (files, renders) = super::deform::figures(&da, Some(&db), true)?;
-    let slug: String = rig
-        .parent()
-        .and_then(|p| p.file_name())
-        .or_else(|| rig.file_stem())
-        .map(|n| n.to_string_lossy().to_string())
-        .unwrap_or_default()
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '-'
-            }
-        })
-        .collect();
+    let slug = slug(rig);
     Ok(Some(deform_view::section(deform_view::SectionInputs {
         a: &da,
         b: &db,
@@ -446,6 +452,90 @@ fn deform_section(
         figures: files.into_iter().zip(renders).collect(),
         stem: &format!("deform-{slug}"),
     })))
+}
+
+/// The part on a hand rigged from its skin: `rig` rigged again as `phalanx
+/// rig RIG --replace-fingers` rigs it (in memory; its MCPs from `atlas`'s
+/// means and wrist ratios, as `rig` places them from its default
+/// metacarpals' dataset), beside the rig as given, both in the fist.
+/// `None` when the file is absent.
+fn made_section(
+    rig: &Path,
+    a: &Analysis,
+    soft_tissue: &SoftTissue,
+    atlas: (&Analysis, Option<&WristRatios>),
+) -> Result<Option<MadeSection>, Error> {
+    use crate::rig::make::{MakeOptions, names::Names, write::WriteOptions};
+    if !rig.exists() {
+        return Ok(None);
+    }
+    let loaded = crate::rig::Rig::load(rig, None)?;
+    let make = MakeOptions {
+        side: None,
+        wrist: None,
+        fingers: None,
+        write: WriteOptions {
+            names: Names::Openxr,
+            replace_fingers: true,
+            glb: true,
+        },
+    };
+    let label = format!("{} (as rig --replace-fingers writes it)", rig.display());
+    let rigged = session::rig_in_memory(
+        &loaded,
+        &label,
+        a,
+        Some(atlas),
+        soft_tissue,
+        &make,
+        crate::analysis::region::PRIOR_HANDS,
+    )?;
+    let copy = crate::rig::GltfFile::from_bytes(&label, &rigged.made.written.bytes)?;
+    let pose = Pose::fist();
+    let req = super::deform::request(rig, &pose, Skinning::Lbs);
+    let (da, db, verdicts) = super::deform::compare_parsed(&loaded.file, &copy, rig, &req)?;
+    let side = rigged.made.hand.side;
+    let artist: Vec<_> = loaded
+        .chains
+        .iter()
+        .filter(|c| c.side.is_none_or(|s| s == side))
+        .cloned()
+        .collect();
+    let stem = format!("made-{}-{}", slug(rig), side.name());
+    let font = super::deform::label_font();
+    Ok(Some(report::rig::made_section(
+        report::rig::MadeInputs {
+            rig: &rig.display().to_string(),
+            artist: &artist,
+            rigged: &rigged,
+            a: &da,
+            b: &db,
+            verdicts: &verdicts,
+            pose: &pose,
+            method: Skinning::Lbs,
+            stem: &stem,
+        },
+        font.as_deref(),
+    )?))
+}
+
+/// A rig file's name for the report's figures: its folder's name (else
+/// its own), lower case, each other character a dash.
+fn slug(rig: &Path) -> String {
+    rig.parent()
+        .and_then(|p| p.file_name())
+        .or_else(|| rig.file_stem())
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default()
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '-'
+            }
+        })
+        .collect()
 }
 
 /// The report files asked for with --format.

@@ -263,7 +263,7 @@ fn heading(pose: &Pose, method: Skinning) -> String {
 /// "fingers MCP 60, PIP 90, DIP 60 degrees" when all four are, else each
 /// group named ("index MCP 0, PIP 0, DIP 0; middle, ring and little MCP 60,
 /// ...").
-fn pose_line(pose: &Pose, method: Skinning) -> String {
+pub(crate) fn pose_line(pose: &Pose, method: Skinning) -> String {
     let t = &pose.fingers[0];
     let mut groups: Vec<(crate::rig::deform::pose::Angles, Vec<&str>)> = Vec::new();
     for (k, a) in pose.fingers.iter().enumerate().skip(1) {

@@ -118,6 +118,9 @@ fn pages(
         if let Some(d) = inputs.deform {
             files.extend(d.figures.iter().cloned());
         }
+        if let Some(m) = inputs.made {
+            files.extend(m.figures.iter().cloned());
+        }
     }
     Ok(files)
 }

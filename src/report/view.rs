@@ -54,6 +54,9 @@ pub struct ReportView {
     /// Set when the deformation rig was found: its audit and its skin as it is
     /// and as `audit --fix` writes it.
     pub deform: Option<DeformView>,
+    /// Set when the hand to rig was found: its joints made from its skin
+    /// against the artist's, and both rigs in the fist.
+    pub made: Option<MadeView>,
     /// The joint region rigs are judged against: its shape and calibration.
     pub region: Option<super::region::RegionView>,
     pub plots: Vec<PlotView>,
@@ -531,6 +534,9 @@ pub struct ReportInputs<'a> {
     /// A real rig audited and deformed (`data/rigs/webxr-generic-hand/right.glb`);
     /// `None`: no such part.
     pub deform: Option<&'a DeformSection>,
+    /// A rigged hand rigged again from its skin
+    /// (`data/rigs/webxr-generic-hand/left.glb`); `None`: no such part.
+    pub made: Option<&'a MadeSection>,
     /// The joint regions' prior shape (the atlas's correlations); `None`: the
     /// X-rays' own.
     pub shape: Option<&'a crate::analysis::region::ShapePriors>,
@@ -636,6 +642,54 @@ pub struct DeformFigureView {
     pub caption: String,
 }
 
+/// A hand rigged from its skin in the report (`rig --replace-fingers`, in
+/// memory): the view, and its figures under `plots/`.
+#[derive(Debug, Clone)]
+pub struct MadeSection {
+    pub view: MadeView,
+    /// The PNG figures, under `plots/`.
+    pub figures: Vec<super::writer::OutputFile>,
+}
+
+/// What the report shows of a rigged hand rigged again from its skin: the
+/// made joints against the artist's, and both rigs in the fist.
+#[derive(Debug, Clone, Serialize)]
+pub struct MadeView {
+    /// The rig file.
+    pub rig: String,
+    /// The command that rigs the hand as the part does.
+    pub command: String,
+    /// What it made, in one sentence that follows the command.
+    pub made: String,
+    /// Per finger: the made joints' distances from the artist's, and the audit.
+    pub rows: Vec<MadeRow>,
+    /// What the part shows, one sentence each.
+    pub sentences: Vec<String>,
+    /// The made joints and the artist's on the skin.
+    pub joints: DeformFigureView,
+    /// Both rigs posed in the fist.
+    pub fist: DeformFigureView,
+    /// Pose and skinning in one sentence.
+    pub pose: String,
+    /// Which rig deforms better in the fist, in one sentence.
+    pub fist_summary: String,
+}
+
+/// One finger of a hand rigged from its skin.
+#[derive(Debug, Clone, Serialize)]
+pub struct MadeRow {
+    pub finger: String,
+    /// The made joint's distance from the artist's, mm ("n/a": the finger
+    /// has no such joint, or the artist's rig none to compare with).
+    pub mcp: String,
+    /// PIP, or the thumb's IP.
+    pub pip: String,
+    pub dip: String,
+    pub tip: String,
+    /// The written copy's audit: inside or outside, T^2 of its bound.
+    pub audit: String,
+}
+
 /// A reference rig with its judgement.
 #[derive(Debug, Clone)]
 pub struct ReferenceAudit {
@@ -721,6 +775,7 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         atlas: inputs.atlas.map(|x| atlas_view(a, x)),
         literature: inputs.literature.map(literature_view),
         deform: inputs.deform.map(|d| d.view.clone()),
+        made: inputs.made.map(|m| m.view.clone()),
         region: super::region::region_view(a, inputs.shape, inputs.calibration),
         plots: plots.iter().map(plot).collect(),
     }

@@ -732,24 +732,64 @@ pub fn rig(req: &RigRequest<'_>) -> Result<Rigged, Error> {
         Some(path) => wrist_ratios_beside(path)?,
         None => None,
     };
-    let proportions = super::make::place::Proportions::new(
+    let mut make = req.make;
+    make.write.glb = glb;
+    let rigged = rig_in_memory(
+        &rig,
+        &req.output.display().to_string(),
         &analysis,
-        atlas.as_ref(),
-        wrist.as_ref(),
-        req.soft_tissue.clone(),
+        atlas.as_ref().map(|a| (a, wrist.as_ref())),
+        &req.soft_tissue,
+        &make,
+        req.prior_hands,
+    )?;
+    let bytes = &rigged.made.written.bytes;
+    crate::atomic::replace(req.output, bytes).map_err(Error::write(req.output))?;
+    Ok(Rigged {
+        analysis,
+        made: rigged.made,
+        audit: rigged.audit,
+        output: req.output.to_path_buf(),
+    })
+}
+
+/// A hand rigged in memory: what [`rig`] writes (the bytes are
+/// `made.written.bytes`), not written.
+pub struct RiggedInMemory {
+    pub made: super::make::Made,
+    /// The copy read back and judged as `audit` would judge it.
+    pub audit: AuditedRig,
+}
+
+/// Rigs the hand `rig` as [`rig`] does, against statistics already computed
+/// (`analysis`; the atlas's with its wrist ratios, when given), and writes
+/// nothing: the copy (a GLB or .gltf as `make.write.glb` says) is read back
+/// as `label` and judged, its joint regions shaped by the atlas weighted as
+/// `prior_hands` hands.
+pub fn rig_in_memory(
+    rig: &Rig,
+    label: &str,
+    analysis: &Analysis,
+    atlas: Option<(&Analysis, Option<&judge::WristRatios>)>,
+    soft_tissue: &SoftTissue,
+    make: &super::make::MakeOptions,
+    prior_hands: f64,
+) -> Result<RiggedInMemory, Error> {
+    let proportions = super::make::place::Proportions::new(
+        analysis,
+        atlas.map(|(a, _)| a),
+        atlas.and_then(|(_, w)| w),
+        soft_tissue.clone(),
     );
-    let mut opts = req.make;
-    opts.write.glb = glb;
-    let dir = req.input.parent().unwrap_or(Path::new("."));
-    let made = super::make::make(&rig, &proportions, &opts, dir).map_err(|e| match e {
+    let dir = rig.file.dir.as_deref().unwrap_or(Path::new("."));
+    let made = super::make::make(rig, &proportions, make, dir).map_err(|e| match e {
         super::make::MakeError::File(e) => Error::Data(e),
         super::make::MakeError::Find(e) => Error::Data(e.in_file(&rig.file.label)),
         super::make::MakeError::Refused(why) => {
             Error::Data(crate::dataset::DataError::whole_file(&rig.file.label, why))
         }
     })?;
-    let label = req.output.display().to_string();
-    let re = GltfFile::from_bytes(&label, &made.written.bytes)
+    let re = GltfFile::from_bytes(label, &made.written.bytes)
         .and_then(|f| Rig::from_file(f, None))
         .map_err(|e| {
             Error::render(
@@ -761,10 +801,10 @@ pub fn rig(req: &RigRequest<'_>) -> Result<Rigged, Error> {
             )
         })?;
     let options = AuditOptions {
-        soft_tissue: req.soft_tissue.clone(),
+        soft_tissue: soft_tissue.clone(),
         ..AuditOptions::default()
     };
-    let options = with_shape(&options, atlas.as_ref(), req.prior_hands);
+    let options = with_shape(&options, atlas.map(|(a, _)| a), prior_hands);
     // The made hand's chains only: a body's other hand is not this rig's.
     let side = made.hand.side;
     let chains: Vec<_> = re
@@ -777,25 +817,16 @@ pub fn rig(req: &RigRequest<'_>) -> Result<Rigged, Error> {
         &re.file.label,
         &chains,
         &re.notes,
-        &analysis,
+        analysis,
         &options,
         re.weights.as_ref(),
     );
-    if let Some(atlas) = &atlas {
-        audited.judge_rays(
-            atlas,
-            wrist.as_ref(),
-            &analysis,
-            &options,
-            re.weights.as_ref(),
-        );
+    if let Some((atlas, wrist)) = atlas {
+        audited.judge_rays(atlas, wrist, analysis, &options, re.weights.as_ref());
     }
-    crate::atomic::replace(req.output, &made.written.bytes).map_err(Error::write(req.output))?;
-    Ok(Rigged {
-        analysis,
+    Ok(RiggedInMemory {
         made,
         audit: audited,
-        output: req.output.to_path_buf(),
     })
 }
 
