@@ -3,7 +3,9 @@
 //! finger of known length, eqs. 2 and 5).
 //!
 //! For each finger (not the thumb), its axis from the tip back into the palm:
-//! - **The tip** is the skin's end on the axis ([`super::find`]).
+//! - **The tip** is the skin's end along the last bone, as the audit reads
+//!   it: the finder's tip carried on along the laid DIP -> tip direction to
+//!   the farthest reach of the finger's skin ([`crate::rig::find`]).
 //! - **The MCP** lies on the axis (continued straight into the palm as far as
 //!   needed) where the wrist-to-MCP distance w over the finger's bone length J
 //!   is the atlas's mean y = w/J: |wrist - M| = y J, J = (1 - q) L, L the
@@ -26,9 +28,10 @@
 //! joint's rotation centre lies dorsal of that centre, in the head of the bone
 //! before it, under the thin skin and extensor hood of the back of the finger
 //! while the flexor tendons and the pulp thicken the palm side. Each joint of
-//! the fingers is moved [`DORSAL`] of the local radius towards the back of the
-//! hand (away from the palm's normal, across the axis); the thumb's joints,
-//! whose back faces across the palm, stay on its axis. Cost: O(m log) per
+//! the fingers, and the thumb's CMC, is put at [`DEPTH`] of the skin's
+//! thickness from the back (along the palm's normal made square to the
+//! finger, the thickness found by casting that line through the skin); the
+//! thumb's other joints, whose back faces across the palm, stay on its axis. Cost: O(m log) per
 //! finger for m axis points.
 
 use crate::analysis::placement::Joint;
