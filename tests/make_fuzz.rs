@@ -10,7 +10,7 @@
 //! `session::rig` does before it writes: it is made or refused, never a
 //! panic. The mutations are the same on every machine (ChaCha8, fixed seeds).
 
-use crate::common::{manifest_dir, paper_data, shared_rig_files};
+use crate::common::{glb, manifest_dir, paper_data, shared_rig_files};
 use phalanx::analysis::{Analysis, Settings, analyse_without_bootstrap};
 use phalanx::dataset::{Dataset, SummaryTable};
 use phalanx::rig::judge::SoftTissue;
@@ -131,30 +131,6 @@ fn make_path(a: &Analysis, p: &Proportions, data: &[u8], knob: u8) -> Reached {
         );
     }
     reached
-}
-
-/// A GLB container of `json` and `bin`.
-fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut text = serde_json::to_vec(json).unwrap();
-    while !text.len().is_multiple_of(4) {
-        text.push(b' ');
-    }
-    let mut bin = bin.to_vec();
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let total = 12 + 8 + text.len() + 8 + bin.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend(b"glTF");
-    out.extend(2u32.to_le_bytes());
-    out.extend((total as u32).to_le_bytes());
-    out.extend((text.len() as u32).to_le_bytes());
-    out.extend(0x4E4F_534Au32.to_le_bytes());
-    out.extend(text);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend(0x004E_4942u32.to_le_bytes());
-    out.extend(bin);
-    out
 }
 
 /// The JSON chunk's range and the binary chunk's range of a GLB, when its

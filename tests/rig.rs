@@ -6,7 +6,7 @@
 //! rest shape kept, its deformation against the artist's, and its refusals.
 
 use crate::audit::hand::skinned_rest_vertices;
-use crate::common::{Workdir, manifest_dir, shared_rig_files};
+use crate::common::{Workdir, glb, manifest_dir, shared_rig_files, unglb};
 use glam::DVec3;
 use phalanx::dataset::Finger;
 use phalanx::rig::naming::Side;
@@ -361,40 +361,6 @@ fn rigged_fingers_against_the_artists_joints_on_every_shared_rig() {
         inner <= 2.0,
         "the median rig's PIPs and DIPs are {inner:.1} mm sideways of the artists' axes\n{table}"
     );
-}
-
-/// A GLB container of `json` and `bin`.
-fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut text = serde_json::to_vec(json).unwrap();
-    while !text.len().is_multiple_of(4) {
-        text.push(b' ');
-    }
-    let mut bin = bin.to_vec();
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let total = 12 + 8 + text.len() + 8 + bin.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend(b"glTF");
-    out.extend(2u32.to_le_bytes());
-    out.extend((total as u32).to_le_bytes());
-    out.extend((text.len() as u32).to_le_bytes());
-    out.extend(0x4E4F_534Au32.to_le_bytes());
-    out.extend(text);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend(0x004E_4942u32.to_le_bytes());
-    out.extend(bin);
-    out
-}
-
-/// The JSON and binary chunk of a GLB.
-fn unglb(bytes: &[u8]) -> (Value, Vec<u8>) {
-    let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
-    let len = word(12);
-    let json = serde_json::from_slice(&bytes[20..20 + len]).unwrap();
-    let at = 20 + len;
-    let bin = bytes[at + 8..at + 8 + word(at)].to_vec();
-    (json, bin)
 }
 
 /// `json` with every node whose name `drop` says deleted (the indices of the

@@ -424,3 +424,39 @@ pub fn sha256sum(path: &Path) -> String {
         .expect("sha256sum printed a digest")
         .to_string()
 }
+
+/// A GLB container of `json` and `bin` (glTF 2.0's binary layout, written
+/// here from the specification: a 12-byte header, a JSON chunk padded with
+/// spaces and a BIN chunk padded with zeros, each to 4 bytes).
+pub fn glb(json: &serde_json::Value, bin: &[u8]) -> Vec<u8> {
+    let mut text = serde_json::to_vec(json).unwrap();
+    while !text.len().is_multiple_of(4) {
+        text.push(b' ');
+    }
+    let mut bin = bin.to_vec();
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let total = 12 + 8 + text.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend(b"glTF");
+    out.extend(2u32.to_le_bytes());
+    out.extend((total as u32).to_le_bytes());
+    out.extend((text.len() as u32).to_le_bytes());
+    out.extend(0x4E4F_534Au32.to_le_bytes());
+    out.extend(text);
+    out.extend((bin.len() as u32).to_le_bytes());
+    out.extend(0x004E_4942u32.to_le_bytes());
+    out.extend(bin);
+    out
+}
+
+/// The JSON and binary chunk of a GLB written as [`glb`] writes one.
+pub fn unglb(bytes: &[u8]) -> (serde_json::Value, Vec<u8>) {
+    let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+    let len = word(12);
+    let json = serde_json::from_slice(&bytes[20..20 + len]).unwrap();
+    let at = 20 + len;
+    let bin = bytes[at + 8..at + 8 + word(at)].to_vec();
+    (json, bin)
+}
