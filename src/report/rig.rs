@@ -73,9 +73,13 @@ pub(crate) fn table(r: &Rigged, width: Width) -> String {
     let mut hidden = Hidden::new();
     let mut out = t.render(width, 0, &mut hidden);
     hidden.append_to(&mut out, width);
-    for n in &r.made.notes {
-        out.push_str(&format!("note: {n}\n"));
-    }
+    let notes: String = r
+        .made
+        .notes
+        .iter()
+        .map(|n| format!("note: {n}\n"))
+        .collect();
+    out.push_str(&super::layout::fit_text(&notes, width));
     out
 }
 
