@@ -2,8 +2,10 @@
 //!
 //! Reproduces Chaudhry, You, Jin and Zhang, "Statistical Analysis of Joint
 //! Determination for Skeleton Driven Animation of Human Hands", and goes beyond
-//! it. The `phalanx` command is a thin layer over this library; everything it
-//! computes is reachable from here.
+//! it. The `phalanx` command is a layer over this library: the statistics,
+//! the rigs' audits, fixes, deformation and making, and the report are
+//! reachable from here; the tracking of a dataset (`add`, `remove`,
+//! `snapshot`) and the terminal's text are the command's own.
 //!
 //! # Example
 //!
@@ -48,7 +50,7 @@
 //!   [`Settings`](analysis::Settings) into an [`Analysis`](analysis::Analysis):
 //!   per finger a [`FingerAnalysis`](analysis::FingerAnalysis) with each
 //!   X-ray's values and a [`QuantityStats`](analysis::QuantityStats) per
-//!   quantity (eqs. 1-9 of the paper plus SD, SE, median and four intervals).
+//!   quantity (eqs. 1-10 of the paper plus SD, SE, median and four intervals).
 //!   Beside it: [`claims::check`](analysis::claims::check) (the paper's numbers
 //!   recomputed), [`coverage`](analysis::coverage) (how often each interval
 //!   covers), [`groups`](analysis::groups) (statistics per sex, age band or
@@ -59,8 +61,10 @@
 //!   of the mean and the prediction interval), and the seeded bootstrap
 //!   ([`bootstrap::resample_means`](stats::bootstrap::resample_means),
 //!   [`bootstrap::Plan`](stats::bootstrap::Plan)).
-//! - [`rig`]: glTF rigs, in sub-rooms [`read`](rig::read), [`judge`](rig::judge),
-//!   [`fix`](rig::fix), [`deform`](rig::deform) and [`session`](rig::session);
+//! - [`rig`]: glTF, VRM and FBX rigs (FBX read only), in sub-rooms
+//!   [`read`](rig::read), [`find`](rig::find), [`judge`](rig::judge),
+//!   [`fix`](rig::fix), [`make`](rig::make), [`deform`](rig::deform) and
+//!   [`session`](rig::session);
 //!   the paths below are re-exported. [`GltfFile`](rig::GltfFile) and [`Rig`](rig::Rig) read
 //!   a file's finger chains (with a [`map::NameMap`](rig::map::NameMap) for
 //!   unknown names); [`AuditedRig::of`](rig::AuditedRig::of) judges them
@@ -68,7 +72,9 @@
 //!   copy; [`session::audit`](rig::session::audit) does all three for a file;
 //!   [`reference`](rig::reference) reads the popular rigs of `data/rigs/`.
 //!   [`deform`](rig::deform) and [`skin`](rig::skin) measure skin deformation
-//!   of a curled hand (the `phalanx deform` command).
+//!   of a curled hand (the `phalanx deform` command); [`find`](rig::find)
+//!   finds a hand's fingers on its skin and [`make`](rig::make) rigs them
+//!   ([`session::rig`](rig::session::rig), the `phalanx rig` command).
 //! - [`report`]: everything shown. [`render`](report::render()) turns
 //!   [`ReportInputs`](report::view::ReportInputs) into the report files
 //!   ([`Formats`](report::Formats), [`Templates`](report::render::Templates)),
@@ -84,11 +90,12 @@
 //! # Inside
 //!
 //! Modules depend one way: `dataset` (ingest, validate) -> `analysis`
-//! (statistics) -> `rig` (read, judge, fix rigs) -> `report` (views, plots,
-//! writers) -> `cmd` (one module per command) -> `cli` (dispatch); `track`
-//! holds the file operations of tracking a dataset (add, snapshot). Two leaves
-//! serve them all: `stats`, the self-contained statistics core, and `format`,
-//! where every number shown becomes text. `atomic`, `format` and `track` are
+//! (statistics) -> `rig` (read, find, judge, fix, make, deform rigs) ->
+//! `report` (views, plots, writers) -> `cmd` (one module per command) -> `cli`
+//! (dispatch); `track` holds the file operations of tracking a dataset (add,
+//! remove, snapshot). Three leaves serve them all: `stats`, the self-contained
+//! statistics core; `format`, where the numbers shown become text; and
+//! `atomic`, which replaces a file whole or not at all. `atomic`, `format` and `track` are
 //! `pub(crate)` and `cmd` private: free to change without breaking a library
 //! user; every other module above is public.
 
