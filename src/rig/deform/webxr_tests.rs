@@ -253,58 +253,6 @@ fn the_webxr_hands_curl_into_a_fist() {
     }
 }
 
-/// Time and size of the whole deformation of a 30,000-triangle synthetic hand
-/// (both skinnings, all measures, the figure). Run in release:
-/// `cargo test --release --lib thirty_thousand -- --ignored --nocapture`.
-#[test]
-#[ignore = "a measurement, run by hand in release"]
-fn thirty_thousand_triangles() {
-    use super::synthetic::{HandSpec, tube_hand};
-    let rig = tube_hand(&HandSpec {
-        around: 32,
-        ring_spacing: 0.00144,
-        ..HandSpec::default()
-    });
-    eprintln!(
-        "{} vertices, {} triangles",
-        rig.mesh.positions.len(),
-        rig.mesh.triangles.len()
-    );
-    let start = std::time::Instant::now();
-    let posed = pose::pose_hand(&rig.skeleton, &rig.chains, &Pose::fist()).unwrap();
-    let lbs = deform(&rig.mesh, &rig.skeleton, &posed, Skinning::Lbs);
-    let t_lbs = start.elapsed();
-    let dqs = deform(&rig.mesh, &rig.skeleton, &posed, Skinning::Dqs);
-    let t_both = start.elapsed();
-    let meshes: Vec<MeshView<'_>> = [&lbs, &dqs]
-        .iter()
-        .map(|d| MeshView {
-            positions: &d.posed,
-            triangles: &rig.mesh.triangles,
-            strain: &d.vertex_strain,
-            focus: &[],
-        })
-        .collect();
-    let views = [View::side(&posed.frame), View::above(&posed.frame)];
-    let fig = Figure::layout(&meshes, &views, 360, 300);
-    let png = fig.render(&meshes, &["LBS", "DQS"], Some(&font())).unwrap();
-    let t_all = start.elapsed();
-    eprintln!(
-        "pose + LBS + measures: {:.3} s; + DQS + measures: {:.3} s; + figure ({} bytes): {:.3} s",
-        t_lbs.as_secs_f64(),
-        t_both.as_secs_f64(),
-        png.len(),
-        t_all.as_secs_f64()
-    );
-    let crossings: usize = lbs
-        .measures
-        .fingers
-        .iter()
-        .map(|f| f.self_intersections)
-        .sum();
-    eprintln!("LBS crossings: {crossings}");
-}
-
 /// The vendored label font, read as `phalanx` reads it (from the checkout).
 fn font() -> Vec<u8> {
     let path =
