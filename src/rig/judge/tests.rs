@@ -76,7 +76,11 @@ fn atlas_mean_mc_over_j(finger: &str) -> f64 {
 
 #[test]
 fn an_mcp_10_mm_towards_the_web_is_out_too_distal_on_the_metacarpal_line() {
-    let d = Dataset::load(Path::new("data/atlas/measurements.csv")).unwrap();
+    // The atlas is GPL data a package leaves out (Cargo.toml's exclude).
+    let Ok(d) = Dataset::load(Path::new("data/atlas/measurements.csv")) else {
+        eprintln!("skipped: data/atlas/measurements.csv is not readable (a package leaves it out)");
+        return;
+    };
     let atlas = analyse(&d, &Settings::default());
     let x = atlas_mean_mc_over_j("index");
     // A straight index finger along x: CMC at the origin, the metacarpal
