@@ -1,7 +1,8 @@
 //! The dependency direction of ARCHITECTURE.md, enforced: each room of `src/`
 //! may name only the rooms listed for it, each sub-room of `src/rig/` only the
-//! sub-rooms below it, the files of `src/rig/` import no cycle, and the rooms
-//! that must not know about files, plots or templates use none of those crates.
+//! sub-rooms below it, the files of `src/rig/` and of each room of `src/` (one
+//! level deep: a sub-folder counts as one file) import no cycle, and the rooms that must not know about files, plots or
+//! templates use none of those crates.
 //!
 //! Paths are read with `syn` from the code outside tests (`#[cfg(test)]` items
 //! and `tests.rs` / `*_tests.rs` files are left out): `use` trees, every path
@@ -545,6 +546,34 @@ impl Crate {
         }
         g
     }
+
+    /// The file graph of room `under` one level deep: a file directly in it is
+    /// its own node; a sub-folder and its files are one node, named by the
+    /// sub-folder's module file (`report/plots/*.rs` are `report/plots.rs`).
+    fn flat_graph(&self, under: &str) -> BTreeMap<PathBuf, BTreeSet<PathBuf>> {
+        let root = src().join(under);
+        let node = |f: &Path| -> PathBuf {
+            let rel = f.strip_prefix(&root).expect("a file of the room");
+            let mut parts = rel.components();
+            let first = parts.next().expect("a name").as_os_str().to_owned();
+            if parts.next().is_none() {
+                return f.to_path_buf();
+            }
+            let file = root.join(&first).with_extension("rs");
+            if file.is_file() {
+                file
+            } else {
+                root.join(&first).join("mod.rs")
+            }
+        };
+        let mut g: BTreeMap<PathBuf, BTreeSet<PathBuf>> = BTreeMap::new();
+        for (from, to) in self.graph(under) {
+            let from = node(&from);
+            let to: Vec<PathBuf> = to.iter().map(|t| node(t)).filter(|t| *t != from).collect();
+            g.entry(from).or_default().extend(to);
+        }
+        g
+    }
 }
 
 /// The room of a file (the first name of its module) and, for a file of
@@ -767,6 +796,120 @@ fn no_import_cycle_among_the_files_of_rig() {
         found.is_empty(),
         "import cycles among the files of rig/: {found:#?}"
     );
+}
+
+/// The rooms of src/ that are folders (the statistics are their own crate).
+fn folder_rooms() -> Vec<&'static str> {
+    ALLOWED
+        .iter()
+        .map(|(r, _)| *r)
+        .filter(|r| *r != "stats" && src().join(r).is_dir())
+        .collect()
+}
+
+/// Rooms whose files still import in a cycle (a `mod.rs` that names its
+/// children and is named by them): the check below holds every other room, and
+/// fails once one of these is fixed, so that it leaves this list.
+const CYCLES_OPEN: &[&str] = &["analysis", "dataset"];
+
+#[test]
+fn no_import_cycle_among_the_files_of_any_room() {
+    let krate = Crate::real();
+    let rooms = folder_rooms();
+    for room in ["analysis", "dataset", "rig", "report", "cmd"] {
+        assert!(
+            rooms.contains(&room),
+            "{room} is not a folder room: {rooms:?}"
+        );
+    }
+    let mut found = BTreeMap::new();
+    for room in rooms {
+        let cycles = cycles(&krate.flat_graph(room));
+        if cycles.is_empty() == CYCLES_OPEN.contains(&room) {
+            found.insert(room, cycles);
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "import cycles among the files of a room (a sub-folder counts as one file), or a \
+         room of CYCLES_OPEN without one: {found:#?}"
+    );
+}
+
+#[test]
+fn no_import_cycle_among_the_files_of_report() {
+    // `plots/` and `plots.rs` count as one file.
+    let g = Crate::real().flat_graph("report");
+    assert!(g.len() > 15, "the report graph has only {} files", g.len());
+    let edges: usize = g.values().map(BTreeSet::len).sum();
+    assert!(edges > 20, "the report graph has only {edges} edges");
+    // Edges the code is known to have (the old cycles', now one way): the words
+    // both comparisons share below them, the sentences terminal and report share
+    // below both.
+    for (from, to) in [
+        ("report/compare.rs", "report/compare_table.rs"),
+        ("report/compare.rs", "report/compare_words.rs"),
+        ("report/compare_table.rs", "report/compare_words.rs"),
+        ("report/text.rs", "report/view.rs"),
+        ("report/text.rs", "report/phrases.rs"),
+        ("report/view.rs", "report/phrases.rs"),
+    ] {
+        let (from, to) = (src().join(from), src().join(to));
+        assert!(
+            g[&from].contains(&to),
+            "{} -> {}: {:?}",
+            from.display(),
+            to.display(),
+            g[&from]
+        );
+    }
+    for (from, to) in [
+        ("report/compare_table.rs", "report/compare.rs"),
+        ("report/view.rs", "report/text.rs"),
+    ] {
+        let (from, to) = (src().join(from), src().join(to));
+        assert!(
+            !g[&from].contains(&to),
+            "{} -> {}",
+            from.display(),
+            to.display()
+        );
+    }
+    let found = cycles(&g);
+    assert!(
+        found.is_empty(),
+        "import cycles among the files of report/: {found:#?}"
+    );
+}
+
+#[test]
+fn the_cycle_finder_sees_the_old_cycles_of_report() {
+    // compare_table naming compare again (`use super::x`), and view naming text
+    // (a `super::x::` path in code and a `crate::report::x` path in a macro
+    // call), each naming items the other file defines.
+    let krate = Crate::with(&[
+        (
+            mod_path(&["report", "compare_table"]),
+            "use super::compare::{cohort_line, mean_sd};\nfn f(c: &C) -> String { cohort_line(c) }",
+        ),
+        (
+            mod_path(&["report", "view"]),
+            "fn g(a: &A) -> String { super::text::check(a, 80) }\n\
+             fn h() -> String { format!(\"{}\", crate::report::text::RECORDS_SHOWN) }",
+        ),
+    ]);
+    let g = krate.flat_graph("report");
+    let (compare, table, text, view) = (
+        src().join("report/compare.rs"),
+        src().join("report/compare_table.rs"),
+        src().join("report/text.rs"),
+        src().join("report/view.rs"),
+    );
+    assert!(g[&table].contains(&compare), "{:?}", g[&table]);
+    assert!(g[&view].contains(&text), "{:?}", g[&view]);
+    let found = cycles(&g);
+    assert!(found.contains(&vec![compare, table]), "{found:#?}");
+    assert!(found.contains(&vec![text, view]), "{found:#?}");
 }
 
 #[test]

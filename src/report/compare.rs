@@ -1,6 +1,7 @@
 //! Two cohorts compared, as text: the sentences of `phalanx compare` and the report's
 //! atlas section, the terminal tables (under 100 columns) and the CSV of everything.
 
+use super::compare_words::{Names, short};
 use super::csv_out::safe_cell;
 use super::layout::{Align, Give, Grid, Hidden, Width, fit_text};
 use crate::analysis::Quantity;
@@ -10,19 +11,6 @@ use crate::analysis::compare::{
 use crate::dataset::{Finger, is_pixel_unit};
 use crate::error::Error;
 use crate::format::{decimals, full, interval, level, num, percent, signed};
-
-/// How the two cohorts are called in sentences: "A" and "B" on the terminal, "the paper"
-/// and "the atlas" in the report.
-#[derive(Debug, Clone, Copy)]
-pub struct Names<'a> {
-    pub a: &'a str,
-    pub b: &'a str,
-}
-
-impl Names<'_> {
-    /// The terminal's names.
-    pub const AB: Names<'static> = Names { a: "A", b: "B" };
-}
 
 /// Decimals of a quantity's values.
 fn d(q: Quantity) -> usize {
@@ -66,14 +54,6 @@ pub fn bootstrap_cell(c: &Comparison, q: Quantity) -> String {
 /// The difference B - A with its sign.
 pub fn difference_cell(c: &Comparison, q: Quantity) -> String {
     signed(c.difference, d(q))
-}
-
-/// The symbol of a quantity in a narrow table: "J~1", "J2/J1", "mc/J", "J".
-pub fn short(q: Quantity) -> &'static str {
-    match q {
-        Quantity::Total => "J",
-        other => other.symbol(),
-    }
 }
 
 /// "5 X-rays, unit 'image units', fingertips not recorded".

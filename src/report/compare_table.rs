@@ -3,7 +3,7 @@
 //! then the tables; the CSV of everything. Also the lines on how two cohorts differ
 //! ([`Profile`], [`differences`]), which `phalanx compare` and the report share.
 
-use super::compare::{Names, short};
+use super::compare_words::{Names, short};
 use super::csv_out::safe_cell;
 use super::layout::{Align, Give, Grid, Hidden, Width, fit_text};
 use crate::analysis::Quantity;

@@ -484,7 +484,7 @@ pub const COMPARE_METHOD: &str = "differences are B - A; Welch t interval of the
 /// The document of `phalanx compare --format json`: every statistic of every finger and
 /// quantity, and the sentence of each finger.
 pub fn compare(c: &crate::analysis::compare::Cohorts) -> Result<Vec<u8>, Error> {
-    let names = super::compare::Names::AB;
+    let names = super::compare_words::Names::AB;
     to_bytes(&CompareDocument {
         schema_version: SCHEMA_VERSION,
         settings: SettingsView::of(&c.settings),
@@ -523,7 +523,7 @@ pub const TABLE_COMPARE_METHOD: &str = "differences are B - A; a dataset's estim
 
 /// The document of `phalanx compare A TABLE --format json`.
 pub fn compare_table(c: &crate::analysis::literature::TableCohorts) -> Result<Vec<u8>, Error> {
-    let names = super::compare::Names::AB;
+    let names = super::compare_words::Names::AB;
     let mut conclusion = vec![super::compare_table::table_overall(c, names)];
     conclusion.extend(
         c.fingers

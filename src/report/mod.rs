@@ -7,10 +7,12 @@
 pub(crate) mod audit;
 pub(crate) mod compare;
 pub(crate) mod compare_table;
+pub(crate) mod compare_words;
 pub(crate) mod csv_out;
 pub(crate) mod deform;
 pub mod json;
 pub mod layout;
+pub(crate) mod phrases;
 pub mod plots;
 pub(crate) mod progress;
 pub mod region;

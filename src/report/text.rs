@@ -2,6 +2,7 @@
 //! fitted to the terminal's width by [`super::layout`].
 
 use super::layout::{Align, Give, Grid, Hidden, Width, fit_text};
+use super::phrases::{record_change, units_note};
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, CurvePoint};
 use crate::analysis::{Analysis, Quantity};
@@ -126,42 +127,6 @@ pub fn tips_note(a: &Analysis) -> String {
     }
 }
 
-/// What a dataset whose rows are in several units means for its statistics, when it is:
-/// the rows per unit, that relative values and ratios pool, and which fingers lose their
-/// total J.
-pub fn units_note(a: &Analysis) -> Option<String> {
-    if !a.mixed_units() {
-        return None;
-    }
-    let units: Vec<String> = a
-        .units
-        .iter()
-        .map(|(u, n)| {
-            format!(
-                "{} ({n} row{})",
-                u.as_deref().map_or("no unit named", |u| u),
-                if *n == 1 { "" } else { "s" }
-            )
-        })
-        .collect();
-    let without: Vec<&str> = a
-        .fingers
-        .iter()
-        .filter(|f| f.quantity(Quantity::Total).is_none())
-        .map(|f| f.finger.name())
-        .collect();
-    Some(format!(
-        "the rows give their lengths in {} units: {}. The relative values and ratios have no unit and pool across them; lengths in different units are never averaged, so the total length J is left out for {} (measured in more than one unit). For J in one unit, run phalanx on a file of that unit's rows",
-        a.units.len(),
-        units.join(", "),
-        if without.is_empty() {
-            "no finger".to_string()
-        } else {
-            without.join(", ")
-        }
-    ))
-}
-
 /// The note on J in image units (the paper's unit), which is averaged as the paper does.
 pub const IMAGE_UNITS_NOTE: &str = "J (total length) is in image units, pixels of X-ray images with no common scale: its SD and intervals pool the images' scales with the hands' sizes and describe no physical length. The relative values and ratios are ratios within one image, so the scale cancels from them";
 
@@ -239,13 +204,14 @@ fn group_difference(
     hidden: &mut Hidden,
 ) -> String {
     use super::compare as cmp;
+    use super::compare_words::{Names, short};
     let c = &d.cohorts;
     let lv = level(c.settings.confidence);
     let mut out = format!(
         "\n==== {by}: {} against {} (differences {} - {}) ====\n",
         d.b, d.a, d.b, d.a
     );
-    let names = cmp::Names {
+    let names = Names {
         a: d.a.as_str(),
         b: d.b.as_str(),
     };
@@ -268,7 +234,7 @@ fn group_difference(
         for q in &f.quantities {
             let (k, cmpn) = (q.quantity, &q.comparison);
             t.row(vec![
-                cmp::short(k).to_string(),
+                short(k).to_string(),
                 cmp::difference_cell(cmpn, k),
                 cmp::welch_cell(cmpn, k),
                 cmp::bootstrap_cell(cmpn, k),
@@ -399,58 +365,6 @@ pub(crate) const MOVED_SHOWN: usize = 6;
 
 /// How many records the compact history lists (the latest), before saying how many more.
 pub(crate) const RECORDS_SHOWN: usize = 12;
-
-/// What one history record changed, in words: the rows and X-rays added or removed, the
-/// file, the rows let in flagged, the note. Empty for a snapshot without a note.
-pub(crate) fn record_change(s: &Snapshot) -> String {
-    let mut parts: Vec<String> = Vec::new();
-    if let Some(c) = &s.change {
-        let ids = if c.xrays.len() <= 4 {
-            c.xrays.join(", ")
-        } else {
-            format!(
-                "{} ... {}",
-                c.xrays[..2].join(", "),
-                c.xrays[c.xrays.len() - 1]
-            )
-        };
-        let sign = match s.event {
-            crate::dataset::history::Event::Remove => "-",
-            _ => "+",
-        };
-        let of = match c.xrays.len() {
-            1 => format!("X-ray {ids}"),
-            n => format!("{n} X-rays: {ids}"),
-        };
-        let what = format!(
-            "{sign}{} row{} ({of})",
-            c.rows,
-            if c.rows == 1 { "" } else { "s" }
-        );
-        parts.push(match (&c.file, s.event) {
-            (Some(f), _) => format!("{what} from {f}"),
-            (None, crate::dataset::history::Event::Remove) => what,
-            (None, _) => format!("{what} typed as options"),
-        });
-        if !c.flagged.is_empty() {
-            let rows: Vec<String> = c
-                .flagged
-                .iter()
-                .map(|f| format!("{} {}", f.xray, f.finger.name()))
-                .collect();
-            parts.push(match s.event {
-                crate::dataset::history::Event::Remove => {
-                    format!("had been added flagged: {}", rows.join(", "))
-                }
-                _ => format!("added though flagged: {}", rows.join(", ")),
-            });
-        }
-    }
-    if let Some(n) = &s.note {
-        parts.push(format!("note: {n}"));
-    }
-    parts.join("; ")
-}
 
 /// The history: by default the records (the latest [`RECORDS_SHOWN`], each with what it
 /// changed) and one table of the quantities that moved most from the first record to

@@ -760,7 +760,7 @@ pub fn build(inputs: &ReportInputs<'_>, plots: &[Plot]) -> ReportView {
         derived: a.fingers.iter().map(derived).collect(),
         stats: a.fingers.iter().map(stats).collect(),
         flagged: flagged_rows(a),
-        units_note: super::text::units_note(a).map(|n| sentence(&n)),
+        units_note: super::phrases::units_note(a).map(|n| sentence(&n)),
         claims,
         placement: placement(
             inputs.placements,
@@ -1615,7 +1615,7 @@ fn tracking(inputs: &ReportInputs<'_>) -> TrackingView {
                 time: s.time.clone(),
                 event: s.event.to_string(),
                 xrays: s.xrays.to_string(),
-                change: super::text::record_change(s),
+                change: super::phrases::record_change(s),
             })
             .collect()
     };
@@ -1799,8 +1799,9 @@ fn groups_view(groups: Option<&Groups>, confidence: f64) -> Option<GroupsView> {
 /// The view of one group difference: per finger `compare`'s sentence and its table.
 fn group_difference(d: &GroupDifference, i: usize) -> GroupDifferenceView {
     use super::compare as cmp;
+    use super::compare_words::Names;
     let c = &d.cohorts;
-    let names = cmp::Names { a: &d.a, b: &d.b };
+    let names = Names { a: &d.a, b: &d.b };
     GroupDifferenceView {
         title: format!("{} against {}", d.b, d.a),
         id: format!("group-difference-{}", i + 1),
@@ -2086,11 +2087,11 @@ pub struct LiteratureSideRow {
 
 /// The section "The paper against published measurements".
 fn literature_view(l: &LiteratureInputs) -> LiteratureView {
-    use super::compare::{Names, short};
     use super::compare_table::{
         Profile, correlation_line, differs_in, estimate_cell, fit_words, table_finger_sentence,
         tip_finding_sentence, tip_overall, trim_rho, verdict_cell,
     };
+    use super::compare_words::{Names, short};
     let p = &l.paper;
     let name = table_name(&p.b);
     let names = Names {
@@ -2243,8 +2244,9 @@ fn atlas_comparison(
     c: &crate::analysis::compare::Cohorts,
 ) -> (Vec<AtlasCompareRow>, Vec<AtlasExternalRow>, (usize, usize)) {
     use super::compare::{
-        bootstrap_cell, coverage_cell, difference_cell, hedges_cell, mean_sd, short, welch_cell,
+        bootstrap_cell, coverage_cell, difference_cell, hedges_cell, mean_sd, welch_cell,
     };
+    use super::compare_words::short;
     let d = |q: Quantity| decimals(q.is_unitless());
     let mut comparison = Vec::new();
     let mut external = Vec::new();
@@ -2283,7 +2285,8 @@ fn atlas_comparison(
 
 /// One sentence per finger, then one per finger's last segment (the tip).
 fn atlas_sentences(c: &crate::analysis::compare::Cohorts, confidence: f64) -> Vec<String> {
-    use super::compare::{Names, finger_sentence, tip_sentence};
+    use super::compare::{finger_sentence, tip_sentence};
+    use super::compare_words::Names;
     let names = Names {
         a: "the paper",
         b: "the atlas",
