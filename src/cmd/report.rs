@@ -434,10 +434,10 @@ fn deform_section(
         return Ok(None);
     }
     let pose = Pose::fist();
-    let req = super::deform::request(rig, &pose, Skinning::Lbs);
+    let req = session::deform_request(rig, &pose, Skinning::Lbs);
     let fixed = session::fix_in_memory_with(rig, None, a, soft_tissue, atlas)?;
-    let (da, db, verdicts) = super::deform::compare_fixed(&fixed, rig, &req)?;
-    let (files, renders) = super::deform::figures(&da, Some(&db), true)?;
+    let (da, db, verdicts) = session::compare_fixed(&fixed, rig, &req)?;
+    let (files, renders) = deform_view::figures(&da, Some(&db), true)?;
     let slug = slug(rig);
     Ok(Some(deform_view::section(deform_view::SectionInputs {
         a: &da,
@@ -492,8 +492,8 @@ fn made_section(
     )?;
     let copy = crate::rig::GltfFile::from_bytes(&label, &rigged.made.written.bytes)?;
     let pose = Pose::fist();
-    let req = super::deform::request(rig, &pose, Skinning::Lbs);
-    let (da, db, verdicts) = super::deform::compare_parsed(&loaded.file, &copy, rig, &req)?;
+    let req = session::deform_request(rig, &pose, Skinning::Lbs);
+    let (da, db, verdicts) = session::compare_parsed(&loaded.file, &copy, rig, &req)?;
     let side = rigged.made.hand.side;
     let artist: Vec<_> = loaded
         .chains
@@ -502,7 +502,7 @@ fn made_section(
         .cloned()
         .collect();
     let stem = format!("made-{}-{}", slug(rig), side.name());
-    let font = super::deform::label_font();
+    let font = deform_view::label_font();
     Ok(Some(report::rig::made_section(
         report::rig::MadeInputs {
             rig: &rig.display().to_string(),
