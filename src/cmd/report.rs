@@ -164,7 +164,8 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let formats = formats(&args.format);
     // The coverage is shown in HTML and Markdown only.
     let show_coverage = formats.html || formats.markdown;
-    check_coverage_budget(&dataset, &cov_settings, show_coverage)?;
+    crate::analysis::budget::check_coverage(&dataset, &cov_settings, show_coverage)
+        .map_err(Error::Usage)?;
     let a = super::analyse_showing_progress(&dataset, &settings, quiet)?;
     super::warn_implausible(&a);
     let paper_data = dataset;
@@ -333,29 +334,6 @@ fn literature_inputs(
         atlas: Some(x),
         atlas_info: Some(info),
     }))
-}
-
-/// Refuses a coverage simulation too large to serve (see [`crate::analysis::budget`]),
-/// before any work: at the data's sizes, and with `curve` at the sizes of
-/// [`coverage::curve`] too.
-pub(crate) fn check_coverage_budget(
-    data: &Dataset,
-    s: &CoverageSettings,
-    curve: bool,
-) -> Result<(), Error> {
-    let mut sizes: Vec<usize> = crate::dataset::Finger::ALL
-        .into_iter()
-        .map(|f| data.rows_of(f).count())
-        .filter(|&n| n >= 2 && s.max_n.is_none_or(|m| n <= m))
-        .collect();
-    sizes.sort_unstable();
-    sizes.dedup();
-    let runs = if curve {
-        coverage::curve_runs(&sizes, s)
-    } else {
-        sizes.iter().map(|&n| (n, s.resamples)).collect()
-    };
-    crate::analysis::budget::check_coverage_runs(&runs, s.sims, s.resamples).map_err(Error::Usage)
 }
 
 /// Refuses an output directory that is a file (or lies under one) before any work.
