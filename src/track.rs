@@ -74,6 +74,46 @@ pub(crate) struct AddOutcome {
     pub added_columns: Vec<&'static str>,
 }
 
+impl AddOutcome {
+    /// The warnings and notes of an addition, one line each, for standard
+    /// error: `warning: ...`, `note: ...`, and the columns the header gained.
+    pub(crate) fn messages(&self) -> Vec<String> {
+        let mut lines = Vec::new();
+        for w in &self.warnings {
+            lines.push(format!("warning: {w}"));
+        }
+        for n in &self.notes {
+            lines.push(format!("note: {n}"));
+        }
+        if !self.added_columns.is_empty() {
+            lines.push(format!(
+                "note: the dataset's header gained the column{} {} (empty on its existing rows)",
+                if self.added_columns.len() == 1 {
+                    ""
+                } else {
+                    "s"
+                },
+                self.added_columns.join(", ")
+            ));
+        }
+        lines
+    }
+}
+
+/// "1 row", "50 rows".
+pub(crate) fn rows_text(n: usize) -> String {
+    format!("{n} row{}", if n == 1 { "" } else { "s" })
+}
+
+/// ", 1 of them recorded as flagged", or nothing.
+pub(crate) fn flagged_text(n: usize) -> String {
+    match n {
+        0 => String::new(),
+        1 => ", 1 of them recorded as flagged".to_string(),
+        n => format!(", {n} of them recorded as flagged"),
+    }
+}
+
 /// The current UTC time, RFC 3339, for history records.
 pub(crate) fn now() -> String {
     humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()

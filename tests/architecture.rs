@@ -1,8 +1,10 @@
 //! The dependency direction of ARCHITECTURE.md, enforced: each room of `src/`
 //! may name only the rooms listed for it, each sub-room of `src/rig/` only the
 //! sub-rooms below it, the files of `src/rig/` and of each room of `src/` (one
-//! level deep: a sub-folder counts as one file) import no cycle, and the rooms that must not know about files, plots or
-//! templates use none of those crates.
+//! level deep: a sub-folder counts as one file) import no cycle, no command of
+//! `src/cmd/` names another (only the shared `mod.rs`, `args.rs`, `out.rs`),
+//! and the rooms that must not know about files, plots or templates use none
+//! of those crates.
 //!
 //! Paths are read with `syn` from the code outside tests (`#[cfg(test)]` items
 //! and `tests.rs` / `*_tests.rs` files are left out): `use` trees, every path
@@ -626,6 +628,51 @@ fn against(
     wrong
 }
 
+/// The files of `src/cmd/` every command may use: the option groups, standard
+/// output and the module's shared helpers. Every other file there is a command.
+const CMD_SHARED: &[&str] = &["mod", "args", "out"];
+
+/// The command a file of `src/cmd/` belongs to (`cmd/deform.rs` -> `deform`);
+/// `None` for a shared file ([`CMD_SHARED`]) and for files outside `cmd/`.
+fn command_of(file: &Path) -> Option<String> {
+    let m = module_of(file);
+    match m.as_slice() {
+        [room, name, ..] if room == "cmd" && !CMD_SHARED.contains(&name.as_str()) => {
+            Some(name.clone())
+        }
+        _ => None,
+    }
+}
+
+/// Per command file, the other commands it names: through `super::x`,
+/// `crate::cmd::x`, `self::super::x` or a `use` of one, in a `use` (a `pub
+/// use` too) or in a path of its code, outside its tests.
+fn commands_named(krate: &Crate) -> BTreeMap<String, BTreeSet<String>> {
+    let mut wrong: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (file, s) in &krate.scanned {
+        let Some(mine) = command_of(file) else {
+            continue;
+        };
+        let uses = s.uses.iter().map(|u| (u.scope.clone(), u.path.clone()));
+        for (scope, segs) in uses.chain(s.paths.iter().cloned()) {
+            let Some(abs) = krate.absolute(file, &scope, &segs, 0) else {
+                continue;
+            };
+            for target in krate.files_of(&abs) {
+                if let Some(used) = command_of(&target)
+                    && used != mine
+                {
+                    wrong
+                        .entry(file.display().to_string())
+                        .or_default()
+                        .insert(format!("uses cmd/{used}"));
+                }
+            }
+        }
+    }
+    wrong
+}
+
 /// The cycles of a graph: its strongly connected components of more than one
 /// node (Tarjan's algorithm, O(nodes + edges)), each sorted.
 fn cycles<N: Ord + Clone>(g: &BTreeMap<N, BTreeSet<N>>) -> Vec<Vec<N>> {
@@ -722,6 +769,65 @@ fn every_sub_room_of_rig_depends_only_on_the_sub_rooms_below_it() {
         "dependencies inside rig/ against ARCHITECTURE.md (read <- find <- judge <- fix <- \
          make; deform on read and judge; session on top): {wrong:#?}"
     );
+}
+
+#[test]
+fn no_command_uses_another_command() {
+    // What two commands share lives in the library (or in cmd/args.rs,
+    // cmd/out.rs, cmd/mod.rs): a command calls the library, never another command.
+    let krate = Crate::real();
+    let commands: BTreeSet<String> = krate.scanned.keys().filter_map(|f| command_of(f)).collect();
+    assert!(
+        commands.len() > 15 && commands.contains("report") && commands.contains("deform"),
+        "the commands of src/cmd/: {commands:?}"
+    );
+    let wrong = commands_named(krate);
+    assert!(
+        wrong.is_empty(),
+        "commands using other commands (move what they share into the library): {wrong:#?}"
+    );
+}
+
+#[test]
+fn the_scanner_sees_a_command_use_another() {
+    // The uses the commands had: a `super::` path, a `crate::cmd::` path, a
+    // `use` of a sibling command, and a name brought in from one.
+    let krate = Crate::with(&[
+        (
+            mod_path(&["cmd", "report"]),
+            "fn f() { let r = super::deform::request(); super::groups_of(); \
+             super::args::parse_sims(\"1\"); }",
+        ),
+        (
+            mod_path(&["cmd", "coverage"]),
+            "fn g() { crate::cmd::report::check_coverage_budget(); crate::cmd::out::print(); }",
+        ),
+        (
+            mod_path(&["cmd", "import"]),
+            "use super::add;\nfn h() { add::print_outcome(); }",
+        ),
+        (
+            mod_path(&["cmd", "remove"]),
+            "use crate::cmd::add::rows_text;\nuse super::out;\nfn k() { rows_text(1); }\n\
+             #[cfg(test)]\nmod tests { use crate::cmd::deform::Args; }",
+        ),
+        // The shared files may name the commands (cmd/mod.rs dispatches to them).
+        (mod_path(&["cmd"]), "fn d() { self::deform::run(); }"),
+    ]);
+    let wrong = commands_named(&krate);
+    let at = |f: &str| {
+        wrong
+            .get(&src().join(f).display().to_string())
+            .cloned()
+            .unwrap_or_default()
+            .into_iter()
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(at("cmd/report.rs"), ["uses cmd/deform"]);
+    assert_eq!(at("cmd/coverage.rs"), ["uses cmd/report"]);
+    assert_eq!(at("cmd/import.rs"), ["uses cmd/add"]);
+    assert_eq!(at("cmd/remove.rs"), ["uses cmd/add"]);
+    assert_eq!(wrong.len(), 4, "{wrong:#?}");
 }
 
 #[test]

@@ -9,6 +9,7 @@
 //! a minute. Exact enumeration (n <= 8) costs C(2n-1, n) x n whatever B is.
 //! A coverage simulation repeats a bootstrap per simulated dataset.
 
+use super::coverage;
 use crate::stats::bootstrap::Plan;
 
 /// Most bootstrap resamples (memory: 8 bytes x quantities per resample).
@@ -68,6 +69,29 @@ pub(crate) fn check_coverage_runs(
                 .join(", ")
         }
     ))
+}
+
+/// Refuses a coverage simulation too large to serve, before any work: at the
+/// data's sizes, and with `curve` at the sizes of [`coverage::curve`] too
+/// (the sizes the commands `report` and `coverage` simulate).
+pub(crate) fn check_coverage(
+    data: &crate::dataset::Dataset,
+    s: &coverage::CoverageSettings,
+    curve: bool,
+) -> Result<(), String> {
+    let mut sizes: Vec<usize> = crate::dataset::Finger::ALL
+        .into_iter()
+        .map(|f| data.rows_of(f).count())
+        .filter(|&n| n >= 2 && s.max_n.is_none_or(|m| n <= m))
+        .collect();
+    sizes.sort_unstable();
+    sizes.dedup();
+    let runs = if curve {
+        coverage::curve_runs(&sizes, s)
+    } else {
+        sizes.iter().map(|&n| (n, s.resamples)).collect()
+    };
+    check_coverage_runs(&runs, s.sims, s.resamples)
 }
 
 #[cfg(test)]

@@ -90,55 +90,22 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
         tip: args.tip.map(TipArg::kind),
         settings: args.boot.settings()?,
     })?;
-    print_outcome(&outcome);
+    for line in outcome.messages() {
+        eprintln!("{line}");
+    }
     out::print(
         format!(
             "added {} to {}: {} -> {} X-rays{}; snapshot appended to {}\n",
-            rows_text(outcome.added),
+            track::rows_text(outcome.added),
             args.data.data.display(),
             outcome.xrays_before,
             outcome.xrays_after,
-            flagged_text(outcome.flags.len()),
+            track::flagged_text(outcome.flags.len()),
             history.display()
         )
         .as_bytes(),
     )?;
     Ok(0)
-}
-
-/// The warnings and notes of an addition, on standard error.
-pub(crate) fn print_outcome(outcome: &track::AddOutcome) {
-    for w in &outcome.warnings {
-        eprintln!("warning: {w}");
-    }
-    for n in &outcome.notes {
-        eprintln!("note: {n}");
-    }
-    if !outcome.added_columns.is_empty() {
-        eprintln!(
-            "note: the dataset's header gained the column{} {} (empty on its existing rows)",
-            if outcome.added_columns.len() == 1 {
-                ""
-            } else {
-                "s"
-            },
-            outcome.added_columns.join(", ")
-        );
-    }
-}
-
-/// "1 row", "50 rows".
-pub(crate) fn rows_text(n: usize) -> String {
-    format!("{n} row{}", if n == 1 { "" } else { "s" })
-}
-
-/// ", 1 of them recorded as flagged", or nothing.
-pub(crate) fn flagged_text(n: usize) -> String {
-    match n {
-        0 => String::new(),
-        1 => ", 1 of them recorded as flagged".to_string(),
-        n => format!(", {n} of them recorded as flagged"),
-    }
 }
 
 /// The new rows: a file, or one row from the options.

@@ -86,7 +86,8 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
         return Ok(0);
     }
     let data = crate::dataset::Dataset::load(&args.data.data)?;
-    super::report::check_coverage_budget(&data, &s, args.format == TextFormat::Table)?;
+    crate::analysis::budget::check_coverage(&data, &s, args.format == TextFormat::Table)
+        .map_err(Error::Usage)?;
     super::within_budget(&data, &settings)?;
     let a = crate::analysis::analyse(&data, &settings);
     drop(data);

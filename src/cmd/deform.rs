@@ -4,20 +4,18 @@
 use super::args::{BootArgs, DataArgs, ForceArgs, TextFormat, check_output_dir};
 use super::out;
 use crate::error::Error;
-use crate::report::deform::{self as view, DeformDocument, HandVerdicts, RenderView, RigView};
+use crate::report::deform::{self as view, DeformDocument, HandVerdicts, RigView};
 use crate::report::json::{MovedView, SCHEMA_VERSION};
 use crate::report::layout::Width;
-use crate::report::writer::{self, OutputFile};
-use crate::rig::GltfFile;
-use crate::rig::deform::file::{self, DeformRequest, FileDeformation};
-use crate::rig::deform::verdict::JointVerdict;
+use crate::report::writer;
+use crate::rig::deform::file::{DeformRequest, FileDeformation};
 use crate::rig::deform::{Pose, Skinning};
 use crate::rig::map::NameMap;
 use crate::rig::naming::Side;
 use crate::rig::naming::hand_side;
-use crate::rig::session::{self, FixedInMemory};
+use crate::rig::session::{self, Verdicts};
 use clap::ValueEnum;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Curl a rigged hand (glTF 2.0 or FBX) and measure how its skin deforms; compare with --against or --fix
 #[derive(clap::Args, Debug)]
@@ -146,135 +144,6 @@ impl Args {
     }
 }
 
-/// Reads `path` and deforms it.
-fn deform_path(path: &Path, req: &DeformRequest<'_>) -> Result<FileDeformation, Error> {
-    let file = crate::rig::open(path)?;
-    deform_parsed(&file, path, req)
-}
-
-fn deform_parsed(
-    file: &GltfFile,
-    path: &Path,
-    req: &DeformRequest<'_>,
-) -> Result<FileDeformation, Error> {
-    let dir = path.parent().unwrap_or(Path::new("."));
-    Ok(file::deform_file(file, dir, req)?)
-}
-
-/// The verdicts of one hand per side both rigs have.
-pub(super) type Verdicts = Vec<(Side, Vec<JointVerdict>)>;
-
-/// Deforms the rig as given (A) and as `audit --fix` would write it (B) alike
-/// and compares them per joint: what `phalanx deform RIG --fix` shows.
-pub(super) fn compare_fixed(
-    fixed: &FixedInMemory,
-    rig: &Path,
-    req: &DeformRequest<'_>,
-) -> Result<(FileDeformation, FileDeformation, Verdicts), Error> {
-    compare_parsed(&fixed.original, &fixed.fixed, rig, req)
-}
-
-/// Deforms two parsed versions of the rig at `rig` (A, B) alike and compares
-/// them per joint.
-pub(super) fn compare_parsed(
-    a: &GltfFile,
-    b: &GltfFile,
-    rig: &Path,
-    req: &DeformRequest<'_>,
-) -> Result<(FileDeformation, FileDeformation, Verdicts), Error> {
-    let a = deform_parsed(a, rig, req)?;
-    let b = deform_parsed(b, rig, req)?;
-    let verdicts = compare(&a, &b)?;
-    Ok((a, b, verdicts))
-}
-
-/// The verdicts of A against B; refused when they share no hand.
-fn compare(a: &FileDeformation, b: &FileDeformation) -> Result<Verdicts, Error> {
-    let verdicts = file::compare_files(a, b);
-    if verdicts.is_empty() {
-        return Err(Error::Usage(format!(
-            "{} and {} have no hand in common (by side), so there is nothing to compare",
-            a.label, b.label
-        )));
-    }
-    Ok(verdicts)
-}
-
-/// The words over each column of a figure: the rig and its file name, and
-/// B's: "the fixed rig" when `fixed` (B is what `audit --fix` would write),
-/// else its file name.
-pub(super) fn column_labels(
-    a: &FileDeformation,
-    b: Option<&FileDeformation>,
-    fixed: bool,
-) -> Vec<String> {
-    let name = |label: &str| {
-        Path::new(label)
-            .file_name()
-            .map_or_else(|| label.to_string(), |n| n.to_string_lossy().into_owned())
-    };
-    match b {
-        None => vec![format!("the rig, {}", name(&a.label))],
-        Some(_) if fixed => vec![
-            format!("A: the rig, {}", name(&a.label)),
-            "B: the fixed rig (as audit --fix writes it)".to_string(),
-        ],
-        Some(b) => vec![
-            format!("A: the rig, {}", name(&a.label)),
-            format!("B: {}", name(&b.label)),
-        ],
-    }
-}
-
-/// The figure of each hand of `a`, beside the same side of `b`: the PNG files
-/// (`deform-<side>.png`) and where they draw the fingertips. `fixed`: B is
-/// the fixed copy (see [`column_labels`]).
-pub(super) fn figures(
-    a: &FileDeformation,
-    b: Option<&FileDeformation>,
-    fixed: bool,
-) -> Result<(Vec<OutputFile>, Vec<RenderView>), Error> {
-    let mut files = Vec::new();
-    let mut renders = Vec::new();
-    let labels = column_labels(a, b, fixed);
-    let labels: Vec<&str> = labels.iter().map(String::as_str).collect();
-    let font = label_font();
-    for ha in &a.hands {
-        let hb = b.and_then(|b| b.hands.iter().find(|h| h.chains.side == ha.chains.side));
-        let (f, r) = view::figure(ha, hb, &labels, font.as_deref())?;
-        files.push(f);
-        renders.push(r);
-    }
-    Ok((files, renders))
-}
-
-/// The labels' font, read from the working directory
-/// ([`crate::report::render3d::FONT_FILE`]); without it the figures are drawn
-/// without their labels and scale numbers, and a note says so and what to do.
-pub(super) fn label_font() -> Option<Vec<u8>> {
-    let path = crate::report::render3d::FONT_FILE;
-    match std::fs::read(path) {
-        Ok(bytes) => Some(bytes),
-        Err(e) => {
-            eprintln!(
-                "note: the figures are drawn without their labels and scale numbers: \
-                 {path}: {e}; run phalanx from its checkout, where data/fonts/ is"
-            );
-            None
-        }
-    }
-}
-
-/// The default request of a rig file: no map, the side its name says.
-pub(super) fn request<'a>(rig: &Path, pose: &'a Pose, method: Skinning) -> DeformRequest<'a> {
-    DeformRequest {
-        map: None,
-        side: hand_side(None, None, &rig.display().to_string()),
-        pose,
-        method,
-    }
-}
-
 /// The rig (A), what it is compared with (B), the verdicts and, with --fix,
 /// the joints the fix moves.
 type Deformed = (
@@ -298,17 +167,17 @@ fn deform_rigs(args: &Args, req: &DeformRequest<'_>) -> Result<Deformed, Error> 
             metacarpals.as_deref(),
             !args.keep_weights,
         )?;
-        let (a, b, verdicts) = compare_fixed(&fixed, &args.rig, req)?;
+        let (a, b, verdicts) = session::compare_fixed(&fixed, &args.rig, req)?;
         (a, Some(b), verdicts, Some(fixed.moved))
     } else {
-        let a = deform_path(&args.rig, req)?;
+        let a = session::deform_path(&args.rig, req)?;
         let b = args
             .against
             .as_deref()
-            .map(|p| deform_path(p, req))
+            .map(|p| session::deform_path(p, req))
             .transpose()?;
         let verdicts = match &b {
-            Some(b) => compare(&a, b)?,
+            Some(b) => session::compare_deformed(&a, b)?,
             None => Vec::new(),
         };
         (a, b, verdicts, None)
@@ -342,13 +211,13 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     let req = DeformRequest {
         map: map.as_ref(),
         side,
-        ..request(&args.rig, &pose, method)
+        ..session::deform_request(&args.rig, &pose, method)
     };
     let (a, b, verdicts, moved) = deform_rigs(args, &req)?;
     // The figures first: nothing is printed when they cannot be written.
     let mut renders = Vec::new();
     if let Some(dir) = &args.out {
-        let (files, r) = figures(&a, b.as_ref(), args.fix)?;
+        let (files, r) = view::figures(&a, b.as_ref(), args.fix)?;
         writer::write_all(dir, &files)?;
         renders = r;
     }

@@ -159,14 +159,16 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
                 tip: None,
                 settings,
             })?;
-            super::add::print_outcome(&outcome);
+            for line in outcome.messages() {
+                eprintln!("{line}");
+            }
             out::print(
                 format!(
                     "imported {summary} into {}: {} -> {} X-rays{}; snapshot appended to {}\n",
                     data.display(),
                     outcome.xrays_before,
                     outcome.xrays_after,
-                    super::add::flagged_text(outcome.flags.len()),
+                    track::flagged_text(outcome.flags.len()),
                     history.display()
                 )
                 .as_bytes(),

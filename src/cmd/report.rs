@@ -164,7 +164,8 @@ pub(crate) fn run(args: &Args, quiet: bool) -> Result<i32, Error> {
     let formats = formats(&args.format);
     // The coverage is shown in HTML and Markdown only.
     let show_coverage = formats.html || formats.markdown;
-    check_coverage_budget(&dataset, &cov_settings, show_coverage)?;
+    crate::analysis::budget::check_coverage(&dataset, &cov_settings, show_coverage)
+        .map_err(Error::Usage)?;
     let a = super::analyse_showing_progress(&dataset, &settings, quiet)?;
     super::warn_implausible(&a);
     let paper_data = dataset;
@@ -335,29 +336,6 @@ fn literature_inputs(
     }))
 }
 
-/// Refuses a coverage simulation too large to serve (see [`crate::analysis::budget`]),
-/// before any work: at the data's sizes, and with `curve` at the sizes of
-/// [`coverage::curve`] too.
-pub(crate) fn check_coverage_budget(
-    data: &Dataset,
-    s: &CoverageSettings,
-    curve: bool,
-) -> Result<(), Error> {
-    let mut sizes: Vec<usize> = crate::dataset::Finger::ALL
-        .into_iter()
-        .map(|f| data.rows_of(f).count())
-        .filter(|&n| n >= 2 && s.max_n.is_none_or(|m| n <= m))
-        .collect();
-    sizes.sort_unstable();
-    sizes.dedup();
-    let runs = if curve {
-        coverage::curve_runs(&sizes, s)
-    } else {
-        sizes.iter().map(|&n| (n, s.resamples)).collect()
-    };
-    crate::analysis::budget::check_coverage_runs(&runs, s.sims, s.resamples).map_err(Error::Usage)
-}
-
 /// Refuses an output directory that is a file (or lies under one) before any work.
 fn check_out_dir(out: &Path) -> Result<(), Error> {
     let existing = out
@@ -434,10 +412,10 @@ fn deform_section(
         return Ok(None);
     }
     let pose = Pose::fist();
-    let req = super::deform::request(rig, &pose, Skinning::Lbs);
+    let req = session::deform_request(rig, &pose, Skinning::Lbs);
     let fixed = session::fix_in_memory_with(rig, None, a, soft_tissue, atlas)?;
-    let (da, db, verdicts) = super::deform::compare_fixed(&fixed, rig, &req)?;
-    let (files, renders) = super::deform::figures(&da, Some(&db), true)?;
+    let (da, db, verdicts) = session::compare_fixed(&fixed, rig, &req)?;
+    let (files, renders) = deform_view::figures(&da, Some(&db), true)?;
     let slug = slug(rig);
     Ok(Some(deform_view::section(deform_view::SectionInputs {
         a: &da,
@@ -492,8 +470,8 @@ fn made_section(
     )?;
     let copy = crate::rig::GltfFile::from_bytes(&label, &rigged.made.written.bytes)?;
     let pose = Pose::fist();
-    let req = super::deform::request(rig, &pose, Skinning::Lbs);
-    let (da, db, verdicts) = super::deform::compare_parsed(&loaded.file, &copy, rig, &req)?;
+    let req = session::deform_request(rig, &pose, Skinning::Lbs);
+    let (da, db, verdicts) = session::compare_parsed(&loaded.file, &copy, rig, &req)?;
     let side = rigged.made.hand.side;
     let artist: Vec<_> = loaded
         .chains
@@ -502,7 +480,7 @@ fn made_section(
         .cloned()
         .collect();
     let stem = format!("made-{}-{}", slug(rig), side.name());
-    let font = super::deform::label_font();
+    let font = deform_view::label_font();
     Ok(Some(report::rig::made_section(
         report::rig::MadeInputs {
             rig: &rig.display().to_string(),

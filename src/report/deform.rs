@@ -25,6 +25,7 @@ use crate::rig::judge::{MetacarpalCheck, RayBase};
 use crate::rig::naming::Side;
 use schemars::JsonSchema;
 use serde::Serialize;
+use std::path::Path;
 
 /// What every deformation comparison carries.
 pub(crate) const CAVEATS: [&str; 4] = [
@@ -215,6 +216,71 @@ pub(crate) struct DeformDocument<'a> {
     /// The figures written with --out.
     pub renders: Vec<RenderView>,
     pub caveats: &'static [&'static str],
+}
+
+/// The words over each column of a figure: the rig and its file name, and
+/// B's: "the fixed rig" when `fixed` (B is what `audit --fix` would write),
+/// else its file name.
+pub(crate) fn column_labels(
+    a: &FileDeformation,
+    b: Option<&FileDeformation>,
+    fixed: bool,
+) -> Vec<String> {
+    let name = |label: &str| {
+        Path::new(label)
+            .file_name()
+            .map_or_else(|| label.to_string(), |n| n.to_string_lossy().into_owned())
+    };
+    match b {
+        None => vec![format!("the rig, {}", name(&a.label))],
+        Some(_) if fixed => vec![
+            format!("A: the rig, {}", name(&a.label)),
+            "B: the fixed rig (as audit --fix writes it)".to_string(),
+        ],
+        Some(b) => vec![
+            format!("A: the rig, {}", name(&a.label)),
+            format!("B: {}", name(&b.label)),
+        ],
+    }
+}
+
+/// The figure of each hand of `a`, beside the same side of `b`: the PNG files
+/// (`deform-<side>.png`) and where they draw the fingertips. `fixed`: B is
+/// the fixed copy (see [`column_labels`]).
+pub(crate) fn figures(
+    a: &FileDeformation,
+    b: Option<&FileDeformation>,
+    fixed: bool,
+) -> Result<(Vec<OutputFile>, Vec<RenderView>), Error> {
+    let mut files = Vec::new();
+    let mut renders = Vec::new();
+    let labels = column_labels(a, b, fixed);
+    let labels: Vec<&str> = labels.iter().map(String::as_str).collect();
+    let font = label_font();
+    for ha in &a.hands {
+        let hb = b.and_then(|b| b.hands.iter().find(|h| h.chains.side == ha.chains.side));
+        let (f, r) = figure(ha, hb, &labels, font.as_deref())?;
+        files.push(f);
+        renders.push(r);
+    }
+    Ok((files, renders))
+}
+
+/// The labels' font, read from the working directory
+/// ([`super::render3d::FONT_FILE`]); without it the figures are drawn
+/// without their labels and scale numbers, and a note says so and what to do.
+pub(crate) fn label_font() -> Option<Vec<u8>> {
+    let path = super::render3d::FONT_FILE;
+    match std::fs::read(path) {
+        Ok(bytes) => Some(bytes),
+        Err(e) => {
+            eprintln!(
+                "note: the figures are drawn without their labels and scale numbers: \
+                 {path}: {e}; run phalanx from its checkout, where data/fonts/ is"
+            );
+            None
+        }
+    }
 }
 
 /// The JSON bytes of `doc`.

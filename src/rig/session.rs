@@ -2,9 +2,13 @@
 //! when asked, write a fixed copy. Returns finished results; showing them is
 //! the caller's business.
 
+use super::deform::file::{self as deform_file, DeformRequest, FileDeformation};
+use super::deform::verdict::JointVerdict;
+use super::deform::{Pose, Skinning};
 use super::fix::{self, Fixed};
 use super::judge::{self, AuditOptions, AuditedRig, JudgeOptions, SoftTissue};
 use super::read::map::NameMap;
+use super::read::naming::{Side, hand_side};
 use super::read::{GltfFile, Rig};
 use crate::analysis::{self, Analysis, Settings};
 use crate::dataset::Dataset;
@@ -555,6 +559,71 @@ fn fix_loaded(
         moved: out.moved,
         audited,
     })
+}
+
+/// The verdicts of one hand per side both rigs have.
+pub type Verdicts = Vec<(Side, Vec<JointVerdict>)>;
+
+/// The default deformation request of a rig file: no map, the side its name says.
+pub fn deform_request<'a>(rig: &Path, pose: &'a Pose, method: Skinning) -> DeformRequest<'a> {
+    DeformRequest {
+        map: None,
+        side: hand_side(None, None, &rig.display().to_string()),
+        pose,
+        method,
+    }
+}
+
+/// Reads `path` and deforms it.
+pub fn deform_path(path: &Path, req: &DeformRequest<'_>) -> Result<FileDeformation, Error> {
+    let file = super::read::open(path)?;
+    deform_parsed(&file, path, req)
+}
+
+/// Deforms a parsed rig read from `path` (its buffers beside it).
+fn deform_parsed(
+    file: &GltfFile,
+    path: &Path,
+    req: &DeformRequest<'_>,
+) -> Result<FileDeformation, Error> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    Ok(deform_file::deform_file(file, dir, req)?)
+}
+
+/// Deforms the rig as given (A) and as `audit --fix` would write it (B) alike
+/// and compares them per joint: what `phalanx deform RIG --fix` shows.
+pub fn compare_fixed(
+    fixed: &FixedInMemory,
+    rig: &Path,
+    req: &DeformRequest<'_>,
+) -> Result<(FileDeformation, FileDeformation, Verdicts), Error> {
+    compare_parsed(&fixed.original, &fixed.fixed, rig, req)
+}
+
+/// Deforms two parsed versions of the rig at `rig` (A, B) alike and compares
+/// them per joint.
+pub fn compare_parsed(
+    a: &GltfFile,
+    b: &GltfFile,
+    rig: &Path,
+    req: &DeformRequest<'_>,
+) -> Result<(FileDeformation, FileDeformation, Verdicts), Error> {
+    let a = deform_parsed(a, rig, req)?;
+    let b = deform_parsed(b, rig, req)?;
+    let verdicts = compare_deformed(&a, &b)?;
+    Ok((a, b, verdicts))
+}
+
+/// The verdicts of A against B; refused when they share no hand.
+pub fn compare_deformed(a: &FileDeformation, b: &FileDeformation) -> Result<Verdicts, Error> {
+    let verdicts = deform_file::compare_files(a, b);
+    if verdicts.is_empty() {
+        return Err(Error::Usage(format!(
+            "{} and {} have no hand in common (by side), so there is nothing to compare",
+            a.label, b.label
+        )));
+    }
+    Ok(verdicts)
 }
 
 /// Refuses to judge a rig whose tips differ from the data's (one at the bone,
