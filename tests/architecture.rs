@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use syn::visit::{self, Visit};
 
-/// Each room and the rooms it may depend on (ARCHITECTURE.md, "Who may use whom").
+/// Each room and the rooms it may depend on (ARCHITECTURE.md, "The rooms", its last column).
 const ALLOWED: &[(&str, &[&str])] = &[
     ("stats", &[]),
     ("atomic", &[]),
