@@ -151,6 +151,15 @@ impl HistoryArgs {
     }
 }
 
+/// Output format of the commands that print a table, a JSON document or CSV
+/// (`stats`, `compare`).
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum TableFormat {
+    Table,
+    Json,
+    Csv,
+}
+
 /// Output format of the commands that print a table or a JSON document.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum TextFormat {

@@ -1,13 +1,12 @@
 //! `phalanx compare`: two cohorts of X-rays, finger by finger.
 
-use super::args::{BootArgs, CorrelationArgs, TipArgs};
+use super::args::{BootArgs, CorrelationArgs, TableFormat, TipArgs};
 use super::out;
 use crate::analysis::{compare, literature};
 use crate::dataset::{CohortNotes, Source};
 use crate::error::Error;
 use crate::report;
 use crate::report::layout::Width;
-use clap::ValueEnum;
 use std::path::PathBuf;
 
 /// Compare two cohorts finger by finger: its conclusion first, then differences, effect sizes and coverage
@@ -51,15 +50,8 @@ pub struct Args {
     #[command(flatten)]
     tips: TipArgs,
     /// Output format
-    #[arg(long, value_enum, default_value_t = Format::Table)]
-    format: Format,
-}
-
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-enum Format {
-    Table,
-    Json,
-    Csv,
+    #[arg(long, value_enum, default_value_t = TableFormat::Table)]
+    format: TableFormat,
 }
 
 pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
@@ -80,9 +72,9 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
             }
             (c.a.about, c.b.about) = (notes_a, notes_b);
             match args.format {
-                Format::Table => report::compare::text(&c, width).into_bytes(),
-                Format::Json => report::json::compare(&c)?,
-                Format::Csv => report::compare::csv(&c)?,
+                TableFormat::Table => report::compare::text(&c, width).into_bytes(),
+                TableFormat::Json => report::json::compare(&c)?,
+                TableFormat::Csv => report::compare::csv(&c)?,
             }
         }
         _ => {
@@ -93,9 +85,9 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
             }
             (c.a.about, c.b.about) = (notes_a, notes_b);
             match args.format {
-                Format::Table => report::compare_table::text(&c, width).into_bytes(),
-                Format::Json => report::json::compare_table(&c)?,
-                Format::Csv => report::compare_table::csv(&c)?,
+                TableFormat::Table => report::compare_table::text(&c, width).into_bytes(),
+                TableFormat::Json => report::json::compare_table(&c)?,
+                TableFormat::Csv => report::compare_table::csv(&c)?,
             }
         }
     };

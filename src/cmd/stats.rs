@@ -1,12 +1,11 @@
 //! `phalanx stats`: the statistics of every finger.
 
-use super::args::{BootArgs, DataArgs, GroupArgs, TipArgs};
+use super::args::{BootArgs, DataArgs, GroupArgs, TableFormat, TipArgs};
 use super::out;
 use crate::dataset::Dataset;
 use crate::error::Error;
 use crate::report;
 use crate::report::layout::Width;
-use clap::ValueEnum;
 
 /// Statistics of every finger: the paper's (mean, min, max, range) and beyond
 #[derive(clap::Args, Debug)]
@@ -23,15 +22,8 @@ pub(crate) struct Args {
     #[command(flatten)]
     tips: TipArgs,
     /// Output format
-    #[arg(long, value_enum, default_value_t = Format::Table)]
-    format: Format,
-}
-
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-enum Format {
-    Table,
-    Json,
-    Csv,
+    #[arg(long, value_enum, default_value_t = TableFormat::Table)]
+    format: TableFormat,
 }
 
 pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> {
@@ -44,12 +36,12 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
     let groups = super::groups_of(&dataset, by.as_ref(), &settings);
     drop(dataset);
     match args.format {
-        Format::Table => {
+        TableFormat::Table => {
             out::print(report::text::stats_with_groups(&a, groups.as_ref(), width).as_bytes())?
         }
         // Streamed: the document of a large dataset is not held in memory.
-        Format::Json => out::stream(|w| report::json::write_stats(w, &a, groups.as_ref()))?,
-        Format::Csv => out::print(&report::csv_out::stats(&a, groups.as_ref())?)?,
+        TableFormat::Json => out::stream(|w| report::json::write_stats(w, &a, groups.as_ref()))?,
+        TableFormat::Csv => out::print(&report::csv_out::stats(&a, groups.as_ref())?)?,
     }
     Ok(0)
 }
