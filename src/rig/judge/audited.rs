@@ -658,81 +658,35 @@ impl AuditedRig {
                 }
             } else if opts.measure_tip && opts.rig_tip == TipKind::Skin && !chain.has_tip && n >= 2
             {
+                let (prev, last) = (input.points[n - 2], input.points[n - 1]);
+                let dir = (last - prev).normalize_or_zero();
                 let end = match weights {
                     Some(w) => bend::mesh_end(chain, w),
                     None => Err("the file has no skin weights".to_string()),
                 };
-                match end {
-                    Ok(reach) => {
-                        let (prev, last) = (input.points[n - 2], input.points[n - 1]);
-                        let position = last + (last - prev).normalize_or_zero() * reach;
-                        input.points.push(position);
-                        input.has_tip = true;
-                        skin_tip = Some(SkinTip {
-                            beyond_node: reach,
-                            position,
-                            from_mesh: true,
-                        });
-                    }
-                    Err(why) => {
-                        // The skin's end as `rig` finds it: the found tip's
-                        // reach along the last bone, within the range a
-                        // distal phalanx with its pulp spans.
-                        let (prev, last) = (input.points[n - 2], input.points[n - 1]);
-                        let dir = (last - prev).normalize_or_zero();
-                        let segment = prev.distance(last);
-                        let (lo, hi) = bend::MESH_END_RANGE;
-                        let found = opts
-                            .found_tips
-                            .tips
-                            .iter()
-                            .find(|t| t.0 == chain.side && t.1 == chain.finger)
-                            .map(|t| (t.2 - last).dot(dir));
-                        match found {
-                            Some(reach) if reach >= lo * segment && reach <= hi * segment => {
-                                let position = last + dir * reach;
-                                input.points.push(position);
-                                input.has_tip = true;
-                                skin_tip = Some(SkinTip {
-                                    beyond_node: reach,
-                                    position,
-                                    from_mesh: true,
-                                });
-                                notes.push(format!(
-                                    "{}: its weights give no tip ({why}); the tip is the skin's \
-                                     end found on the mesh ({:.1} mm past its last joint)",
-                                    chain.label(),
-                                    reach * 1000.0
-                                ));
-                            }
-                            Some(reach) => notes.push(format!(
-                                "{}: no tip from the mesh ({why}; the fingertip found on the skin \
-                                 lies {:.1} mm past its last joint, outside {lo}-{hi} times its \
-                                 last segment), so it is judged on J2/J1 alone",
-                                chain.label(),
-                                reach * 1000.0
-                            )),
-                            // No weights and nothing found on a skin (a rig of
-                            // nodes alone, a reference profile): nothing to say.
-                            None if weights.is_none() && opts.found_tips.why_not.is_empty() => {}
-                            None => {
-                                let also = opts
-                                    .found_tips
-                                    .why_not
-                                    .iter()
-                                    .find(|w| w.0 == chain.side)
-                                    .map(|w| {
-                                        format!("; the fingers were not found on the skin: {}", w.1)
-                                    })
-                                    .unwrap_or_default();
-                                notes.push(format!(
-                                    "{}: no tip from the mesh ({why}{also}), so it is judged on \
-                                     J2/J1 alone",
-                                    chain.label()
-                                ))
-                            }
-                        }
-                    }
+                // The reach past the last joint: the weights' end, else the
+                // skin's end as `rig` finds it (the found tip's reach along
+                // the last bone, within the range a distal phalanx with its
+                // pulp spans); `None` with the note that says why not.
+                let reach = match end {
+                    Ok(reach) => Some(reach),
+                    Err(why) => found_reach(chain, opts, weights.is_none(), (prev, last), &why)
+                        .map_err(|note| notes.extend(note))
+                        .ok()
+                        .map(|(reach, note)| {
+                            notes.push(note);
+                            reach
+                        }),
+                };
+                if let Some(reach) = reach {
+                    let position = last + dir * reach;
+                    input.points.push(position);
+                    input.has_tip = true;
+                    skin_tip = Some(SkinTip {
+                        beyond_node: reach,
+                        position,
+                        from_mesh: true,
+                    });
                 }
             }
             lengths.push(
@@ -1022,6 +976,63 @@ impl AuditedRig {
             .flat_map(|f| &f.bends)
             .filter(|b| b.flagged)
             .count()
+    }
+}
+
+/// A tipless finger's reach past its last joint (`last`, along the bone from
+/// `prev`) from the
+/// fingertip found on the skin (`opts.found_tips`), when the weights gave
+/// none (`why`), with the note that says so; else the note that says why
+/// not (none for a rig with no weights and nothing found on a skin: a rig of
+/// nodes alone, a reference profile).
+fn found_reach(
+    chain: &FingerChain,
+    opts: &AuditOptions,
+    unweighted: bool,
+    (prev, last): (DVec3, DVec3),
+    why: &str,
+) -> Result<(f64, String), Option<String>> {
+    use crate::format::num;
+    let dir = (last - prev).normalize_or_zero();
+    let segment = prev.distance(last);
+    let (lo, hi) = bend::MESH_END_RANGE;
+    let found = opts
+        .found_tips
+        .tips
+        .iter()
+        .find(|t| t.0 == chain.side && t.1 == chain.finger)
+        .map(|t| (t.2 - last).dot(dir));
+    match found {
+        Some(reach) if reach >= lo * segment && reach <= hi * segment => Ok((
+            reach,
+            format!(
+                "{}: its weights give no tip ({why}); the tip is the skin's end found on the \
+                 mesh ({} mm past its last joint)",
+                chain.label(),
+                num(reach * 1000.0, 1)
+            ),
+        )),
+        Some(reach) => Err(Some(format!(
+            "{}: no tip from the mesh ({why}; the fingertip found on the skin lies {} mm past \
+             its last joint, outside {lo}-{hi} times its last segment), so it is judged on \
+             J2/J1 alone",
+            chain.label(),
+            num(reach * 1000.0, 1)
+        ))),
+        None if unweighted && opts.found_tips.why_not.is_empty() => Err(None),
+        None => {
+            let also = opts
+                .found_tips
+                .why_not
+                .iter()
+                .find(|w| w.0 == chain.side)
+                .map(|w| format!("; the fingers were not found on the skin: {}", w.1))
+                .unwrap_or_default();
+            Err(Some(format!(
+                "{}: no tip from the mesh ({why}{also}), so it is judged on J2/J1 alone",
+                chain.label()
+            )))
+        }
     }
 }
 
