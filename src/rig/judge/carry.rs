@@ -45,6 +45,7 @@ use std::collections::{BTreeMap, BTreeSet};
 /// and for each joint where its skin bends now (`None`: at the joint, or
 /// the joint stays), so the blend that bent the skin there is carried to
 /// the new joint and the skin bends at it.
+#[derive(Clone)]
 pub struct FingerMove<'a> {
     pub chain: &'a FingerChain,
     pub new_positions: Vec<DVec3>,
@@ -313,12 +314,7 @@ pub fn carry_finger(
         .collect();
     if !small.is_empty() {
         let old: Vec<DVec3> = m.chain.joints.iter().map(|j| j.position).collect();
-        let mut again = FingerMove {
-            chain: m.chain,
-            new_positions: m.new_positions.clone(),
-            anchors: m.anchors.clone(),
-            blends: m.blends.clone(),
-        };
+        let mut again = m.clone();
         for &(k, o) in &now {
             let (Some(o), true) = (o, small.contains(&k)) else {
                 continue;
