@@ -713,8 +713,7 @@ fn rig_refuses_what_is_not_a_hand_at_rest_and_writes_nothing() {
         .into_iter()
         .next()
         .expect("a vendored hand");
-    let (json, bin) = unglb(&std::fs::read(&left).unwrap());
-    let mut named = json.clone();
+    let (mut named, bin) = unglb(&std::fs::read(&left).unwrap());
     if let Some(w) = named["nodes"]
         .as_array_mut()
         .unwrap()
@@ -743,19 +742,17 @@ fn rig_refuses_what_is_not_a_hand_at_rest_and_writes_nothing() {
         rigs.into_iter()
             .find(|r| r.to_string_lossy().contains("mannequiny"))
     }) {
-        {
-            let out = wd.path().join("body.glb");
-            wd.run_in_repo(&[
-                "rig",
-                body.to_str().unwrap(),
-                "--replace-fingers",
-                "--out",
-                out.to_str().unwrap(),
-            ])
-            .data_error()
-            .stderr_has("--side");
-            assert!(!out.exists(), "nothing written for two hands");
-        }
+        let out = wd.path().join("body.glb");
+        wd.run_in_repo(&[
+            "rig",
+            body.to_str().unwrap(),
+            "--replace-fingers",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .data_error()
+        .stderr_has("--side");
+        assert!(!out.exists(), "nothing written for two hands");
     }
 }
 
