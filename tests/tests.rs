@@ -12,6 +12,7 @@ mod coverage;
 mod crash_report;
 mod data;
 mod deform;
+mod docs;
 mod everyday;
 mod fbx;
 mod import;
