@@ -506,7 +506,7 @@ fn fix_and_deform_outputs_that_exist_need_force() {
         .stderr_has("--out renders: this is a file, not a directory");
 }
 
-/// The example rigs of the README (docs/examples) are what the builder makes;
+/// The example rigs of the guides (docs/examples) are what the builder makes;
 /// `PHALANX_WRITE_EXAMPLES=1 cargo test --test integration audit::the_committed_example_rigs`
 /// renews them.
 #[test]
@@ -752,11 +752,12 @@ fn hostile_rigs_get_clear_errors_and_never_a_panic() {
     assert!(!wd.path().join("m.glb").exists());
 }
 
-/// The README shows real output: its audit example (the vendored WebXR hand)
-/// is what the binary prints, and every line of it fits 100 columns.
+/// The rigger's guide (docs/rigger.md) shows real output: its audit example (the vendored
+/// WebXR hand) shows the opening, the thumb, the index finger and the summary as the binary
+/// prints them (tests/docs.rs checks the example as a whole), and every line fits 100 columns.
 #[test]
-fn the_readme_audit_example_is_current() {
-    let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
+fn the_guides_audit_example_is_current() {
+    let guide = std::fs::read_to_string(manifest_dir().join("docs/rigger.md")).unwrap();
     let out = Workdir::new();
     let run = out
         .command(&["audit", "data/rigs/webxr-generic-hand/right.glb"])
@@ -789,29 +790,34 @@ fn the_readme_audit_example_is_current() {
     );
     for line in opening.into_iter().chain(thumb).chain(index).chain(summary) {
         assert!(
-            readme.contains(line),
-            "README lacks the current line:\n{line}"
+            guide.contains(line),
+            "docs/rigger.md lacks the current line:\n{line}"
         );
     }
 }
 
-/// The README's `--fix` example is what the command prints: the audit of the
+/// The rigger's guide's `--fix` example is what the command prints: the audit of the
 /// rig as it was on standard output, then the "wrote" line on standard error;
 /// and, the example hand's skin being too coarse to carry its weights, the
 /// same fix with `--keep-weights --brief`, every line of it.
 #[test]
-fn the_readme_fix_example_is_current() {
-    let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
-    let block: String = readme
+fn the_guides_fix_example_is_current() {
+    let guide = std::fs::read_to_string(manifest_dir().join("docs/rigger.md")).unwrap();
+    let block: String = guide
         .split("```")
         .find(|b| b.contains("$ phalanx audit docs/examples/hand.glb --fix hand-fixed.glb"))
-        .expect("README has the --fix example")
+        .expect("docs/rigger.md has the --fix example")
         .to_string();
+    // As in the checkout, where the guide's example runs: the atlas judges the MCPs from the wrist.
     let wd = Workdir::with_paper_data();
-    wd.write(
+    for file in [
         "docs/examples/hand.glb",
-        std::fs::read(manifest_dir().join("docs/examples/hand.glb")).unwrap(),
-    );
+        "data/atlas/measurements.csv",
+        "data/atlas/landmarks.csv",
+        "data/literature/buryanov-kotiuk-2010.csv",
+    ] {
+        wd.write(file, std::fs::read(manifest_dir().join(file)).unwrap());
+    }
     let run = wd.run(&["audit", "docs/examples/hand.glb", "--fix", "hand-fixed.glb"]);
     run.ok();
     assert!(wd.path().join("hand-fixed.glb").exists());
@@ -828,7 +834,7 @@ fn the_readme_fix_example_is_current() {
         lines += 1;
         assert!(
             block.contains(line),
-            "the README's --fix example lacks the line:\n{line}\n{block}"
+            "docs/rigger.md's --fix example lacks the line:\n{line}\n{block}"
         );
     }
     assert_eq!(lines, 10, "{}\n{}", run.stdout, run.stderr);
@@ -842,7 +848,7 @@ fn the_readme_fix_example_is_current() {
     ];
     assert!(
         block.contains(&format!("$ phalanx {}", kept.join(" "))),
-        "the README's --fix example lacks its --keep-weights run\n{block}"
+        "docs/rigger.md's --fix example lacks its --keep-weights run\n{block}"
     );
     let run = wd.run(&kept);
     run.ok();
@@ -851,7 +857,7 @@ fn the_readme_fix_example_is_current() {
     for line in shown {
         assert!(
             block.contains(line),
-            "the README's --fix example lacks the line:\n{line}\n{block}"
+            "docs/rigger.md's --fix example lacks the line:\n{line}\n{block}"
         );
     }
 }

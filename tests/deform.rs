@@ -621,8 +621,8 @@ fn the_webxr_hands_deform_and_draw() {
         fix.ok().stdout_has("B: ").stdout_has("Verdict:");
         eprintln!("{}", fix.stdout);
         if side == "right" {
-            // The README's --fix table is what the command prints.
-            let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
+            // The rigger's guide's --fix table is what the command prints.
+            let guide = std::fs::read_to_string(manifest_dir().join("docs/rigger.md")).unwrap();
             let rows: Vec<&str> = fix.stdout.lines().filter(|l| l.starts_with('|')).collect();
             assert_eq!(rows.len(), 16, "{}", fix.stdout);
             for line in rows.iter().chain(
@@ -632,8 +632,8 @@ fn the_webxr_hands_deform_and_draw() {
                     .iter(),
             ) {
                 assert!(
-                    readme.contains(line),
-                    "README lacks the --fix line:\n{line}"
+                    guide.contains(line),
+                    "docs/rigger.md lacks the --fix line:\n{line}"
                 );
             }
         }

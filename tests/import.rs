@@ -526,7 +526,7 @@ fn usage_errors_and_notes() {
     assert_eq!(rows[1].4, "mm");
 }
 
-/// The example COCO file of the README: X-rays 1a and 1b of the paper's Table 1 laid out
+/// The example COCO file of docs/lab.md: X-rays 1a and 1b of the paper's Table 1 laid out
 /// as straight right hands (thumb on the image's left), MediaPipe's keypoint names, y in
 /// hundredths of a pixel so every segment is its Table 1 length. The thumb's CMC is not
 /// labelled (no metacarpal: the paper has none), and in 1b the little fingertip is marked
