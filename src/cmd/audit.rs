@@ -184,7 +184,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         ));
     }
     if let Some(m) = &args.moves
-        && crate::rig::session::same_file(&args.rig, m)
+        && crate::atomic::same_file(&args.rig, m)
     {
         return Err(Error::Usage(format!(
             "--moves {} would overwrite the input rig; name a new .csv file",
@@ -193,7 +193,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
     }
     // Writing over the input is refused by the session with its own message, --force or not.
     if let Some(path) = &args.fix
-        && !crate::rig::session::same_file(path, &args.rig)
+        && !crate::atomic::same_file(path, &args.rig)
     {
         check_output_file("--fix", path, args.force.force)?;
     }

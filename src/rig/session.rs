@@ -660,7 +660,7 @@ fn fix_container(rig: &Path, out: &Path) -> Result<bool, Error> {
 /// Whether the copy `option` names is a GLB (.glb, .vrm) or a .gltf with
 /// an embedded buffer; anything else, or the input itself, is refused.
 fn container(option: &str, rig: &Path, out: &Path) -> Result<bool, Error> {
-    if same_file(rig, out) {
+    if crate::atomic::same_file(rig, out) {
         return Err(Error::Usage(format!(
             "{option} {} would overwrite the input rig; name a new file (the input is never modified)",
             out.display()
@@ -722,21 +722,6 @@ fn reaudit(
         audited.judge_rays(atlas, wrist, analysis, options, re.weights.as_ref());
     }
     Ok(audited)
-}
-
-/// True when `a` and `b` name the same file (`b` may not exist yet).
-pub(crate) fn same_file(a: &Path, b: &Path) -> bool {
-    let canon = |p: &Path| {
-        let p = crate::atomic::resolve(p);
-        let dir = p
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        dir.canonicalize()
-            .ok()
-            .map(|d| d.join(p.file_name().unwrap_or_default()))
-    };
-    canon(a).is_some() && canon(a) == canon(b)
 }
 
 /// The wrist-to-MCP ratios from the atlas's landmarks ([`WRIST_LANDMARKS`])
