@@ -86,16 +86,5 @@ pub(crate) fn load_and_analyse(path: &Path, settings: &Settings) -> Result<Analy
 /// [`SOFT_TISSUE_TABLE`](crate::rig::judge::SOFT_TISSUE_TABLE), read at run time;
 /// unknown when the file is not found here (an audit that needs it then says so).
 pub(crate) fn soft_tissue_table() -> Result<crate::rig::judge::SoftTissue, Error> {
-    soft_tissue_from(Path::new(crate::rig::judge::SOFT_TISSUE_TABLE))
-}
-
-/// The soft tissue of the summary table at `path`, unknown when there is no such file.
-pub(crate) fn soft_tissue_from(path: &Path) -> Result<crate::rig::judge::SoftTissue, Error> {
-    use crate::rig::judge::SoftTissue;
-    if !path.is_file() {
-        return Ok(SoftTissue::Unknown);
-    }
-    let table = crate::dataset::SummaryTable::load(path)?;
-    let name = crate::dataset::CohortNotes::beside(path)?.and_then(|n| n.name);
-    Ok(SoftTissue::from_table(&table, name))
+    crate::rig::session::soft_tissue_from(Path::new(crate::rig::judge::SOFT_TISSUE_TABLE))
 }

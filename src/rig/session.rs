@@ -724,6 +724,16 @@ fn reaudit(
     Ok(audited)
 }
 
+/// The soft tissue of the summary table at `path`, unknown when there is no such file.
+pub fn soft_tissue_from(path: &Path) -> Result<judge::SoftTissue, Error> {
+    if !path.is_file() {
+        return Ok(judge::SoftTissue::Unknown);
+    }
+    let table = crate::dataset::SummaryTable::load(path)?;
+    let name = crate::dataset::CohortNotes::beside(path)?.and_then(|n| n.name);
+    Ok(judge::SoftTissue::from_table(&table, name))
+}
+
 /// The wrist-to-MCP ratios from the atlas's landmarks ([`WRIST_LANDMARKS`])
 /// beside the metacarpals' dataset `measurements`; `None` when that file is absent.
 pub fn wrist_ratios_beside(measurements: &Path) -> Result<Option<judge::WristRatios>, Error> {
