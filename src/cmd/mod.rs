@@ -88,3 +88,17 @@ pub(crate) fn load_and_analyse(path: &Path, settings: &Settings) -> Result<Analy
 pub(crate) fn soft_tissue_table() -> Result<crate::rig::judge::SoftTissue, Error> {
     crate::rig::session::soft_tissue_from(Path::new(crate::rig::judge::SOFT_TISSUE_TABLE))
 }
+
+/// The warnings and notes of an addition, one line each, for standard error.
+pub(crate) fn added_messages(outcome: &crate::track::AddOutcome, dataset: &Path) -> Vec<String> {
+    crate::report::track_words::added_messages(&crate::report::track_words::Added {
+        new_file: &outcome.new_file,
+        from_options: outcome.from_options,
+        dataset: &dataset.display().to_string(),
+        accepted: &outcome.accepted,
+        swapped: &outcome.swapped,
+        taken_tip: outcome.taken_tip.as_ref(),
+        limits: &outcome.limits,
+        added_columns: &outcome.added_columns,
+    })
+}

@@ -22,6 +22,7 @@ pub mod render3d;
 pub(crate) mod rig;
 pub(crate) mod schema;
 pub(crate) mod text;
+pub(crate) mod track_words;
 pub mod view;
 pub mod writer;
 
