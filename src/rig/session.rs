@@ -911,12 +911,11 @@ fn found_tips(rig: &Rig) -> judge::audited::FoundTips {
             continue;
         }
         let wrist = chains.iter().find_map(|c| c.wrist.as_ref());
-        let select = match wrist {
-            Some(w) if sides.len() > 1 && rig.weights.is_some() => {
-                MeshSelect::UnderNode { node: w.node }
-            }
-            _ => MeshSelect::Whole,
-        };
+        let select = MeshSelect::for_hand(
+            wrist.map(|w| w.node),
+            sides.len() > 1,
+            rig.weights.is_some(),
+        );
         let found = hand_mesh(&rig.file, &select)
             .map_err(|e| {
                 e.problems
