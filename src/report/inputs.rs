@@ -145,9 +145,8 @@ pub(crate) fn gather(
     let cov_settings = CoverageSettings {
         sims: req.sims,
         resamples: settings.resamples.min(coverage::SIM_RESAMPLES),
-        seed: settings.seed,
-        confidence: settings.confidence,
         max_n: Some(coverage::REPORT_MAX_N),
+        ..atlas_coverage(&settings)
     };
     crate::analysis::budget::check_coverage(&dataset, &cov_settings, req.show_coverage)
         .map_err(Error::Usage)?;
@@ -192,22 +191,15 @@ pub(crate) fn gather(
             }
         },
         || {
-            atlas_data.map(|atlas| {
-                let pop = CoverageSettings {
-                    sims: ATLAS_SIMS,
-                    resamples: ATLAS_RESAMPLES,
-                    ..cov_settings
-                };
-                AtlasInputs {
-                    analysis: crate::analysis::analyse(&atlas, &settings),
-                    cohorts: crate::analysis::compare::cohorts(&paper_data, &atlas, &settings),
-                    population: crate::analysis::population::of_dataset(
-                        &atlas,
-                        &ATLAS_SIZES,
-                        &CoverageSettings { max_n: None, ..pop },
-                        crate::analysis::Quantity::is_relative,
-                    ),
-                }
+            atlas_data.map(|atlas| AtlasInputs {
+                analysis: crate::analysis::analyse(&atlas, &settings),
+                cohorts: crate::analysis::compare::cohorts(&paper_data, &atlas, &settings),
+                population: crate::analysis::population::of_dataset(
+                    &atlas,
+                    &ATLAS_SIZES,
+                    &atlas_coverage(&settings),
+                    crate::analysis::Quantity::is_relative,
+                ),
             })
         },
     );
@@ -264,6 +256,17 @@ pub(crate) fn gather(
         shape,
         calibration,
     })
+}
+
+/// The settings of the coverage measured on the atlas's hands.
+fn atlas_coverage(settings: &Settings) -> CoverageSettings {
+    CoverageSettings {
+        sims: ATLAS_SIMS,
+        resamples: ATLAS_RESAMPLES,
+        seed: settings.seed,
+        confidence: settings.confidence,
+        max_n: None,
+    }
 }
 
 /// The paper against a published table, and the atlas against it, with the atlas's
