@@ -14,6 +14,21 @@ pub(crate) fn resolve(target: &Path) -> std::path::PathBuf {
     std::fs::canonicalize(target).unwrap_or_else(|_| target.to_path_buf())
 }
 
+/// True when `a` and `b` name the same file (`b` may not exist yet).
+pub(crate) fn same_file(a: &Path, b: &Path) -> bool {
+    let canon = |p: &Path| {
+        let p = resolve(p);
+        let dir = p
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        dir.canonicalize()
+            .ok()
+            .map(|d| d.join(p.file_name().unwrap_or_default()))
+    };
+    canon(a).is_some() && canon(a) == canon(b)
+}
+
 /// Writes `bytes` to a synced temporary file in the directory of `target`
 /// (created if missing). Rename it into place with [`commit`] (given the same
 /// `target`; links are followed by both).

@@ -3,9 +3,11 @@
 //! Reproduces Chaudhry, You, Jin and Zhang, "Statistical Analysis of Joint
 //! Determination for Skeleton Driven Animation of Human Hands", and goes beyond
 //! it. The `phalanx` command is a layer over this library: the statistics,
-//! the rigs' audits, fixes, deformation and making, and the report are
-//! reachable from here; the tracking of a dataset (`add`, `remove`,
-//! `snapshot`) and the terminal's text are the command's own.
+//! the rigs' audits, fixes, deformation and making, and the report's
+//! rendering are reachable from here; the tracking of a dataset (`add`,
+//! `remove`, `snapshot`), the gathering of the report's inputs from files
+//! (`report::inputs`) and the terminal's text are internal to the crate, for
+//! the command.
 //!
 //! # Example
 //!

@@ -22,6 +22,7 @@ use crate::dataset::history::{self, ChangeRecord, Event, FlaggedRow, Snapshot};
 use crate::dataset::tip::{self, TipKind};
 use crate::dataset::{DataError, Dataset, Finger, Problem, Row, csvinput};
 use crate::error::Error;
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -55,7 +56,7 @@ pub(crate) struct AddRequest {
     pub settings: Settings,
 }
 
-/// What `add` did.
+/// What `add` did; `report::track_words` says it.
 #[derive(Debug)]
 pub(crate) struct AddOutcome {
     pub added: usize,
@@ -63,69 +64,29 @@ pub(crate) struct AddOutcome {
     pub xrays_after: usize,
     /// Rows added though flagged (with `accept_flagged`), one flag per row.
     pub flags: Vec<Flag>,
-    /// Warnings to show, each starting with the file and line it is about
-    /// (`new.csv:24: ...`, or the file alone for rows without a line of their own).
-    pub warnings: Vec<String>,
-    /// What the reader should know of the new rows: the tip that rows giving none took
-    /// from the dataset, fingers whose new rows could not be checked fully (too few
-    /// current X-rays, or none in the new rows' unit).
-    pub notes: Vec<String>,
+    /// The label of the new rows' file (`<command line>` for a row given as options).
+    pub new_file: String,
+    /// Whether the new row was given as options.
+    pub from_options: bool,
+    /// Each row added though flagged: its line in the user's file (when it has
+    /// one) and why it was flagged.
+    pub accepted: Vec<(Option<u64>, String)>,
+    /// Each finger whose segments look swapped with the rows added: the new
+    /// rows' lines of that finger in the user's file, and the warning.
+    pub swapped: Vec<(Vec<u64>, String)>,
+    /// The tip that new rows giving none took from the dataset: its kind, how
+    /// many rows took it, and their first distinct X-ray ids (at most 11).
+    pub taken_tip: Option<(TipKind, usize, Vec<String>)>,
+    /// Fingers whose new rows could not be checked fully (too few current
+    /// X-rays, or none in the new rows' unit), one sentence each.
+    pub limits: Vec<String>,
     /// Header columns the dataset gained (the new rows fill them).
     pub added_columns: Vec<&'static str>,
-}
-
-impl AddOutcome {
-    /// The warnings and notes of an addition, one line each, for standard
-    /// error: `warning: ...`, `note: ...`, and the columns the header gained.
-    pub(crate) fn messages(&self) -> Vec<String> {
-        let mut lines = Vec::new();
-        for w in &self.warnings {
-            lines.push(format!("warning: {w}"));
-        }
-        for n in &self.notes {
-            lines.push(format!("note: {n}"));
-        }
-        if !self.added_columns.is_empty() {
-            lines.push(format!(
-                "note: the dataset's header gained the column{} {} (empty on its existing rows)",
-                if self.added_columns.len() == 1 {
-                    ""
-                } else {
-                    "s"
-                },
-                self.added_columns.join(", ")
-            ));
-        }
-        lines
-    }
-}
-
-/// "1 row", "50 rows".
-pub(crate) fn rows_text(n: usize) -> String {
-    format!("{n} row{}", if n == 1 { "" } else { "s" })
-}
-
-/// ", 1 of them recorded as flagged", or nothing.
-pub(crate) fn flagged_text(n: usize) -> String {
-    match n {
-        0 => String::new(),
-        1 => ", 1 of them recorded as flagged".to_string(),
-        n => format!(", {n} of them recorded as flagged"),
-    }
 }
 
 /// The current UTC time, RFC 3339, for history records.
 pub(crate) fn now() -> String {
     humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
-}
-
-/// Where a message about one new row points: `FILE:LINE` for a row of a file the user
-/// wrote, the file alone for rows given as options or made by the program.
-fn place(new: &Dataset, line: Option<u64>) -> String {
-    match line {
-        Some(l) => format!("{}:{l}", new.path),
-        None => new.path.clone(),
-    }
 }
 
 /// The tip rule of `add`: new rows whose fingertips are at the bone do not join rows at
@@ -145,125 +106,118 @@ fn refuse_mixed_tips(current: &Dataset, new: &Dataset, allowed: bool) -> Result<
     }
 }
 
+/// The new rows read once: as a dataset, and their file's typed cells (none
+/// for rows made by the program).
+fn read_new(rows: &NewRows) -> Result<(Cow<'_, Dataset>, append::Typed), Error> {
+    Ok(match rows {
+        NewRows::File(p) => {
+            let bytes = csvinput::read_input(p)?;
+            let new = Dataset::from_bytes(&p.display().to_string(), &bytes)?;
+            (Cow::Owned(new), append::Typed::of(&bytes))
+        }
+        NewRows::Fields(fields) => (
+            Cow::Owned(append::single_row(fields)?),
+            append::Typed::of(&append::single_row_bytes(fields)?),
+        ),
+        NewRows::Rows(rows) => (Cow::Borrowed(rows), append::Typed::default()),
+    })
+}
+
 /// Adds new rows to a dataset, then appends a snapshot to its history.
 pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
-    let loaded;
-    let (new, typed) = match &req.rows {
-        NewRows::File(p) => {
-            loaded = Dataset::load(p)?;
-            (&loaded, append::Typed::of(&csvinput::read_input(p)?))
-        }
-        NewRows::Fields(fields) => {
-            loaded = append::single_row(fields)?;
-            (
-                &loaded,
-                append::Typed::of(&append::single_row_bytes(fields)?),
-            )
-        }
-        NewRows::Rows(rows) => (rows, append::Typed::default()),
-    };
+    let (new, typed) = read_new(&req.rows)?;
     let from_file = matches!(req.rows, NewRows::File(_));
     let line_of = |r: &Row| from_file.then_some(r.line);
+    // Rows given as options have no line of their own: problems name none.
+    let unlined = |mut e: DataError| {
+        if !from_file {
+            e.problems.iter_mut().for_each(|p| p.line = None);
+        }
+        e
+    };
     csvinput::open_input(&req.data)?; // a missing dataset is reported before any lock file is made
     let _lock = DatasetLock::acquire(&req.data).map_err(Error::write(&req.data))?;
     let current_bytes = csvinput::read_input(&req.data)?;
-    let label = req.data.display().to_string();
-    let current = Dataset::from_bytes(&label, &current_bytes)?;
-    let tipped = tip::record_new(&current, new, req.tip, from_file);
-    let new = &tipped.rows;
+    let current = Dataset::from_bytes(&req.data.display().to_string(), &current_bytes)?;
+    let tipped = tip::record_new(&current, &new, req.tip, from_file);
     // Conflicting metadata and missing tips are refused before anything else is said
     // about the rows, every problem at once.
     let mut problems = tipped.problems;
-    if let Err(e) = append::check_fits(&current, new) {
+    if let Err(e) = append::check_fits(&current, &tipped.rows) {
         problems.extend(e.problems);
     }
     if !problems.is_empty() {
         problems.sort_by_key(|p| (p.line.is_none(), p.line));
-        if !from_file {
-            problems.iter_mut().for_each(|p| p.line = None);
-        }
-        return Err(DataError {
-            file: new.path.clone(),
-            problems,
-        }
-        .into());
+        let file = tipped.rows.path.clone();
+        return Err(unlined(DataError { file, problems }).into());
     }
-    refuse_mixed_tips(&current, new, req.mixed_tips)?;
-    let n = current.xray_count() + new.xray_count();
+    refuse_mixed_tips(&current, &tipped.rows, req.mixed_tips)?;
+    let n = current.xray_count() + tipped.rows.xray_count();
     analysis::budget::check_bootstrap(n, req.settings.resamples).map_err(Error::Usage)?;
-    let filled = append::with_defaults(new, &current);
-    let new = &filled;
+    let mut new = append::with_defaults(&tipped.rows, &current);
     let before = analysis::analyse(&current, &req.settings);
     let flags = outliers::flag_rows(&before, &new.rows);
     if !flags.is_empty() && !req.accept_flagged {
-        return Err(refusal(new, &flags, from_file).into());
+        return Err(refusal(&new, &flags, from_file).into());
     }
-    let mut notes: Vec<String> = Vec::new();
-    if let Some((kind, rows)) = &tipped.from_dataset {
-        notes.push(taken_tip_note(&req.rows, new, &current, *kind, rows));
-    }
+    let mut limits: Vec<String> = Vec::new();
     for r in &new.rows {
         if let Some(note) = outliers::limits(&before, r.finger)
-            && !notes.contains(&note)
+            && !limits.contains(&note)
         {
-            notes.push(note);
+            limits.push(note);
         }
     }
-    notes.extend(outliers::unit_limits(&before, &new.rows));
+    limits.extend(outliers::unit_limits(&before, &new.rows));
     // Accepted flags are recorded in the rows themselves.
-    let marked;
-    let new = if flags.is_empty() {
-        new
-    } else {
-        let mut m = new.clone();
-        for r in &mut m.rows {
-            if let Some(f) = flag_of(&flags, r) {
-                r.meta.flagged = Some(Arc::from(f.finding.as_str()));
-            }
+    for r in &mut new.rows {
+        if let Some(f) = flag_of(&flags, r) {
+            r.meta.flagged = Some(Arc::from(f.finding.as_str()));
         }
-        marked = m;
-        &marked
-    };
-    let (bytes, after) = append::appended_bytes_typed(&current_bytes, &current, new, &typed)
-        .map_err(|mut e| {
-            if !from_file {
-                e.problems.iter_mut().for_each(|p| p.line = None);
-            }
-            e
-        })?;
-    let added_columns = append::added_columns(&current, new);
+    }
+    let (bytes, after) =
+        append::appended_bytes_typed(&current_bytes, &current, &new, &typed).map_err(unlined)?;
     let a = analysis::analyse(&after, &req.settings);
-    let mut warnings: Vec<String> = new
+    let accepted = new
         .rows
         .iter()
-        .filter_map(|r| {
-            let f = flag_of(&flags, r)?;
-            Some(format!(
-                "{}: added though flagged (--accept-flagged): {}",
-                place(new, line_of(r)),
-                f.reason
-            ))
+        .filter_map(|r| Some((line_of(r), flag_of(&flags, r)?.reason.clone())))
+        .collect();
+    let swapped = a
+        .fingers
+        .iter()
+        .filter_map(|f| {
+            let w = analysis::plausible::swapped_segments(f)?;
+            let rows = new.rows.iter().filter(|r| r.finger == f.finger);
+            Some((rows.filter_map(line_of).collect(), w))
         })
         .collect();
-    for f in &a.fingers {
-        if let Some(w) = analysis::plausible::swapped_segments(f) {
-            let lines: Vec<String> = new
-                .rows
-                .iter()
-                .filter(|r| r.finger == f.finger)
-                .filter_map(|r| line_of(r).map(|l| l.to_string()))
-                .collect();
-            let at = if lines.is_empty() {
-                new.path.clone()
-            } else {
-                format!("{}:{}", new.path, lines.join(","))
-            };
-            warnings.push(format!("{at}: {w}"));
-        }
-    }
     let mut snapshot = tracking::snapshot(&a, now(), Event::Add);
-    snapshot.change = Some(ChangeRecord {
-        file: match &req.rows {
+    snapshot.change = Some(change_record(&req.rows, &new, &flags));
+    snapshot.note.clone_from(&req.note);
+    commit(&req.data, &bytes, &req.history, &snapshot)?;
+    Ok(AddOutcome {
+        added: new.rows.len(),
+        xrays_before: current.xray_count(),
+        xrays_after: after.xray_count(),
+        new_file: new.path.clone(),
+        from_options: matches!(req.rows, NewRows::Fields(_)),
+        accepted,
+        swapped,
+        taken_tip: tipped
+            .from_dataset
+            .map(|(kind, rows)| (kind, rows.len(), first_ids(&new, &rows))),
+        limits,
+        added_columns: append::added_columns(&current, &new),
+        flags,
+    })
+}
+
+/// The history's record of an addition: the new rows' file (none for rows
+/// given as options), X-rays, and the rows added though flagged.
+fn change_record(source: &NewRows, new: &Dataset, flags: &[Flag]) -> ChangeRecord {
+    ChangeRecord {
+        file: match source {
             NewRows::Fields(_) => None,
             _ => Some(new.path.clone()),
         },
@@ -273,7 +227,7 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
             .rows
             .iter()
             .filter_map(|r| {
-                let f = flag_of(&flags, r)?;
+                let f = flag_of(flags, r)?;
                 Some(FlaggedRow {
                     xray: r.xray.to_string(),
                     finger: r.finger,
@@ -281,76 +235,19 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
                 })
             })
             .collect(),
-    });
-    snapshot.note.clone_from(&req.note);
-    commit(&req.data, &bytes, &req.history, &snapshot)?;
-    Ok(AddOutcome {
-        added: new.rows.len(),
-        xrays_before: current.xray_count(),
-        xrays_after: after.xray_count(),
-        flags,
-        warnings,
-        notes,
-        added_columns,
-    })
+    }
 }
 
-/// What `add` says of new rows that gave no tip and took the one every row of the dataset
-/// records: "50 rows of new.csv give no tip: recorded at the skin, as every row of
-/// data/measurements.csv is; give --tip bone if these were measured to the bone (take them
-/// out first: phalanx remove --xray n1,n2)".
-fn taken_tip_note(
-    source: &NewRows,
-    new: &Dataset,
-    current: &Dataset,
-    kind: TipKind,
-    rows: &[usize],
-) -> String {
-    let other = match kind {
-        TipKind::Bone => TipKind::Skin,
-        TipKind::Skin => TipKind::Bone,
-    };
-    let n = rows.len();
+/// The first distinct X-ray ids (at most 11) of the rows at `rows` of `new`.
+fn first_ids(new: &Dataset, rows: &[usize]) -> Vec<String> {
     let mut seen = std::collections::HashSet::new();
-    let ids: Vec<&str> = rows
-        .iter()
+    rows.iter()
         .filter_map(|&i| new.rows.get(i))
         .map(|r| &*r.xray)
         .filter(|x| seen.insert(*x))
         .take(11)
-        .collect();
-    // Ids a shell and the option parser take as they are.
-    let plain = |x: &&str| {
-        x.starts_with(|c: char| c.is_ascii_alphanumeric())
-            && x.chars()
-                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-'))
-    };
-    let (subject, these, them) = match source {
-        NewRows::Fields(_) => ("the new row gives".to_string(), "it was", "it"),
-        _ => (
-            format!(
-                "{} of {} give{}",
-                crate::format::count(n, "row", "rows"),
-                new.path,
-                if n == 1 { "s" } else { "" }
-            ),
-            if n == 1 { "it was" } else { "these were" },
-            if n == 1 { "it" } else { "them" },
-        ),
-    };
-    let remove = if ids.len() <= 10 && ids.iter().all(plain) {
-        format!("phalanx remove --xray {}", ids.join(","))
-    } else {
-        "phalanx remove --xray with their ids".to_string()
-    };
-    format!(
-        "{subject} no tip: recorded at the {}, as every row of {} is; give --tip {} if {these} \
-         measured to the {} (take {them} out first: {remove})",
-        kind.name(),
-        current.path,
-        other.name(),
-        other.name()
-    )
+        .map(str::to_string)
+        .collect()
 }
 
 /// The flag of a new row, if the rules flagged it.

@@ -866,9 +866,69 @@ fn a_tenfold_typo_is_refused_unless_accepted() {
     ]);
     run.ok();
     assert!(run.stderr.is_empty(), "{}", run.stderr);
+    // A misplaced decimal point: refused, with exactly one problem naming each value
+    // with the interval it is outside, and the length to fix; accepted on demand, with
+    // the same words as one warning.
+    let typo = [
+        "add",
+        "--xray",
+        "2b",
+        "--finger",
+        "ring",
+        "--lengths",
+        "3584.0,226.5,191.1",
+    ];
+    let refused = wd.run(&typo);
+    refused.data_error();
+    let flagged: Vec<&str> = refused
+        .problem_lines()
+        .into_iter()
+        .filter(|l| l.contains("flagged as a likely error"))
+        .collect();
+    assert_eq!(flagged.len(), 1, "{}", refused.stderr);
+    let mut accept = typo.to_vec();
+    accept.push("--accept-flagged");
+    let run = wd.run(&accept);
+    run.ok();
+    let warned = warnings(&run);
+    assert_eq!(warned.len(), 1, "{}", run.stderr);
+    let w = warned[0];
+    assert!(
+        flagged[0].ends_with(&w[w.find("ring X-ray").unwrap()..]),
+        "{}\n{w}",
+        flagged[0]
+    );
+    assert!(
+        w.starts_with("warning: <command line>: added though flagged (--accept-flagged): ring X-ray '2b': J~1 = 0.8956 is outside ["),
+        "{w}"
+    );
+    assert!(
+        w.contains("99.67% prediction intervals of the current 5 X-rays"),
+        "{w}"
+    );
+    assert!(w.contains("j1 = 3584 is 9.6 times the median j1"), "{w}");
+    assert!(
+        w.ends_with("j1 looks 10 times too large (a misplaced decimal point?)"),
+        "{w}"
+    );
+    assert!(!w.contains("robust"), "{w}");
+    // A second typo after the first is still refused with --strict.
+    wd.run(&[
+        "add",
+        "--strict",
+        "--xray",
+        "2g",
+        "--finger",
+        "ring",
+        "--lengths",
+        "3729.8,226.7,212.1",
+    ])
+    .data_error()
+    .stderr_has("flagged as a likely error: ring X-ray '2g'")
+    .stderr_has("j1 looks 10 times too large");
 
     for (xray, finger, lengths, segment) in [
-        ("2b", "index", "3399.6,188.83,169.67", "j1"),
+        ("2f", "index", "3399.6,188.83,169.67", "j1"),
         ("2c", "middle", "380.2,2551.1,190.5", "j2"),
         ("2d", "ring", "366.8,247.0,2004.0", "j3"),
         ("2e", "thumb", "2705.0,231.02", "j1"),

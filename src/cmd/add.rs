@@ -3,6 +3,7 @@
 use super::args::{BootArgs, DataArgs, HistoryArgs, TipArg};
 use super::out;
 use crate::error::Error;
+use crate::report::track_words;
 use crate::track::{self, AddRequest, NewRows};
 use std::path::PathBuf;
 
@@ -90,17 +91,17 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
         tip: args.tip.map(TipArg::kind),
         settings: args.boot.settings()?,
     })?;
-    for line in outcome.messages() {
+    for line in super::added_messages(&outcome, &args.data.data) {
         eprintln!("{line}");
     }
     out::print(
         format!(
             "added {} to {}: {} -> {} X-rays{}; snapshot appended to {}\n",
-            track::rows_text(outcome.added),
+            track_words::rows(outcome.added),
             args.data.data.display(),
             outcome.xrays_before,
             outcome.xrays_after,
-            track::flagged_text(outcome.flags.len()),
+            track_words::flagged(outcome.flags.len()),
             history.display()
         )
         .as_bytes(),

@@ -177,30 +177,7 @@ fn parse_joint(s: &str) -> Result<Joint, String> {
 }
 
 pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> {
-    if args.fix_mcp != FixMcp::Finger && args.fix.is_none() && args.moves.is_none() {
-        return Err(Error::Usage(
-            "--fix-mcp says where the fix puts an MCP: give it with --fix OUT or --moves FILE.csv"
-                .into(),
-        ));
-    }
-    if let Some(m) = &args.moves
-        && crate::rig::session::same_file(&args.rig, m)
-    {
-        return Err(Error::Usage(format!(
-            "--moves {} would overwrite the input rig; name a new .csv file",
-            m.display()
-        )));
-    }
-    // Writing over the input is refused by the session with its own message, --force or not.
-    if let Some(path) = &args.fix
-        && !crate::rig::session::same_file(path, &args.rig)
-    {
-        check_output_file("--fix", path, args.force.force)?;
-    }
-    if let Some(path) = &args.moves {
-        check_output_file("--moves", path, args.force.force)?;
-        check_output_file("--moves", &weights_path(path), args.force.force)?;
-    }
+    check_outputs(args)?;
     let metacarpals = metacarpals_or_default(args.metacarpals.as_deref());
     let options = options(args)?;
     let no_tissue = options.soft_tissue == SoftTissue::Unknown;
@@ -217,42 +194,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         moves: args.moves.is_some(),
         prior_hands: prior_hands(args.prior_hands)?,
     })?;
-    if metacarpals.is_none()
-        && audit
-            .rig
-            .fingers
-            .iter()
-            .any(|f| f.chain.metacarpal.is_some())
-    {
-        audit.rig.notes.push(format!(
-            "Metacarpals: the rig has them, but {DEFAULT_METACARPALS} (the Digital Hand Atlas) \
-             was not found here, so its MCPs are not judged from their CMCs; give a dataset with \
-             an mc column with --metacarpals DATASET"
-        ));
-    }
-    // The judge says which MCPs went unjudged for want of a soft tissue figure; where that
-    // figure comes from (a file here, or an option) is the command's to say.
-    if let Some(dataset) = &metacarpals
-        && no_tissue
-        && audit
-            .rig
-            .fingers
-            .iter()
-            .all(|f| f.metacarpal_check.is_none())
-        && audit
-            .rig
-            .fingers
-            .iter()
-            .any(|f| f.chain.metacarpal.is_some() || f.chain.wrist.is_some())
-    {
-        audit.rig.notes.push(format!(
-            "Metacarpals: no MCP is judged from its CMC or the wrist against {}: the fingertip's \
-             soft tissue table ({}) was not found here; run from the phalanx checkout, or give \
-             --tip-soft-tissue MM",
-            dataset.display(),
-            crate::rig::judge::SOFT_TISSUE_TABLE
-        ));
-    }
+    add_metacarpal_notes(&mut audit, metacarpals.as_deref(), no_tissue);
     // --only-outside decides only what a fix moves.
     let only_outside = args.only_outside && (args.fix.is_some() || args.moves.is_some());
     let bytes = match args.format {
@@ -268,33 +210,16 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         TextFormat::Json => json(&audit)?,
     };
     if let (Some(path), Some(outcome)) = (&args.moves, &audit.moves) {
-        let (moves, warnings) = (&outcome.moves, &outcome.warnings);
-        let csv = report::csv_out::moves(moves)?;
-        let weights = report::csv_out::weight_changes(&outcome.weights)?;
-        crate::atomic::replace(path, &csv).map_err(Error::write(path))?;
-        let beside = weights_path(path);
-        crate::atomic::replace(&beside, &weights).map_err(Error::write(&beside))?;
+        write_moves(path, outcome)?;
         if !quiet {
-            let mut line = moves_summary(&audit, path, moves.len());
-            if args.brief {
-                line.push_str(&brief_warnings(warnings.len()));
-            }
-            eprintln!("{}", fit_text(&line, width));
-            for w in warnings.iter().filter(|_| !args.brief) {
-                eprintln!("warning: {w}");
-            }
+            let line = moves_summary(&audit, path, outcome.moves.len());
+            say(&line, &outcome.warnings, args.brief, width);
         }
     }
     out::print(&bytes)?;
     if !quiet && let Some(fix) = &audit.fix {
-        let mut line = fix_summary(fix, audit.analysis.settings.confidence);
-        if args.brief {
-            line.push_str(&brief_warnings(fix.warnings.len()));
-        }
-        eprintln!("{}", fit_text(&line, width));
-        for w in fix.warnings.iter().filter(|_| !args.brief) {
-            eprintln!("warning: {w}");
-        }
+        let line = fix_summary(fix, audit.analysis.settings.confidence);
+        say(&line, &fix.warnings, args.brief, width);
     }
     Ok(
         if args.strict && audit.rig.outside() + audit.rig.metacarpals_outside() > 0 {
@@ -303,6 +228,89 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
             0
         },
     )
+}
+
+/// Refuses, before any work, a `--fix-mcp` without a fix, a `--moves` over the
+/// input, and output files that exist (without `--force`).
+fn check_outputs(args: &Args) -> Result<(), Error> {
+    if args.fix_mcp != FixMcp::Finger && args.fix.is_none() && args.moves.is_none() {
+        return Err(Error::Usage(
+            "--fix-mcp says where the fix puts an MCP: give it with --fix OUT or --moves FILE.csv"
+                .into(),
+        ));
+    }
+    if let Some(m) = &args.moves
+        && crate::atomic::same_file(&args.rig, m)
+    {
+        return Err(Error::Usage(format!(
+            "--moves {} would overwrite the input rig; name a new .csv file",
+            m.display()
+        )));
+    }
+    // Writing over the input is refused by the session with its own message, --force or not.
+    if let Some(path) = &args.fix
+        && !crate::atomic::same_file(path, &args.rig)
+    {
+        check_output_file("--fix", path, args.force.force)?;
+    }
+    if let Some(path) = &args.moves {
+        check_output_file("--moves", path, args.force.force)?;
+        check_output_file("--moves", &weights_path(path), args.force.force)?;
+    }
+    Ok(())
+}
+
+/// The notes on MCPs left unjudged for a reason of the command's: the default
+/// metacarpals' dataset not found here, or no soft tissue figure (from a file
+/// here, or an option) for judging them from their CMC or the wrist.
+fn add_metacarpal_notes(audit: &mut Audit, metacarpals: Option<&Path>, no_tissue: bool) {
+    let fingers = &audit.rig.fingers;
+    if metacarpals.is_none() && fingers.iter().any(|f| f.chain.metacarpal.is_some()) {
+        audit.rig.notes.push(format!(
+            "Metacarpals: the rig has them, but {DEFAULT_METACARPALS} (the Digital Hand Atlas) \
+             was not found here, so its MCPs are not judged from their CMCs; give a dataset with \
+             an mc column with --metacarpals DATASET"
+        ));
+    }
+    // The judge says which MCPs went unjudged for want of a soft tissue figure; where that
+    // figure comes from (a file here, or an option) is the command's to say.
+    let fingers = &audit.rig.fingers;
+    if let Some(dataset) = metacarpals
+        && no_tissue
+        && fingers.iter().all(|f| f.metacarpal_check.is_none())
+        && fingers
+            .iter()
+            .any(|f| f.chain.metacarpal.is_some() || f.chain.wrist.is_some())
+    {
+        audit.rig.notes.push(format!(
+            "Metacarpals: no MCP is judged from its CMC or the wrist against {}: the fingertip's \
+             soft tissue table ({}) was not found here; run from the phalanx checkout, or give \
+             --tip-soft-tissue MM",
+            dataset.display(),
+            crate::rig::judge::SOFT_TISSUE_TABLE
+        ));
+    }
+}
+
+/// Writes `--moves FILE.csv` and the weights beside it.
+fn write_moves(path: &Path, outcome: &session::MovesOutcome) -> Result<(), Error> {
+    let csv = report::csv_out::moves(&outcome.moves)?;
+    let weights = report::csv_out::weight_changes(&outcome.weights)?;
+    crate::atomic::replace(path, &csv).map_err(Error::write(path))?;
+    let beside = weights_path(path);
+    crate::atomic::replace(&beside, &weights).map_err(Error::write(&beside))
+}
+
+/// A result line on standard error, then its warnings (with `--brief`, only how many).
+fn say(line: &str, warnings: &[String], brief: bool, width: Width) {
+    let mut line = line.to_string();
+    if brief {
+        line.push_str(&brief_warnings(warnings.len()));
+    }
+    eprintln!("{}", fit_text(&line, width));
+    for w in warnings.iter().filter(|_| !brief) {
+        eprintln!("warning: {w}");
+    }
 }
 
 /// The tip and bend options, in metres; lengths must be finite, not negative

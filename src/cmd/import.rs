@@ -5,6 +5,7 @@ use super::out;
 use crate::dataset::Dataset;
 use crate::dataset::landmarks::{self, ImportOptions, Layout, Side};
 use crate::error::Error;
+use crate::report::track_words;
 use crate::track::{self, AddRequest, NewRows};
 use clap::ValueEnum;
 use std::path::PathBuf;
@@ -159,7 +160,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
                 tip: None,
                 settings,
             })?;
-            for line in outcome.messages() {
+            for line in super::added_messages(&outcome, data) {
                 eprintln!("{line}");
             }
             out::print(
@@ -168,7 +169,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
                     data.display(),
                     outcome.xrays_before,
                     outcome.xrays_after,
-                    track::flagged_text(outcome.flags.len()),
+                    track_words::flagged(outcome.flags.len()),
                     history.display()
                 )
                 .as_bytes(),

@@ -86,16 +86,19 @@ pub(crate) fn load_and_analyse(path: &Path, settings: &Settings) -> Result<Analy
 /// [`SOFT_TISSUE_TABLE`](crate::rig::judge::SOFT_TISSUE_TABLE), read at run time;
 /// unknown when the file is not found here (an audit that needs it then says so).
 pub(crate) fn soft_tissue_table() -> Result<crate::rig::judge::SoftTissue, Error> {
-    soft_tissue_from(Path::new(crate::rig::judge::SOFT_TISSUE_TABLE))
+    crate::rig::session::soft_tissue_from(Path::new(crate::rig::judge::SOFT_TISSUE_TABLE))
 }
 
-/// The soft tissue of the summary table at `path`, unknown when there is no such file.
-pub(crate) fn soft_tissue_from(path: &Path) -> Result<crate::rig::judge::SoftTissue, Error> {
-    use crate::rig::judge::SoftTissue;
-    if !path.is_file() {
-        return Ok(SoftTissue::Unknown);
-    }
-    let table = crate::dataset::SummaryTable::load(path)?;
-    let name = crate::dataset::CohortNotes::beside(path)?.and_then(|n| n.name);
-    Ok(SoftTissue::from_table(&table, name))
+/// The warnings and notes of an addition, one line each, for standard error.
+pub(crate) fn added_messages(outcome: &crate::track::AddOutcome, dataset: &Path) -> Vec<String> {
+    crate::report::track_words::added_messages(&crate::report::track_words::Added {
+        new_file: &outcome.new_file,
+        from_options: outcome.from_options,
+        dataset: &dataset.display().to_string(),
+        accepted: &outcome.accepted,
+        swapped: &outcome.swapped,
+        taken_tip: outcome.taken_tip.as_ref(),
+        limits: &outcome.limits,
+        added_columns: &outcome.added_columns,
+    })
 }

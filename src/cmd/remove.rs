@@ -80,7 +80,7 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
     out::print(
         format!(
             "removed {} from {}: {}; {} -> {} X-rays; snapshot appended to {}\n",
-            track::rows_text(outcome.removed.len()),
+            crate::report::track_words::rows(outcome.removed.len()),
             args.data.data.display(),
             rows.join(", "),
             outcome.xrays_before,

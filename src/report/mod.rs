@@ -10,6 +10,7 @@ pub(crate) mod compare_table;
 pub(crate) mod compare_words;
 pub(crate) mod csv_out;
 pub(crate) mod deform;
+pub(crate) mod inputs;
 pub mod json;
 pub mod layout;
 pub(crate) mod phrases;
@@ -21,6 +22,7 @@ pub mod render3d;
 pub(crate) mod rig;
 pub(crate) mod schema;
 pub(crate) mod text;
+pub(crate) mod track_words;
 pub mod view;
 pub mod writer;
 

@@ -660,7 +660,7 @@ fn fix_container(rig: &Path, out: &Path) -> Result<bool, Error> {
 /// Whether the copy `option` names is a GLB (.glb, .vrm) or a .gltf with
 /// an embedded buffer; anything else, or the input itself, is refused.
 fn container(option: &str, rig: &Path, out: &Path) -> Result<bool, Error> {
-    if same_file(rig, out) {
+    if crate::atomic::same_file(rig, out) {
         return Err(Error::Usage(format!(
             "{option} {} would overwrite the input rig; name a new file (the input is never modified)",
             out.display()
@@ -724,19 +724,14 @@ fn reaudit(
     Ok(audited)
 }
 
-/// True when `a` and `b` name the same file (`b` may not exist yet).
-pub(crate) fn same_file(a: &Path, b: &Path) -> bool {
-    let canon = |p: &Path| {
-        let p = crate::atomic::resolve(p);
-        let dir = p
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        dir.canonicalize()
-            .ok()
-            .map(|d| d.join(p.file_name().unwrap_or_default()))
-    };
-    canon(a).is_some() && canon(a) == canon(b)
+/// The soft tissue of the summary table at `path`, unknown when there is no such file.
+pub fn soft_tissue_from(path: &Path) -> Result<judge::SoftTissue, Error> {
+    if !path.is_file() {
+        return Ok(judge::SoftTissue::Unknown);
+    }
+    let table = crate::dataset::SummaryTable::load(path)?;
+    let name = crate::dataset::CohortNotes::beside(path)?.and_then(|n| n.name);
+    Ok(judge::SoftTissue::from_table(&table, name))
 }
 
 /// The wrist-to-MCP ratios from the atlas's landmarks ([`WRIST_LANDMARKS`])
@@ -916,12 +911,11 @@ fn found_tips(rig: &Rig) -> judge::audited::FoundTips {
             continue;
         }
         let wrist = chains.iter().find_map(|c| c.wrist.as_ref());
-        let select = match wrist {
-            Some(w) if sides.len() > 1 && rig.weights.is_some() => {
-                MeshSelect::UnderNode { node: w.node }
-            }
-            _ => MeshSelect::Whole,
-        };
+        let select = MeshSelect::for_hand(
+            wrist.map(|w| w.node),
+            sides.len() > 1,
+            rig.weights.is_some(),
+        );
         let found = hand_mesh(&rig.file, &select)
             .map_err(|e| {
                 e.problems

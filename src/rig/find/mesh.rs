@@ -63,6 +63,19 @@ pub enum MeshSelect {
     UnderNode { node: usize },
 }
 
+impl MeshSelect {
+    /// The part of a file that is one hand: with a hand (wrist) bone, in a
+    /// file that names two hands and weights its skin, the vertices under
+    /// that bone; otherwise the whole mesh (a file of one hand: its finger
+    /// bones need not lie below the wrist, WebXR's are its siblings).
+    pub fn for_hand(hand_node: Option<usize>, two_hands: bool, skinned: bool) -> MeshSelect {
+        match hand_node {
+            Some(node) if two_hands && skinned => MeshSelect::UnderNode { node },
+            _ => MeshSelect::Whole,
+        }
+    }
+}
+
 /// A skin's joints (nodes) and their bind-pose skin matrices.
 type SkinMatrices = (Vec<usize>, Vec<DMat4>);
 

@@ -382,9 +382,9 @@ pub fn mesh_end(chain: &FingerChain, weights: &SkinWeights) -> Result<f64, Strin
                 Ok(r)
             } else {
                 Err(format!(
-                    "the skin weighted to its last bone reaches {:.2} times the segment before \
+                    "the skin weighted to its last bone reaches {} times the segment before \
                      it, outside {lo}-{hi} times",
-                    r / segment
+                    crate::format::num(r / segment, 2)
                 ))
             }
         }

@@ -110,15 +110,11 @@ pub fn make(
         )));
     }
     let hand_node = hand_bone(rig, side);
-    // One hand of two (a body, an avatar): the vertices its hand bone and the
-    // bones below it skin; a file of one hand: its whole mesh (its finger
-    // bones need not lie below the wrist: WebXR's are its siblings).
-    let select = match hand_node {
-        Some((node, _)) if named.len() > 1 && rig.weights.is_some() => {
-            MeshSelect::UnderNode { node }
-        }
-        _ => MeshSelect::Whole,
-    };
+    let select = MeshSelect::for_hand(
+        hand_node.map(|(n, _)| n),
+        named.len() > 1,
+        rig.weights.is_some(),
+    );
     let mesh = hand_mesh(&rig.file, &select)?;
     let fingers = opts
         .fingers
