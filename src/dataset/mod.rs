@@ -27,6 +27,7 @@ pub(crate) mod landmarks;
 pub mod literature;
 pub(crate) mod quantity;
 pub mod tip;
+pub(crate) mod tip_rows;
 
 pub use cohort::CohortNotes;
 pub use error::{DataError, Problem};
