@@ -1237,3 +1237,73 @@ fn the_cycle_finder_sees_a_cycle() {
         ]]
     );
 }
+
+/// Every `.rs` file of the two crates as ARCHITECTURE.md names it: a file of
+/// `src/` by its path under `src/` (`report/plots/draw.rs`, `lib.rs`), a file
+/// of the statistics crate by its path in the repository
+/// (`crates/stats/src/bootstrap.rs`); test files too.
+fn source_files() -> Vec<String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut out: Vec<String> = files("")
+        .iter()
+        .map(|f| rel(f))
+        .chain(
+            files("stats")
+                .iter()
+                .map(|f| f.strip_prefix(root).unwrap_or(f).display().to_string()),
+        )
+        .map(|p| p.replace('\\', "/"))
+        .collect();
+    out.sort();
+    out
+}
+
+fn architecture_md() -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("ARCHITECTURE.md"))
+        .expect("ARCHITECTURE.md")
+}
+
+#[test]
+fn every_source_file_is_named_in_architecture_md() {
+    // A file is named when its path appears in backticks anywhere on the page,
+    // e.g. the line "- `report/plots/draw.rs` — shared drawing for every plot".
+    let map = architecture_md();
+    let all = source_files();
+    assert!(
+        all.len() > 150 && all.contains(&"crates/stats/src/lib.rs".to_string()),
+        "{all:?}"
+    );
+    let missing: Vec<&String> = all
+        .iter()
+        .filter(|f| !map.contains(&format!("`{f}`")))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "files ARCHITECTURE.md does not name (give each a line such as \
+         \"- `dataset/tip.rs` — its role\", its path under src/, or under the \
+         repository for crates/stats): {missing:#?}"
+    );
+}
+
+#[test]
+fn every_file_the_list_of_architecture_md_names_exists() {
+    // The lines "- `path.rs` — role" under "## Files": a moved or removed file
+    // leaves the list with it.
+    let map = architecture_md();
+    let list = map
+        .split("\n## Files\n")
+        .nth(1)
+        .map(|rest| rest.split("\n## ").next().unwrap_or_default())
+        .unwrap_or_default();
+    let all = source_files();
+    let gone: Vec<&str> = list
+        .lines()
+        .filter_map(|l| l.strip_prefix("- `"))
+        .filter_map(|l| l.split('`').next())
+        .filter(|f| !all.iter().any(|a| a == f))
+        .collect();
+    assert!(
+        gone.is_empty(),
+        "files the list of ARCHITECTURE.md names that are not there: {gone:#?}"
+    );
+}
