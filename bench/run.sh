@@ -4,10 +4,12 @@
 # NumPy peer (bench/peer.py, the same statistics) at 1k, 10k and 100k X-rays in the
 # same run, then the report at every size from the paper's 5 X-rays to 100,000, then
 # how the cost grows with X-rays and resamples.
-# Last, `phalanx rig` (fingers found, placed and weighted) on the largest shared rig and a
-# 50,000-triangle hand, and `audit --fix` on the GDQuest mannequin.
-# Usage: bench/run.sh [RUNS]   (default 3; best run kept). BENCH_ONLY=rig runs only that
-# last section. The peer runs in a virtual
+# Then `phalanx rig` (fingers found, placed and weighted) on the largest shared rig and a
+# 50,000-triangle hand, and `audit --fix` on the GDQuest mannequin. Last, the criterion
+# benchmarks of the hot paths (benches/kernels.rs: the bootstrap kernel, the loader, the
+# fingers found on a skin).
+# Usage: bench/run.sh [RUNS]   (default 3; best run kept). BENCH_ONLY=rig runs only the
+# rig section, BENCH_ONLY=kernels only the criterion benchmarks. The peer runs in a virtual
 # environment, target/bench-venv, made here the first time with bench/requirements.txt
 # (numpy and scipy); where it cannot be made (no python3 or no registry) its rows are
 # skipped with the reason.
@@ -15,13 +17,27 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-3}
 only=${BENCH_ONLY:-}
+
+# The criterion benchmarks (benches/kernels.rs), their estimates as criterion prints them.
+kernels_section() {
+    echo "Kernels (criterion, \`cargo bench --bench kernels\`):"
+    echo
+    echo '```'
+    cargo bench -q --bench kernels 2>&1 | grep -E '^[a-z_]+/|time:' || true
+    echo '```'
+    echo
+}
 case "$only" in
-    "" | rig) ;;
+    "" | rig | kernels) ;;
     *)
-        echo "bench: BENCH_ONLY=$only: give rig, or leave it unset for every section" >&2
+        echo "bench: BENCH_ONLY=$only: give rig or kernels, or leave it unset for every section" >&2
         exit 2
         ;;
 esac
+if [ "$only" = kernels ]; then
+    kernels_section
+    exit 0
+fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -195,3 +211,4 @@ for b in 2500 5000 10000 20000; do
 done
 echo
 rig_section
+kernels_section

@@ -1,4 +1,5 @@
-//! Criterion benchmarks of the hot paths: the bootstrap kernel and the loader.
+//! Criterion benchmarks of the hot paths: the bootstrap kernel, the loader, and the
+//! fingers found on a hand's skin.
 //!
 //! `cargo bench` runs them. Whole-command wall time and peak memory are measured
 //! by `bench/run.sh` instead (see BENCHMARKS.md).
@@ -129,5 +130,45 @@ fn analysis_paper(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, bootstrap_kernel, floor, loader, analysis_paper);
+/// The fingers found on the skin of a synthetic right hand of about 50,000 triangles
+/// (`tube_hand right 32 0.865 0`, the hand of `bench/run.sh`'s rig rows): the search
+/// alone, its mesh read once. Budget: under a second in the debug build (the shared
+/// rigs took 2-5 ms each in release).
+fn find_fingers(c: &mut Criterion) {
+    use phalanx::dataset::Finger;
+    use phalanx::rig::deform::synthetic::{HandSpec, tube_hand};
+    use phalanx::rig::find::{FindOptions, MeshSelect, find_hand, hand_mesh};
+    use phalanx::rig::naming::Side;
+    let spec = HandSpec {
+        side: Side::Right,
+        fingers: Finger::ALL.to_vec(),
+        around: 32,
+        ring_spacing: 0.000_865,
+        weight_shift: 0.0,
+        ..HandSpec::default()
+    };
+    let bytes = tube_hand(&spec).to_glb().expect("a GLB");
+    let file = phalanx::rig::GltfFile::from_bytes("hand.glb", &bytes).expect("the GLB reads");
+    let mesh = hand_mesh(&file, &MeshSelect::Whole).expect("a hand mesh");
+    let opts = FindOptions {
+        fingers: 5,
+        wrist: None,
+        side: None,
+    };
+    let mut g = c.benchmark_group("find_hand");
+    g.sample_size(10);
+    g.bench_function("tube_hand_50k_triangles", |b| {
+        b.iter(|| black_box(find_hand(&mesh, &opts)))
+    });
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    bootstrap_kernel,
+    floor,
+    loader,
+    analysis_paper,
+    find_fingers
+);
 criterion_main!(benches);

@@ -1,7 +1,7 @@
 //! The dependency direction of ARCHITECTURE.md, enforced: each room of `src/`
 //! may name only the rooms listed for it, each sub-room of `src/rig/` only the
-//! sub-rooms below it, the files of `src/rig/` and of each room of `src/` (one
-//! level deep: a sub-folder counts as one file) import no cycle, no command of
+//! sub-rooms below it, no files of `src/` import each other in a cycle (one
+//! graph of the whole crate, every file its own node), no command of
 //! `src/cmd/` names another (only the shared `mod.rs`, `args.rs`, `out.rs`),
 //! and the rooms that must not know about files, plots or templates use none
 //! of those crates.
@@ -486,6 +486,15 @@ impl Crate {
         })
     }
 
+    /// The absolute path of a path in `file`'s code, as [`Crate::absolute`],
+    /// but `None` for a lone name that resolves to a module: in code a single
+    /// name is a value or a type (a local `groups` beside `mod groups`), never
+    /// a module.
+    fn code_absolute(&self, file: &Path, scope: &ModPath, segs: &[String]) -> Option<ModPath> {
+        let abs = self.absolute(file, scope, segs, 0)?;
+        (segs.len() > 1 || !self.is_module(&abs)).then_some(abs)
+    }
+
     /// The files an absolute path passes through: the file of its longest
     /// module prefix, then, while the next name is one that file brings in by
     /// a `use`, the file that name comes from. The last is where it is defined.
@@ -526,8 +535,12 @@ impl Crate {
             .iter()
             .filter(|u| !u.reexport)
             .map(|u| (u.scope.clone(), u.path.clone()));
-        uses.chain(s.paths.iter().cloned())
-            .filter_map(|(scope, segs)| self.absolute(file, &scope, &segs, 0))
+        let uses = uses.filter_map(|(scope, segs)| self.absolute(file, &scope, &segs, 0));
+        let code = s
+            .paths
+            .iter()
+            .filter_map(|(scope, segs)| self.code_absolute(file, scope, segs));
+        uses.chain(code)
             .map(|abs| self.files_of(&abs))
             .filter(|chain| !chain.is_empty())
             .collect()
@@ -653,11 +666,15 @@ fn commands_named(krate: &Crate) -> BTreeMap<String, BTreeSet<String>> {
         let Some(mine) = command_of(file) else {
             continue;
         };
-        let uses = s.uses.iter().map(|u| (u.scope.clone(), u.path.clone()));
-        for (scope, segs) in uses.chain(s.paths.iter().cloned()) {
-            let Some(abs) = krate.absolute(file, &scope, &segs, 0) else {
-                continue;
-            };
+        let uses = s
+            .uses
+            .iter()
+            .filter_map(|u| krate.absolute(file, &u.scope, &u.path, 0));
+        let code = s
+            .paths
+            .iter()
+            .filter_map(|(scope, segs)| krate.code_absolute(file, scope, segs));
+        for abs in uses.chain(code) {
             for target in krate.files_of(&abs) {
                 if let Some(used) = command_of(&target)
                     && used != mine
@@ -904,42 +921,97 @@ fn no_import_cycle_among_the_files_of_rig() {
     );
 }
 
-/// The rooms of src/ that are folders (the statistics are their own crate).
-fn folder_rooms() -> Vec<&'static str> {
-    ALLOWED
+/// A file's path relative to src/, for messages.
+fn rel(f: &Path) -> String {
+    f.strip_prefix(src()).unwrap_or(f).display().to_string()
+}
+
+/// Each cycle of `g` with the edges among its files, relative to src/, for messages.
+fn cycles_told(g: &BTreeMap<PathBuf, BTreeSet<PathBuf>>) -> Vec<Vec<String>> {
+    cycles(g)
         .iter()
-        .map(|(r, _)| *r)
-        .filter(|r| *r != "stats" && src().join(r).is_dir())
+        .map(|c| {
+            c.iter()
+                .flat_map(|a| {
+                    g[a].iter()
+                        .filter(|b| c.contains(b))
+                        .map(move |b| format!("{} -> {}", rel(a), rel(b)))
+                })
+                .collect()
+        })
         .collect()
 }
 
-/// Rooms whose files still import in a cycle (a `mod.rs` that names its
-/// children and is named by them): the check below holds every other room, and
-/// fails once one of these is fixed, so that it leaves this list.
-const CYCLES_OPEN: &[&str] = &["analysis", "dataset"];
-
 #[test]
-fn no_import_cycle_among_the_files_of_any_room() {
-    let krate = Crate::real();
-    let rooms = folder_rooms();
-    for room in ["analysis", "dataset", "rig", "report", "cmd"] {
+fn no_import_cycle_anywhere_in_src() {
+    // One graph of every file of src/ (a `mod.rs` is a file like any other):
+    // `crate::`, `self::` and `super::` paths, across rooms and inside them.
+    let g = Crate::real().graph("");
+    assert!(g.len() > 150, "the crate graph has only {} files", g.len());
+    let edges: usize = g.values().map(BTreeSet::len).sum();
+    assert!(edges > 500, "the crate graph has only {edges} edges");
+    // Edges the code is known to have: across rooms, and the old cycles' (a
+    // mod.rs and its children), now one way.
+    for (from, to) in [
+        ("analysis/mod.rs", "dataset/mod.rs"),
+        ("analysis/groups.rs", "analysis/compare.rs"),
+        ("analysis/compare.rs", "analysis/mod.rs"),
+        ("dataset/mod.rs", "dataset/tip.rs"),
+        ("dataset/tip_rows.rs", "dataset/mod.rs"),
+        ("dataset/tip_rows.rs", "dataset/tip.rs"),
+        ("dataset/landmarks/mod.rs", "dataset/landmarks/atlas37.rs"),
+        ("dataset/landmarks/atlas37.rs", "dataset/landmarks/hand.rs"),
+        ("dataset/landmarks/checks.rs", "dataset/landmarks/hand.rs"),
+        ("rig/fix/remap.rs", "rig/judge/bend.rs"),
+    ] {
+        let (from, to) = (src().join(from), src().join(to));
         assert!(
-            rooms.contains(&room),
-            "{room} is not a folder room: {rooms:?}"
+            g[&from].contains(&to),
+            "{} -> {}: {:?}",
+            rel(&from),
+            rel(&to),
+            g[&from]
         );
     }
-    let mut found = BTreeMap::new();
-    for room in rooms {
-        let cycles = cycles(&krate.flat_graph(room));
-        if cycles.is_empty() == CYCLES_OPEN.contains(&room) {
-            found.insert(room, cycles);
-        }
-    }
+    let found = cycles_told(&g);
     assert!(
         found.is_empty(),
-        "import cycles among the files of a room (a sub-folder counts as one file), or a \
-         room of CYCLES_OPEN without one: {found:#?}"
+        "import cycles among the files of src/ (each with its edges; move what a \
+         mod.rs and its children share into a leaf file and re-export it): {found:#?}"
     );
+}
+
+#[test]
+fn the_cycle_finder_sees_a_cycle_across_rooms() {
+    // The dataset naming the analysis (a `super::super::` path in code) while
+    // the analysis names the dataset (a `use`): one cycle of two rooms' files.
+    let krate = Crate::with(&[
+        (
+            mod_path(&["dataset", "quantity"]),
+            "fn f() { let _ = super::super::analysis::compare::welch; }",
+        ),
+        (
+            mod_path(&["analysis", "compare"]),
+            "use crate::dataset::Quantity;\nfn g(q: Quantity) {}",
+        ),
+    ]);
+    let (quantity, compare) = (
+        src().join("dataset/quantity.rs"),
+        src().join("analysis/compare.rs"),
+    );
+    let g = krate.graph("");
+    assert!(g[&quantity].contains(&compare), "{:?}", g[&quantity]);
+    assert!(g[&compare].contains(&quantity), "{:?}", g[&compare]);
+    let found = cycles(&g);
+    assert!(found.contains(&vec![compare, quantity]), "{found:#?}");
+    // A lone name that is also a child module's (a local `groups` in
+    // analysis/mod.rs) names no module.
+    let krate = Crate::with(&[(
+        mod_path(&["analysis"]),
+        "pub mod groups;\nfn f(groups: Vec<u8>) -> usize { groups.len() }",
+    )]);
+    let mod_rs = src().join("analysis/mod.rs");
+    assert!(krate.graph("analysis")[&mod_rs].is_empty());
 }
 
 #[test]
@@ -1163,5 +1235,75 @@ fn the_cycle_finder_sees_a_cycle() {
             src().join("rig/fix/remap.rs"),
             src().join("rig/read/skin.rs")
         ]]
+    );
+}
+
+/// Every `.rs` file of the two crates as ARCHITECTURE.md names it: a file of
+/// `src/` by its path under `src/` (`report/plots/draw.rs`, `lib.rs`), a file
+/// of the statistics crate by its path in the repository
+/// (`crates/stats/src/bootstrap.rs`); test files too.
+fn source_files() -> Vec<String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut out: Vec<String> = files("")
+        .iter()
+        .map(|f| rel(f))
+        .chain(
+            files("stats")
+                .iter()
+                .map(|f| f.strip_prefix(root).unwrap_or(f).display().to_string()),
+        )
+        .map(|p| p.replace('\\', "/"))
+        .collect();
+    out.sort();
+    out
+}
+
+fn architecture_md() -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("ARCHITECTURE.md"))
+        .expect("ARCHITECTURE.md")
+}
+
+#[test]
+fn every_source_file_is_named_in_architecture_md() {
+    // A file is named when its path appears in backticks anywhere on the page,
+    // e.g. the line "- `report/plots/draw.rs` — shared drawing for every plot".
+    let map = architecture_md();
+    let all = source_files();
+    assert!(
+        all.len() > 150 && all.contains(&"crates/stats/src/lib.rs".to_string()),
+        "{all:?}"
+    );
+    let missing: Vec<&String> = all
+        .iter()
+        .filter(|f| !map.contains(&format!("`{f}`")))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "files ARCHITECTURE.md does not name (give each a line such as \
+         \"- `dataset/tip.rs` — its role\", its path under src/, or under the \
+         repository for crates/stats): {missing:#?}"
+    );
+}
+
+#[test]
+fn every_file_the_list_of_architecture_md_names_exists() {
+    // The lines "- `path.rs` — role" under "## Files": a moved or removed file
+    // leaves the list with it.
+    let map = architecture_md();
+    let list = map
+        .split("\n## Files\n")
+        .nth(1)
+        .map(|rest| rest.split("\n## ").next().unwrap_or_default())
+        .unwrap_or_default();
+    let all = source_files();
+    let gone: Vec<&str> = list
+        .lines()
+        .filter_map(|l| l.strip_prefix("- `"))
+        .filter_map(|l| l.split('`').next())
+        .filter(|f| !all.iter().any(|a| a == f))
+        .collect();
+    assert!(
+        gone.is_empty(),
+        "files the list of ARCHITECTURE.md names that are not there: {gone:#?}"
     );
 }

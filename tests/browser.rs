@@ -32,7 +32,6 @@ use scraper::{Html, Selector};
 use serde_json::Value;
 use std::ffi::OsStr;
 use std::fs::File;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -475,12 +474,9 @@ fn report_renders_in_chromium() {
     let browser = match find_browser(explicit.as_deref(), path.as_deref()) {
         Ok(b) => b,
         Err(why) => {
-            // Straight to stderr, past the test harness's capture, so the
-            // reason shows without --nocapture.
-            let _ = writeln!(
-                std::io::stderr(),
-                "skipped: no Chromium found ({why}); .ci/run installs the Debian package chromium"
-            );
+            crate::common::skip(format!(
+                "no Chromium found ({why}); .ci/run installs the Debian package chromium"
+            ));
             return;
         }
     };

@@ -580,8 +580,8 @@ fn webxr_dir() -> Option<PathBuf> {
 #[test]
 fn the_webxr_hands_deform_and_draw() {
     let Some(dir) = webxr_dir() else {
-        eprintln!(
-            "skipped: the WebXR generic hands are in neither data/rigs/webxr-generic-hand nor ../shared/rigs/webxr-generic-hand"
+        skip(
+            "the WebXR generic hands are in neither data/rigs/webxr-generic-hand nor ../shared/rigs/webxr-generic-hand",
         );
         return;
     };
@@ -742,7 +742,7 @@ fn a_vrm0_avatar_whose_fingers_hang_from_the_hand_bone_is_posed() {
 #[test]
 fn audit_and_deform_agree_on_the_side_of_a_sideless_copy() {
     let Some(dir) = webxr_dir() else {
-        eprintln!("skipped: the WebXR generic hands are not there");
+        skip("the WebXR generic hands are not there");
         return;
     };
     let wd = Workdir::new();

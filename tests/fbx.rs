@@ -19,7 +19,7 @@ fn gloves() -> Option<PathBuf> {
     if dir.join(GLOVES[0].0).is_file() {
         Some(dir)
     } else {
-        eprintln!("skipped: the SteamVR gloves are not in {}", dir.display());
+        skip(format!("the SteamVR gloves are not in {}", dir.display()));
         None
     }
 }

@@ -19,7 +19,6 @@ use phalanx::rig::find::{HandMesh, MeshSelect, hand_mesh};
 use phalanx::rig::naming::{Side, side_from_label};
 use phalanx::rig::{FingerChain, Rig, TIP_INSIDE, bend};
 use std::fmt::Write;
-use std::time::{Duration, Instant};
 
 /// The nearest point of a polyline to `q`, and the polyline's direction there.
 fn nearest(points: &[DVec3], q: DVec3) -> (DVec3, DVec3) {
@@ -164,7 +163,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 /// The hands of a shared rig found on their skin, each with its chains:
 /// the whole file for a one-hand file, else the vertices under each hand bone.
-fn hands(rig: &Rig, label: &str) -> Vec<(Side, Vec<FingerChain>, HandMesh, FoundHand, Duration)> {
+fn hands(rig: &Rig, label: &str) -> Vec<(Side, Vec<FingerChain>, HandMesh, FoundHand)> {
     let mut sides: Vec<Option<Side>> = rig.chains.iter().map(|c| c.side).collect();
     sides.sort();
     sides.dedup();
@@ -187,13 +186,11 @@ fn hands(rig: &Rig, label: &str) -> Vec<(Side, Vec<FingerChain>, HandMesh, Found
             wrist: wrist.as_ref().map(|w| w.position),
             side: None,
         };
-        let start = Instant::now();
         let found = find_hand(&mesh, &opts).unwrap_or_else(|e| panic!("{label} {side:?}: {e}"));
-        let took = start.elapsed();
         let named = side
             .or_else(|| side_from_label(label))
             .unwrap_or_else(|| panic!("{label}: no side in its names or file name"));
-        out.push((named, chains, mesh, found, took));
+        out.push((named, chains, mesh, found));
     }
     out
 }
@@ -248,8 +245,8 @@ fn compare(
 /// (the middle of the finger's skin there); the artist's PIP and DIP lie
 /// within 2 mm of the axis across the palm on the median rig, and within 2 mm
 /// in all on WebXR's generic hands, whose joints are at the middle of their
-/// fingers (within 2 mm of their own sections' centres); each finding takes
-/// under a second (in the debug build; 2-5 ms in release).
+/// fingers (within 2 mm of their own sections' centres). How long a finding
+/// takes is measured by `cargo bench --bench kernels` (find_hand).
 #[test]
 fn the_fingers_found_on_every_shared_rig_against_the_artists_joints() {
     let Some(rigs) = shared_rig_files() else {
@@ -263,8 +260,7 @@ fn the_fingers_found_on_every_shared_rig_against_the_artists_joints() {
     for path in &rigs {
         let label = path.file_name().unwrap().to_string_lossy().to_string();
         let rig = Rig::load(path, None).unwrap_or_else(|e| panic!("{label}: {e}"));
-        for (side, chains, mesh, hand, took) in hands(&rig, &path.display().to_string()) {
-            assert!(took < Duration::from_secs(1), "{label}: {took:?}");
+        for (side, chains, mesh, hand) in hands(&rig, &path.display().to_string()) {
             assert_eq!(hand.side, side, "{label}: {:?}", hand.notes);
             let found: Vec<Finger> = hand.fingers.iter().map(|f| f.finger).collect();
             let rigged: Vec<Finger> = Finger::ALL
@@ -291,12 +287,7 @@ fn the_fingers_found_on_every_shared_rig_against_the_artists_joints() {
                     .flat_map(|r| r.inner.iter().map(|x| x.0.0))
                     .collect(),
             ));
-            let _ = writeln!(
-                table,
-                "{name}: {} vertices, found in {:.1} ms (debug build)",
-                mesh.positions.len(),
-                took.as_secs_f64() * 1000.0
-            );
+            let _ = writeln!(table, "{name}: {} vertices", mesh.positions.len());
         }
     }
     let _ = writeln!(

@@ -381,13 +381,7 @@ mod tests {
     /// The relative value J~k of one finger of every atlas hand, or `None` (with the
     /// reason printed) when the atlas is absent.
     fn atlas_values(finger: Finger, k: usize) -> Option<Vec<f64>> {
-        let bytes = match std::fs::read("data/atlas/landmarks.csv") {
-            Ok(b) => b,
-            Err(e) => {
-                println!("skipped: data/atlas/landmarks.csv could not be read ({e})");
-                return None;
-            }
-        };
+        let bytes = crate::dataset::vendored::read(crate::dataset::vendored::ATLAS_LANDMARKS)?;
         let i = landmarks::import(Layout::Atlas37, "atlas", &bytes, &Default::default()).ok()?;
         Some(
             i.rows

@@ -141,24 +141,30 @@ mod tests {
             ("data/atlas/measurements.csv", TipKind::Bone),
             ("data/literature/buryanov-kotiuk-2010.csv", TipKind::Bone),
         ] {
+            if data.starts_with("data/atlas/") && !Path::new(data).is_file() {
+                crate::dataset::vendored::skip(format!("{data} is absent"));
+                continue;
+            }
             let n = CohortNotes::beside(Path::new(data)).unwrap().unwrap();
             assert_eq!(n.tip, Some(tip), "{data}");
             assert!(n.name.is_some() && n.age.is_some() && n.landmarks.is_some());
         }
+        assert_eq!(
+            notes_path(Path::new("a/b.csv")),
+            PathBuf::from("a/b.cohort.csv")
+        );
         // One statement of the atlas's landmark type: its notes say what the report's
         // other sections say (crate::dataset::landmarks::ATLAS_LANDMARKS).
-        let atlas = CohortNotes::beside(Path::new("data/atlas/measurements.csv"))
-            .unwrap()
-            .unwrap();
+        let atlas = CohortNotes::beside(Path::new(crate::dataset::vendored::ATLAS)).unwrap();
+        let Some(atlas) = atlas else {
+            crate::dataset::vendored::skip("data/atlas/measurements.cohort.csv is absent");
+            return;
+        };
         let said = crate::dataset::landmarks::ATLAS_LANDMARKS
             .replace(" and at the tips", ", and the tips");
         assert_eq!(
             atlas.landmarks.as_deref().map(|l| format!("landmarks {l}")),
             Some(said)
-        );
-        assert_eq!(
-            notes_path(Path::new("a/b.csv")),
-            PathBuf::from("a/b.cohort.csv")
         );
     }
 

@@ -27,6 +27,9 @@ pub(crate) mod landmarks;
 pub mod literature;
 pub(crate) mod quantity;
 pub mod tip;
+pub(crate) mod tip_rows;
+#[cfg(test)]
+pub(crate) mod vendored;
 
 pub use cohort::CohortNotes;
 pub use error::{DataError, Problem};

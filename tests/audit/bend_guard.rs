@@ -212,15 +212,17 @@ fn rigs(wd: &Workdir) -> Vec<PathBuf> {
                 out.extend(files);
             }
         }
-        Err(e) => eprintln!(
-            "skipped ../shared/rigs: {} is not readable ({e})",
+        Err(e) => skip(format!(
+            "../shared/rigs: {} is not readable ({e})",
             shared.display()
-        ),
+        )),
     }
     for f in ["left.glb", "right.glb"] {
         let p = manifest_dir().join("data/rigs/webxr-generic-hand").join(f);
         if p.is_file() {
             out.push(p);
+        } else {
+            skip(format!("{} is absent", p.display()));
         }
     }
     // The tests' own: a smooth-skinned hand with an index PIP 5 mm off
@@ -382,7 +384,7 @@ fn the_moves_printed_are_fix_moved_and_the_nodes_the_written_file_moves() {
     if atlas {
         modes.push(&["--fix-mcp", "atlas"]);
     } else {
-        eprintln!("skipped --fix-mcp atlas: data/atlas is not readable");
+        skip("--fix-mcp atlas: data/atlas is not readable");
     }
     for (i, rig) in rigs(&wd).iter().enumerate() {
         for (m, extra) in modes.iter().enumerate() {

@@ -160,7 +160,7 @@ fn shared_rig(path: &str) -> Option<String> {
     if full.is_file() {
         Some(full.display().to_string())
     } else {
-        eprintln!("skipped: {} is absent", full.display());
+        skip(format!("{} is absent", full.display()));
         None
     }
 }

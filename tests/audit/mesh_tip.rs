@@ -125,7 +125,7 @@ fn a_mesh_without_a_clear_end_is_said_so() {
 fn the_mannequiny_is_judged_on_relative_values_with_tips_from_the_mesh() {
     let path: PathBuf = manifest_dir().join("../shared/rigs/gdquest-mannequiny/mannequiny.glb");
     if !path.is_file() {
-        eprintln!("skipped: {} is absent", path.display());
+        skip(format!("{} is absent", path.display()));
         return;
     }
     let wd = Workdir::new();

@@ -22,7 +22,7 @@ pub(super) fn with_atlas() -> Option<Workdir> {
     ] {
         let path = manifest_dir().join(file);
         let Ok(bytes) = std::fs::read(&path) else {
-            eprintln!("skipped: {} is not readable", path.display());
+            skip(format!("{} is not readable", path.display()));
             return None;
         };
         wd.write(file, &bytes);

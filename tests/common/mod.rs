@@ -22,15 +22,33 @@ pub fn write_hand(
     wd.write(name, hand.to_glb().expect("a GLB"))
 }
 
+/// Says that the running test skips (the whole test, or the part of it that needs
+/// what is absent) and why, as one line `skipped: <test>: <reason>` on standard error,
+/// the test named by its thread (the harness names each test's thread after it).
+///
+/// Every skip of the integration tests comes through here, written past the harness's
+/// capture in one write, so that `cargo test 2>&1 | grep -c 'skipped: '` counts them
+/// (a line per skip; `| grep 'skipped: ' | cut -d: -f2 | sort -u` names the tests).
+pub fn skip(reason: impl std::fmt::Display) {
+    use std::io::Write;
+    let thread = std::thread::current();
+    // One line, whatever the reason (a `DataError` is several).
+    let reason = reason.to_string();
+    let reason: Vec<&str> = reason.lines().map(str::trim).collect();
+    let test = thread.name().unwrap_or("main");
+    let line = format!("skipped: {test}: {}\n", reason.join(" "));
+    let _ = std::io::stderr().write_all(line.as_bytes());
+}
+
 /// The bytes of `path` (relative to the crate's root), or `None` with the reason
-/// printed: a package of the crate may leave vendored data (the GPL-3.0 atlas, the
-/// rigs) out, and a test needing it then skips.
+/// printed ([`skip`]): a package of the crate may leave vendored data (the GPL-3.0
+/// atlas, the rigs) out, and a test needing it then skips.
 pub fn vendored(path: &str) -> Option<Vec<u8>> {
     let path = manifest_dir().join(path);
     match std::fs::read(&path) {
         Ok(bytes) => Some(bytes),
         Err(e) => {
-            eprintln!("skipped: {} could not be read ({e})", path.display());
+            skip(format!("{} could not be read ({e})", path.display()));
             None
         }
     }
@@ -345,16 +363,16 @@ pub fn quantity<'a>(doc: &'a Value, finger_name: &str, quantity: &str) -> &'a Va
 /// A JSON number as f64.
 #[track_caller]
 /// Every rig file (.glb, .gltf, .vrm, .fbx) in the folders of ../shared/rigs,
-/// sorted; `None`, with the reason printed, when the folder is not there.
+/// sorted; `None`, with the reason printed ([`skip`]), when the folder is not there.
 pub fn shared_rig_files() -> Option<Vec<PathBuf>> {
     let shared = manifest_dir().join("../shared/rigs");
     let dirs = match std::fs::read_dir(&shared) {
         Ok(dirs) => dirs,
         Err(e) => {
-            eprintln!(
-                "skipped ../shared/rigs: {} is not readable ({e})",
+            skip(format!(
+                "../shared/rigs: {} is not readable ({e})",
                 shared.display()
-            );
+            ));
             return None;
         }
     };

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::dataset::landmarks::{self, Layout};
+use crate::dataset::vendored;
 use crate::dataset::{Dataset, Finger};
 
 fn settings(resamples: usize) -> Settings {
@@ -90,13 +91,7 @@ type FingerData = (Finger, Vec<Vec<f64>>, Vec<Vec<f64>>, f64, f64);
 
 /// Relative values (eq. 2) of each finger: the paper's X-rays, then the atlas's hands.
 fn paper_and_atlas() -> Option<Vec<FingerData>> {
-    let bytes = match std::fs::read("data/atlas/landmarks.csv") {
-        Ok(b) => b,
-        Err(e) => {
-            println!("skipped: data/atlas/landmarks.csv could not be read ({e})");
-            return None;
-        }
-    };
+    let bytes = vendored::read(vendored::ATLAS_LANDMARKS)?;
     let atlas = landmarks::import(Layout::Atlas37, "atlas", &bytes, &Default::default()).unwrap();
     let paper = Dataset::load(std::path::Path::new("data/measurements.csv")).unwrap();
     let rel = |segs: &[f64]| -> Vec<f64> {
@@ -314,12 +309,8 @@ fn quantities_of_the_same_x_rays_share_the_resamples() {
 fn datasets_compared_finger_by_finger_match_scipy() {
     // data/atlas/measurements.csv (lengths to 6 decimals) against the paper, through
     // cohorts(): the same values as section 2 of atlas_reference.py, from raw coordinates.
-    let atlas = match Dataset::load(std::path::Path::new("data/atlas/measurements.csv")) {
-        Ok(d) => d,
-        Err(e) => {
-            println!("skipped: data/atlas/measurements.csv could not be read ({e})");
-            return;
-        }
+    let Some(atlas) = vendored::atlas() else {
+        return;
     };
     let paper = Dataset::load(std::path::Path::new("data/measurements.csv")).unwrap();
     let c = cohorts(&paper, &atlas, &settings(200));

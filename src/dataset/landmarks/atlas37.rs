@@ -5,7 +5,8 @@
 //! of the index, middle, ring and little finger (`data/atlas/README.md`). Landmarks 0-12
 //! (radius, ulna, carpals) are checked as coordinates but measure nothing.
 
-use super::{Hand, Mark, Place, Slot, parse_coordinate, quote};
+use super::hand::{Hand, Mark, Place, Slot, parse_coordinate};
+use crate::dataset::csvinput::quote;
 use crate::dataset::csvinput::{self, Fields};
 use crate::dataset::{DataError, Finger, Problem, looks_like_formula};
 use std::collections::HashMap;

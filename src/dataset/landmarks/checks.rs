@@ -15,8 +15,10 @@
 //!    left out: it is naturally up to about 6.4 times the distal phalanx (the Digital Hand
 //!    Atlas's largest ratio, little finger).
 
+use super::hand::{Hand, LandmarkRow, Mark, Side, Slot};
 use super::names::{Joint, chain};
-use super::{Hand, LandmarkRow, Mark, Side, Slot, TipKind, quote};
+use crate::dataset::TipKind;
+use crate::dataset::csvinput::quote;
 use crate::dataset::{Finger, MAX_LENGTH, Problem};
 use crate::format::num;
 use std::collections::BTreeMap;

@@ -14,8 +14,9 @@
 //! second annotation of the same image is a problem.
 
 use super::checks::Notes;
+use super::hand::{Hand, Mark, Place, Side, Slot, coordinate};
 use super::names::{self, Landmark, STANDARD_21, chain};
-use super::{Hand, Mark, Place, Side, Slot, coordinate, quote};
+use crate::dataset::csvinput::quote;
 use crate::dataset::{DataError, Finger, Problem, looks_like_formula};
 use serde_json::{Map, Value};
 use std::collections::HashMap;

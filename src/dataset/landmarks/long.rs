@@ -4,8 +4,9 @@
 //! need not be adjacent. A line with `x` and `y` both empty marks a landmark as not
 //! labelled (its finger is left out with a note, as COCO's visibility 0).
 
+use super::hand::{Hand, Mark, Place, Slot, parse_coordinate};
 use super::names::{self, Landmark};
-use super::{Hand, Mark, Place, Slot, parse_coordinate, quote};
+use crate::dataset::csvinput::quote;
 use crate::dataset::csvinput::{self, Cells, Columns};
 use crate::dataset::{DataError, Problem, looks_like_formula};
 use std::collections::HashMap;

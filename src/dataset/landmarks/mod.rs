@@ -27,17 +27,18 @@ pub(crate) const ATLAS_LANDMARKS: &str = "landmarks where one bone meets the nex
 mod atlas37;
 mod checks;
 mod coco;
+mod hand;
 mod long;
 pub mod names;
 mod output;
 
+pub use hand::{LandmarkRow, Side};
 pub use names::Landmark;
 pub use output::write_csv;
 
 pub use super::TipKind;
 use super::csvinput::{self, quote};
 use super::{DataError, Finger, Problem};
-use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::Path;
 use std::sync::Arc;
@@ -81,33 +82,6 @@ impl Layout {
         match self {
             Layout::Atlas37 => Some(Side::Left),
             Layout::Coco | Layout::Long => None,
-        }
-    }
-}
-
-/// Which hand.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, JsonSchema)]
-#[serde(rename_all = "lowercase")]
-pub enum Side {
-    Left,
-    Right,
-}
-
-impl Side {
-    /// `left` or `right`, as the measurement format writes it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Side::Left => "left",
-            Side::Right => "right",
-        }
-    }
-
-    /// Parses `left`/`right` (or `l`/`r`), case-insensitively.
-    pub fn parse(text: &str) -> Option<Side> {
-        match text.trim().to_ascii_lowercase().as_str() {
-            "left" | "l" => Some(Side::Left),
-            "right" | "r" => Some(Side::Right),
-            _ => None,
         }
     }
 }
@@ -171,36 +145,6 @@ impl ImportOptions {
             (None, Some(u)) => u.trim(),
             (None, None) => PIXEL_UNIT,
         }
-    }
-}
-
-/// One measurement row made from landmarks: one finger of one image.
-#[derive(Debug, Clone, PartialEq)]
-pub struct LandmarkRow {
-    /// The image's id (the measurement format's `xray`).
-    pub image: Arc<str>,
-    pub finger: Finger,
-    /// J1, J2, J3 in `unit` (J3 is 0 for the thumb; use [`LandmarkRow::segments`]).
-    pub lengths: [f64; 3],
-    /// The metacarpal, CMC to MCP, when the CMC is marked.
-    pub mc: Option<f64>,
-    pub side: Option<Side>,
-    pub unit: Arc<str>,
-    pub source: Option<Arc<str>>,
-    /// Where the fingertips are; `None` when unknown.
-    pub tip: Option<TipKind>,
-}
-
-#[cfg(test)]
-impl LandmarkRow {
-    /// `[J1, J2]` for the thumb, `[J1, J2, J3]` otherwise.
-    pub fn segments(&self) -> &[f64] {
-        &self.lengths[..self.finger.segments()]
-    }
-
-    /// Total length J = sum of the segments (eq. 1).
-    pub fn total(&self) -> f64 {
-        self.segments().iter().sum()
     }
 }
 
@@ -315,125 +259,6 @@ pub fn thumb_cmc_in_hand_file(path: &Path) -> Result<Vec<[f64; 2]>, DataError> {
             file: label,
             problems,
         })
-    }
-}
-
-/// Where something sits in the input file: a CSV line and column with the column's name,
-/// or a JSON path (in `field`, with no line).
-#[derive(Debug, Clone, PartialEq)]
-struct Place {
-    line: Option<u64>,
-    column: Option<usize>,
-    field: Option<String>,
-}
-
-impl Place {
-    fn csv(line: u64, column: usize, field: impl Into<String>) -> Place {
-        Place {
-            line: Some(line),
-            column: Some(column),
-            field: Some(field.into()),
-        }
-    }
-
-    fn json(path: impl Into<String>) -> Place {
-        Place {
-            line: None,
-            column: None,
-            field: Some(path.into()),
-        }
-    }
-
-    fn problem(&self, message: impl Into<String>) -> Problem {
-        Problem {
-            line: self.line,
-            column: self.column,
-            field: self.field.clone(),
-            message: message.into(),
-        }
-    }
-}
-
-/// One marked joint, with where the file marks it and how the file names it.
-#[derive(Debug, Clone, PartialEq)]
-struct Mark {
-    x: f64,
-    y: f64,
-    place: Place,
-    /// "landmark 22", "keypoint 6 'INDEX_FINGER_PIP'", "'index_pip'".
-    label: String,
-}
-
-/// What a file says about one joint of a hand.
-#[derive(Debug, Clone, PartialEq)]
-enum Slot {
-    /// Nothing.
-    Empty,
-    /// A position.
-    Marked(Mark),
-    /// Explicitly not labelled (COCO visibility 0; empty x and y in the long layout).
-    Unlabelled(Place),
-    /// Present but unusable; its problem is already reported.
-    Invalid,
-}
-
-/// The landmarks of one hand as read from a file.
-#[derive(Debug, Clone)]
-struct Hand {
-    /// The id its rows get.
-    image: Arc<str>,
-    /// The side the file gives (COCO-WholeBody), before the options' default.
-    side: Option<Side>,
-    /// Where the file names the image (for problems of landmarks it lacks).
-    place: Place,
-    /// `slots[finger.index()][k]`: joint k of [`names::chain`]`(finger)`.
-    slots: [[Slot; 5]; 5],
-}
-
-impl Hand {
-    fn new(image: Arc<str>, side: Option<Side>, place: Place) -> Hand {
-        Hand {
-            image,
-            side,
-            place,
-            slots: std::array::from_fn(|_| std::array::from_fn(|_| Slot::Empty)),
-        }
-    }
-
-    /// The slot of a finger joint.
-    fn slot_mut(&mut self, finger: Finger, k: usize) -> &mut Slot {
-        &mut self.slots[finger.index()][k]
-    }
-}
-
-/// Parses one pixel coordinate, explaining what to fix when it is not a finite,
-/// non-negative number no larger than [`super::MAX_LENGTH`].
-fn parse_coordinate(text: &str) -> Result<f64, String> {
-    let text = text.trim();
-    if text.is_empty() {
-        return Err("is empty: the landmark is missing; give its pixel coordinate".into());
-    }
-    match text.parse::<f64>() {
-        Ok(v) => coordinate(v).map_err(|why| format!("{} {why}", quote(text))),
-        Err(_) => Err(format!(
-            "{} is not a number; give the pixel coordinate as a decimal number",
-            quote(text)
-        )),
-    }
-}
-
-/// Checks a coordinate's value (see [`parse_coordinate`]); the error completes "VALUE ...".
-fn coordinate(v: f64) -> Result<f64, &'static str> {
-    if !v.is_finite() {
-        Err("is not a finite number; give the pixel coordinate")
-    } else if v < 0.0 {
-        Err(
-            "is negative; pixel coordinates count from 0 at the image's top-left corner: check the landmark",
-        )
-    } else if v > super::MAX_LENGTH {
-        Err("is implausibly large for a pixel coordinate; check the value")
-    } else {
-        Ok(v)
     }
 }
 

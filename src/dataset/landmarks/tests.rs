@@ -4,17 +4,11 @@
 use super::*;
 use serde_json::json;
 
-const ATLAS: &str = "data/atlas/landmarks.csv";
+use crate::dataset::vendored::{self, ATLAS_LANDMARKS as ATLAS};
 
-/// The atlas's text, or `None` (with the reason printed) when the file is absent.
+/// The atlas's text, or `None` (with the skip printed) when the file is absent.
 fn atlas_text() -> Option<String> {
-    match std::fs::read_to_string(ATLAS) {
-        Ok(t) => Some(t),
-        Err(e) => {
-            println!("skipped: {ATLAS} could not be read ({e})");
-            None
-        }
-    }
+    vendored::text(ATLAS)
 }
 
 fn opts() -> ImportOptions {

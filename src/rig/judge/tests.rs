@@ -77,8 +77,7 @@ fn atlas_mean_mc_over_j(finger: &str) -> f64 {
 #[test]
 fn an_mcp_10_mm_towards_the_web_is_out_too_distal_on_the_metacarpal_line() {
     // The atlas is GPL data a package leaves out (Cargo.toml's exclude).
-    let Ok(d) = Dataset::load(Path::new("data/atlas/measurements.csv")) else {
-        eprintln!("skipped: data/atlas/measurements.csv is not readable (a package leaves it out)");
+    let Some(d) = crate::dataset::vendored::atlas() else {
         return;
     };
     let atlas = analyse(&d, &Settings::default());
@@ -150,7 +149,7 @@ fn an_mcp_10_mm_towards_the_web_is_out_too_distal_on_the_metacarpal_line() {
 fn wrist_ratios_are_the_atlas_means() {
     let path = std::path::Path::new("data/atlas/landmarks.csv");
     let Ok(text) = std::fs::read_to_string(path) else {
-        eprintln!("skipped: data/atlas/landmarks.csv is not readable");
+        crate::dataset::vendored::skip("data/atlas/landmarks.csv is not readable");
         return;
     };
     // (finger, MCP, PIP, DIP, tip, Python's mean, SD, 95 % prediction interval)
