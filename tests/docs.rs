@@ -41,6 +41,7 @@ const DOCS: &[&str] = &[
     "docs/rigger.md",
     "docs/statistics.md",
     "docs/json.md",
+    "docs/internals.md",
 ];
 
 /// The elision marker: any number of output lines left out.
@@ -74,6 +75,11 @@ fn statistics_guide() {
 #[test]
 fn json_guide() {
     check_doc("docs/json.md");
+}
+
+#[test]
+fn internals_guide() {
+    check_doc("docs/internals.md");
 }
 
 /// Every Markdown file of docs/ (and the two top-level ones) is in [`DOCS`], so a new guide's

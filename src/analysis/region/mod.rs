@@ -1,7 +1,7 @@
 //! The joint prediction region of a finger's relative joint positions: the
 //! proportions as one vector with their covariance, not one interval per
 //! quantity: the audit's verdict on a finger with a tip and the target of its
-//! explanation (ARCHITECTURE.md, "How a ray is judged").
+//! explanation (docs/internals.md, "How a ray is judged").
 //!
 //! For a finger with a tip the vector is u = (J~1, J~1 + J~2), the PIP's and
 //! the DIP's positions as shares of the finger's length from the MCP (eq. 2);
