@@ -9,7 +9,7 @@
 use super::audit::MM;
 use super::layout::{Align, Give, Grid, Hidden, Width, fit_text};
 use super::render3d::{Figure, MeshView, View};
-use super::view::{
+use super::sections::deform::{
     DeformAuditRow, DeformFigureView, DeformHandView, DeformRowView, DeformSection, DeformView,
     MetacarpalView,
 };

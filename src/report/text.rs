@@ -351,7 +351,7 @@ pub(crate) fn coverage(
     for n in notes {
         out.push_str(&format!("note: {n}\n"));
     }
-    if let Some(advice) = crate::report::view::interval_advice(points) {
+    if let Some(advice) = super::phrases::interval_advice(points) {
         out.push('\n');
         out.push_str(&advice);
         out.push('\n');
@@ -713,7 +713,7 @@ pub fn population(
         .col("BCa", Align::Right, Give::Keep)
         .col("prediction", Align::Right, Give::Keep)
         .col("bootstrap", Align::Right, Give::Drop(1));
-    for r in crate::report::view::pooled_rows(study) {
+    for r in super::phrases::pooled_rows(study) {
         let (n, model) = if r.normal {
             (String::new(), "normal model")
         } else {
