@@ -6,7 +6,6 @@ use crate::analysis::population::PopulationStudy;
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::history::Snapshot;
 use crate::format::{level, percent, xrays};
-use crate::stats::bootstrap::Plan;
 
 /// What a dataset whose rows are in several units means for its statistics, when it is:
 /// the rows per unit, that relative values and ratios pool, and which fingers lose their
@@ -268,7 +267,7 @@ pub(crate) fn pooled_rows(p: &PopulationStudy) -> Vec<PooledRow> {
         let bootstrap = p
             .normal
             .get(k)
-            .map_or_else(String::new, |c| plan_short(c.bootstrap));
+            .map_or_else(String::new, |c| crate::format::plan_short(c.bootstrap));
         rows.push(PooledRow {
             n,
             normal: false,
@@ -296,12 +295,4 @@ pub(crate) fn pooled_rows(p: &PopulationStudy) -> Vec<PooledRow> {
         }
     }
     rows
-}
-
-/// "exact (126)", "random (200)".
-fn plan_short(p: Plan) -> String {
-    match p {
-        Plan::Exact { distinct } => format!("exact ({distinct})"),
-        Plan::Random { resamples } => format!("random ({resamples})"),
-    }
 }

@@ -40,7 +40,7 @@ fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden, head: bool) -> St
             "\n{} - n = {}; bootstrap {}\n",
             f.finger.display_name(),
             xrays(f.n),
-            f.bootstrap.describe()
+            crate::format::plan(f.bootstrap)
         ));
         let mut t = Grid::new()
             .col("quantity", Align::Left, Give::Keep)
@@ -703,7 +703,7 @@ pub fn population(
     let mut out = format!(
         "Coverage of nominal {c} intervals on real hands: {path} taken as the population ({xrays} X-rays), {sims} samples of each size drawn from its X-rays with replacement. Confidence intervals are scored against the population mean, the prediction interval against one further X-ray. Monte-Carlo SE: about {se} at {c}.\n",
         sims = s.sims,
-        se = percent((s.confidence * (1.0 - s.confidence) / s.sims as f64).sqrt()),
+        se = percent(s.mc_se(s.confidence)),
     );
     let mut t = Grid::new()
         .col("n", Align::Left, Give::Keep)

@@ -83,7 +83,8 @@ pub(crate) fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
     let c = &atlas.cohorts;
     let p = &atlas.population;
     let confidence = paper.settings.confidence;
-    let (comparison, external, (inside, tested)) = atlas_comparison(c);
+    let (comparison, external) = atlas_comparison(c);
+    let (inside, tested) = c.b_inside_a();
     let external_summary = format!(
         "Over every finger and relative value, {} of the atlas's values ({inside} of {tested}) lie inside the paper's {} prediction interval for one new hand, which promises {}.",
         percent(inside as f64 / tested.max(1) as f64),
@@ -120,12 +121,11 @@ pub(crate) fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
     }
 }
 
-/// The comparison rows of every finger and quantity, the external-validity rows of the
-/// relative ones, and how many atlas values lie inside the paper's prediction interval (of how
-/// many tested).
+/// The comparison rows of every finger and quantity, and the external-validity rows of the
+/// relative ones.
 fn atlas_comparison(
     c: &crate::analysis::compare::Cohorts,
-) -> (Vec<AtlasCompareRow>, Vec<AtlasExternalRow>, (usize, usize)) {
+) -> (Vec<AtlasCompareRow>, Vec<AtlasExternalRow>) {
     use crate::report::compare::{
         bootstrap_cell, coverage_cell, difference_cell, hedges_cell, mean_sd, welch_cell,
     };
@@ -133,7 +133,6 @@ fn atlas_comparison(
     let d = |q: Quantity| decimals(q.is_unitless());
     let mut comparison = Vec::new();
     let mut external = Vec::new();
-    let (mut inside, mut tested) = (0usize, 0usize);
     for f in &c.fingers {
         for qc in &f.quantities {
             let (q, cmp) = (qc.quantity, &qc.comparison);
@@ -148,10 +147,6 @@ fn atlas_comparison(
                 hedges: hedges_cell(cmp),
             });
             if q.is_relative() {
-                if let Some(e) = &cmp.b_in_a {
-                    inside += e.inside;
-                    tested += e.of;
-                }
                 external.push(AtlasExternalRow {
                     finger: f.finger.name().to_string(),
                     quantity: short(q).to_string(),
@@ -163,7 +158,7 @@ fn atlas_comparison(
             }
         }
     }
-    (comparison, external, (inside, tested))
+    (comparison, external)
 }
 
 /// One sentence per finger, then one per finger's last segment (the tip).
@@ -198,7 +193,7 @@ fn atlas_population_intro(p: &PopulationStudy, confidence: f64) -> String {
         "The atlas taken as the population of hands ({xrays} X-rays): {} samples of each size n drawn from its X-rays with replacement, every interval built as the statistics build it, and counted when it holds the atlas's mean (the prediction interval: one further atlas X-ray). Each figure is the mean over the {} relative values; beside it, the normal model's figure. Monte-Carlo SE about {} per value at {}.",
         p.settings.sims,
         p.quantities.len(),
-        percent((confidence * (1.0 - confidence) / p.settings.sims.max(1) as f64).sqrt()),
+        percent(p.settings.mc_se(confidence)),
         level(confidence),
     )
 }

@@ -3,7 +3,7 @@
 
 use super::inputs::{AtlasInputs, ReportInputs};
 use crate::analysis::coverage::{CoverageSettings, CurvePoint};
-use crate::format::{percent, xrays};
+use crate::format::{num, percent, xrays};
 use crate::report::phrases::{interval_advice_of, method, pooled_rows};
 use serde::Serialize;
 
@@ -57,28 +57,27 @@ fn coverage_cell(p: &CurvePoint, name: &str) -> String {
 /// Why the coverage simulations take fewer resamples than the statistics: the Monte-Carlo
 /// error of the printed figures (see [`crate::analysis::coverage::SIM_RESAMPLES`]).
 fn simulation_method(s: &CoverageSettings, asked: usize) -> String {
-    let se = |p: f64| 100.0 * (p * (1.0 - p) / s.sims.max(1) as f64).sqrt();
-    // The bootstrap's bias on the percentile coverage: about 70 / B points (0.35 measured at
-    // B = 200 against 10,000; the endpoint noise is of order 1 / B).
+    let se = |p: f64| 100.0 * s.mc_se(p);
     let curve = crate::analysis::coverage::CURVE_RESAMPLES;
     let b = s.resamples.min(curve);
-    let bias = 70.0 / b.max(1) as f64;
+    let bias = crate::analysis::coverage::bootstrap_bias_points(b);
     let measured = if b == curve {
         " (measured against 10000 resamples: 0.3 to 0.5 points at 10 to 50 X-rays)"
     } else {
         ""
     };
     format!(
-        "each simulated dataset is bootstrapped with {b} resamples{} (the statistics above use the {asked} asked for), chosen by the Monte-Carlo error of the printed coverage. From {} simulated datasets a coverage near 95% has a Monte-Carlo SE of {:.2} points, one near 85% of {:.2}; the bootstrap's own noise lowers the percentile and BCa coverage by about 70 / B points at B resamples, {bias:.2} here{measured}, {:.1} times the SE near 95%. More resamples would move no printed figure beyond that noise, at a cost that grows with them. The t and prediction intervals do not use the bootstrap.",
+        "each simulated dataset is bootstrapped with {b} resamples{} (the statistics above use the {asked} asked for), chosen by the Monte-Carlo error of the printed coverage. From {} simulated datasets a coverage near 95% has a Monte-Carlo SE of {} points, one near 85% of {}; the bootstrap's own noise lowers the percentile and BCa coverage by about 70 / B points at B resamples, {} here{measured}, {} times the SE near 95%. More resamples would move no printed figure beyond that noise, at a cost that grows with them. The t and prediction intervals do not use the bootstrap.",
         if s.resamples > curve {
             format!(", {} at this data's n", s.resamples)
         } else {
             String::new()
         },
         s.sims,
-        se(0.95),
-        se(0.85),
-        bias / se(0.95).max(1e-9),
+        num(se(0.95), 2),
+        num(se(0.85), 2),
+        num(bias, 2),
+        num(bias / se(0.95).max(1e-9), 1),
     )
 }
 

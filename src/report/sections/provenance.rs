@@ -65,7 +65,11 @@ pub struct SettingsText {
 
 pub(crate) fn settings_text(inputs: &ReportInputs<'_>) -> SettingsText {
     let a = inputs.analysis;
-    let mut plans: Vec<String> = a.fingers.iter().map(|f| f.bootstrap.describe()).collect();
+    let mut plans: Vec<String> = a
+        .fingers
+        .iter()
+        .map(|f| crate::format::plan(f.bootstrap))
+        .collect();
     plans.dedup();
     SettingsText {
         confidence: level(a.settings.confidence),

@@ -63,7 +63,7 @@ pub(crate) fn stats(f: &crate::analysis::FingerAnalysis) -> StatsFinger {
         finger: f.finger.display_name().to_string(),
         id: f.finger.name().to_string(),
         n: xrays(f.n),
-        bootstrap: f.bootstrap.describe(),
+        bootstrap: crate::format::plan(f.bootstrap),
         rows,
         notes,
     }
