@@ -572,42 +572,42 @@ pub(crate) fn placement(
             xrays(p.n),
             exact(p.length)
         ));
-        let mut t = Grid::new()
-            .col("", Align::Left, Give::Keep)
-            .col("mean", Align::Right, Give::Keep)
-            .col("min", Align::Right, Give::Drop(5))
-            .col("max", Align::Right, Give::Drop(4))
-            .col("range", Align::Right, Give::Drop(3))
-            .col(format!("t CI {c}"), Align::Right, Give::Keep)
-            .col("percentile CI", Align::Right, Give::Drop(1))
-            .col("BCa CI", Align::Right, Give::Drop(2))
-            .col("prediction", Align::Right, Give::Keep);
-        let rows = p
-            .joints
-            .iter()
-            .map(|j| (format!("{} joint", j.joint.name()), &j.position))
-            .chain(
-                p.segments
-                    .iter()
-                    .map(|s| (format!("segment {}", s.segment.to_uppercase()), &s.length)),
-            )
-            .chain(
-                p.metacarpal
-                    .iter()
-                    .map(|m| ("MCP from the CMC".to_string(), &m.position)),
-            );
         let d = length_decimals(p.length);
-        for (what, v) in rows {
-            let mut row = vec![
-                what,
-                num(v.mean, d),
-                num(v.min, d),
-                num(v.max, d),
-                num(v.range, d),
-            ];
-            row.extend(interval_cells(&v.intervals, d));
-            t.row(row);
-        }
+        let t = placement_grid(
+            &[
+                ("mean".to_string(), Give::Keep),
+                ("min".to_string(), Give::Drop(5)),
+                ("max".to_string(), Give::Drop(4)),
+                ("range".to_string(), Give::Drop(3)),
+                (format!("t CI {c}"), Give::Keep),
+                ("percentile CI".to_string(), Give::Drop(1)),
+                ("BCa CI".to_string(), Give::Drop(2)),
+                ("prediction".to_string(), Give::Keep),
+            ],
+            PlacedRows {
+                joints: p
+                    .joints
+                    .iter()
+                    .map(|j| (j.joint.name(), &j.position))
+                    .collect(),
+                segments: p
+                    .segments
+                    .iter()
+                    .map(|s| (s.segment, &s.length))
+                    .collect(),
+                metacarpal: p.metacarpal.as_ref().map(|m| &m.position),
+            },
+            |v| {
+                let mut row = vec![
+                    num(v.mean, d),
+                    num(v.min, d),
+                    num(v.max, d),
+                    num(v.range, d),
+                ];
+                row.extend(interval_cells(&v.intervals, d));
+                row
+            },
+        );
         out.push_str(&t.render(width, 0, &mut hidden));
         if let Some(m) = &p.metacarpal {
             out.push_str(&format!(
@@ -620,6 +620,44 @@ pub(crate) fn placement(
     }
     hidden.append_to(&mut out, width);
     fit_text(&out, width)
+}
+
+/// The rows of one finger's placement: its joints, its segments, and the MCP from the CMC
+/// when the metacarpal is measured.
+struct PlacedRows<'v, V> {
+    joints: Vec<(&'static str, &'v V)>,
+    segments: Vec<(&'v str, &'v V)>,
+    metacarpal: Option<&'v V>,
+}
+
+/// The one grid of a finger's placement, for the data's placement and a table's: a label
+/// column, then `heads` (right-aligned), one row per joint, segment and the MCP from the
+/// CMC, each row's cells from `cells`.
+fn placement_grid<V>(
+    heads: &[(String, Give)],
+    rows: PlacedRows<'_, V>,
+    cells: impl Fn(&V) -> Vec<String>,
+) -> Grid {
+    let mut t = Grid::new().col("", Align::Left, Give::Keep);
+    for (head, give) in heads {
+        t = t.col(head.clone(), Align::Right, *give);
+    }
+    let labelled = rows
+        .joints
+        .into_iter()
+        .map(|(joint, v)| (format!("{joint} joint"), v))
+        .chain(
+            rows.segments
+                .into_iter()
+                .map(|(s, v)| (format!("segment {}", s.to_uppercase()), v)),
+        )
+        .chain(rows.metacarpal.map(|v| ("MCP from the CMC".to_string(), v)));
+    for (what, v) in labelled {
+        let mut row = vec![what];
+        row.extend(cells(v));
+        t.row(row);
+    }
+    t
 }
 
 /// Joint positions placed from a summary table, one table per finger, with the sentence
@@ -647,34 +685,24 @@ pub(crate) fn table_placement(
                 crate::dataset::TipKind::Bone => "the tip at the end of the bone: the table gives no soft tissue",
             }
         ));
-        let mut t = Grid::new()
-            .col("", Align::Left, Give::Keep)
-            .col("ratio of means", Align::Right, Give::Keep)
-            .col(format!("t CI {c}"), Align::Right, Give::Keep)
-            .col("prediction", Align::Right, Give::Keep);
         let d = length_decimals(p.length);
-        let rows = p
-            .joints
-            .iter()
-            .map(|j| (format!("{} joint", j.joint.name()), &j.position))
-            .chain(
-                p.segments
+        let t = placement_grid(
+            &[
+                ("ratio of means".to_string(), Give::Keep),
+                (format!("t CI {c}"), Give::Keep),
+                ("prediction".to_string(), Give::Keep),
+            ],
+            PlacedRows {
+                joints: p
+                    .joints
                     .iter()
-                    .map(|(s, v)| (format!("segment {}", s.to_uppercase()), v)),
-            )
-            .chain(
-                p.metacarpal
-                    .iter()
-                    .map(|m| ("MCP from the CMC".to_string(), m)),
-            );
-        for (what, v) in rows {
-            t.row(vec![
-                what,
-                num(v.mean, d),
-                crate::format::interval(v.ci, d),
-                crate::format::interval(v.pi, d),
-            ]);
-        }
+                    .map(|j| (j.joint.name(), &j.position))
+                    .collect(),
+                segments: p.segments.iter().map(|(s, v)| (&**s, v)).collect(),
+                metacarpal: p.metacarpal.as_ref(),
+            },
+            |v| vec![num(v.mean, d), interval(v.ci, d), interval(v.pi, d)],
+        );
         out.push_str(&t.render(width, 0, &mut hidden));
         if let Some(w) = &p.why {
             out.push_str(&format!("no interval: {w}\n"));
