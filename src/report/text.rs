@@ -590,11 +590,7 @@ pub(crate) fn placement(
                     .iter()
                     .map(|j| (j.joint.name(), &j.position))
                     .collect(),
-                segments: p
-                    .segments
-                    .iter()
-                    .map(|s| (s.segment, &s.length))
-                    .collect(),
+                segments: p.segments.iter().map(|s| (s.segment, &s.length)).collect(),
                 metacarpal: p.metacarpal.as_ref().map(|m| &m.position),
             },
             |v| {
