@@ -63,10 +63,9 @@ pub struct LiteratureSideRow {
 /// The section "The paper against published measurements".
 pub(crate) fn literature_view(l: &LiteratureInputs) -> LiteratureView {
     use crate::report::compare_table::{
-        Profile, correlation_line, differs_in, estimate_cell, fit_words, table_finger_sentence,
-        tip_finding_sentence, tip_overall, trim_rho, verdict_cell,
+        Profile, correlation_line, differs_in, table_finger_sentence,
     };
-    use crate::report::compare_words::{Names, short};
+    use crate::report::compare_words::Names;
     let p = &l.paper;
     let name = table_name(&p.b);
     let names = Names {
@@ -112,7 +111,60 @@ pub(crate) fn literature_view(l: &LiteratureInputs) -> LiteratureView {
         ));
     }
     let conf = level(p.confidence);
-    let (tips, tip_finding, tip_evidence) = match &p.tips {
+    let (tips, tip_finding, tip_evidence) = tip_parts(p, names, &conf);
+    let soft: Vec<String> = p
+        .tips
+        .iter()
+        .flat_map(|v| &v.fingers)
+        .map(|t| format!("{} {}", t.finger.name(), percent(t.soft_share)))
+        .collect();
+    let audit = format!(
+        "What it changes for a rig audit: the paper's last segment is taken to end at the skin, so a rig's last segment is compared with it as it is when the rig's tips are at the skin (the end of the finger's mesh), and no soft tissue is to be trimmed off. A rig whose tips sit at the end of the bone needs the fingertip's soft tissue added before it is compared: {name} measures it at {} of a finger measured to the skin, a share that scales with the rig's finger in any unit. A fixed offset in millimetres does not: a rig in the wrong unit would lose most of a segment to it. The audits of section 13 follow this: they read each dataset's tips from its tip column, compare skin tips with skin tips as they are, and where one side's tips are at the bone (the atlas's, for the MCP judged from its CMC or the wrist) correct the last segment by that finger's share.",
+        soft.join(", ")
+    );
+    let side = side_rows(l);
+    let tip_word = match p.b.table_tip {
+        Some(crate::dataset::TipKind::Skin) => {
+            "to the skin (its soft tissue added), as the paper's rows record skin tips"
+        }
+        _ => "to the end of the bone",
+    };
+    let side_intro = format!(
+        "Each cohort beside {name} measured to the same fingertip: the paper's X-rays (mean and {conf} t interval) against {name}'s ratios of means {tip_word}; the atlas (bone tips) against {name} to the bone. A verdict says whether the {conf} interval of the difference excludes 0 (differs) or holds it (not rejected: no difference shown, which is not equality shown), the same at correlations 0, the assumed one and 0.9 unless each is named."
+    );
+    LiteratureView {
+        title: "The paper against published measurements".to_string(),
+        anchor: "12-the-paper-against-published-measurements".to_string(),
+        source,
+        cohorts,
+        tips,
+        tip_finding,
+        tip_evidence,
+        audit,
+        correlation: correlation_line(&p.correlation),
+        side,
+        side_intro,
+        sentences: p
+            .fingers
+            .iter()
+            .map(|f| table_finger_sentence(f, names))
+            .collect(),
+        notes: p.notes.clone(),
+    }
+}
+
+/// The fingertips' part: one row per finger's last segment, the overall finding, and the
+/// evidence finger by finger (`conf`: the confidence level in words).
+fn tip_parts(
+    p: &crate::analysis::literature::TableCohorts,
+    names: crate::report::compare_words::Names<'_>,
+    conf: &str,
+) -> (Vec<LiteratureTipRow>, String, Vec<String>) {
+    use crate::report::compare_table::{
+        estimate_cell, fit_words, tip_finding_sentence, tip_overall, trim_rho,
+    };
+    let name = names.b;
+    match &p.tips {
         Some(v) => (
             v.fingers
                 .iter()
@@ -151,17 +203,15 @@ pub(crate) fn literature_view(l: &LiteratureInputs) -> LiteratureView {
             format!("{name} gives no fingertip soft tissue, so the paper's tips cannot be placed."),
             Vec::new(),
         ),
-    };
-    let soft: Vec<String> = p
-        .tips
-        .iter()
-        .flat_map(|v| &v.fingers)
-        .map(|t| format!("{} {}", t.finger.name(), percent(t.soft_share)))
-        .collect();
-    let audit = format!(
-        "What it changes for a rig audit: the paper's last segment is taken to end at the skin, so a rig's last segment is compared with it as it is when the rig's tips are at the skin (the end of the finger's mesh), and no soft tissue is to be trimmed off. A rig whose tips sit at the end of the bone needs the fingertip's soft tissue added before it is compared: {name} measures it at {} of a finger measured to the skin, a share that scales with the rig's finger in any unit. A fixed offset in millimetres does not: a rig in the wrong unit would lose most of a segment to it. The audits of section 13 follow this: they read each dataset's tips from its tip column, compare skin tips with skin tips as they are, and where one side's tips are at the bone (the atlas's, for the MCP judged from its CMC or the wrist) correct the last segment by that finger's share.",
-        soft.join(", ")
-    );
+    }
+}
+
+/// Every finger and quantity: the paper beside the table to the skin, the atlas beside
+/// it to the bone (when the atlas is there), with the verdicts.
+fn side_rows(l: &LiteratureInputs) -> Vec<LiteratureSideRow> {
+    use crate::report::compare_table::{estimate_cell, verdict_cell};
+    use crate::report::compare_words::short;
+    let p = &l.paper;
     let mut side = Vec::new();
     for f in &p.fingers {
         let atlas_f = l
@@ -182,34 +232,7 @@ pub(crate) fn literature_view(l: &LiteratureInputs) -> LiteratureView {
             });
         }
     }
-    let tip_word = match p.b.table_tip {
-        Some(crate::dataset::TipKind::Skin) => {
-            "to the skin (its soft tissue added), as the paper's rows record skin tips"
-        }
-        _ => "to the end of the bone",
-    };
-    let side_intro = format!(
-        "Each cohort beside {name} measured to the same fingertip: the paper's X-rays (mean and {conf} t interval) against {name}'s ratios of means {tip_word}; the atlas (bone tips) against {name} to the bone. A verdict says whether the {conf} interval of the difference excludes 0 (differs) or holds it (not rejected: no difference shown, which is not equality shown), the same at correlations 0, the assumed one and 0.9 unless each is named."
-    );
-    LiteratureView {
-        title: "The paper against published measurements".to_string(),
-        anchor: "12-the-paper-against-published-measurements".to_string(),
-        source,
-        cohorts,
-        tips,
-        tip_finding,
-        tip_evidence,
-        audit,
-        correlation: correlation_line(&p.correlation),
-        side,
-        side_intro,
-        sentences: p
-            .fingers
-            .iter()
-            .map(|f| table_finger_sentence(f, names))
-            .collect(),
-        notes: p.notes.clone(),
-    }
+    side
 }
 
 /// "Buryanov & Kotiuk 2010", or the table's file.
