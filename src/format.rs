@@ -6,6 +6,7 @@
 //! A leaf module: it depends on [`crate::stats`] alone, so the dataset, the
 //! analysis, the rig code and the report can all use it.
 
+use crate::stats::bootstrap::Plan;
 use crate::stats::{Interval, Intervals};
 
 /// Decimals of a relative value or ratio (as the paper prints them).
@@ -232,6 +233,35 @@ pub(crate) fn level(confidence: f64) -> String {
         .find(fits)
         .unwrap_or_else(|| p.to_string());
     format!("{text}%")
+}
+
+/// How a bootstrap was done, in one word: "exact" (every distinct resample enumerated)
+/// or "random" (seeded resamples). The words of [`plan`] and [`plan_short`].
+pub(crate) fn plan_kind(p: Plan) -> &'static str {
+    match p {
+        Plan::Exact { .. } => "exact",
+        Plan::Random { .. } => "random",
+    }
+}
+
+/// How a bootstrap was done, as the outputs say it: "exact: all 126 distinct resamples
+/// enumerated with their multinomial weights", "random: 10000 seeded resamples".
+pub(crate) fn plan(p: Plan) -> String {
+    match p {
+        Plan::Exact { distinct } => format!(
+            "{}: all {distinct} distinct resamples enumerated with their multinomial weights",
+            plan_kind(p)
+        ),
+        Plan::Random { resamples } => format!("{}: {resamples} seeded resamples", plan_kind(p)),
+    }
+}
+
+/// A bootstrap briefly, for a table cell: "exact (126)", "random (200)".
+pub(crate) fn plan_short(p: Plan) -> String {
+    match p {
+        Plan::Exact { distinct } => format!("{} ({distinct})", plan_kind(p)),
+        Plan::Random { resamples } => format!("{} ({resamples})", plan_kind(p)),
+    }
 }
 
 #[cfg(test)]

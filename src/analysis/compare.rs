@@ -484,6 +484,19 @@ pub struct Cohorts {
     pub notes: Vec<String>,
 }
 
+impl Cohorts {
+    /// Over every finger and relative quantity, how many of B's values lie inside A's
+    /// prediction interval for one new X-ray, and of how many tested (`(0, 0)`: none).
+    pub fn b_inside_a(&self) -> (usize, usize) {
+        self.fingers
+            .iter()
+            .flat_map(|f| &f.quantities)
+            .filter(|q| q.quantity.is_relative())
+            .filter_map(|q| q.comparison.b_in_a)
+            .fold((0, 0), |(inside, of), e| (inside + e.inside, of + e.of))
+    }
+}
+
 /// Compares datasets A and B: for every finger both have, every quantity both measure
 /// ([`compare_all`]; differences B - A), and the soft tissue that would explain the
 /// difference of the last segment ([`soft_tissue_offset`]).

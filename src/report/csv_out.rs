@@ -121,10 +121,7 @@ fn write_analysis(
 ) -> Result<(), Error> {
     let err = |e| Error::render("cannot write CSV", e);
     for fa in &a.fingers {
-        let method = match fa.bootstrap {
-            crate::stats::bootstrap::Plan::Exact { .. } => "exact",
-            crate::stats::bootstrap::Plan::Random { .. } => "random",
-        };
+        let method = crate::format::plan_kind(fa.bootstrap);
         for q in &fa.quantities {
             let mut rec = lead.to_vec();
             rec.extend([

@@ -1,8 +1,12 @@
 //! Everything phalanx shows: exporters that turn finished results into bytes.
 //!
-//! Reads analysis results only, never raw measurement rows. Every exporter and
-//! renderer is pure (returns bytes or text); files are written in one place,
-//! [`writer::write_all`].
+//! Reads analysis results only, never raw measurement rows. Two layers: the
+//! report's [`sections`] (each its view and builder) and the [`phrases`] the
+//! terminal shares sit below the exporters (html/md through [`view`] and
+//! [`render`], text, json, csv, audit, compare, deform, rig). Every exporter and
+//! renderer is pure (returns bytes or text); nothing here writes but
+//! [`writer::write_all`], which `cmd` calls for the report's, the schemas' and
+//! `deform`'s files (the other commands write their one file through `crate::atomic`).
 
 pub(crate) mod audit;
 pub(crate) mod compare;
@@ -16,11 +20,11 @@ pub mod layout;
 pub(crate) mod phrases;
 pub mod plots;
 pub(crate) mod progress;
-pub mod region;
 pub mod render;
 pub mod render3d;
 pub(crate) mod rig;
 pub(crate) mod schema;
+pub mod sections;
 pub(crate) mod text;
 pub(crate) mod track_words;
 pub mod view;

@@ -40,7 +40,7 @@ fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden, head: bool) -> St
             "\n{} - n = {}; bootstrap {}\n",
             f.finger.display_name(),
             xrays(f.n),
-            f.bootstrap.describe()
+            crate::format::plan(f.bootstrap)
         ));
         let mut t = Grid::new()
             .col("quantity", Align::Left, Give::Keep)
@@ -351,7 +351,7 @@ pub(crate) fn coverage(
     for n in notes {
         out.push_str(&format!("note: {n}\n"));
     }
-    if let Some(advice) = crate::report::view::interval_advice(points) {
+    if let Some(advice) = super::phrases::interval_advice(points) {
         out.push('\n');
         out.push_str(&advice);
         out.push('\n');
@@ -572,42 +572,38 @@ pub(crate) fn placement(
             xrays(p.n),
             exact(p.length)
         ));
-        let mut t = Grid::new()
-            .col("", Align::Left, Give::Keep)
-            .col("mean", Align::Right, Give::Keep)
-            .col("min", Align::Right, Give::Drop(5))
-            .col("max", Align::Right, Give::Drop(4))
-            .col("range", Align::Right, Give::Drop(3))
-            .col(format!("t CI {c}"), Align::Right, Give::Keep)
-            .col("percentile CI", Align::Right, Give::Drop(1))
-            .col("BCa CI", Align::Right, Give::Drop(2))
-            .col("prediction", Align::Right, Give::Keep);
-        let rows = p
-            .joints
-            .iter()
-            .map(|j| (format!("{} joint", j.joint.name()), &j.position))
-            .chain(
-                p.segments
-                    .iter()
-                    .map(|s| (format!("segment {}", s.segment.to_uppercase()), &s.length)),
-            )
-            .chain(
-                p.metacarpal
-                    .iter()
-                    .map(|m| ("MCP from the CMC".to_string(), &m.position)),
-            );
         let d = length_decimals(p.length);
-        for (what, v) in rows {
-            let mut row = vec![
-                what,
-                num(v.mean, d),
-                num(v.min, d),
-                num(v.max, d),
-                num(v.range, d),
-            ];
-            row.extend(interval_cells(&v.intervals, d));
-            t.row(row);
-        }
+        let t = placement_grid(
+            &[
+                ("mean".to_string(), Give::Keep),
+                ("min".to_string(), Give::Drop(5)),
+                ("max".to_string(), Give::Drop(4)),
+                ("range".to_string(), Give::Drop(3)),
+                (format!("t CI {c}"), Give::Keep),
+                ("percentile CI".to_string(), Give::Drop(1)),
+                ("BCa CI".to_string(), Give::Drop(2)),
+                ("prediction".to_string(), Give::Keep),
+            ],
+            PlacedRows {
+                joints: p
+                    .joints
+                    .iter()
+                    .map(|j| (j.joint.name(), &j.position))
+                    .collect(),
+                segments: p.segments.iter().map(|s| (s.segment, &s.length)).collect(),
+                metacarpal: p.metacarpal.as_ref().map(|m| &m.position),
+            },
+            |v| {
+                let mut row = vec![
+                    num(v.mean, d),
+                    num(v.min, d),
+                    num(v.max, d),
+                    num(v.range, d),
+                ];
+                row.extend(interval_cells(&v.intervals, d));
+                row
+            },
+        );
         out.push_str(&t.render(width, 0, &mut hidden));
         if let Some(m) = &p.metacarpal {
             out.push_str(&format!(
@@ -620,6 +616,44 @@ pub(crate) fn placement(
     }
     hidden.append_to(&mut out, width);
     fit_text(&out, width)
+}
+
+/// The rows of one finger's placement: its joints, its segments, and the MCP from the CMC
+/// when the metacarpal is measured.
+struct PlacedRows<'v, V> {
+    joints: Vec<(&'static str, &'v V)>,
+    segments: Vec<(&'v str, &'v V)>,
+    metacarpal: Option<&'v V>,
+}
+
+/// The one grid of a finger's placement, for the data's placement and a table's: a label
+/// column, then `heads` (right-aligned), one row per joint, segment and the MCP from the
+/// CMC, each row's cells from `cells`.
+fn placement_grid<V>(
+    heads: &[(String, Give)],
+    rows: PlacedRows<'_, V>,
+    cells: impl Fn(&V) -> Vec<String>,
+) -> Grid {
+    let mut t = Grid::new().col("", Align::Left, Give::Keep);
+    for (head, give) in heads {
+        t = t.col(head.clone(), Align::Right, *give);
+    }
+    let labelled = rows
+        .joints
+        .into_iter()
+        .map(|(joint, v)| (format!("{joint} joint"), v))
+        .chain(
+            rows.segments
+                .into_iter()
+                .map(|(s, v)| (format!("segment {}", s.to_uppercase()), v)),
+        )
+        .chain(rows.metacarpal.map(|v| ("MCP from the CMC".to_string(), v)));
+    for (what, v) in labelled {
+        let mut row = vec![what];
+        row.extend(cells(v));
+        t.row(row);
+    }
+    t
 }
 
 /// Joint positions placed from a summary table, one table per finger, with the sentence
@@ -647,34 +681,24 @@ pub(crate) fn table_placement(
                 crate::dataset::TipKind::Bone => "the tip at the end of the bone: the table gives no soft tissue",
             }
         ));
-        let mut t = Grid::new()
-            .col("", Align::Left, Give::Keep)
-            .col("ratio of means", Align::Right, Give::Keep)
-            .col(format!("t CI {c}"), Align::Right, Give::Keep)
-            .col("prediction", Align::Right, Give::Keep);
         let d = length_decimals(p.length);
-        let rows = p
-            .joints
-            .iter()
-            .map(|j| (format!("{} joint", j.joint.name()), &j.position))
-            .chain(
-                p.segments
+        let t = placement_grid(
+            &[
+                ("ratio of means".to_string(), Give::Keep),
+                (format!("t CI {c}"), Give::Keep),
+                ("prediction".to_string(), Give::Keep),
+            ],
+            PlacedRows {
+                joints: p
+                    .joints
                     .iter()
-                    .map(|(s, v)| (format!("segment {}", s.to_uppercase()), v)),
-            )
-            .chain(
-                p.metacarpal
-                    .iter()
-                    .map(|m| ("MCP from the CMC".to_string(), m)),
-            );
-        for (what, v) in rows {
-            t.row(vec![
-                what,
-                num(v.mean, d),
-                crate::format::interval(v.ci, d),
-                crate::format::interval(v.pi, d),
-            ]);
-        }
+                    .map(|j| (j.joint.name(), &j.position))
+                    .collect(),
+                segments: p.segments.iter().map(|(s, v)| (&**s, v)).collect(),
+                metacarpal: p.metacarpal.as_ref(),
+            },
+            |v| vec![num(v.mean, d), interval(v.ci, d), interval(v.pi, d)],
+        );
         out.push_str(&t.render(width, 0, &mut hidden));
         if let Some(w) = &p.why {
             out.push_str(&format!("no interval: {w}\n"));
@@ -703,7 +727,7 @@ pub fn population(
     let mut out = format!(
         "Coverage of nominal {c} intervals on real hands: {path} taken as the population ({xrays} X-rays), {sims} samples of each size drawn from its X-rays with replacement. Confidence intervals are scored against the population mean, the prediction interval against one further X-ray. Monte-Carlo SE: about {se} at {c}.\n",
         sims = s.sims,
-        se = percent((s.confidence * (1.0 - s.confidence) / s.sims as f64).sqrt()),
+        se = percent(s.mc_se(s.confidence)),
     );
     let mut t = Grid::new()
         .col("n", Align::Left, Give::Keep)
@@ -713,7 +737,7 @@ pub fn population(
         .col("BCa", Align::Right, Give::Keep)
         .col("prediction", Align::Right, Give::Keep)
         .col("bootstrap", Align::Right, Give::Drop(1));
-    for r in crate::report::view::pooled_rows(study) {
+    for r in super::phrases::pooled_rows(study) {
         let (n, model) = if r.normal {
             (String::new(), "normal model")
         } else {

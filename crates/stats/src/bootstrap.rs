@@ -52,16 +52,6 @@ impl Plan {
     pub fn is_empty(self) -> bool {
         self.len() == 0
     }
-
-    /// A sentence for outputs.
-    pub fn describe(self) -> String {
-        match self {
-            Plan::Exact { distinct } => format!(
-                "exact: all {distinct} distinct resamples enumerated with their multinomial weights"
-            ),
-            Plan::Random { resamples } => format!("random: {resamples} seeded resamples"),
-        }
-    }
 }
 
 /// C(2n-1, n), the number of distinct resamples of n units, when it is at most `limit`.

@@ -1,0 +1,44 @@
+//! Pieces several sections share: how many X-rays a table lists, whether the data are
+//! the paper's X-rays, and the interval cells of a table row.
+
+use crate::format::interval_cells;
+use crate::stats::Intervals;
+use serde::Serialize;
+
+/// Most X-rays listed row by row in the data tables; the rest are summarised.
+pub const MAX_LISTED_XRAYS: usize = 100;
+
+pub(crate) fn truncation(total: usize) -> Option<String> {
+    (total > MAX_LISTED_XRAYS).then(|| {
+        format!(
+            "The first {MAX_LISTED_XRAYS} of {total} X-rays are listed; the statistics use all of them."
+        )
+    })
+}
+
+/// True when the dataset holds exactly the X-rays the paper's claims name.
+pub(crate) fn is_paper((named, xrays): (usize, usize)) -> bool {
+    named > 0 && named == xrays
+}
+
+/// The four intervals of a table row as text (keys `ci_t`, `ci_percentile`, `ci_bca`, `pi`).
+#[derive(Debug, Clone, Serialize)]
+pub struct IntervalCells {
+    pub ci_t: String,
+    pub ci_percentile: String,
+    pub ci_bca: String,
+    pub pi: String,
+}
+
+impl IntervalCells {
+    /// The cells of `iv` with `d` decimals (from `format::interval_cells`).
+    pub fn new(iv: &Intervals, d: usize) -> IntervalCells {
+        let [ci_t, ci_percentile, ci_bca, pi] = interval_cells(iv, d);
+        IntervalCells {
+            ci_t,
+            ci_percentile,
+            ci_bca,
+            pi,
+        }
+    }
+}
