@@ -21,6 +21,7 @@ mod draw;
 mod finger;
 mod forest;
 mod hand;
+mod kinds;
 mod rigs;
 #[cfg(test)]
 mod tests;
@@ -28,43 +29,9 @@ mod tracking;
 
 use crate::analysis::placement::FingerPlacement;
 use crate::analysis::{Analysis, FingerAnalysis};
-use crate::dataset::Finger;
 use crate::error::Error;
-use serde::Serialize;
-
-/// Which kind of plot.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum PlotKind {
-    /// One finger: each X-ray's relative values as points, the mean and its intervals.
-    Finger,
-    /// The five fingers as segments with each joint's mean position and its bands.
-    Hand,
-    /// Every quantity's intervals side by side.
-    Forest,
-    /// One finger's means with their confidence band against the number of X-rays.
-    Tracking,
-    /// Popular rigs' segment ratios against the X-rays.
-    Rigs,
-    /// Each interval method's simulated coverage against the number of X-rays.
-    Coverage,
-    /// One finger's relative values in an atlas, binned, with the paper's X-rays over them.
-    Atlas,
-}
-
-/// One rendered plot.
-#[derive(Debug, Clone, Serialize)]
-pub struct Plot {
-    /// File stem, unique within a report (e.g. `finger-index`); also the prefix of SVG ids.
-    pub id: String,
-    pub kind: PlotKind,
-    /// Human title (also the SVG `<title>`).
-    pub title: String,
-    /// One-paragraph description for screen readers (also the SVG `<desc>`).
-    pub description: String,
-    /// The complete SVG document.
-    pub svg: String,
-}
+pub use kinds::{Named, Plot, PlotKind};
+pub(crate) use kinds::{TrackPoint, TrackSeries};
 
 /// Per-finger plot: each X-ray's relative values as points, the mean and its intervals.
 ///
@@ -75,17 +42,6 @@ pub struct Plot {
 /// only those outside the prediction interval). Id `finger-<name>`.
 pub fn finger_plot(f: &FingerAnalysis, confidence: f64) -> Result<Plot, Error> {
     finger::plot(f, confidence, &Named::default())
-}
-
-/// The X-rays worth naming in the plots: labels stay legible at any n because only
-/// these are labelled once there are more than a dozen X-rays (with the X-rays whose
-/// value lies outside the prediction interval).
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Named {
-    /// Rows added though flagged as likely errors: (X-ray, finger).
-    pub flagged: Vec<(String, Finger)>,
-    /// The X-rays of the newest addition (the history's last `add`).
-    pub newest: Vec<String>,
 }
 
 /// Hand diagram: the fingers as segments, each joint's mean position with range and prediction band.
@@ -101,22 +57,6 @@ pub fn hand_diagram(placements: &[FingerPlacement], confidence: f64) -> Result<P
 /// One row per finger and relative quantity, one shared x axis (relative value). Id `forest`.
 pub fn forest_plot(a: &Analysis) -> Result<Plot, Error> {
     forest::plot(a)
-}
-
-/// One snapshot of one quantity: the number of X-rays, the mean, its t interval.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct TrackPoint {
-    pub xrays: usize,
-    pub mean: f64,
-    pub ci: Option<(f64, f64)>,
-}
-
-/// The history of one relative quantity of a finger, in snapshot order.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct TrackSeries {
-    /// Display label, e.g. "J~1 = J1/J".
-    pub label: String,
-    pub points: Vec<TrackPoint>,
 }
 
 /// Tracking plot of one finger (id `tracking-<finger>`): for each relative quantity,
@@ -175,13 +115,4 @@ pub fn all_named(
     plots.push(hand_diagram(placements, a.settings.confidence)?);
     plots.push(forest_plot(a)?);
     Ok(plots)
-}
-
-/// "the thumb", "the index finger (the paper's 'grooming' finger)", "the ring finger".
-fn finger_phrase(f: Finger) -> String {
-    match f {
-        Finger::Thumb => "the thumb".to_string(),
-        Finger::Index => "the index finger (the paper's 'grooming' finger)".to_string(),
-        other => format!("the {} finger", other.name()),
-    }
 }

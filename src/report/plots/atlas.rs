@@ -6,7 +6,7 @@ use super::draw::{
     Dir, DrawResult, Frame, Kind, LegendItem, POINT, Pen, QuantityRow, RANGE, Root, Swatch, WIDTH,
     extent, finish, padded, render, row_chart,
 };
-use super::{Plot, PlotKind, finger_phrase};
+use super::kinds::{Plot, PlotKind, finger_phrase};
 use crate::analysis::FingerAnalysis;
 use crate::error::Error;
 use crate::format::{level, percent, trimmed};

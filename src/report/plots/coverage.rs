@@ -11,7 +11,7 @@ use super::draw::{
     Axes, Categories, Chart, DrawResult, Font, Frame, INK, Kind, LegendItem, Linear, MARGIN, MUTED,
     Pen, Px, Root, Swatch, WIDTH, draw_axes, finish, render, xrays,
 };
-use super::{Plot, PlotKind};
+use super::kinds::{Plot, PlotKind};
 use crate::analysis::coverage::CurvePoint;
 use crate::error::Error;
 use crate::format::{self, level, percent};

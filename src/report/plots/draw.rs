@@ -5,7 +5,7 @@
 //! plot maps its data to pixels with its chart (`ChartContext::backend_coord`)
 //! and then uses these helpers, so the three plots share one look.
 
-use super::{Plot, PlotKind};
+use super::kinds::{Plot, PlotKind};
 use crate::analysis::{Analysis, Interval, Quantity, QuantityStats};
 use crate::dataset::Finger;
 use crate::error::Error;

@@ -14,7 +14,7 @@ use super::draw::{
     MUTED, NAMED, POINT, Pen, Px, Root, Swatch, WIDTH, clip, draw_axes, extent, finish, padded,
     render, stats_values, text_width, tick_format,
 };
-use super::{Named, Plot, PlotKind, finger_phrase};
+use super::kinds::{Named, Plot, PlotKind, finger_phrase};
 use crate::analysis::{FingerAnalysis, Quantity, QuantityStats};
 use crate::error::Error;
 use crate::format;

@@ -6,7 +6,7 @@ use super::draw::{
     WIDTH, extent, finish, padded, quantity_rows, render, row_chart, stats_values, text_width,
 };
 use super::finger::quantity_sentence;
-use super::{Plot, PlotKind};
+use super::kinds::{Plot, PlotKind};
 use crate::analysis::{Analysis, Quantity, QuantityStats};
 use crate::error::Error;
 use crate::format::level;

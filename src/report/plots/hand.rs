@@ -7,7 +7,7 @@ use super::draw::{
     MARGIN, MUTED, Pen, Px, RANGE, Swatch, WIDTH, draw_axes, extent, finish, padded, render,
     tick_format,
 };
-use super::{Plot, PlotKind};
+use super::kinds::{Plot, PlotKind};
 use crate::analysis::placement::{FingerPlacement, JointPosition};
 use crate::error::Error;
 use crate::format::{self, label_decimals, level, trimmed};

@@ -10,7 +10,7 @@ use super::draw::{
     Dir, DrawResult, Frame, Kind, LegendItem, Pen, QuantityRow, RANGE, Root, Swatch, WIDTH, extent,
     finish, padded, quantity_rows, render, row_chart,
 };
-use super::{Plot, PlotKind};
+use super::kinds::{Plot, PlotKind};
 use crate::analysis::{Analysis, Quantity};
 use crate::dataset::Finger;
 use crate::error::Error;

@@ -14,7 +14,7 @@ use super::draw::{
     MUTED, Pen, Px, Root, WIDTH, clip, draw_axes, extent, finish, padded, render, text_width,
     tick_format, xrays,
 };
-use super::{Plot, PlotKind, TrackPoint, TrackSeries, finger_phrase};
+use super::kinds::{Plot, PlotKind, TrackPoint, TrackSeries, finger_phrase};
 use crate::dataset::Finger;
 use crate::error::Error;
 use crate::format::{self, level};
