@@ -96,3 +96,16 @@ impl fmt::Display for DataError {
 }
 
 impl std::error::Error for DataError {}
+
+/// Most characters of an offending value quoted back in an error message.
+const QUOTE_MAX: usize = 40;
+
+/// Quotes a value for an error message, shortened when long.
+pub(crate) fn quote(value: &str) -> String {
+    if value.chars().count() <= QUOTE_MAX {
+        format!("'{value}'")
+    } else {
+        let head: String = value.chars().take(QUOTE_MAX).collect();
+        format!("'{head}...' ({} characters)", value.chars().count())
+    }
+}

@@ -1,9 +1,6 @@
 //! The five fingers and the names they go by.
 
-use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
-use serde::de::Error as _;
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
-use std::borrow::Cow;
+use super::named::serde_by_name;
 use std::fmt;
 
 /// One finger of a hand, in the order the report lists them.
@@ -91,39 +88,12 @@ impl fmt::Display for Finger {
     }
 }
 
-impl Serialize for Finger {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(self.name())
-    }
-}
-
-impl JsonSchema for Finger {
-    fn schema_name() -> Cow<'static, str> {
-        "Finger".into()
-    }
-
-    /// The names [`Finger::serialize`] writes: [`Finger::name`] of each finger.
-    fn json_schema(_: &mut SchemaGenerator) -> Schema {
-        json_schema!({
-            "description": "A finger, by its canonical name.",
-            "type": "string",
-            "enum": Finger::ALL.map(Finger::name),
-        })
-    }
-}
-
-impl<'de> Deserialize<'de> for Finger {
-    /// Reads a name [`Finger::parse`] accepts (phalanx writes [`Finger::name`]).
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Finger, D::Error> {
-        let text = String::deserialize(d)?;
-        Finger::parse(&text).ok_or_else(|| {
-            D::Error::custom(format!(
-                "unknown finger '{text}', expected one of {}",
-                Finger::ACCEPTED
-            ))
-        })
-    }
-}
+serde_by_name!(
+    Finger,
+    "finger",
+    "A finger, by its canonical name.",
+    Finger::ACCEPTED
+);
 
 #[cfg(test)]
 mod tests {

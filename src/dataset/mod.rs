@@ -25,6 +25,7 @@ pub(crate) mod finger;
 pub mod history;
 pub(crate) mod landmarks;
 pub mod literature;
+mod named;
 pub(crate) mod quantity;
 pub mod tip;
 pub(crate) mod tip_rows;

@@ -3,10 +3,7 @@
 //! and, where the metacarpal is measured, its ratios to the finger.
 
 use super::Finger;
-use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
-use serde::de::Error as _;
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
-use std::borrow::Cow;
+use super::named::serde_by_name;
 
 /// A quantity measured once per X-ray of a finger.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -116,39 +113,12 @@ impl Quantity {
     }
 }
 
-impl Serialize for Quantity {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(self.name())
-    }
-}
-
-impl JsonSchema for Quantity {
-    fn schema_name() -> Cow<'static, str> {
-        "Quantity".into()
-    }
-
-    /// The names [`Quantity::serialize`] writes: [`Quantity::name`] of each quantity.
-    fn json_schema(_: &mut SchemaGenerator) -> Schema {
-        json_schema!({
-            "description": "A quantity, by its machine name: rel_j1..rel_j3 = J~k (eq. 2), ratio_j2_j1, ratio_j3_j2, total = J (eq. 1).",
-            "type": "string",
-            "enum": Quantity::ALL.map(Quantity::name),
-        })
-    }
-}
-
-impl<'de> Deserialize<'de> for Quantity {
-    /// Reads a machine name, as written by [`Quantity::serialize`].
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Quantity, D::Error> {
-        let text = String::deserialize(d)?;
-        Quantity::parse(&text).ok_or_else(|| {
-            D::Error::custom(format!(
-                "unknown quantity '{text}', expected one of {}",
-                Quantity::ALL.map(Quantity::name).join(", ")
-            ))
-        })
-    }
-}
+serde_by_name!(
+    Quantity,
+    "quantity",
+    "A quantity, by its machine name: rel_j1..rel_j3 = J~k (eq. 2), ratio_j2_j1, ratio_j3_j2, total = J (eq. 1).",
+    Quantity::ALL.map(Quantity::name).join(", ")
+);
 
 #[cfg(test)]
 mod tests {

@@ -2,7 +2,7 @@
 //! with rows measured to the skin, and the tips `add` records for new rows.
 
 use super::csvinput::quote;
-use super::tip::{LineRuns, TipKind};
+use super::tip::{LineRuns, TipCounts, TipKind};
 use super::{Dataset, Problem, Row};
 
 /// Lines as people read them: "2-6, 9, 12-13", at most `max` runs, then "and N more".
@@ -82,18 +82,7 @@ pub(crate) fn record_new(
     given: Option<TipKind>,
     lines: bool,
 ) -> NewTips {
-    use std::collections::{HashMap, HashSet};
-    let wanted: HashSet<&str> = new.rows.iter().map(|r| &*r.xray).collect();
-    // The X-rays of the new rows that `current` has: whether their rows record a tip,
-    // and their lines there.
-    let mut hands: HashMap<&str, (bool, Vec<u64>)> = HashMap::new();
-    for r in &current.rows {
-        if wanted.contains(&*r.xray) {
-            let h = hands.entry(&r.xray).or_default();
-            h.0 |= r.meta.tip.is_some();
-            h.1.push(r.line);
-        }
-    }
+    let hands = hands_of(current, new);
     let tips = current.tips();
     let shared = tips.single();
     let column = new.columns.iter().position(|c| c == "tip").map(|i| i + 1);
@@ -133,68 +122,105 @@ pub(crate) fn record_new(
         }
     }
     if !untipped_hands.is_empty() {
-        let ids = xray_ids(&untipped_hands);
-        let mut old_lines: Vec<u64> = ids
-            .iter()
-            .filter_map(|x| hands.get(x))
-            .flat_map(|h| h.1.iter().copied())
-            .collect();
-        old_lines.sort_unstable();
-        let n = untipped_hands.len();
-        problems.push(Problem::file(format!(
-            "{} of {} give{} no tip, and {} rows in {} ({}) record none; one hand has one \
-             tip, so record it in their tip column there first (bone or skin), and the new \
-             rows take it; nothing was added",
-            crate::format::count(n, "row", "rows"),
-            xrays_named(&ids),
-            if n == 1 { "s" } else { "" },
-            if ids.len() == 1 {
-                "the X-ray's"
-            } else {
-                "those X-rays'"
-            },
-            current.path,
-            LineRuns::of(old_lines, 6).with_word()
-        )));
+        problems.push(untipped_problem(current, &untipped_hands, &hands));
     }
     if !missing.is_empty() {
-        let n = missing.len();
-        let subject = if lines {
-            format!(
-                "{} ({})",
-                crate::format::count(n, "row", "rows"),
-                LineRuns::of(missing.iter().map(|r| r.line), 6).with_word()
-            )
-        } else {
-            format!(
-                "{} of {}",
-                crate::format::count(n, "row", "rows"),
-                xrays_named(&xray_ids(&missing))
-            )
-        };
-        let (verb, their) = if n == 1 {
-            ("gives", "its fingertip was")
-        } else {
-            ("give", "their fingertips were")
-        };
-        let fill = match (lines, column) {
-            (false, _) => String::new(),
-            (true, Some(_)) => " (or fill in the tip column)".to_string(),
-            (true, None) => " (or add a tip column)".to_string(),
-        };
-        problems.push(Problem::file(format!(
-            "{subject} {verb} no tip, and {} has no one tip for {} to take (its fingertips: {}). \
-             Give --tip skin or --tip bone: where {their} measured{fill}; nothing was added",
-            current.path,
-            if n == 1 { "it" } else { "them" },
-            tips.describe()
-        )));
+        problems.push(missing_problem(current, &tips, &missing, lines, column));
     }
     NewTips {
         rows,
         from_dataset: shared.filter(|_| !taken.is_empty()).map(|k| (k, taken)),
         problems,
     }
+}
+
+/// The X-rays of `new`'s rows that `current` has: whether their rows there record a tip,
+/// and their lines there.
+type Hands<'a> = std::collections::HashMap<&'a str, (bool, Vec<u64>)>;
+
+/// [`Hands`] of `new` in `current`. O(rows of both).
+fn hands_of<'a>(current: &'a Dataset, new: &Dataset) -> Hands<'a> {
+    let wanted: std::collections::HashSet<&str> = new.rows.iter().map(|r| &*r.xray).collect();
+    let mut hands = Hands::new();
+    for r in &current.rows {
+        if wanted.contains(&*r.xray) {
+            let h = hands.entry(&r.xray).or_default();
+            h.0 |= r.meta.tip.is_some();
+            h.1.push(r.line);
+        }
+    }
+    hands
+}
+
+/// The refusal of new rows without a tip whose X-rays `current` has, recording none
+/// there: their lines in `current` and the fix (record the tip there first).
+fn untipped_problem(current: &Dataset, untipped: &[&Row], hands: &Hands<'_>) -> Problem {
+    let ids = xray_ids(untipped);
+    let mut old_lines: Vec<u64> = ids
+        .iter()
+        .filter_map(|x| hands.get(x))
+        .flat_map(|h| h.1.iter().copied())
+        .collect();
+    old_lines.sort_unstable();
+    let n = untipped.len();
+    Problem::file(format!(
+        "{} of {} give{} no tip, and {} rows in {} ({}) record none; one hand has one \
+         tip, so record it in their tip column there first (bone or skin), and the new \
+         rows take it; nothing was added",
+        crate::format::count(n, "row", "rows"),
+        xrays_named(&ids),
+        if n == 1 { "s" } else { "" },
+        if ids.len() == 1 {
+            "the X-ray's"
+        } else {
+            "those X-rays'"
+        },
+        current.path,
+        LineRuns::of(old_lines, 6).with_word()
+    ))
+}
+
+/// The refusal of new rows without a tip when `current` (whose fingertips are `tips`)
+/// has no one tip to take: the rows by line (`lines`) or X-ray, and the fix (`--tip`, or
+/// the tip column, `column`, of the file).
+fn missing_problem(
+    current: &Dataset,
+    tips: &TipCounts,
+    missing: &[&Row],
+    lines: bool,
+    column: Option<usize>,
+) -> Problem {
+    let n = missing.len();
+    let subject = if lines {
+        format!(
+            "{} ({})",
+            crate::format::count(n, "row", "rows"),
+            LineRuns::of(missing.iter().map(|r| r.line), 6).with_word()
+        )
+    } else {
+        format!(
+            "{} of {}",
+            crate::format::count(n, "row", "rows"),
+            xrays_named(&xray_ids(missing))
+        )
+    };
+    let (verb, their) = if n == 1 {
+        ("gives", "its fingertip was")
+    } else {
+        ("give", "their fingertips were")
+    };
+    let fill = match (lines, column) {
+        (false, _) => String::new(),
+        (true, Some(_)) => " (or fill in the tip column)".to_string(),
+        (true, None) => " (or add a tip column)".to_string(),
+    };
+    Problem::file(format!(
+        "{subject} {verb} no tip, and {} has no one tip for {} to take (its fingertips: {}). \
+         Give --tip skin or --tip bone: where {their} measured{fill}; nothing was added",
+        current.path,
+        if n == 1 { "it" } else { "them" },
+        tips.describe()
+    ))
 }
 
 /// The distinct X-ray ids of rows, in order of first appearance.
