@@ -207,7 +207,7 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
         )
         .into_bytes(),
         TextFormat::Table => table(&audit, only_outside, width).into_bytes(),
-        TextFormat::Json => json(&audit)?,
+        TextFormat::Json => report::json::audit(&audit)?,
     };
     if let (Some(path), Some(outcome)) = (&args.moves, &audit.moves) {
         write_moves(path, outcome)?;
@@ -392,45 +392,6 @@ fn table(audit: &Audit, only_outside: bool, width: Width) -> String {
         only_outside,
         width,
     )
-}
-
-/// The audit document, with what the fix did.
-fn json(audit: &Audit) -> Result<Vec<u8>, Error> {
-    let fix = audit.fix.as_ref().map(|fix| report::json::FixView {
-        output: fix.output.to_str().unwrap_or("(non-UTF-8 path)"),
-        moved: fix
-            .moved
-            .iter()
-            .map(|(node, shift)| report::json::MovedView {
-                node,
-                shift: *shift,
-            })
-            .collect(),
-        warnings: &fix.warnings,
-        bends: fix
-            .bends
-            .iter()
-            .map(|b| report::json::MovedBendView {
-                node: &b.node,
-                joint: &b.joint,
-                before: b.before,
-                after: b.after,
-                reweighted: b.reweighted,
-            })
-            .collect(),
-        new_bend_defects: &fix.new_defects,
-        fingers: fix
-            .fingers
-            .iter()
-            .map(|f| report::json::MovedFingerView {
-                finger: &f.label,
-                t2: f.t2.map(|t| t.0),
-                bound: f.t2.map(|t| t.1),
-                inside: f.inside,
-            })
-            .collect(),
-    });
-    report::json::audit(&audit.analysis, &audit.rig, audit.fbx.as_ref(), fix)
 }
 
 /// Where `--moves FILE.csv` writes the vertices whose weights the fix

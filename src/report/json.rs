@@ -431,8 +431,47 @@ pub(crate) struct FbxView<'a> {
     axes: &'a str,
 }
 
+/// The audit document of a rig session, with what the fix did.
+pub fn audit(audit: &crate::rig::session::Audit) -> Result<Vec<u8>, Error> {
+    let fix = audit.fix.as_ref().map(|fix| FixView {
+        output: fix.output.to_str().unwrap_or("(non-UTF-8 path)"),
+        moved: fix
+            .moved
+            .iter()
+            .map(|(node, shift)| MovedView {
+                node,
+                shift: *shift,
+            })
+            .collect(),
+        warnings: &fix.warnings,
+        bends: fix
+            .bends
+            .iter()
+            .map(|b| MovedBendView {
+                node: &b.node,
+                joint: &b.joint,
+                before: b.before,
+                after: b.after,
+                reweighted: b.reweighted,
+            })
+            .collect(),
+        new_bend_defects: &fix.new_defects,
+        fingers: fix
+            .fingers
+            .iter()
+            .map(|f| MovedFingerView {
+                finger: &f.label,
+                t2: f.t2.map(|t| t.0),
+                bound: f.t2.map(|t| t.1),
+                inside: f.inside,
+            })
+            .collect(),
+    });
+    audit_document(&audit.analysis, &audit.rig, audit.fbx.as_ref(), fix)
+}
+
 /// The document of `phalanx audit --format json`.
-pub fn audit(
+fn audit_document(
     a: &Analysis,
     rig: &crate::rig::AuditedRig,
     fbx: Option<&crate::rig::read::source::FbxSource>,
