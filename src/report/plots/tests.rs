@@ -1,6 +1,7 @@
 //! Tests of the plots on the paper's data and on synthetic extremes.
 
 use super::*;
+use crate::dataset::Finger;
 use crate::analysis::placement::place_all;
 use crate::analysis::{
     DatasetInfo, Quantity, Segments, Settings, XrayValues, analyse, quantity_stats,
