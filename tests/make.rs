@@ -186,6 +186,7 @@ fn hands(rig: &Rig, label: &str) -> Vec<(Side, Vec<FingerChain>, HandMesh, Found
             fingers: chains.len(),
             wrist: wrist.as_ref().map(|w| w.position),
             side: None,
+            ..FindOptions::default()
         };
         let start = Instant::now();
         let found = find_hand(&mesh, &opts).unwrap_or_else(|e| panic!("{label} {side:?}: {e}"));

@@ -458,6 +458,7 @@ fn found_tips(rig: &Rig) -> judge::audited::FoundTips {
                     fingers: chains.len(),
                     wrist: wrist.map(|w| w.position),
                     side,
+                    ..FindOptions::default()
                 };
                 find_hand(&mesh, &opts).map_err(|e| e.to_string())
             });

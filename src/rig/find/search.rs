@@ -123,10 +123,10 @@ pub fn find_hand(mesh: &HandMesh, opts: &FindOptions) -> Result<FoundHand, FindE
     let each = if objects.len() > 1 {
         FindOptions {
             side: None,
-            ..*opts
+            ..opts.clone()
         }
     } else {
-        *opts
+        opts.clone()
     };
     let mut results: Vec<Result<FoundHand, FindError>> = objects
         .iter()
@@ -176,7 +176,7 @@ fn pieces(
         let nearest = objects
             .iter()
             .enumerate()
-            .map(|(i, o)| (o.distance(&surface, w), i))
+            .map(|(i, o)| (o.distance(surface, w), i))
             .min_by(|a, b| a.0.total_cmp(&b.0))
             .map_or(0, |x| x.1);
         let kept = objects.swap_remove(nearest);

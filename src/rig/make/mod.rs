@@ -123,10 +123,16 @@ pub fn make(
         } else {
             5
         });
+    // The finder names the wrist it is handed as `wrist_is` says.
+    let wrist_is = match (opts.wrist, hand_node) {
+        (None, Some((node, _))) => format!("the hand bone's origin ({})", rig.file.node_name(node)),
+        _ => "the point given (--wrist)".to_string(),
+    };
     let find = FindOptions {
         fingers,
         wrist: opts.wrist.or(hand_node.map(|(_, at)| at)),
         side,
+        wrist_is: Some(wrist_is),
     };
     let found = find_hand(&mesh, &find).map_err(MakeError::Find)?;
     let hand = place::place(&mesh, &found, proportions);
@@ -147,19 +153,7 @@ pub fn make(
         &opts.write,
         dir,
     )?;
-    // The finder calls any wrist it is handed "the point given"; say which.
-    let given = match (opts.wrist, hand_node) {
-        (None, Some((node, _))) => format!(
-            "the wrist is the hand bone's origin ({})",
-            rig.file.node_name(node)
-        ),
-        _ => "the wrist is the point given (--wrist)".to_string(),
-    };
-    let mut notes: Vec<String> = found
-        .notes
-        .iter()
-        .map(|n| n.replacen("the wrist is the point given", &given, 1))
-        .collect();
+    let mut notes: Vec<String> = found.notes.clone();
     notes.extend(mesh.notes.iter().cloned());
     notes.extend(hand.notes.iter().cloned());
     Ok(Made {
