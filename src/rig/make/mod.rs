@@ -64,38 +64,7 @@ pub fn make(
     opts: &MakeOptions,
     dir: &Path,
 ) -> Result<Made, MakeError> {
-    let mut sides: Vec<Option<Side>> = rig.chains.iter().map(|c| c.side).collect();
-    sides.extend(
-        rig.file
-            .document
-            .nodes()
-            .filter_map(|n| crate::rig::read::naming::parse_hand(n.name()?))
-            .map(|h| h.side),
-    );
-    sides.sort();
-    sides.dedup();
-    let named: Vec<Side> = sides.iter().flatten().copied().collect();
-    let side = match (opts.side, named.as_slice()) {
-        (Some(s), [one]) if *one != s => {
-            return Err(MakeError::Refused(format!(
-                "--side {}: the file's bones name only its {} hand; give --side {} or leave \
-                 it out",
-                s.name(),
-                one.name(),
-                one.name()
-            )));
-        }
-        (Some(s), _) => Some(s),
-        (None, [one]) => Some(*one),
-        (None, [_, _, ..]) => {
-            return Err(MakeError::Refused(
-                "the file has two hands (bones named for both sides): give --side left or \
-                 --side right to rig one, and run again for the other"
-                    .into(),
-            ));
-        }
-        (None, []) => None,
-    };
+    let (side, hands) = side_of(rig, opts.side)?;
     let chains: Vec<&FingerChain> = rig
         .chains
         .iter()
@@ -110,11 +79,7 @@ pub fn make(
         )));
     }
     let hand_node = hand_bone(rig, side);
-    let select = MeshSelect::for_hand(
-        hand_node.map(|(n, _)| n),
-        named.len() > 1,
-        rig.weights.is_some(),
-    );
+    let select = MeshSelect::for_hand(hand_node.map(|(n, _)| n), hands > 1, rig.weights.is_some());
     let mesh = hand_mesh(&rig.file, &select)?;
     let fingers = opts
         .fingers
@@ -162,6 +127,45 @@ pub fn make(
         notes,
         triangles: mesh.triangles.len(),
     })
+}
+
+/// The hand to rig: `given` (`--side`), else the one side the file's bones
+/// name, else none; with how many sides they name. A side the bones do not
+/// have, or two sides without `--side`, is refused.
+fn side_of(rig: &Rig, given: Option<Side>) -> Result<(Option<Side>, usize), MakeError> {
+    let mut sides: Vec<Option<Side>> = rig.chains.iter().map(|c| c.side).collect();
+    sides.extend(
+        rig.file
+            .document
+            .nodes()
+            .filter_map(|n| crate::rig::read::naming::parse_hand(n.name()?))
+            .map(|h| h.side),
+    );
+    sides.sort();
+    sides.dedup();
+    let named: Vec<Side> = sides.iter().flatten().copied().collect();
+    let side = match (given, named.as_slice()) {
+        (Some(s), [one]) if *one != s => {
+            return Err(MakeError::Refused(format!(
+                "--side {}: the file's bones name only its {} hand; give --side {} or leave \
+                 it out",
+                s.name(),
+                one.name(),
+                one.name()
+            )));
+        }
+        (Some(s), _) => Some(s),
+        (None, [one]) => Some(*one),
+        (None, [_, _, ..]) => {
+            return Err(MakeError::Refused(
+                "the file has two hands (bones named for both sides): give --side left or \
+                 --side right to rig one, and run again for the other"
+                    .into(),
+            ));
+        }
+        (None, []) => None,
+    };
+    Ok((side, named.len()))
 }
 
 /// The file's hand (wrist) bone of `side` (any side when `None`): its node
