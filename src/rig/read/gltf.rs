@@ -514,6 +514,16 @@ fn element_bytes(ty: &serde_json::Value, component: u64) -> Option<u64> {
 /// O(JSON size).
 fn precheck(json: &serde_json::Value, blob: Option<usize>) -> Vec<String> {
     let mut problems = Vec::new();
+    check_attributes(json, &mut problems);
+    check_buffers(json, blob, &mut problems);
+    check_accessors(json, &mut problems);
+    check_images(json, &mut problems);
+    problems
+}
+
+/// [`precheck`]: each mesh attribute (of a primitive or a morph target)
+/// names an accessor that exists.
+fn check_attributes(json: &serde_json::Value, problems: &mut Vec<String>) {
     let accessors = json["accessors"].as_array().map_or(0, Vec::len);
     for (m, mesh) in json["meshes"].as_array().into_iter().flatten().enumerate() {
         for (p, prim) in mesh["primitives"]
@@ -534,6 +544,11 @@ fn precheck(json: &serde_json::Value, blob: Option<usize>) -> Vec<String> {
             }
         }
     }
+}
+
+/// [`precheck`]: a GLB's buffer within its binary chunk (`blob`), and each
+/// buffer view within its buffer.
+fn check_buffers(json: &serde_json::Value, blob: Option<usize>, problems: &mut Vec<String>) {
     let buffers: Vec<Option<u64>> = json["buffers"]
         .as_array()
         .into_iter()
@@ -571,6 +586,16 @@ fn precheck(json: &serde_json::Value, blob: Option<usize>) -> Vec<String> {
             ));
         }
     }
+}
+
+/// [`precheck`]: each accessor's and sparse accessor's bytes within their
+/// buffer views.
+fn check_accessors(json: &serde_json::Value, problems: &mut Vec<String>) {
+    let views: Vec<&serde_json::Value> = json["bufferViews"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .collect();
     // Bytes `what` needs from `byteOffset` in buffer view `view`, checked
     // against the view's length.
     let mut fits =
@@ -641,6 +666,11 @@ fn precheck(json: &serde_json::Value, blob: Option<usize>) -> Vec<String> {
             );
         }
     }
+}
+
+/// [`precheck`]: each image has exactly one source, and a MIME type with a
+/// buffer view.
+fn check_images(json: &serde_json::Value, problems: &mut Vec<String>) {
     for (i, image) in json["images"].as_array().into_iter().flatten().enumerate() {
         let has = |k: &str| image.get(k).is_some_and(|v| !v.is_null());
         let (uri, view, mime) = (has("uri"), has("bufferView"), has("mimeType"));
@@ -662,7 +692,6 @@ fn precheck(json: &serde_json::Value, blob: Option<usize>) -> Vec<String> {
             problems.push(format!("/images/{i} {what}"));
         }
     }
-    problems
 }
 
 /// `json` and `bin` as the bytes of a GLB file (the binary chunk left out when `bin` is
