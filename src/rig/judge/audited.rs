@@ -499,11 +499,11 @@ impl AuditedRig {
     /// never contradict each other: where the base puts the MCP inside the
     /// atlas's prediction interval and the finger's explanation would move it
     /// (the finger alone reads an MCP at the finger's web as a misplaced
-    /// knuckle), the MCP is held ([`HoldReason::Base`]) and the explanation
+    /// knuckle), the MCP is held ([`HoldReason::Base`](super::standing::HoldReason::Base)) and the explanation
     /// sought again among the inner joints, with the same guards as the
     /// finger's own (the bend guard on `weights`, the tolerance, `opts.hold`).
     /// So is an MCP the finger would move one way while the base puts it
-    /// outside the other way ([`HoldReason::BaseOpposes`]): no move of it
+    /// outside the other way ([`HoldReason::BaseOpposes`](super::standing::HoldReason::BaseOpposes)): no move of it
     /// satisfies both. An MCP the base puts outside the way the finger would
     /// move it is left to the finger's explanation and to `--fix-mcp atlas`;
     /// one the finger does not move, the audit's opening line names. O(fingers) re-judgements.
