@@ -43,6 +43,7 @@ fn main() {
                 fingers: chains.len(),
                 wrist: wrist.map(|w| w.position),
                 side: *side,
+                ..FindOptions::default()
             };
             let start = Instant::now();
             let found = find_hand(&mesh, &opts);

@@ -185,6 +185,7 @@ fn hands(rig: &Rig, label: &str) -> Vec<(Side, Vec<FingerChain>, HandMesh, Found
             fingers: chains.len(),
             wrist: wrist.as_ref().map(|w| w.position),
             side: None,
+            ..FindOptions::default()
         };
         let found = find_hand(&mesh, &opts).unwrap_or_else(|e| panic!("{label} {side:?}: {e}"));
         let named = side

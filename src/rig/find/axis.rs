@@ -68,6 +68,26 @@ const MAX_RINGS: usize = 4000;
 /// Traces the finger of `region` (see the module doc); `None` when fewer than
 /// three rings are found (no tube to follow).
 pub(crate) fn trace(region: &Region<'_>) -> Option<Trace> {
+    let start = start(region)?;
+    let (centres, radii) = march(region, &start);
+    finish(region, centres, radii, &start.near)
+}
+
+/// Where a march starts: its first direction and point, its step, the
+/// radius first guessed, the vertices near the top, and its most rings.
+struct Start {
+    u: DVec3,
+    at: DVec3,
+    step: f64,
+    r0: f64,
+    near: Vec<DVec3>,
+    limit: usize,
+}
+
+/// The march's start from the bands of the region's triangles by height:
+/// the first radius from the band at a quarter to a third of the height, the
+/// direction from two bands near the top; `None` for a flat or empty region.
+fn start(region: &Region<'_>) -> Option<Start> {
     let p = region.positions;
     // Each triangle's area, centroid and mean h.
     let tri: Vec<(f64, DVec3, f64)> = region
@@ -115,7 +135,7 @@ pub(crate) fn trace(region: &Region<'_>) -> Option<Trace> {
         (Some(a), Some(b)) => a.0 - b.0,
         _ => top - all,
     };
-    let mut u = first.try_normalize()?;
+    let u = first.try_normalize()?;
     let step = (r0 / 4.0).max(region.median_edge / 4.0);
     if !(step > 0.0 && step.is_finite()) {
         return None;
@@ -128,12 +148,36 @@ pub(crate) fn trace(region: &Region<'_>) -> Option<Trace> {
         .map(|&i| p[i as usize])
         .collect();
     let end = near.iter().map(|v| v.dot(u)).fold(top.dot(u), f64::max);
-    let mut at = top + u * ((end - step) - top.dot(u));
+    let at = top + u * ((end - step) - top.dot(u));
+    let limit = ((4.0 * hmax / step).ceil() as usize).clamp(8, MAX_RINGS);
+    Some(Start {
+        u,
+        at,
+        step,
+        r0,
+        near,
+        limit,
+    })
+}
+
+/// Marches down the finger from `start`, one cross-section a step: each
+/// ring's centre and radius, the direction turned (at most 10 degrees a
+/// step) to the line through the recent centres; stops after 3 misses in a
+/// row, at an open ring (the region's border), or when the rings run out.
+fn march(region: &Region<'_>, start: &Start) -> (Vec<DVec3>, Vec<f64>) {
+    let p = region.positions;
+    let Start {
+        mut u,
+        mut at,
+        step,
+        r0,
+        limit,
+        ..
+    } = *start;
     let mut centres: Vec<DVec3> = Vec::new();
     let mut radii: Vec<f64> = Vec::new();
     let mut r_est = r0;
     let mut misses = 0;
-    let limit = ((4.0 * hmax / step).ceil() as usize).clamp(8, MAX_RINGS);
     for _ in 0..limit {
         let rings = section(p, region.tris, at, u);
         let ring = nearest_ring(&rings, at);
@@ -181,6 +225,19 @@ pub(crate) fn trace(region: &Region<'_>) -> Option<Trace> {
             }
         }
     }
+    (centres, radii)
+}
+
+/// The trace from the march's rings: the fingertip's line fitted to the
+/// rings clear of the cap, the tip where that line leaves the mesh (else the
+/// farthest `near` vertex along it), the cap's centres put on the line.
+fn finish(
+    region: &Region<'_>,
+    mut centres: Vec<DVec3>,
+    radii: Vec<f64>,
+    near: &[DVec3],
+) -> Option<Trace> {
+    let p = region.positions;
     if centres.len() < 3 {
         return None;
     }

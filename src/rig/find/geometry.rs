@@ -122,6 +122,39 @@ pub(crate) fn section(
     point: DVec3,
     normal: DVec3,
 ) -> Vec<Ring> {
+    let segments = cut(positions, tris, point, normal);
+    // Segments sharing a crossed edge belong to one curve.
+    let mut uf = super::graph::UnionFind::new(segments.len());
+    let mut owner: FxHashMap<(u32, u32), (usize, u32)> = FxHashMap::default();
+    for (i, s) in segments.iter().enumerate() {
+        for key in s.2 {
+            let e = owner.entry(key).or_insert((i, 0));
+            e.1 += 1;
+            uf.union(i, e.0);
+        }
+    }
+    let count: FxHashMap<(u32, u32), u32> = owner.iter().map(|(k, v)| (*k, v.1)).collect();
+    let pruned = dangling(&segments, count);
+    let mut by_root: FxHashMap<usize, Vec<usize>> = FxHashMap::default();
+    for i in 0..segments.len() {
+        by_root.entry(uf.find(i)).or_default().push(i);
+    }
+    let mut roots: Vec<usize> = by_root.keys().copied().collect();
+    roots.sort_unstable();
+    roots
+        .into_iter()
+        .filter_map(|r| {
+            let all = &by_root[&r];
+            let kept: Vec<usize> = all.iter().copied().filter(|&i| !pruned[i]).collect();
+            let open = kept.is_empty();
+            ring_of(&segments, if open { all } else { &kept }, open)
+        })
+        .collect()
+}
+
+/// The segments where the plane through `point` with normal `normal` cuts
+/// the triangles `tris`, one per triangle with vertices on both sides.
+fn cut(positions: &[DVec3], tris: &[[u32; 3]], point: DVec3, normal: DVec3) -> Vec<Segment> {
     let side = |i: u32| (positions[i as usize] - point).dot(normal);
     let mut segments: Vec<Segment> = Vec::new();
     for t in tris {
@@ -146,21 +179,14 @@ pub(crate) fn section(
             segments.push((ends[0], ends[1], keys));
         }
     }
-    // Segments sharing a crossed edge belong to one curve.
-    let mut uf = super::graph::UnionFind::new(segments.len());
-    let mut owner: FxHashMap<(u32, u32), (usize, u32)> = FxHashMap::default();
-    for (i, s) in segments.iter().enumerate() {
-        for key in s.2 {
-            let e = owner.entry(key).or_insert((i, 0));
-            e.1 += 1;
-            uf.union(i, e.0);
-        }
-    }
-    // Dangling pieces (a fin's flap: a segment with a crossed edge no other
-    // segment shares) are pruned, leaf by leaf; what stays is the closed
-    // curve. A curve pruned away entirely is open: it ran from border to
-    // border.
-    let mut count: FxHashMap<(u32, u32), u32> = owner.iter().map(|(k, v)| (*k, v.1)).collect();
+    segments
+}
+
+/// The dangling segments (a fin's flap: a segment with a crossed edge no
+/// other segment shares), pruned leaf by leaf given each crossed edge's
+/// `count` of segments; what stays is the closed curve. A curve pruned away
+/// entirely is open: it ran from border to border.
+fn dangling(segments: &[Segment], mut count: FxHashMap<(u32, u32), u32>) -> Vec<bool> {
     let mut by_edge: FxHashMap<(u32, u32), Vec<usize>> = FxHashMap::default();
     for (i, s) in segments.iter().enumerate() {
         for key in s.2 {
@@ -184,52 +210,43 @@ pub(crate) fn section(
             }
         }
     }
-    let mut by_root: FxHashMap<usize, Vec<usize>> = FxHashMap::default();
-    for i in 0..segments.len() {
-        by_root.entry(uf.find(i)).or_default().push(i);
+    pruned
+}
+
+/// The ring of the segments `members`: its length-weighted centre, mean
+/// radius, perimeter and crossed edges; `None` for a curve of no length.
+fn ring_of(segments: &[Segment], members: &[usize], open: bool) -> Option<Ring> {
+    let mut length = 0.0;
+    let mut sum = DVec3::ZERO;
+    let mut edges = Vec::with_capacity(members.len());
+    for &i in members {
+        let (a, b, keys) = segments[i];
+        let l = a.distance(b);
+        length += l;
+        sum += l * (a + b) / 2.0;
+        edges.extend(keys);
     }
-    let mut roots: Vec<usize> = by_root.keys().copied().collect();
-    roots.sort_unstable();
-    roots
-        .into_iter()
-        .filter_map(|r| {
-            let all = &by_root[&r];
-            let kept: Vec<usize> = all.iter().copied().filter(|&i| !pruned[i]).collect();
-            let open = kept.is_empty();
-            let members = if open { all } else { &kept };
-            let mut length = 0.0;
-            let mut sum = DVec3::ZERO;
-            let mut edges = Vec::with_capacity(members.len());
-            for &i in members {
-                let (a, b, keys) = segments[i];
-                let l = a.distance(b);
-                length += l;
-                sum += l * (a + b) / 2.0;
-                edges.extend(keys);
-            }
-            edges.sort_unstable();
-            edges.dedup();
-            if !(length > 0.0 && length.is_finite()) {
-                return None;
-            }
-            let centre = sum / length;
-            let radius = members
-                .iter()
-                .map(|&i| {
-                    let (a, b, _) = segments[i];
-                    a.distance(b) * ((a + b) / 2.0).distance(centre)
-                })
-                .sum::<f64>()
-                / length;
-            Some(Ring {
-                centre,
-                radius,
-                perimeter: length,
-                open,
-                edges,
-            })
+    edges.sort_unstable();
+    edges.dedup();
+    if !(length > 0.0 && length.is_finite()) {
+        return None;
+    }
+    let centre = sum / length;
+    let radius = members
+        .iter()
+        .map(|&i| {
+            let (a, b, _) = segments[i];
+            a.distance(b) * ((a + b) / 2.0).distance(centre)
         })
-        .collect()
+        .sum::<f64>()
+        / length;
+    Some(Ring {
+        centre,
+        radius,
+        perimeter: length,
+        open,
+        edges,
+    })
 }
 
 /// Where the line `origin + t dir` crosses the triangles `tris`: every `t`

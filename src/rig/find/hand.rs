@@ -59,7 +59,7 @@ pub struct FoundHand {
 }
 
 /// What the finder is told.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct FindOptions {
     /// How many fingers the hand has, the thumb included: 5, or 4 for a
     /// thumb and three fingers (2 to 5).
@@ -69,6 +69,9 @@ pub struct FindOptions {
     pub wrist: Option<DVec3>,
     /// Which hand, when known (`--side`, or the bones' names).
     pub side: Option<Side>,
+    /// What the wrist given is, as the notes name it ("the point given
+    /// (--wrist)", "the hand bone's origin (hand_L)"); `None`: "the point given".
+    pub wrist_is: Option<String>,
 }
 
 impl Default for FindOptions {
@@ -77,6 +80,7 @@ impl Default for FindOptions {
             fingers: 5,
             wrist: None,
             side: None,
+            wrist_is: None,
         }
     }
 }

@@ -146,10 +146,7 @@ pub fn hand_mesh(file: &GltfFile, select: &MeshSelect) -> Result<HandMesh, DataE
             Some(subtree(&file.parent, node))
         }
     };
-    let mut notes = Vec::new();
-    let mut problems = Vec::new();
-    let mut vertices: Vec<Vertex> = Vec::new();
-    let mut triangles: Vec<[u32; 3]> = Vec::new();
+    let mut g = Gathered::default();
     let mut skins: FxHashMap<usize, Option<SkinMatrices>> = FxHashMap::default();
     for node in file.document.nodes() {
         let Some(mesh) = node.mesh() else { continue };
@@ -157,7 +154,7 @@ pub fn hand_mesh(file: &GltfFile, select: &MeshSelect) -> Result<HandMesh, DataE
         let m = mesh.index();
         let skin = node.skin();
         if skin.is_none() && under.is_some() {
-            notes.push(format!(
+            g.notes.push(format!(
                 "/nodes/{n} (mesh {m}) is not skinned, so it is not part of the hand's region; \
                  left out"
             ));
@@ -167,7 +164,7 @@ pub fn hand_mesh(file: &GltfFile, select: &MeshSelect) -> Result<HandMesh, DataE
             Some(s) => {
                 let entry = skins
                     .entry(s.index())
-                    .or_insert_with(|| skin_matrices(file, &data, s, &mut problems));
+                    .or_insert_with(|| skin_matrices(file, &data, s, &mut g.problems));
                 match entry {
                     Some(x) => Some(x.clone()),
                     None => continue,
@@ -176,7 +173,7 @@ pub fn hand_mesh(file: &GltfFile, select: &MeshSelect) -> Result<HandMesh, DataE
             None => {
                 let w = file.world.get(n).copied().unwrap_or(DMat4::IDENTITY);
                 if !w.is_finite() {
-                    problems.push(format!(
+                    g.problems.push(format!(
                         "/nodes/{n} has a non-finite world transform; fix its transform or its \
                          parents'"
                     ));
@@ -186,90 +183,23 @@ pub fn hand_mesh(file: &GltfFile, select: &MeshSelect) -> Result<HandMesh, DataE
             }
         };
         for prim in mesh.primitives() {
-            let p = prim.index();
-            let at = format!("/meshes/{m}/primitives/{p}");
-            let mode = prim.mode();
-            if !matches!(
-                mode,
-                Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
-            ) {
-                notes.push(format!(
-                    "{at} is drawn as {mode:?}, not triangles; it is left out"
-                ));
-                continue;
-            }
-            if prim.morph_targets().next().is_some() {
-                notes.push(format!(
-                    "{at} has morph targets; they are not applied (the mesh is read at its base \
-                     shape)"
-                ));
-            }
-            // Rest positions, and which vertices belong to the hand.
-            let read = match &matrices {
-                Some((joints, mats)) => {
-                    skinned_rest(&prim, &at, &data, joints, mats, under.as_deref())
-                }
-                None => {
-                    let mut p = Vec::new();
-                    read_positions(&prim, &at, &data, &mut p).and_then(|pos| {
-                        if p.is_empty() {
-                            let w = file.world[n];
-                            Ok(pos.iter().map(|&v| (w.transform_point3(v), true)).collect())
-                        } else {
-                            Err(p)
-                        }
-                    })
-                }
-            };
-            let rest = match read {
-                Ok(r) => r,
-                Err(p) => {
-                    problems.extend(p);
-                    continue;
-                }
-            };
-            if let Some(v) = rest.iter().position(|(x, _)| !x.is_finite()) {
-                problems.push(format!(
-                    "{at}: vertex {v} rests at a position that is not finite (its skin matrices \
-                     or node transform overflow)"
-                ));
-                continue;
-            }
-            let flat = match read_indices(&prim, &at, &data, rest.len()) {
-                Ok(f) => f,
-                Err(e) => {
-                    problems.push(e);
-                    continue;
-                }
-            };
-            let tris = unroll(mode, &flat, &at, &mut notes);
-            // Only the selected vertices, renumbered.
-            let mut index = vec![u32::MAX; rest.len()];
-            for (v, &(x, keep)) in rest.iter().enumerate() {
-                if keep {
-                    if vertices.len() >= u32::MAX as usize {
-                        problems.push(format!("{at}: more than 2^32 vertices in all"));
-                        break;
-                    }
-                    index[v] = vertices.len() as u32;
-                    vertices.push(Vertex {
-                        at: x,
-                        source: (m, p, v),
-                    });
-                }
-            }
-            triangles.extend(
-                tris.iter()
-                    .map(|t| t.map(|i| index[i as usize]))
-                    .filter(|t| t.iter().all(|&i| i != u32::MAX)),
+            let skinned = matrices.as_ref();
+            gather_primitive(
+                &prim,
+                file,
+                &data,
+                (n, m),
+                skinned,
+                under.as_deref(),
+                &mut g,
             );
         }
     }
-    if !problems.is_empty() {
-        return Err(fail(problems));
+    if !g.problems.is_empty() {
+        return Err(fail(g.problems));
     }
-    let mut out = weld(&vertices, &triangles);
-    out.notes = notes;
+    let mut out = weld(&g.vertices, &g.triangles);
+    out.notes = g.notes;
     if out.triangles.is_empty() {
         let what = match *select {
             MeshSelect::Whole => "has no triangle mesh to find a hand on".to_string(),
@@ -284,6 +214,108 @@ pub fn hand_mesh(file: &GltfFile, select: &MeshSelect) -> Result<HandMesh, DataE
         return Err(fail(problems));
     }
     Ok(out)
+}
+
+/// What the meshes' primitives give as they are read: the vertices kept,
+/// the triangles between them, and the notes and problems met.
+#[derive(Default)]
+struct Gathered {
+    notes: Vec<String>,
+    problems: Vec<String>,
+    vertices: Vec<Vertex>,
+    triangles: Vec<[u32; 3]>,
+}
+
+/// Adds primitive `prim` of mesh `m` (drawn by node `n`) to `g`: its rest
+/// positions (skinned with `matrices`, else by the node's world matrix), the
+/// vertices `under` keeps, renumbered, and the triangles among them; a
+/// primitive not of triangles, or one that cannot be read, is left out with
+/// a note or a problem.
+fn gather_primitive(
+    prim: &gltf::Primitive<'_>,
+    file: &GltfFile,
+    data: &[Vec<u8>],
+    (n, m): (usize, usize),
+    matrices: Option<&SkinMatrices>,
+    under: Option<&[bool]>,
+    g: &mut Gathered,
+) {
+    let p = prim.index();
+    let at = format!("/meshes/{m}/primitives/{p}");
+    let mode = prim.mode();
+    if !matches!(
+        mode,
+        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+    ) {
+        g.notes.push(format!(
+            "{at} is drawn as {mode:?}, not triangles; it is left out"
+        ));
+        return;
+    }
+    if prim.morph_targets().next().is_some() {
+        g.notes.push(format!(
+            "{at} has morph targets; they are not applied (the mesh is read at its base \
+             shape)"
+        ));
+    }
+    // Rest positions, and which vertices belong to the hand.
+    let read = match matrices {
+        Some((joints, mats)) => skinned_rest(prim, &at, data, joints, mats, under),
+        None => {
+            let mut p = Vec::new();
+            read_positions(prim, &at, data, &mut p).and_then(|pos| {
+                if p.is_empty() {
+                    let w = file.world[n];
+                    Ok(pos.iter().map(|&v| (w.transform_point3(v), true)).collect())
+                } else {
+                    Err(p)
+                }
+            })
+        }
+    };
+    let rest = match read {
+        Ok(r) => r,
+        Err(p) => {
+            g.problems.extend(p);
+            return;
+        }
+    };
+    if let Some(v) = rest.iter().position(|(x, _)| !x.is_finite()) {
+        g.problems.push(format!(
+            "{at}: vertex {v} rests at a position that is not finite (its skin matrices \
+             or node transform overflow)"
+        ));
+        return;
+    }
+    let flat = match read_indices(prim, &at, data, rest.len()) {
+        Ok(f) => f,
+        Err(e) => {
+            g.problems.push(e);
+            return;
+        }
+    };
+    let tris = unroll(mode, &flat, &at, &mut g.notes);
+    // Only the selected vertices, renumbered.
+    let mut index = vec![u32::MAX; rest.len()];
+    for (v, &(x, keep)) in rest.iter().enumerate() {
+        if keep {
+            if g.vertices.len() >= u32::MAX as usize {
+                g.problems
+                    .push(format!("{at}: more than 2^32 vertices in all"));
+                break;
+            }
+            index[v] = g.vertices.len() as u32;
+            g.vertices.push(Vertex {
+                at: x,
+                source: (m, p, v),
+            });
+        }
+    }
+    g.triangles.extend(
+        tris.iter()
+            .map(|t| t.map(|i| index[i as usize]))
+            .filter(|t| t.iter().all(|&i| i != u32::MAX)),
+    );
 }
 
 /// The skin's joints (nodes) and bind-pose skin matrices M_j = W_j B_j, or

@@ -96,6 +96,8 @@ use super::mesh::HandMesh;
 use super::palm::frame;
 use super::surface::{Object, Surface, extent, two_clusters};
 use super::wrist::wrist_ring;
+use crate::rig::read::naming::Side;
+use glam::DVec3;
 
 use super::hand::{FindError, FindOptions, FoundHand};
 
@@ -114,8 +116,40 @@ pub fn find_hand(mesh: &HandMesh, opts: &FindOptions) -> Result<FoundHand, FindE
         ));
     }
     let surface = Surface::new(mesh)?;
-    let mut objects = surface.objects();
     let mut notes = Vec::new();
+    let objects = pieces(&surface, opts.wrist, &mut notes)?;
+    // Several hands are told apart by the side each one's skin shows, so
+    // each is found without the side given.
+    let each = if objects.len() > 1 {
+        FindOptions {
+            side: None,
+            ..opts.clone()
+        }
+    } else {
+        opts.clone()
+    };
+    let mut results: Vec<Result<FoundHand, FindError>> = objects
+        .iter()
+        .map(|o| find_in(&surface, o, &each))
+        .collect();
+    if results.len() == 1 {
+        let mut hand = results.pop().unwrap_or(Err(FindError::Empty))?;
+        notes.append(&mut hand.notes);
+        hand.notes = notes;
+        return Ok(hand);
+    }
+    one_hand(results, opts.side, notes)
+}
+
+/// The large pieces of `surface` a hand may be on: pieces under a quarter
+/// of the largest's vertices left out, and with a `wrist` given only the
+/// piece nearest it; each left out with a note.
+fn pieces(
+    surface: &Surface<'_>,
+    wrist: Option<DVec3>,
+    notes: &mut Vec<String>,
+) -> Result<Vec<Object>, FindError> {
+    let mut objects = surface.objects();
     let largest = objects.first().map_or(0, |o| o.vertices.len());
     let small: Vec<usize> = objects
         .iter()
@@ -136,13 +170,13 @@ pub fn find_hand(mesh: &HandMesh, opts: &FindOptions) -> Result<FoundHand, FindE
         return Err(FindError::Empty);
     }
     // With a wrist given, only the object nearest it.
-    if let Some(w) = opts.wrist
+    if let Some(w) = wrist
         && objects.len() > 1
     {
         let nearest = objects
             .iter()
             .enumerate()
-            .map(|(i, o)| (o.distance(&surface, w), i))
+            .map(|(i, o)| (o.distance(surface, w), i))
             .min_by(|a, b| a.0.total_cmp(&b.0))
             .map_or(0, |x| x.1);
         let kept = objects.swap_remove(nearest);
@@ -154,31 +188,21 @@ pub fn find_hand(mesh: &HandMesh, opts: &FindOptions) -> Result<FoundHand, FindE
         ));
         objects = vec![kept];
     }
-    // Several hands are told apart by the side each one's skin shows, so
-    // each is found without the side given.
-    let each = if objects.len() > 1 {
-        FindOptions {
-            side: None,
-            ..*opts
-        }
-    } else {
-        *opts
-    };
-    let mut results: Vec<Result<FoundHand, FindError>> = objects
-        .iter()
-        .map(|o| find_in(&surface, o, &each))
-        .collect();
-    if results.len() == 1 {
-        let mut hand = results.pop().unwrap_or(Err(FindError::Empty))?;
-        notes.append(&mut hand.notes);
-        hand.notes = notes;
-        return Ok(hand);
-    }
+    Ok(objects)
+}
+
+/// The one hand of several pieces' `results`: the only piece that held a
+/// hand, else the one of `side`; two hands without a side are refused.
+fn one_hand(
+    mut results: Vec<Result<FoundHand, FindError>>,
+    side: Option<Side>,
+    mut notes: Vec<String>,
+) -> Result<FoundHand, FindError> {
     let hands: Vec<FoundHand> = results
         .iter()
         .filter_map(|r| r.as_ref().ok().cloned())
         .collect();
-    match (hands.len(), opts.side) {
+    match (hands.len(), side) {
         (0, _) => results.swap_remove(0),
         (1, _) => {
             let mut hand = hands.into_iter().next().ok_or(FindError::Empty)?;

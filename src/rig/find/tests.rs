@@ -669,7 +669,7 @@ fn bad_meshes_are_refused_without_a_panic() {
     let hand = five().shape.mesh(2.5 * MM);
     let far = FindOptions {
         wrist: Some(v(0.0, -55.0, 1000.0)),
-        ..opts
+        ..opts.clone()
     };
     let e = error_of(&hand, &far);
     assert!(matches!(e, FindError::WristOff { .. }), "{e}");
@@ -681,7 +681,13 @@ fn bad_meshes_are_refused_without_a_panic() {
     );
     // Options out of range.
     for fingers in [0, 1, 6] {
-        let e = error_of(&sheet, &FindOptions { fingers, ..opts });
+        let e = error_of(
+            &sheet,
+            &FindOptions {
+                fingers,
+                ..opts.clone()
+            },
+        );
         assert!(matches!(e, FindError::Options(_)), "{e}");
     }
     // Fins (an edge of three triangles, the third's corner 1 mm off the

@@ -38,7 +38,8 @@ pub(super) fn wrist_ring(
         } else {
             -main
         };
-        return Ok(given_wrist(s, obj, w, normal, length, notes));
+        let given = opts.wrist_is.as_deref().unwrap_or("the point given");
+        return Ok(given_wrist(s, obj, (w, given), normal, length, notes));
     }
     if let Some(ring) = open_end(s, obj, axes, lo, hi) {
         return Ok(ring);
@@ -118,7 +119,7 @@ pub(super) fn wrist_ring(
 pub(super) fn given_wrist(
     s: &Surface<'_>,
     obj: &Object,
-    w: DVec3,
+    (w, given): (DVec3, &str),
     normal: DVec3,
     length: f64,
     notes: &mut Vec<String>,
@@ -139,10 +140,10 @@ pub(super) fn given_wrist(
         };
         if !ring.open && off_line(ring.centre) <= 0.5 * ring.radius {
             let how = if k == 0 {
-                "the wrist is the point given".to_string()
+                format!("the wrist is {given}")
             } else {
                 format!(
-                    "the wrist is the point given; the geodesics start from the ring {:.0} mm \
+                    "the wrist is {given}; the geodesics start from the ring {:.0} mm \
                      towards the fingers, where the plane across the hand first closes around it",
                     mm(shift)
                 )
@@ -152,14 +153,7 @@ pub(super) fn given_wrist(
             return wrist;
         }
     }
-    let mut wrist = cut_at(
-        s,
-        obj,
-        w,
-        normal,
-        "the wrist is the point given".into(),
-        notes,
-    );
+    let mut wrist = cut_at(s, obj, w, normal, format!("the wrist is {given}"), notes);
     wrist.centre = w;
     wrist
 }

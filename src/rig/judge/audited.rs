@@ -5,11 +5,12 @@
 
 use super::bend;
 use super::finger;
+pub use super::guard::Carry;
+use super::guard::{carry_of, guard_on_weights};
 use super::ray_base::{self, MetacarpalCheck, WRIST_DEFINITION, WristRatios};
 use super::sanity;
 use super::standing::{
-    BEND_GUARD, Basis, ChainInput, FingerAudit, Held, HoldReason, JudgeOptions, MOVE_TOLERANCE,
-    SoftTissue, Standing, TipKind, chain_kinds,
+    Basis, ChainInput, FingerAudit, Held, JudgeOptions, SoftTissue, Standing, TipKind,
 };
 use crate::analysis::Analysis;
 use crate::analysis::placement::Joint;
@@ -117,9 +118,6 @@ pub struct AuditedFinger {
     pub carry: Option<Carry>,
 }
 
-/// Per joint, why its skin weights cannot follow a move ([`bend::cannot_carry`]).
-pub type Carry = Vec<(Joint, Option<String>)>;
-
 impl AuditedFinger {
     /// The chain's geometry as it was judged: with the skin's end as its tip
     /// where one was measured ([`SkinTip`]), appended for a tip from the mesh.
@@ -135,342 +133,6 @@ impl AuditedFinger {
         }
         input
     }
-}
-
-/// The distances from `from` (the joint `joint` as the rig has it) and from
-/// `to` (where a move puts it) to where its skin bends, when a bend was found.
-fn bend_distances(
-    bends: &[bend::Bend],
-    joint: Joint,
-    from: DVec3,
-    to: DVec3,
-) -> Option<(f64, f64)> {
-    let at = bends.iter().find(|b| b.joint == joint)?.at?;
-    Some((from.distance(at), to.distance(at)))
-}
-
-/// Why a move of the joint at `from` to `to` is not made, if it is not: it
-/// would end more than [`BEND_GUARD`] farther from its bend, or it is
-/// shorter than [`MOVE_TOLERANCE`].
-pub(super) fn hold_reason(
-    bends: &[bend::Bend],
-    joint: Joint,
-    from: DVec3,
-    to: DVec3,
-) -> Option<Held> {
-    let shift = from.distance(to);
-    let bend = bend_distances(bends, joint, from, to);
-    if let Some((before, after)) = bend
-        && after > before + BEND_GUARD
-    {
-        return Some(Held::new(HoldReason::Bend, shift, bend));
-    }
-    (shift > 0.0 && shift < MOVE_TOLERANCE).then(|| Held::new(HoldReason::Small, shift, bend))
-}
-
-/// Why a move of `joint` from `from` to `to` is not made, by the skin's
-/// rule: with the weights carried (`carry`), when they cannot follow it
-/// ([`HoldReason::Carry`]) or the move is under the tolerance; with the
-/// weights as painted, [`hold_reason`] against the bends.
-pub(super) fn hold_for(
-    carry: Option<&Carry>,
-    bends: &[bend::Bend],
-    joint: Joint,
-    from: DVec3,
-    to: DVec3,
-) -> Option<Held> {
-    let Some(carry) = carry else {
-        return hold_reason(bends, joint, from, to);
-    };
-    let shift = from.distance(to);
-    if shift > 0.0
-        && let Some(why) = carry
-            .iter()
-            .find(|(j, _)| *j == joint)
-            .and_then(|(_, why)| why.as_deref())
-    {
-        return Some(Held::carry(shift, why));
-    }
-    (shift > 0.0 && shift < MOVE_TOLERANCE).then(|| Held::new(HoldReason::Small, shift, None))
-}
-
-/// `audit` (of `input`, judged with `judge` against `a`) with the fix's
-/// rules applied to its explanation: an MCP the explanation would move is
-/// held unless `pinned` holds it already (the caller places it itself, as
-/// `--fix-mcp atlas` does, or the artist pinned it with `--hold`): the guard
-/// cannot check it, for where the skin over a knuckle bends is not located
-/// reliably ([`super::bend`]). The explanation is not sought again without
-/// it: it still names the MCP (a misplaced MCP is not made up for by moving
-/// the PIP and DIP), and the fix leaves it; a joint the explanation would
-/// move more than [`BEND_GUARD`] farther from where its skin bends (`bends`, from the
-/// rig's weights) is held, and the explanation sought again among the other
-/// joints (and `pinned`), until no held joint remains to add; then a move
-/// shorter than [`MOVE_TOLERANCE`] is marked not made. Each held joint's
-/// check says why ([`super::standing::JointCheck::held`]). Without bends only the tolerance
-/// applies. At most 4 re-judgements (a finger has 3 movable joints).
-pub(super) fn guard(
-    a: &Analysis,
-    input: &ChainInput,
-    judge: &JudgeOptions,
-    audit: FingerAudit,
-    (bends, carry): (&[bend::Bend], Option<&Carry>),
-    pinned: &[Joint],
-) -> FingerAudit {
-    guard_holding(a, input, judge, audit, (bends, carry), pinned, &[])
-}
-
-/// [`guard`] with the joints `pre` held from the start, each with its reason.
-fn guard_holding(
-    a: &Analysis,
-    input: &ChainInput,
-    judge: &JudgeOptions,
-    mut audit: FingerAudit,
-    (bends, carry): (&[bend::Bend], Option<&Carry>),
-    pinned: &[Joint],
-    pre: &[(Joint, Held)],
-) -> FingerAudit {
-    let kinds = chain_kinds(input.finger, input.has_tip);
-    let at = |joint: Joint| {
-        kinds
-            .iter()
-            .position(|&k| k == joint)
-            .and_then(|k| input.points.get(k).copied())
-    };
-    let mut held: Vec<(Joint, Held)> = pre.to_vec();
-    if !held.is_empty() {
-        let hold: Vec<Joint> = pinned
-            .iter()
-            .copied()
-            .chain(held.iter().map(|h| h.0))
-            .collect();
-        if let Some(again) = finger::audit_holding(a, input, judge, &hold) {
-            audit = again;
-        }
-    }
-    for _ in 0..4 {
-        let new: Vec<(Joint, Held)> = audit
-            .joints
-            .iter()
-            .filter(|j| j.moves)
-            .filter_map(|j| {
-                let from = at(j.joint)?;
-                if j.joint == Joint::Mcp && !pinned.contains(&Joint::Mcp) {
-                    return None;
-                }
-                let h = hold_for(carry, bends, j.joint, from, j.suggested)?;
-                matches!(h.reason, HoldReason::Bend | HoldReason::Carry).then_some((j.joint, h))
-            })
-            .filter(|(joint, _)| !held.iter().any(|(k, _)| k == joint))
-            .collect();
-        if new.is_empty() {
-            break;
-        }
-        held.extend(new);
-        let hold: Vec<Joint> = pinned
-            .iter()
-            .copied()
-            .chain(held.iter().map(|h| h.0))
-            .collect();
-        match finger::audit_holding(a, input, judge, &hold) {
-            Some(again) => audit = again,
-            None => break,
-        }
-    }
-    for j in &mut audit.joints {
-        if let Some((_, h)) = held.iter().find(|(k, _)| *k == j.joint) {
-            j.held = Some(h.clone());
-        } else if j.joint == Joint::Mcp
-            && j.moves
-            && !pinned.contains(&Joint::Mcp)
-            && let Some(from) = at(j.joint)
-        {
-            j.held = Some(Held::new(
-                HoldReason::Knuckle,
-                from.distance(j.suggested),
-                None,
-            ));
-        } else if j.moves
-            && j.held.is_none()
-            && let Some(from) = at(j.joint)
-        {
-            j.held = hold_for(carry, bends, j.joint, from, j.suggested);
-        }
-    }
-    // The moves the fix makes must land the finger inside the inner region
-    // on their own: a move whose companions are held (a knuckle, a short
-    // move) is judged as it would be made, and not made when it falls short.
-    if !finger::lands_inside(a, input, judge, &audit) {
-        for j in audit.joints.iter_mut().filter(|j| j.fix_moves()) {
-            j.held = Some(Held::new(HoldReason::Short, j.shift, None));
-        }
-    }
-    audit
-}
-
-/// The joints of `hold` that `audit`'s explanation (sought with none held)
-/// moves, each held as pinned by the artist with the move it gives up.
-fn pins(audit: &FingerAudit, hold: &[Joint]) -> Vec<(Joint, Held)> {
-    audit
-        .joints
-        .iter()
-        .filter(|j| hold.contains(&j.joint) && j.moves)
-        .map(|j| (j.joint, Held::new(HoldReason::Pinned, j.shift, None)))
-        .collect()
-}
-
-/// [`guard`] (the joints `hold` pinned, those of them `first` moves held
-/// as pinned, [`pins`]) checked on the skin as the fix leaves it:
-/// the bends of `chain` with the guarded explanation's moves made, found
-/// again on the skin's weights (with the bend tolerance) as the re-audit of the written copy finds them (the
-/// fix keeps the weights and the mesh's rest shape, so only the joints
-/// move). Moving a joint moves the axis its bend is measured along, so a
-/// move [`guard`] passes against the rig's bend may still end more than
-/// [`BEND_GUARD`] farther from the bend the fixed copy has (allowing for the
-/// bends' resolution, a bin of [`bend::BIN`] of the finger's length); such a
-/// joint is held too, with those two distances, and the explanation sought again.
-/// At most 3 rounds of at most 5 re-judgements and one bend search each.
-#[allow(clippy::too_many_arguments)]
-fn guard_on_weights(
-    a: &Analysis,
-    input: &ChainInput,
-    judge: &JudgeOptions,
-    first: FingerAudit,
-    (bends, carry): (&[bend::Bend], Option<&Carry>),
-    chain: &FingerChain,
-    skin: Option<(&SkinWeights, f64)>,
-    hold: &[Joint],
-) -> FingerAudit {
-    let pinned = pins(&first, hold);
-    let mut audit = guard_holding(
-        a,
-        input,
-        judge,
-        first.clone(),
-        (bends, carry),
-        hold,
-        &pinned,
-    );
-    let mut held = pinned;
-    let Some((w, tolerance)) = skin else {
-        return audit;
-    };
-    if carry.is_some() {
-        // Carried weights: the question is whether the skin would bend at
-        // the moved joint, not whether the joint leaves its painted bend.
-        for _ in 0..3 {
-            let new = carried_short(&audit, bends, chain, w, tolerance);
-            if new.is_empty() {
-                break;
-            }
-            held.extend(new);
-            audit = guard_holding(a, input, judge, first.clone(), (bends, carry), hold, &held);
-        }
-        return audit;
-    }
-    for _ in 0..3 {
-        let mut moved = chain.clone();
-        for rj in &mut moved.joints {
-            if let Some(j) = audit.joint(rj.joint).filter(|j| j.fix_moves()) {
-                rj.position = j.suggested;
-            }
-        }
-        let after = bend::bends(&moved, w, tolerance);
-        // Each bend is found to within half a bin either way (the shares are
-        // averaged in bins `bend::BIN` of the finger's length wide), so
-        // before and after together may be off by a bin: a move is held
-        // when it may end more than BEND_GUARD farther, not only when the
-        // estimates say it does.
-        let bin = bend::BIN
-            * chain
-                .joints
-                .windows(2)
-                .map(|p| p[0].position.distance(p[1].position))
-                .sum::<f64>();
-        let at = |list: &[bend::Bend], joint: Joint| {
-            list.iter().find(|b| b.joint == joint).and_then(|b| b.at)
-        };
-        let new: Vec<(Joint, Held)> = chain
-            .joints
-            .iter()
-            .filter_map(|rj| {
-                let j = audit.joint(rj.joint).filter(|j| j.fix_moves())?;
-                let (b0, b1) = (at(bends, rj.joint)?, at(&after, rj.joint)?);
-                let (d0, d1) = (rj.position.distance(b0), j.suggested.distance(b1));
-                (d1 > d0 + BEND_GUARD - bin).then(|| {
-                    (
-                        rj.joint,
-                        Held::new(HoldReason::Bend, j.shift, Some((d0, d1))),
-                    )
-                })
-            })
-            .collect();
-        if new.is_empty() {
-            break;
-        }
-        held.extend(new);
-        audit = guard_holding(a, input, judge, first.clone(), (bends, carry), hold, &held);
-    }
-    audit
-}
-
-/// For each joint of `chain`, why its skin weights cannot follow a move
-/// ([`bend::cannot_carry`], against the other `chains`' nodes); every joint
-/// can when the rig has no weights (nothing to carry).
-fn carry_of(chain: &FingerChain, chains: &[FingerChain], weights: Option<&SkinWeights>) -> Carry {
-    let others: Vec<usize> = chains
-        .iter()
-        .filter(|c| !std::ptr::eq(*c, chain))
-        .flat_map(|c| c.joints.iter().filter_map(|j| j.node))
-        .collect();
-    chain
-        .joints
-        .iter()
-        .map(|j| {
-            let why = weights.and_then(|w| bend::cannot_carry(chain, w, &others, j.joint));
-            (j.joint, why)
-        })
-        .collect()
-}
-
-/// The fix's moves of `audit`, their weights carried
-/// ([`super::carry::carry_finger`]): each moved joint whose skin would then
-/// bend more than [`super::carry::CARRY_TOLERANCE`] from it (or nowhere near
-/// it), held with that distance. A mesh bends only where it has vertices.
-fn carried_short(
-    audit: &FingerAudit,
-    bends: &[bend::Bend],
-    chain: &FingerChain,
-    weights: &SkinWeights,
-    tolerance: f64,
-) -> Vec<(Joint, Held)> {
-    let moving: Vec<&super::standing::JointCheck> =
-        audit.joints.iter().filter(|j| j.fix_moves()).collect();
-    if moving.is_empty() {
-        return Vec::new();
-    }
-    let carried = super::carry::FingerMove::of(chain, bends, |joint| {
-        moving
-            .iter()
-            .find(|j| j.joint == joint)
-            .map(|j| j.suggested)
-    });
-    let (_, offsets, _) = super::carry::carry_finger(weights, &carried, tolerance);
-    offsets
-        .into_iter()
-        .filter_map(|(k, offset)| {
-            let j = moving.iter().find(|j| j.joint == chain.joints[k].joint)?;
-            let why = match offset {
-                Some(o) if o.abs() <= super::carry::CARRY_TOLERANCE => return None,
-                Some(o) => format!(
-                    "its skin would bend {} mm {} of it",
-                    crate::format::num(o.abs() * 1000.0, 1),
-                    if o < 0.0 { "proximal" } else { "distal" }
-                ),
-                None => "no bend of its skin would be found near it".to_string(),
-            };
-            Some((j.joint, Held::carry(j.shift, &why)))
-        })
-        .collect()
 }
 
 /// Every finger of a rig judged against the statistics.
@@ -637,58 +299,7 @@ impl AuditedRig {
         let mut lengths = Vec::new();
         for chain in chains {
             let mut input = chain.input();
-            let mut skin_tip = None;
-            let n = input.points.len();
-            if opts.measure_tip
-                && opts.rig_tip == TipKind::Skin
-                && let Some(w) = weights
-                && let Some(reach) = bend::skin_end(chain, w)
-                && n >= 2
-            {
-                let (last, tip) = (input.points[n - 2], input.points[n - 1]);
-                let node = last.distance(tip);
-                if reach > node + TIP_INSIDE {
-                    let position = last + (tip - last).normalize_or_zero() * reach;
-                    input.points[n - 1] = position;
-                    skin_tip = Some(SkinTip {
-                        beyond_node: reach - node,
-                        position,
-                        from_mesh: false,
-                    });
-                }
-            } else if opts.measure_tip && opts.rig_tip == TipKind::Skin && !chain.has_tip && n >= 2
-            {
-                let (prev, last) = (input.points[n - 2], input.points[n - 1]);
-                let dir = (last - prev).normalize_or_zero();
-                let end = match weights {
-                    Some(w) => bend::mesh_end(chain, w),
-                    None => Err("the file has no skin weights".to_string()),
-                };
-                // The reach past the last joint: the weights' end, else the
-                // skin's end as `rig` finds it (the found tip's reach along
-                // the last bone, within the range a distal phalanx with its
-                // pulp spans); `None` with the note that says why not.
-                let reach = match end {
-                    Ok(reach) => Some(reach),
-                    Err(why) => found_reach(chain, opts, weights.is_none(), (prev, last), &why)
-                        .map_err(|note| notes.extend(note))
-                        .ok()
-                        .map(|(reach, note)| {
-                            notes.push(note);
-                            reach
-                        }),
-                };
-                if let Some(reach) = reach {
-                    let position = last + dir * reach;
-                    input.points.push(position);
-                    input.has_tip = true;
-                    skin_tip = Some(SkinTip {
-                        beyond_node: reach,
-                        position,
-                        from_mesh: true,
-                    });
-                }
-            }
+            let skin_tip = measure_tip(chain, opts, weights, &mut input, &mut notes);
             lengths.push(
                 input
                     .points
@@ -888,11 +499,11 @@ impl AuditedRig {
     /// never contradict each other: where the base puts the MCP inside the
     /// atlas's prediction interval and the finger's explanation would move it
     /// (the finger alone reads an MCP at the finger's web as a misplaced
-    /// knuckle), the MCP is held ([`HoldReason::Base`]) and the explanation
+    /// knuckle), the MCP is held ([`HoldReason::Base`](super::standing::HoldReason::Base)) and the explanation
     /// sought again among the inner joints, with the same guards as the
     /// finger's own (the bend guard on `weights`, the tolerance, `opts.hold`).
     /// So is an MCP the finger would move one way while the base puts it
-    /// outside the other way ([`HoldReason::BaseOpposes`]): no move of it
+    /// outside the other way ([`HoldReason::BaseOpposes`](super::standing::HoldReason::BaseOpposes)): no move of it
     /// satisfies both. An MCP the base puts outside the way the finger would
     /// move it is left to the finger's explanation and to `--fix-mcp atlas`;
     /// one the finger does not move, the audit's opening line names. O(fingers) re-judgements.
@@ -979,6 +590,70 @@ impl AuditedRig {
     }
 }
 
+/// The skin's end as `chain`'s tip, when `opts` measure it on skin tips:
+/// a tip node inside the skin moved out to the weights' end, or a tipless
+/// finger given one (the weights' end, else the fingertip found on the skin,
+/// [`found_reach`]); `input` changed to match, and the notes that say why not.
+fn measure_tip(
+    chain: &FingerChain,
+    opts: &AuditOptions,
+    weights: Option<&SkinWeights>,
+    input: &mut ChainInput,
+    notes: &mut Vec<String>,
+) -> Option<SkinTip> {
+    let n = input.points.len();
+    if opts.measure_tip
+        && opts.rig_tip == TipKind::Skin
+        && let Some(w) = weights
+        && let Some(reach) = bend::skin_end(chain, w)
+        && n >= 2
+    {
+        let (last, tip) = (input.points[n - 2], input.points[n - 1]);
+        let node = last.distance(tip);
+        if reach > node + TIP_INSIDE {
+            let position = last + (tip - last).normalize_or_zero() * reach;
+            input.points[n - 1] = position;
+            return Some(SkinTip {
+                beyond_node: reach - node,
+                position,
+                from_mesh: false,
+            });
+        }
+    } else if opts.measure_tip && opts.rig_tip == TipKind::Skin && !chain.has_tip && n >= 2 {
+        let (prev, last) = (input.points[n - 2], input.points[n - 1]);
+        let dir = (last - prev).normalize_or_zero();
+        let end = match weights {
+            Some(w) => bend::mesh_end(chain, w),
+            None => Err("the file has no skin weights".to_string()),
+        };
+        // The reach past the last joint: the weights' end, else the
+        // skin's end as `rig` finds it (the found tip's reach along
+        // the last bone, within the range a distal phalanx with its
+        // pulp spans); `None` with the note that says why not.
+        let reach = match end {
+            Ok(reach) => Some(reach),
+            Err(why) => found_reach(chain, opts, weights.is_none(), (prev, last), &why)
+                .map_err(|note| notes.extend(note))
+                .ok()
+                .map(|(reach, note)| {
+                    notes.push(note);
+                    reach
+                }),
+        };
+        if let Some(reach) = reach {
+            let position = last + dir * reach;
+            input.points.push(position);
+            input.has_tip = true;
+            return Some(SkinTip {
+                beyond_node: reach,
+                position,
+                from_mesh: true,
+            });
+        }
+    }
+    None
+}
+
 /// A tipless finger's reach past its last joint (`last`, along the bone from
 /// `prev`) from the
 /// fingertip found on the skin (`opts.found_tips`), when the weights gave
@@ -1037,22 +712,4 @@ fn found_reach(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn an_implausible_scale_names_the_likely_unit() {
-        // 7.5 file units: centimetres (75 mm); 75: millimetres; 3 units: inches
-        // (76.2 mm), not centimetres (30 mm is further from 75 mm).
-        assert!(scale_warning(&[0.075, 0.08, 0.06]).is_none());
-        let w = scale_warning(&[7.5, 8.0, 6.0]).unwrap();
-        assert!(w.contains("likely in centimetres (75.0 mm fingers)"), "{w}");
-        let w = scale_warning(&[75.0, 80.0]).unwrap();
-        assert!(w.contains("likely in millimetres"), "{w}");
-        let w = scale_warning(&[3.0]).unwrap();
-        assert!(w.contains("likely in inches (76.2 mm"), "{w}");
-        let w = scale_warning(&[1e6]).unwrap();
-        assert!(w.contains("or in any common unit"), "{w}");
-        assert!(scale_warning(&[]).is_none());
-    }
-}
+mod tests;

@@ -17,6 +17,7 @@ pub(crate) mod chain;
 mod expected;
 mod explain;
 pub mod finger;
+mod guard;
 pub mod ray;
 pub mod ray_base;
 pub(crate) mod sanity;

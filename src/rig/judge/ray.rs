@@ -17,8 +17,9 @@
 //! Joints the artist pins (`--hold`) stay pinned: a pinned MCP keeps the
 //! finger's own explanation, and pinned inner joints are held in the new one.
 
-use super::audited::{AuditedFinger, AuditedRig, guard, hold_for};
+use super::audited::{AuditedFinger, AuditedRig};
 use super::finger::audit_holding;
+use super::guard::{guard, hold_for};
 use super::standing::{HoldReason, JudgeOptions};
 use crate::analysis::Analysis;
 use crate::analysis::placement::Joint;

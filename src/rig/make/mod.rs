@@ -64,38 +64,7 @@ pub fn make(
     opts: &MakeOptions,
     dir: &Path,
 ) -> Result<Made, MakeError> {
-    let mut sides: Vec<Option<Side>> = rig.chains.iter().map(|c| c.side).collect();
-    sides.extend(
-        rig.file
-            .document
-            .nodes()
-            .filter_map(|n| crate::rig::read::naming::parse_hand(n.name()?))
-            .map(|h| h.side),
-    );
-    sides.sort();
-    sides.dedup();
-    let named: Vec<Side> = sides.iter().flatten().copied().collect();
-    let side = match (opts.side, named.as_slice()) {
-        (Some(s), [one]) if *one != s => {
-            return Err(MakeError::Refused(format!(
-                "--side {}: the file's bones name only its {} hand; give --side {} or leave \
-                 it out",
-                s.name(),
-                one.name(),
-                one.name()
-            )));
-        }
-        (Some(s), _) => Some(s),
-        (None, [one]) => Some(*one),
-        (None, [_, _, ..]) => {
-            return Err(MakeError::Refused(
-                "the file has two hands (bones named for both sides): give --side left or \
-                 --side right to rig one, and run again for the other"
-                    .into(),
-            ));
-        }
-        (None, []) => None,
-    };
+    let (side, hands) = side_of(rig, opts.side)?;
     let chains: Vec<&FingerChain> = rig
         .chains
         .iter()
@@ -110,11 +79,7 @@ pub fn make(
         )));
     }
     let hand_node = hand_bone(rig, side);
-    let select = MeshSelect::for_hand(
-        hand_node.map(|(n, _)| n),
-        named.len() > 1,
-        rig.weights.is_some(),
-    );
+    let select = MeshSelect::for_hand(hand_node.map(|(n, _)| n), hands > 1, rig.weights.is_some());
     let mesh = hand_mesh(&rig.file, &select)?;
     let fingers = opts
         .fingers
@@ -123,10 +88,16 @@ pub fn make(
         } else {
             5
         });
+    // The finder names the wrist it is handed as `wrist_is` says.
+    let wrist_is = match (opts.wrist, hand_node) {
+        (None, Some((node, _))) => format!("the hand bone's origin ({})", rig.file.node_name(node)),
+        _ => "the point given (--wrist)".to_string(),
+    };
     let find = FindOptions {
         fingers,
         wrist: opts.wrist.or(hand_node.map(|(_, at)| at)),
         side,
+        wrist_is: Some(wrist_is),
     };
     let found = find_hand(&mesh, &find).map_err(MakeError::Find)?;
     let hand = place::place(&mesh, &found, proportions);
@@ -147,19 +118,7 @@ pub fn make(
         &opts.write,
         dir,
     )?;
-    // The finder calls any wrist it is handed "the point given"; say which.
-    let given = match (opts.wrist, hand_node) {
-        (None, Some((node, _))) => format!(
-            "the wrist is the hand bone's origin ({})",
-            rig.file.node_name(node)
-        ),
-        _ => "the wrist is the point given (--wrist)".to_string(),
-    };
-    let mut notes: Vec<String> = found
-        .notes
-        .iter()
-        .map(|n| n.replacen("the wrist is the point given", &given, 1))
-        .collect();
+    let mut notes: Vec<String> = found.notes.clone();
     notes.extend(mesh.notes.iter().cloned());
     notes.extend(hand.notes.iter().cloned());
     Ok(Made {
@@ -168,6 +127,45 @@ pub fn make(
         notes,
         triangles: mesh.triangles.len(),
     })
+}
+
+/// The hand to rig: `given` (`--side`), else the one side the file's bones
+/// name, else none; with how many sides they name. A side the bones do not
+/// have, or two sides without `--side`, is refused.
+fn side_of(rig: &Rig, given: Option<Side>) -> Result<(Option<Side>, usize), MakeError> {
+    let mut sides: Vec<Option<Side>> = rig.chains.iter().map(|c| c.side).collect();
+    sides.extend(
+        rig.file
+            .document
+            .nodes()
+            .filter_map(|n| crate::rig::read::naming::parse_hand(n.name()?))
+            .map(|h| h.side),
+    );
+    sides.sort();
+    sides.dedup();
+    let named: Vec<Side> = sides.iter().flatten().copied().collect();
+    let side = match (given, named.as_slice()) {
+        (Some(s), [one]) if *one != s => {
+            return Err(MakeError::Refused(format!(
+                "--side {}: the file's bones name only its {} hand; give --side {} or leave \
+                 it out",
+                s.name(),
+                one.name(),
+                one.name()
+            )));
+        }
+        (Some(s), _) => Some(s),
+        (None, [one]) => Some(*one),
+        (None, [_, _, ..]) => {
+            return Err(MakeError::Refused(
+                "the file has two hands (bones named for both sides): give --side left or \
+                 --side right to rig one, and run again for the other"
+                    .into(),
+            ));
+        }
+        (None, []) => None,
+    };
+    Ok((side, named.len()))
 }
 
 /// The file's hand (wrist) bone of `side` (any side when `None`): its node

@@ -23,7 +23,7 @@ use super::weights::Bone;
 use crate::dataset::{DataError, Finger};
 use crate::rig::find::HandMesh;
 use crate::rig::fix::Edit;
-use crate::rig::read::{FingerChain, Rig};
+use crate::rig::read::{FingerChain, GltfFile, Rig};
 use glam::DVec3;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -80,31 +80,7 @@ pub fn write(
         Some(n) => n,
         None => edit.add_node(&opts.names.hand(side), None, made.wrist)?,
     };
-    // The points of each finger: where they go, and the file's node for each
-    // when fingers are replaced.
-    let mut plan: Vec<(Finger, Vec<Placed>)> = Vec::new();
-    for f in &made.fingers {
-        let mut points: Vec<DVec3> = f.cmc.into_iter().collect();
-        points.extend(f.joints.iter().map(|j| j.1));
-        let own = if opts.replace_fingers {
-            chains
-                .iter()
-                .find(|c| c.finger == f.finger)
-                .map(|c| own_nodes(c, points.len()))
-                .unwrap_or_else(|| vec![None; points.len()])
-        } else {
-            vec![None; points.len()]
-        };
-        plan.push((
-            f.finger,
-            points
-                .into_iter()
-                .enumerate()
-                .zip(own)
-                .map(|((k, at), node)| (k, at, node))
-                .collect(),
-        ));
-    }
+    let plan = plan_of(made, chains, opts.replace_fingers);
     let moves: Vec<(usize, DVec3)> = plan
         .iter()
         .flat_map(|(_, pts)| pts.iter().filter_map(|&(_, at, n)| n.map(|n| (n, at))))
@@ -155,30 +131,9 @@ pub fn write(
         }
         b
     };
-    // The file's vertices that are the hand's, and their made weights.
-    let mut by_vertex: BTreeMap<(usize, usize), VertexWeights> = BTreeMap::new();
-    for (w, sources) in weights.iter().zip(&mesh.sources) {
-        for &(m, p, v) in sources {
-            by_vertex.entry((m, p)).or_default().insert(v, w.as_slice());
-        }
-    }
+    let by_vertex = by_vertex(weights, mesh);
     let meshes: BTreeSet<usize> = by_vertex.keys().map(|&(m, _)| m).collect();
-    // Skins: each drawing node's skin gets the bones; an unskinned one a new skin.
-    for &m in &meshes {
-        let drawers: Vec<gltf::Node> = file
-            .document
-            .nodes()
-            .filter(|n| n.mesh().is_some_and(|x| x.index() == m))
-            .collect();
-        for node in drawers {
-            match node.skin() {
-                Some(s) => edit.add_joints(s.index(), &bones)?,
-                None => {
-                    edit.new_skin(node.index(), &bones, None)?;
-                }
-            }
-        }
-    }
+    bind_skins(&mut edit, file, &meshes, &bones)?;
     // The hand's own nodes: its bone and those below it, and its finger
     // chains' nodes wherever they hang (WebXR's are the wrist's siblings).
     let subtree = below(&file.parent, hand_node).map(|mut s| {
@@ -210,26 +165,8 @@ pub fn write(
                     .and_then(|o| o.influences.get(v))
                     .map_or(&[], |x| x.as_slice());
                 let mine = made_here.and_then(|h| h.get(&v));
-                let list = match mine {
-                    Some(mine) => {
-                        reweighted += 1;
-                        let kept: Vec<(usize, f64)> = before
-                            .iter()
-                            .copied()
-                            .filter(|(n, _)| subtree.as_ref().is_some_and(|s| !s.contains(n)))
-                            .collect();
-                        let share = (1.0 - kept.iter().map(|x| x.1).sum::<f64>()).max(0.0);
-                        let mut list = kept;
-                        for &(bone, w) in mine.iter() {
-                            if let Some(&n) = node_of.get(&bone) {
-                                list.push((n, w * share));
-                            }
-                        }
-                        list
-                    }
-                    None if before.is_empty() => vec![(hand, 1.0)],
-                    None => before.to_vec(),
-                };
+                reweighted += usize::from(mine.is_some());
+                let list = influence(before, mine.copied(), subtree.as_ref(), &node_of, hand);
                 influences.push(list);
             }
             edit.set_weights(m, p, &influences)?;
@@ -242,6 +179,111 @@ pub fn write(
         joints,
         reweighted,
     })
+}
+
+/// The points of each made finger: where they go, and the file's node for
+/// each when fingers are replaced (`replace_fingers`).
+fn plan_of(
+    made: &MadeHand,
+    chains: &[&FingerChain],
+    replace_fingers: bool,
+) -> Vec<(Finger, Vec<Placed>)> {
+    let mut plan: Vec<(Finger, Vec<Placed>)> = Vec::new();
+    for f in &made.fingers {
+        let mut points: Vec<DVec3> = f.cmc.into_iter().collect();
+        points.extend(f.joints.iter().map(|j| j.1));
+        let own = if replace_fingers {
+            chains
+                .iter()
+                .find(|c| c.finger == f.finger)
+                .map(|c| own_nodes(c, points.len()))
+                .unwrap_or_else(|| vec![None; points.len()])
+        } else {
+            vec![None; points.len()]
+        };
+        plan.push((
+            f.finger,
+            points
+                .into_iter()
+                .enumerate()
+                .zip(own)
+                .map(|((k, at), node)| (k, at, node))
+                .collect(),
+        ));
+    }
+    plan
+}
+
+/// The file's vertices that are the hand's (by mesh and primitive), each
+/// with its made weights.
+fn by_vertex<'a>(
+    weights: &'a [Vec<(Bone, f64)>],
+    mesh: &HandMesh,
+) -> BTreeMap<(usize, usize), VertexWeights<'a>> {
+    let mut by_vertex: BTreeMap<(usize, usize), VertexWeights> = BTreeMap::new();
+    for (w, sources) in weights.iter().zip(&mesh.sources) {
+        for &(m, p, v) in sources {
+            by_vertex.entry((m, p)).or_default().insert(v, w.as_slice());
+        }
+    }
+    by_vertex
+}
+
+/// Skins: each node drawing one of `meshes` has its skin given the `bones`;
+/// an unskinned one gets a new skin of them.
+fn bind_skins(
+    edit: &mut Edit<'_>,
+    file: &GltfFile,
+    meshes: &BTreeSet<usize>,
+    bones: &[usize],
+) -> Result<(), DataError> {
+    for &m in meshes {
+        let drawers: Vec<gltf::Node> = file
+            .document
+            .nodes()
+            .filter(|n| n.mesh().is_some_and(|x| x.index() == m))
+            .collect();
+        for node in drawers {
+            match node.skin() {
+                Some(s) => edit.add_joints(s.index(), bones)?,
+                None => {
+                    edit.new_skin(node.index(), bones, None)?;
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A vertex's influences: with made weights (`mine`), those of nodes not
+/// the hand's (outside `subtree`) kept and the made ones sharing the rest;
+/// else its own, or the hand bone's alone when it had none.
+fn influence(
+    before: &[(usize, f64)],
+    mine: Option<&[(Bone, f64)]>,
+    subtree: Option<&BTreeSet<usize>>,
+    node_of: &BTreeMap<Bone, usize>,
+    hand: usize,
+) -> Vec<(usize, f64)> {
+    match mine {
+        Some(mine) => {
+            let kept: Vec<(usize, f64)> = before
+                .iter()
+                .copied()
+                .filter(|(n, _)| subtree.is_some_and(|s| !s.contains(n)))
+                .collect();
+            let share = (1.0 - kept.iter().map(|x| x.1).sum::<f64>()).max(0.0);
+            let mut list = kept;
+            for &(bone, w) in mine.iter() {
+                if let Some(&n) = node_of.get(&bone) {
+                    list.push((n, w * share));
+                }
+            }
+            list
+        }
+        None if before.is_empty() => vec![(hand, 1.0)],
+        None => before.to_vec(),
+    }
 }
 
 /// The file's nodes of a finger chain for a made finger of `n` points

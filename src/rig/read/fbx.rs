@@ -248,6 +248,44 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
         }
         nodes.push(node);
     }
+    let (parts, skins, meshes) = skinned_meshes(&scene, &index, &mut nodes);
+    let roots: Vec<usize> = (0..n).filter(|&i| parent[i].is_none()).collect();
+    let mut doc = json!({
+        "asset": {"version": "2.0", "generator": format!("phalanx, read from FBX {}", scene.metadata.version)},
+        "scene": 0,
+        "scenes": [{"nodes": roots}],
+        "nodes": nodes,
+    });
+    if !skins.is_empty() {
+        doc["skins"] = json!(skins);
+        doc["meshes"] = json!(meshes);
+        doc["accessors"] = json!(parts.accessors);
+        doc["bufferViews"] = json!(parts.views);
+        doc["buffers"] = json!([{"byteLength": parts.bin.len()}]);
+    }
+    let glb = super::gltf::glb(&doc, parts.bin).map_err(fail)?;
+    let mut file = GltfFile::from_bytes(label, &glb)?;
+    // The glTF document holds its matrices in f32: a transform finite in f64
+    // can overflow there (found by the fuzz target), so check again.
+    if let Some(i) = (0..n.min(file.world.len())).find(|&i| !file.world[i].is_finite()) {
+        return Err(fail(format!(
+            "node {} has a transform too large to hold (beyond 32-bit floats, as glTF keeps \
+             them, in metres); fix its transform or its parents'",
+            shown(&name(i))
+        )));
+    }
+    file.fbx = Some(fbx_source(&scene, &bind));
+    Ok(file)
+}
+
+/// The skinned meshes of `scene` as glTF: their accessors' bytes, skins and
+/// meshes; each mesh and its skin set on the `nodes` that draw it (a node's
+/// first). Meshes without a skin, triangles or joints are left out.
+fn skinned_meshes(
+    scene: &ufbx::Scene,
+    index: &impl Fn(&ufbx::Node) -> Option<usize>,
+    nodes: &mut [Value],
+) -> (GlbParts, Vec<Value>, Vec<Value>) {
     let mut parts = GlbParts::default();
     let mut skins = Vec::new();
     let mut meshes = Vec::new();
@@ -255,7 +293,7 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
         let Some(d) = mesh.skin_deformers.first() else {
             continue;
         };
-        let Some(m) = skinned_mesh(mesh, d, &index) else {
+        let Some(m) = skinned_mesh(mesh, d, index) else {
             continue;
         };
         if m.triangles.is_empty() || m.joints.is_empty() {
@@ -305,33 +343,16 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
             }
         }
     }
-    let roots: Vec<usize> = (0..n).filter(|&i| parent[i].is_none()).collect();
-    let mut doc = json!({
-        "asset": {"version": "2.0", "generator": format!("phalanx, read from FBX {}", scene.metadata.version)},
-        "scene": 0,
-        "scenes": [{"nodes": roots}],
-        "nodes": nodes,
-    });
-    if !skins.is_empty() {
-        doc["skins"] = json!(skins);
-        doc["meshes"] = json!(meshes);
-        doc["accessors"] = json!(parts.accessors);
-        doc["bufferViews"] = json!(parts.views);
-        doc["buffers"] = json!([{"byteLength": parts.bin.len()}]);
-    }
-    let glb = super::gltf::glb(&doc, parts.bin).map_err(fail)?;
-    let mut file = GltfFile::from_bytes(label, &glb)?;
-    // The glTF document holds its matrices in f32: a transform finite in f64
-    // can overflow there (found by the fuzz target), so check again.
-    if let Some(i) = (0..n.min(file.world.len())).find(|&i| !file.world[i].is_finite()) {
-        return Err(fail(format!(
-            "node {} has a transform too large to hold (beyond 32-bit floats, as glTF keeps \
-             them, in metres); fix its transform or its parents'",
-            shown(&name(i))
-        )));
-    }
+    (parts, skins, meshes)
+}
+
+/// What the FBX file was: its version, units and axes, and per node its
+/// Lcl Translation, inheritance and whether its bind pose (`bind`) is off
+/// its current pose.
+fn fbx_source(scene: &ufbx::Scene, bind: &[Option<DMat4>]) -> FbxSource {
+    let n = scene.nodes.len();
     let s = &scene.settings;
-    file.fbx = Some(FbxSource {
+    FbxSource {
         version: scene.metadata.version,
         ascii: scene.metadata.ascii,
         unit_meters: s.unit_meters,
@@ -360,8 +381,7 @@ pub fn read(label: &str, bytes: &[u8]) -> Result<GltfFile, DataError> {
                     .is_some_and(|b| !b.abs_diff_eq(mat(&scene.nodes[i].node_to_world), OFF_BIND))
             })
             .collect(),
-    });
-    Ok(file)
+    }
 }
 
 /// One ufbx mesh with its skin deformer as a skinned mesh: vertices in
