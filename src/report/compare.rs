@@ -147,6 +147,20 @@ fn finger_name(f: Finger) -> String {
     }
 }
 
+/// Whether a finger's soft-tissue sentence says anything: not when the fingertip
+/// offset that would explain the difference rounds to 0.0% of the finger, nor when it
+/// is under one pixel of per-image pixel data (below what the measurements can tell).
+/// A shorter last segment (no offset explains it) is always worth saying.
+pub fn tip_worth_saying(last: &LastSegment, cohorts: &Cohorts) -> bool {
+    let o = &last.offset;
+    if o.share_of_a < 0.0 {
+        return true;
+    }
+    let skin = if last.skin == "a" { &cohorts.a } else { &cohorts.b };
+    let sub_pixel = skin.unit.as_deref().is_some_and(is_pixel_unit) && o.in_a_units < 1.0;
+    percent(o.share_of_a) != percent(0.0) && !sub_pixel
+}
+
 /// The soft-tissue sentence of a finger's last segment: how much longer one cohort's is,
 /// and the fingertip offset (as a share of the finger) that would explain it.
 pub fn tip_sentence(last: &LastSegment, cohorts: &Cohorts, names: Names<'_>) -> String {
@@ -270,7 +284,7 @@ pub fn text(c: &Cohorts, width: Width) -> String {
             "- {}",
             finger_sentence(f, Names::AB, c.settings.confidence)
         ));
-        if let Some(last) = &f.last_segment {
+        if let Some(last) = f.last_segment.as_ref().filter(|l| tip_worth_saying(l, c)) {
             out.push(' ');
             out.push_str(&tip_sentence(last, c, Names::AB));
         }

@@ -452,7 +452,7 @@ fn escape_handles_every_special_character() {
 
 // ---- Tracking plot ----
 
-/// A snapshot as `(number of X-rays, mean, interval)`.
+/// A snapshot as `(number of X-rays, mean, interval)`; snapshots numbered from 1.
 type Snapshot = (usize, f64, Option<(f64, f64)>);
 
 /// A series from its snapshots.
@@ -461,7 +461,15 @@ fn track(label: &str, points: &[Snapshot]) -> TrackSeries {
         label: label.to_string(),
         points: points
             .iter()
-            .map(|&(xrays, mean, ci)| TrackPoint { xrays, mean, ci })
+            .enumerate()
+            .map(|(i, &(xrays, mean, ci))| TrackPoint {
+                snapshot: i + 1,
+                removal: false,
+                flagged: 0,
+                xrays,
+                mean,
+                ci,
+            })
             .collect(),
     }
 }
