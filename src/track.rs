@@ -162,7 +162,13 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     }
     if !problems.is_empty() {
         if !req.accept_flagged {
-            problems.extend(flags_among(&current, &tipped.rows, &problems, req, from_file));
+            problems.extend(flags_among(
+                &current,
+                &tipped.rows,
+                &problems,
+                req,
+                from_file,
+            ));
         }
         problems.sort_by_key(|p| (p.line.is_none(), p.line));
         let file = tipped.rows.path.clone();

@@ -728,12 +728,15 @@ pub struct SharedXray {
     pub b: String,
 }
 
+/// One X-ray's rows as compared: (finger index, lengths' bits), sorted.
+type HandRows = Vec<(usize, [u64; 3])>;
+
 /// The X-rays of `b` that are X-rays of `a` (the same rows, by id or by values alone),
 /// in B's order: cohorts that share hands are not independent, so their comparison's
 /// intervals mean nothing. O(rows).
 pub fn shared_xrays(a: &Dataset, b: &Dataset) -> Vec<SharedXray> {
     let hands = |d: &Dataset| {
-        let mut out: Vec<(String, Vec<(usize, [u64; 3])>)> = Vec::new();
+        let mut out: Vec<(String, HandRows)> = Vec::new();
         let mut at: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
         for r in &d.rows {
             let i = *at.entry(&r.xray).or_insert_with(|| {

@@ -125,8 +125,7 @@ fn independent(a: &Dataset, b: &Dataset, drop: bool) -> Result<Option<Dataset>, 
         )));
     }
     let mut own = b.clone();
-    own.rows
-        .retain(|r| !shared.iter().any(|s| *s.b == *r.xray));
+    own.rows.retain(|r| !shared.iter().any(|s| *s.b == *r.xray));
     eprintln!(
         "note: B ({}) without the {n} X-ray{} it shares with A ({}): {which}; {} X-rays of B compared",
         b.path,

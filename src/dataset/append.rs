@@ -327,7 +327,8 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
 /// (`(new row, existing row)` pairs): one per row for a single one, else one summary
 /// that names the X-rays, their fingers and both files' lines compactly.
 fn already_present(present: &[(&Row, &&Row)], path: &str) -> Vec<Problem> {
-    const NEVER: &str = "existing rows are never replaced. Use another X-ray id, or edit the dataset by hand";
+    const NEVER: &str =
+        "existing rows are never replaced. Use another X-ray id, or edit the dataset by hand";
     match present {
         [] => Vec::new(),
         [(r, old)] => vec![Problem::line(
@@ -366,7 +367,11 @@ fn xrays_and_fingers(present: &[(&Row, &&Row)]) -> String {
     let every = by_xray
         .iter()
         .all(|(_, f)| super::Finger::ALL.iter().all(|a| f.contains(a)));
-    let noun = if by_xray.len() == 1 { "X-ray" } else { "X-rays" };
+    let noun = if by_xray.len() == 1 {
+        "X-ray"
+    } else {
+        "X-rays"
+    };
     if every {
         let ids: Vec<&str> = by_xray.iter().map(|(x, _)| *x).collect();
         return format!("{noun} {}, all fingers", id_ranges(&ids));
@@ -446,11 +451,7 @@ pub(crate) fn id_ranges(ids: &[&str]) -> String {
 /// other row keeps its line) and the rest is read again. `None` when the file's
 /// problems are not all on rows, or the rest does not read either. O(bytes).
 pub(crate) fn readable_rest(label: &str, bytes: &[u8], bad: &DataError) -> Option<Dataset> {
-    let lines: Vec<u64> = bad
-        .problems
-        .iter()
-        .map(|p| p.line)
-        .collect::<Option<_>>()?;
+    let lines: Vec<u64> = bad.problems.iter().map(|p| p.line).collect::<Option<_>>()?;
     let mut starts: Vec<(u64, usize)> = Vec::new();
     super::csvinput::read_table::<Column>(label, bytes, |cells| {
         starts.push((cells.line(), cells.start() as usize));

@@ -11,8 +11,8 @@
 
 use super::draw::{
     Axes, Categories, Chart, Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, Linear, MARGIN,
-    MUTED, NAMED, Pen, Px, RANGE, Root, WIDTH, clip, draw_axes, extent, finish, padded, render, text_width,
-    tick_format, xrays,
+    MUTED, NAMED, Pen, Px, RANGE, Root, WIDTH, clip, draw_axes, extent, finish, padded, render,
+    text_width, tick_format, xrays,
 };
 use super::kinds::{Plot, PlotKind, TrackPoint, TrackSeries, finger_phrase};
 use crate::dataset::Finger;
@@ -319,7 +319,10 @@ fn draw_snapshots(
         root.draw(&Polygon::new(outline, t.mix(BAND_OPACITY).filled()))?;
     }
     if points.len() > 1 {
-        let line: Vec<Px> = points.iter().map(|p| at(p.snapshot as f64, p.mean)).collect();
+        let line: Vec<Px> = points
+            .iter()
+            .map(|p| at(p.snapshot as f64, p.mean))
+            .collect();
         root.draw(&PathElement::new(line, INK.stroke_width(2)))?;
     }
     for p in points {
