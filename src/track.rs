@@ -157,7 +157,7 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     // the rows that the typo and outlier rules flag among the others.
     let mut problems = unread;
     problems.extend(tipped.problems);
-    if let Err(e) = append::check_fits(&current, &tipped.rows) {
+    if let Err(e) = append::check_fits(&current, &tipped.rows, from_file) {
         problems.extend(e.problems);
     }
     if !problems.is_empty() {

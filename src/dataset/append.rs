@@ -160,7 +160,7 @@ pub(crate) fn appended_bytes_typed(
     new: &Dataset,
     typed: &Typed,
 ) -> Result<(Vec<u8>, Dataset), DataError> {
-    check_fits(current, new)?;
+    check_fits(current, new, true)?;
     let added = added_columns(current, new);
     let base = if added.is_empty() {
         current_bytes.to_vec()
@@ -272,9 +272,10 @@ pub(crate) fn with_defaults(new: &Dataset, current: &Dataset) -> Dataset {
 const HAND_FIELDS: [&str; 5] = ["sex", "age", "side", "unit", "tip"];
 
 /// Checks that new rows fit the current dataset (see [`appended_bytes_typed`]): every
-/// problem, at the new rows' lines in `new.path`.
-pub(crate) fn check_fits(current: &Dataset, new: &Dataset) -> Result<(), DataError> {
-    let problems = check_new_rows(current, new);
+/// problem, at the new rows' lines in `new.path` (`lined`: the rows are lines of a file
+/// the user wrote; a summary names them only then).
+pub(crate) fn check_fits(current: &Dataset, new: &Dataset, lined: bool) -> Result<(), DataError> {
+    let problems = check_new_rows(current, new, lined);
     if problems.is_empty() {
         Ok(())
     } else {
@@ -286,7 +287,7 @@ pub(crate) fn check_fits(current: &Dataset, new: &Dataset) -> Result<(), DataErr
 }
 
 /// The problems of new rows against the current dataset (see [`appended_bytes_typed`]).
-fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
+fn check_new_rows(current: &Dataset, new: &Dataset, lined: bool) -> Vec<Problem> {
     let mut problems = Vec::new();
     let existing: HashMap<(&str, super::Finger), &Row> = current
         .rows
@@ -319,14 +320,15 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
             metadata_conflicts(r, old, &current.path, &mut problems);
         }
     }
-    problems.extend(already_present(&present, &current.path));
+    problems.extend(already_present(&present, &current.path, lined));
     problems
 }
 
 /// The problems of new rows whose (X-ray, finger) the dataset at `path` already has
 /// (`(new row, existing row)` pairs): one per row for a single one, else one summary
-/// that names the X-rays, their fingers and both files' lines compactly.
-fn already_present(present: &[(&Row, &&Row)], path: &str) -> Vec<Problem> {
+/// that names the X-rays, their fingers and both files' lines compactly (the new rows'
+/// lines only when `lined`).
+fn already_present(present: &[(&Row, &&Row)], path: &str, lined: bool) -> Vec<Problem> {
     const NEVER: &str =
         "existing rows are never replaced. Use another X-ray id, or edit the dataset by hand";
     match present {
@@ -343,12 +345,16 @@ fn already_present(present: &[(&Row, &&Row)], path: &str) -> Vec<Problem> {
         _ => {
             let new_lines: Vec<u64> = present.iter().map(|(r, _)| r.line).collect();
             let old_lines: Vec<u64> = present.iter().map(|(_, o)| o.line).collect();
+            let own = if lined {
+                format!(" ({} of this file)", lines_text(&new_lines))
+            } else {
+                String::new()
+            };
             vec![Problem::file(format!(
-                "{} rows already present in {path} (its {}): {} ({} of this file); {NEVER}",
+                "{} rows already present in {path} (its {}): {}{own}; {NEVER}",
                 present.len(),
                 lines_text(&old_lines),
                 xrays_and_fingers(present),
-                lines_text(&new_lines),
             ))]
         }
     }
@@ -730,14 +736,25 @@ mod tests {
             "d.csv",
             "xray,finger,j1,j2,j3,unit\na,index,4,3,3,px\nb,index,4,3,3,mm\n",
         );
-        let e =
-            check_fits(&two, &ds("n.csv", "xray,finger,j1,j2,j3\nz,index,4,3,3\n")).unwrap_err();
+        let e = check_fits(
+            &two,
+            &ds("n.csv", "xray,finger,j1,j2,j3\nz,index,4,3,3\n"),
+            true,
+        )
+        .unwrap_err();
         assert!(
             e.to_string()
                 .contains("names no unit, but the rows of d.csv are in 2 units ('px', 'mm')"),
             "{e}"
         );
-        assert!(check_fits(&two, &ds("n.csv", "xray,finger,j1,j2,j3\na,ring,4,3,3\n")).is_ok());
+        assert!(
+            check_fits(
+                &two,
+                &ds("n.csv", "xray,finger,j1,j2,j3\na,ring,4,3,3\n"),
+                true
+            )
+            .is_ok()
+        );
         // The metacarpal and the tip are appended where the file has their columns.
         let old = "xray,finger,j1,j2,j3,mc,unit,tip\na,index,4,3,3,9,px,bone\n";
         let cur = ds("d.csv", old);
