@@ -106,26 +106,38 @@ fn refuse_mixed_tips(current: &Dataset, new: &Dataset, allowed: bool) -> Result<
     }
 }
 
-/// The new rows read once: as a dataset, and their file's typed cells (none
-/// for rows made by the program).
-fn read_new(rows: &NewRows) -> Result<(Cow<'_, Dataset>, append::Typed), Error> {
+/// The new rows read once: as a dataset, their file's typed cells (none for rows
+/// made by the program), and the problems of a file's rows that do not read (the
+/// dataset then holds the rows that do, so their other problems are found in the
+/// same pass; see [`append::readable_rest`]).
+type ReadNew<'r> = (Cow<'r, Dataset>, append::Typed, Vec<Problem>);
+
+fn read_new(rows: &NewRows) -> Result<ReadNew<'_>, Error> {
     Ok(match rows {
         NewRows::File(p) => {
             let bytes = csvinput::read_input(p)?;
-            let new = Dataset::from_bytes(&p.display().to_string(), &bytes)?;
-            (Cow::Owned(new), append::Typed::of(&bytes))
+            let label = p.display().to_string();
+            let (new, unread) = match Dataset::from_bytes(&label, &bytes) {
+                Ok(new) => (new, Vec::new()),
+                Err(e) => match append::readable_rest(&label, &bytes, &e) {
+                    Some(rest) => (rest, e.problems),
+                    None => return Err(e.into()),
+                },
+            };
+            (Cow::Owned(new), append::Typed::of(&bytes), unread)
         }
         NewRows::Fields(fields) => (
             Cow::Owned(append::single_row(fields)?),
             append::Typed::of(&append::single_row_bytes(fields)?),
+            Vec::new(),
         ),
-        NewRows::Rows(rows) => (Cow::Borrowed(rows), append::Typed::default()),
+        NewRows::Rows(rows) => (Cow::Borrowed(rows), append::Typed::default(), Vec::new()),
     })
 }
 
 /// Adds new rows to a dataset, then appends a snapshot to its history.
 pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
-    let (new, typed) = read_new(&req.rows)?;
+    let (new, typed, unread) = read_new(&req.rows)?;
     let from_file = matches!(req.rows, NewRows::File(_));
     let line_of = |r: &Row| from_file.then_some(r.line);
     // Rows given as options have no line of their own: problems name none.
@@ -140,13 +152,24 @@ pub(crate) fn add(req: &AddRequest) -> Result<AddOutcome, Error> {
     let current_bytes = csvinput::read_input(&req.data)?;
     let current = Dataset::from_bytes(&req.data.display().to_string(), &current_bytes)?;
     let tipped = tip::record_new(&current, &new, req.tip, from_file);
-    // Conflicting metadata and missing tips are refused before anything else is said
-    // about the rows, every problem at once.
-    let mut problems = tipped.problems;
-    if let Err(e) = append::check_fits(&current, &tipped.rows) {
+    // Rows that do not read, conflicting metadata and missing tips are refused before
+    // anything else is said about the rows, every problem of the file at once, with
+    // the rows that the typo and outlier rules flag among the others.
+    let mut problems = unread;
+    problems.extend(tipped.problems);
+    if let Err(e) = append::check_fits(&current, &tipped.rows, from_file) {
         problems.extend(e.problems);
     }
     if !problems.is_empty() {
+        if !req.accept_flagged {
+            problems.extend(flags_among(
+                &current,
+                &tipped.rows,
+                &problems,
+                req,
+                from_file,
+            ));
+        }
         problems.sort_by_key(|p| (p.line.is_none(), p.line));
         let file = tipped.rows.path.clone();
         return Err(unlined(DataError { file, problems }).into());
@@ -287,11 +310,39 @@ fn commit(
     Ok(())
 }
 
-/// The error of an `add` whose rows the rules flag: one problem per flagged row, at its
-/// line in the user's file, then what to do.
-fn refusal(new: &Dataset, flags: &[Flag], from_file: bool) -> DataError {
-    let mut problems: Vec<Problem> = new
+/// The flagged rows among new rows that have other `problems`: the rows without a
+/// problem of their own line that the rules flag (one problem each, at its line), so
+/// one pass names every problem of the file. None when the dataset cannot be analysed
+/// with the request's settings.
+fn flags_among(
+    current: &Dataset,
+    new: &Dataset,
+    problems: &[Problem],
+    req: &AddRequest,
+    from_file: bool,
+) -> Vec<Problem> {
+    let budget = analysis::budget::check_bootstrap(current.xray_count(), req.settings.resamples);
+    if budget.is_err() || current.rows.is_empty() {
+        return Vec::new();
+    }
+    let mut clean = append::with_defaults(new, current);
+    clean
         .rows
+        .retain(|r| !problems.iter().any(|p| p.line == Some(r.line)));
+    let before = analysis::analyse(current, &req.settings);
+    let flags = outliers::flag_rows(&before, &clean.rows);
+    let mut out = flag_problems(&clean, &flags, from_file);
+    if !out.is_empty() {
+        out.push(Problem::file(
+            "nothing was added. Correct the rows above and add again; a flagged row that is right as measured goes in with --accept-flagged (then recorded as flagged)",
+        ));
+    }
+    out
+}
+
+/// One problem per row of `new` that the rules flag, at its line in the user's file.
+fn flag_problems(new: &Dataset, flags: &[Flag], from_file: bool) -> Vec<Problem> {
+    new.rows
         .iter()
         .filter_map(|r| {
             let f = flag_of(flags, r)?;
@@ -302,7 +353,13 @@ fn refusal(new: &Dataset, flags: &[Flag], from_file: bool) -> DataError {
                 Problem::file(message)
             })
         })
-        .collect();
+        .collect()
+}
+
+/// The error of an `add` whose rows the rules flag: one problem per flagged row, at its
+/// line in the user's file, then what to do.
+fn refusal(new: &Dataset, flags: &[Flag], from_file: bool) -> DataError {
+    let mut problems = flag_problems(new, flags, from_file);
     problems.push(Problem::file(format!(
         "nothing was added. Correct the {} and add again, or, if {} right as measured, add with --accept-flagged: {} then recorded as flagged in the dataset's 'flagged' column and in the history, and listed by 'phalanx stats' and the report",
         if flags.len() == 1 { "row" } else { "rows" },
@@ -442,11 +499,17 @@ pub(crate) enum SnapshotOutcome {
     /// The data and settings are those of the history's last record (number `record`,
     /// 1-based): nothing was written.
     Unchanged { record: usize, last: Snapshot },
+    /// The data and settings are those of record `same` (1-based), and a note was
+    /// given: a milestone was appended, a copy of that record's statistics (the same
+    /// SHA-256) with the note and the time.
+    Milestone { same: usize, snap: Snapshot },
 }
 
 /// Appends a snapshot of the dataset's current statistics to its history (for data
 /// edited by hand), unless nothing changed since the last record: the same file
-/// (SHA-256) and the same settings. Holds the dataset's lock while it reads.
+/// (SHA-256) and the same settings. With a note, an unchanged dataset gets a milestone
+/// (the last record's statistics again, with the note) instead of nothing. Holds the
+/// dataset's lock while it reads.
 pub(crate) fn snapshot(
     data: &Path,
     history_path: &Path,
@@ -463,9 +526,21 @@ pub(crate) fn snapshot(
         && last.settings.seed == settings.seed
         && last.settings.confidence == settings.confidence
     {
-        return Ok(SnapshotOutcome::Unchanged {
-            record: snaps.len(),
-            last: last.clone(),
+        if note.is_none() {
+            return Ok(SnapshotOutcome::Unchanged {
+                record: snaps.len(),
+                last: last.clone(),
+            });
+        }
+        let mut snap = last.clone();
+        snap.time = now();
+        snap.event = Event::Snapshot;
+        snap.change = None;
+        snap.note = note;
+        history::append(history_path, &snap).map_err(Error::write(history_path))?;
+        return Ok(SnapshotOutcome::Milestone {
+            same: snaps.len(),
+            snap,
         });
     }
     analysis::budget::check_bootstrap(dataset.xray_count(), settings.resamples)

@@ -471,7 +471,7 @@ fn import_into_a_dataset_goes_through_add() {
     let after = wd.read("lab.csv");
     import(&[])
         .data_error()
-        .stderr_has("X-ray 'new' already has an index row in lab.csv");
+        .stderr_has("2 rows already present in lab.csv (its lines 14-15): X-ray new (thumb, index); existing rows are never replaced");
     assert_eq!(wd.read("lab.csv"), after);
 }
 

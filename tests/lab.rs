@@ -244,3 +244,111 @@ fn a_labs_first_hour() {
         "L11 is still listed"
     );
 }
+
+/// Ten rows of a lab's first two X-rays (the lab's own session, issue 41).
+const LAB: &str = "xray,finger,j1,j2,j3,side,source,unit,tip
+L01,thumb,277.69,237.72,,right,lab X-ray,image units,skin
+L01,index,356.72,195.54,179.05,right,lab X-ray,image units,skin
+L01,middle,416.55,258.19,207.14,right,lab X-ray,image units,skin
+L01,ring,382.42,243.19,208.39,right,lab X-ray,image units,skin
+L01,little,274.65,175.75,183.07,right,lab X-ray,image units,skin
+L02,thumb,265.38,233.42,,right,lab X-ray,image units,skin
+L02,index,364.44,208.46,191.21,right,lab X-ray,image units,skin
+L02,middle,416.38,271.10,202.69,right,lab X-ray,image units,skin
+L02,ring,400.96,254.37,210.65,right,lab X-ray,image units,skin
+L02,little,328.94,181.71,196.68,right,lab X-ray,image units,skin
+";
+
+#[test]
+fn a_labs_session_says_everything_once() {
+    let wd = Workdir::with_paper_data();
+    // One pass: the decimal comma of line 4 and the tenfold typo of line 9 together.
+    let bad = LAB
+        .replace("416.55", "\"416,55\"")
+        .replace("271.10", "2711.0");
+    wd.write("bad.csv", &bad);
+    let run = wd.run(&["add", "bad.csv"]);
+    run.data_error()
+        .stderr_has("bad.csv:4:3: j1: '416,55' uses a decimal comma")
+        .stderr_has("bad.csv:9: flagged as a likely error: middle X-ray 'L02'")
+        .stderr_has("j2 looks 10 times too large");
+    // Added, then added again: one summary line, not ten.
+    wd.write("lab.csv", LAB);
+    wd.run(&["add", "lab.csv", "--note", "first X-rays"]).ok();
+    let again = wd.run(&["add", "lab.csv"]);
+    again.data_error().stderr_has(
+        "10 rows already present in data/measurements.csv (its lines 27-36): X-rays L01, L02, all fingers (lines 2-11 of this file)",
+    );
+    assert_eq!(
+        again.problem_lines().len(),
+        1,
+        "{:?}",
+        again.problem_lines()
+    );
+    // A milestone on unchanged data: recorded with the note and the same sha.
+    wd.run(&["snapshot", "--note", "submitted"])
+        .ok()
+        .stdout_has("milestone snapshot 2 appended")
+        .stdout_has("the same data as snapshot 1");
+    let h = history_json(&wd);
+    let snaps = h["records"].as_array().expect("records");
+    assert_eq!(snaps.len(), 2, "{h}");
+    assert_eq!(snaps[1]["note"], "submitted");
+    assert_eq!(snaps[1]["sha256"], snaps[0]["sha256"]);
+    wd.run(&["history"]).ok().stdout_has("note: submitted");
+    // Without a note, an unchanged dataset still writes nothing.
+    wd.run(&["snapshot"]).ok().stdout_has("nothing written");
+    assert_eq!(history_json(&wd)["snapshots"], 2);
+    // The lab's file holds the paper's X-rays: compare refuses, naming them.
+    let paper = wd.write("paper.csv", paper_data());
+    let paper = paper.to_str().expect("UTF-8 path");
+    wd.run(&["compare", paper, DATA])
+        .data_error()
+        .stderr_has("share 5 of B's 7 X-rays (the same rows): X-rays 1a, 1b, 1c, 1d, 1e")
+        .stderr_has("--drop-shared");
+    let dropped = wd.run(&[
+        "compare",
+        paper,
+        DATA,
+        "--drop-shared",
+        "--resamples",
+        "200",
+    ]);
+    dropped
+        .ok()
+        .stderr_has("without the 5 X-rays it shares with A")
+        .stdout_has("B: data/measurements.csv (2 X-rays");
+    // The paper's four statistics stay at 100 columns.
+    let stats = wd.run(&["stats", "--resamples", "200"]);
+    let out = stats.ok().stdout.clone();
+    let head = out
+        .lines()
+        .find(|l| l.starts_with("| quantity"))
+        .expect("a table");
+    for col in ["mean", "min", "max", "range"] {
+        assert!(head.contains(&format!(" {col} |")), "{head}");
+    }
+    assert!(out.lines().all(|l| l.chars().count() <= 100), "{out}");
+}
+
+#[test]
+fn compare_says_no_fingertip_below_what_the_data_tell() {
+    let wd = Workdir::with_paper_data();
+    wd.write("lab.csv", LAB);
+    let lab = wd.path().join("lab.csv");
+    let run = wd.run_env(
+        &[
+            "compare",
+            DATA,
+            lab.to_str().expect("UTF-8 path"),
+            "--resamples",
+            "200",
+        ],
+        WIDE,
+    );
+    let out = run.ok().stdout.clone();
+    assert!(!out.contains("a fingertip 0.0%"), "{out}");
+    for line in out.lines().filter(|l| l.contains("would explain it.")) {
+        assert!(!line.contains(" 0.0% of the finger"), "{line}");
+    }
+}

@@ -1695,25 +1695,34 @@ fn rows_in_another_unit_pool_their_relative_values_and_gain_columns() {
 }
 
 #[test]
-fn a_snapshot_without_a_change_writes_nothing_and_notes_are_recorded() {
+fn a_snapshot_without_a_change_writes_nothing_but_a_noted_milestone() {
     let wd = Workdir::with_paper_data();
     wd.run(&["snapshot", "--note", "the paper as printed"])
         .ok()
         .stdout_has("snapshot of data/measurements.csv (5 X-rays");
     let hist = wd.read(HISTORY);
-    wd.run(&["snapshot", "--note", "again"])
+    wd.run(&["snapshot"])
         .ok()
         .stdout_has("no change since snapshot 1 of data/history.jsonl (snapshot, ")
-        .stdout_has("nothing written (nor the note)");
+        .stdout_has("nothing written");
     assert_eq!(wd.read(HISTORY), hist);
+    // With a note, the same data is a milestone: the note, the same statistics.
+    wd.run(&["snapshot", "--note", "submitted"])
+        .ok()
+        .stdout_has(
+            "milestone snapshot 2 appended to data/history.jsonl: the same data as snapshot 1",
+        );
     // Other settings are another snapshot.
     wd.run(&["snapshot", "--seed", "7"])
         .ok()
         .stdout_has("snapshot of data/measurements.csv");
     let h = history(&wd);
-    assert_eq!(h.len(), 2);
+    assert_eq!(h.len(), 3);
     assert_eq!(h[0]["note"], "the paper as printed");
-    assert!(h[1].get("note").is_none());
+    assert_eq!(h[1]["note"], "submitted");
+    assert_eq!(h[1]["sha256"], h[0]["sha256"]);
+    assert_eq!(h[1]["quantities"], h[0]["quantities"]);
+    assert!(h[2].get("note").is_none());
 }
 
 #[test]

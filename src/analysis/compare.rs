@@ -719,3 +719,55 @@ fn last_segment(
         offset,
     })
 }
+
+/// An X-ray that both cohorts hold: B's X-ray `b` has exactly the rows (fingers and
+/// lengths, bit for bit) of A's X-ray `a`; the ids may differ.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SharedXray {
+    pub a: String,
+    pub b: String,
+}
+
+/// One X-ray's rows as compared: (finger index, lengths' bits), sorted.
+type HandRows = Vec<(usize, [u64; 3])>;
+
+/// The X-rays of `b` that are X-rays of `a` (the same rows, by id or by values alone),
+/// in B's order: cohorts that share hands are not independent, so their comparison's
+/// intervals mean nothing. O(rows).
+pub fn shared_xrays(a: &Dataset, b: &Dataset) -> Vec<SharedXray> {
+    let hands = |d: &Dataset| {
+        let mut out: Vec<(String, HandRows)> = Vec::new();
+        let mut at: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+        for r in &d.rows {
+            let i = *at.entry(&r.xray).or_insert_with(|| {
+                out.push((r.xray.to_string(), Vec::new()));
+                out.len() - 1
+            });
+            out[i]
+                .1
+                .push((r.finger.index(), r.lengths.map(f64::to_bits)));
+        }
+        for (_, rows) in &mut out {
+            rows.sort_unstable();
+        }
+        out
+    };
+    let in_a = hands(a);
+    let mut by_rows: std::collections::HashMap<&[(usize, [u64; 3])], Vec<&str>> =
+        std::collections::HashMap::new();
+    for (id, rows) in &in_a {
+        by_rows.entry(rows).or_default().push(id);
+    }
+    hands(b)
+        .into_iter()
+        .filter_map(|(id, rows)| {
+            let ids = by_rows.get(rows.as_slice())?;
+            // The same id when A has it with these rows, else A's first such X-ray.
+            let a = ids.iter().find(|x| **x == id).unwrap_or(&ids[0]);
+            Some(SharedXray {
+                a: a.to_string(),
+                b: id,
+            })
+        })
+        .collect()
+}

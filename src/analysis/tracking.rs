@@ -146,36 +146,6 @@ pub(crate) fn moved<'s>(
     out
 }
 
-/// One quantity's history: (X-rays, mean, t interval) per snapshot, in order.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub(crate) struct QuantityHistory {
-    pub finger: Finger,
-    pub quantity: Quantity,
-    pub points: Vec<(usize, f64, Option<Interval>)>,
-}
-
-/// The history of every quantity present in the snapshots, in first-seen order.
-pub(crate) fn histories(snaps: &[Snapshot]) -> Vec<QuantityHistory> {
-    let mut out: Vec<QuantityHistory> = Vec::new();
-    for s in snaps {
-        for q in &s.quantities {
-            let point = (q.n, q.mean, q.intervals.ci_t);
-            match out
-                .iter_mut()
-                .find(|h| h.finger == q.finger && h.quantity == q.quantity)
-            {
-                Some(h) => h.points.push(point),
-                None => out.push(QuantityHistory {
-                    finger: q.finger,
-                    quantity: q.quantity,
-                    points: vec![point],
-                }),
-            }
-        }
-    }
-    out
-}
-
 /// The (finger, quantity) pairs present in a history, in first-seen order,
 /// narrowed to one finger and/or quantity.
 pub(crate) fn selected(

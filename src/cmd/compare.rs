@@ -3,7 +3,7 @@
 use super::args::{BootArgs, CorrelationArgs, TableFormat, TipArgs};
 use super::out;
 use crate::analysis::{compare, literature};
-use crate::dataset::{CohortNotes, Source};
+use crate::dataset::{CohortNotes, Dataset, Source};
 use crate::error::Error;
 use crate::report;
 use crate::report::layout::Width;
@@ -52,6 +52,9 @@ pub struct Args {
     /// Output format
     #[arg(long, value_enum, default_value_t = TableFormat::Table)]
     format: TableFormat,
+    /// Leave out of B the X-rays it shares with A (the same rows), which are refused otherwise
+    #[arg(long)]
+    drop_shared: bool,
 }
 
 pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
@@ -66,7 +69,8 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     let (notes_a, notes_b) = (CohortNotes::beside(&args.a)?, CohortNotes::beside(&args.b)?);
     let bytes = match (&a, &b) {
         (Source::Data(x), Source::Data(y)) => {
-            let mut c = compare::cohorts(x, y, &settings);
+            let own = independent(x, y, args.drop_shared)?;
+            let mut c = compare::cohorts(x, own.as_ref().unwrap_or(y), &settings);
             if c.fingers.is_empty() {
                 return Err(no_common(&a, &b));
             }
@@ -93,6 +97,63 @@ pub(crate) fn run(args: &Args, width: Width) -> Result<i32, Error> {
     };
     out::print(&bytes)?;
     Ok(0)
+}
+
+/// B without the X-rays it shares with A when asked (`--drop-shared`, said on stderr),
+/// `None` when they share none; shared X-rays are refused otherwise: two cohorts that
+/// hold the same hands are not independent.
+fn independent(a: &Dataset, b: &Dataset, drop: bool) -> Result<Option<Dataset>, Error> {
+    let shared = compare::shared_xrays(a, b);
+    if shared.is_empty() {
+        return Ok(None);
+    }
+    let n = shared.len();
+    let which = shared_words(&shared);
+    let total = b.xray_count();
+    if !drop {
+        return Err(Error::Usage(format!(
+            "{} and {} share {n} of B's {total} X-ray{} (the same rows): {which}. Two cohorts that hold the same hands are not independent, so their differences and intervals would mean nothing. Compare B's own X-rays with --drop-shared (B without them), or compare A with a file of B's new rows only",
+            a.path,
+            b.path,
+            if total == 1 { "" } else { "s" },
+        )));
+    }
+    if n == total {
+        return Err(Error::Usage(format!(
+            "every X-ray of {} is one of {} ({which}): with --drop-shared nothing is left to compare",
+            b.path, a.path
+        )));
+    }
+    let mut own = b.clone();
+    own.rows.retain(|r| !shared.iter().any(|s| *s.b == *r.xray));
+    eprintln!(
+        "note: B ({}) without the {n} X-ray{} it shares with A ({}): {which}; {} X-rays of B compared",
+        b.path,
+        if n == 1 { "" } else { "s" },
+        a.path,
+        own.xray_count()
+    );
+    Ok(Some(own))
+}
+
+/// "X-rays 1-5" (the same ids in both), or "B's 7 is A's 1, ..." where they differ.
+fn shared_words(shared: &[compare::SharedXray]) -> String {
+    if shared.iter().all(|s| s.a == s.b) {
+        let ids: Vec<&str> = shared.iter().map(|s| s.b.as_str()).collect();
+        let noun = if ids.len() == 1 { "X-ray" } else { "X-rays" };
+        return format!("{noun} {}", crate::dataset::append::id_ranges(&ids));
+    }
+    let pairs: Vec<String> = shared
+        .iter()
+        .map(|s| {
+            if s.a == s.b {
+                format!("{} in both", s.b)
+            } else {
+                format!("B's {} is A's {}", s.b, s.a)
+            }
+        })
+        .collect();
+    pairs.join(", ")
 }
 
 fn no_common(a: &Source, b: &Source) -> Error {

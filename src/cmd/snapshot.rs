@@ -8,8 +8,9 @@ use crate::track::{self, SnapshotOutcome};
 /// Record a snapshot of the current statistics in the history (after editing the data by hand)
 #[derive(clap::Args, Debug)]
 #[command(
-    after_help = "A snapshot is written only when the data (its SHA-256) or the settings differ from the \
-                  history's last snapshot; otherwise it says so and writes nothing.\n\n\
+    after_help = "A snapshot is written when the data (its SHA-256) or the settings differ from the \
+                  history's last snapshot. When they do not, it says so and writes nothing, unless a note is \
+                  given: then it appends a milestone, the last snapshot's statistics again with the note.\n\n\
                   Examples:\n  phalanx snapshot --note \"corrected 2b's ring by hand\"\n  phalanx snapshot --data lab/hands.csv"
 )]
 pub(crate) struct Args {
@@ -41,16 +42,18 @@ pub(crate) fn run(args: &Args) -> Result<i32, Error> {
             path.display()
         ),
         SnapshotOutcome::Unchanged { record, last } => format!(
-            "no change since snapshot {record} of {} ({}, {}): the same data (sha256 {}) and settings; nothing written{}\n",
+            "no change since snapshot {record} of {} ({}, {}): the same data (sha256 {}) and settings; nothing written\n",
             path.display(),
             last.event,
             last.time,
             &last.sha256[..12.min(last.sha256.len())],
-            if args.note.is_some() {
-                " (nor the note)"
-            } else {
-                ""
-            }
+        ),
+        SnapshotOutcome::Milestone { same, snap } => format!(
+            "milestone snapshot {} appended to {}: the same data as snapshot {same} (sha256 {}, {} X-rays) and settings, with the note\n",
+            same + 1,
+            path.display(),
+            &snap.sha256[..12.min(snap.sha256.len())],
+            snap.xrays,
         ),
     };
     out::print(text.as_bytes())?;

@@ -160,7 +160,7 @@ pub(crate) fn appended_bytes_typed(
     new: &Dataset,
     typed: &Typed,
 ) -> Result<(Vec<u8>, Dataset), DataError> {
-    check_fits(current, new)?;
+    check_fits(current, new, true)?;
     let added = added_columns(current, new);
     let base = if added.is_empty() {
         current_bytes.to_vec()
@@ -272,9 +272,10 @@ pub(crate) fn with_defaults(new: &Dataset, current: &Dataset) -> Dataset {
 const HAND_FIELDS: [&str; 5] = ["sex", "age", "side", "unit", "tip"];
 
 /// Checks that new rows fit the current dataset (see [`appended_bytes_typed`]): every
-/// problem, at the new rows' lines in `new.path`.
-pub(crate) fn check_fits(current: &Dataset, new: &Dataset) -> Result<(), DataError> {
-    let problems = check_new_rows(current, new);
+/// problem, at the new rows' lines in `new.path` (`lined`: the rows are lines of a file
+/// the user wrote; a summary names them only then).
+pub(crate) fn check_fits(current: &Dataset, new: &Dataset, lined: bool) -> Result<(), DataError> {
+    let problems = check_new_rows(current, new, lined);
     if problems.is_empty() {
         Ok(())
     } else {
@@ -286,7 +287,7 @@ pub(crate) fn check_fits(current: &Dataset, new: &Dataset) -> Result<(), DataErr
 }
 
 /// The problems of new rows against the current dataset (see [`appended_bytes_typed`]).
-fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
+fn check_new_rows(current: &Dataset, new: &Dataset, lined: bool) -> Vec<Problem> {
     let mut problems = Vec::new();
     let existing: HashMap<(&str, super::Finger), &Row> = current
         .rows
@@ -298,6 +299,7 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
         by_xray.entry(&r.xray).or_default().push(r);
     }
     let named: Vec<&str> = current.units().into_iter().filter_map(|(u, _)| u).collect();
+    let mut present: Vec<(&Row, &&Row)> = Vec::new();
     for r in &new.rows {
         if r.meta.unit.is_none() && named.len() > 1 && !by_xray.contains_key(&*r.xray) {
             let list: Vec<String> = named.iter().map(|u| quote(u)).collect();
@@ -312,22 +314,167 @@ fn check_new_rows(current: &Dataset, new: &Dataset) -> Vec<Problem> {
             ));
         }
         if let Some(old) = existing.get(&(&*r.xray, r.finger)) {
-            problems.push(Problem::line(
-                r.line,
-                format!(
-                    "X-ray {} already has {} row in {} (line {}); existing rows are never replaced. Use another X-ray id, or edit the dataset by hand",
-                    quote(&r.xray),
-                    r.finger.with_article(),
-                    current.path,
-                    old.line
-                ),
-            ));
+            present.push((r, old));
         }
         if let Some(old) = by_xray.get(&*r.xray) {
             metadata_conflicts(r, old, &current.path, &mut problems);
         }
     }
+    problems.extend(already_present(&present, &current.path, lined));
     problems
+}
+
+/// The problems of new rows whose (X-ray, finger) the dataset at `path` already has
+/// (`(new row, existing row)` pairs): one per row for a single one, else one summary
+/// that names the X-rays, their fingers and both files' lines compactly (the new rows'
+/// lines only when `lined`).
+fn already_present(present: &[(&Row, &&Row)], path: &str, lined: bool) -> Vec<Problem> {
+    const NEVER: &str =
+        "existing rows are never replaced. Use another X-ray id, or edit the dataset by hand";
+    match present {
+        [] => Vec::new(),
+        [(r, old)] => vec![Problem::line(
+            r.line,
+            format!(
+                "X-ray {} already has {} row in {path} (line {}); {NEVER}",
+                quote(&r.xray),
+                r.finger.with_article(),
+                old.line
+            ),
+        )],
+        _ => {
+            let new_lines: Vec<u64> = present.iter().map(|(r, _)| r.line).collect();
+            let old_lines: Vec<u64> = present.iter().map(|(_, o)| o.line).collect();
+            let own = if lined {
+                format!(" ({} of this file)", lines_text(&new_lines))
+            } else {
+                String::new()
+            };
+            vec![Problem::file(format!(
+                "{} rows already present in {path} (its {}): {}{own}; {NEVER}",
+                present.len(),
+                lines_text(&old_lines),
+                xrays_and_fingers(present),
+            ))]
+        }
+    }
+}
+
+/// "X-rays L01-L10, all fingers", or "X-rays 2a (thumb, index), 3b (ring)" when
+/// some of the X-rays' fingers are not among `present`.
+fn xrays_and_fingers(present: &[(&Row, &&Row)]) -> String {
+    let mut by_xray: Vec<(&str, Vec<super::Finger>)> = Vec::new();
+    for (r, _) in present {
+        match by_xray.iter_mut().find(|(x, _)| *x == &*r.xray) {
+            Some((_, f)) => f.push(r.finger),
+            None => by_xray.push((&r.xray, vec![r.finger])),
+        }
+    }
+    let every = by_xray
+        .iter()
+        .all(|(_, f)| super::Finger::ALL.iter().all(|a| f.contains(a)));
+    let noun = if by_xray.len() == 1 {
+        "X-ray"
+    } else {
+        "X-rays"
+    };
+    if every {
+        let ids: Vec<&str> = by_xray.iter().map(|(x, _)| *x).collect();
+        return format!("{noun} {}, all fingers", id_ranges(&ids));
+    }
+    let parts: Vec<String> = by_xray
+        .iter()
+        .map(|(x, f)| {
+            let names: Vec<&str> = f.iter().map(|f| f.name()).collect();
+            format!("{x} ({})", names.join(", "))
+        })
+        .collect();
+    format!("{noun} {}", parts.join(", "))
+}
+
+/// Line numbers in compact form: "line 7", "lines 2-51", "lines 2-4, 9".
+pub(crate) fn lines_text(lines: &[u64]) -> String {
+    let mut sorted = lines.to_vec();
+    sorted.sort_unstable();
+    sorted.dedup();
+    let mut runs: Vec<(u64, u64)> = Vec::new();
+    for l in sorted {
+        match runs.last_mut() {
+            Some((_, hi)) if *hi + 1 == l => *hi = l,
+            _ => runs.push((l, l)),
+        }
+    }
+    let parts: Vec<String> = runs
+        .iter()
+        .map(|&(lo, hi)| {
+            if lo == hi {
+                lo.to_string()
+            } else {
+                format!("{lo}-{hi}")
+            }
+        })
+        .collect();
+    let noun = if lines.len() == 1 { "line" } else { "lines" };
+    format!("{noun} {}", parts.join(", "))
+}
+
+/// X-ray ids with runs of consecutive numbers joined: "L01-L10", "2a, 3, 5-7".
+/// A run shares its text before the number and the number's width.
+pub(crate) fn id_ranges(ids: &[&str]) -> String {
+    let split = |id: &str| -> Option<(String, u64, usize)> {
+        let digits = id.chars().rev().take_while(char::is_ascii_digit).count();
+        let (head, tail) = id.split_at(id.len() - digits);
+        Some((head.to_string(), tail.parse().ok()?, digits))
+    };
+    let mut runs: Vec<(String, String, usize)> = Vec::new(); // (first, last, length)
+    let mut prev: Option<(String, u64, usize)> = None;
+    for id in ids {
+        let this = split(id);
+        let follows = matches!((&prev, &this), (Some((h, n, w)), Some((h2, n2, w2)))
+            if h == h2 && w == w2 && n + 1 == *n2);
+        match runs.last_mut() {
+            Some(run) if follows => {
+                run.1 = id.to_string();
+                run.2 += 1;
+            }
+            _ => runs.push((id.to_string(), id.to_string(), 1)),
+        }
+        prev = this;
+    }
+    let parts: Vec<String> = runs
+        .into_iter()
+        .map(|(first, last, n)| match n {
+            1 => first,
+            2 => format!("{first}, {last}"),
+            _ => format!("{first}-{last}"),
+        })
+        .collect();
+    parts.join(", ")
+}
+
+/// The rows of a new-rows file that parse, when the file's only problems sit on
+/// rows (`bad`): those rows' records are blanked (their line ends kept, so every
+/// other row keeps its line) and the rest is read again. `None` when the file's
+/// problems are not all on rows, or the rest does not read either. O(bytes).
+pub(crate) fn readable_rest(label: &str, bytes: &[u8], bad: &DataError) -> Option<Dataset> {
+    let lines: Vec<u64> = bad.problems.iter().map(|p| p.line).collect::<Option<_>>()?;
+    let mut starts: Vec<(u64, usize)> = Vec::new();
+    super::csvinput::read_table::<Column>(label, bytes, |cells| {
+        starts.push((cells.line(), cells.start() as usize));
+    })
+    .ok()?;
+    let mut out = Vec::with_capacity(bytes.len());
+    out.extend_from_slice(&bytes[..starts.first().map_or(bytes.len(), |s| s.1)]);
+    for (i, &(line, start)) in starts.iter().enumerate() {
+        let end = starts.get(i + 1).map_or(bytes.len(), |s| s.1);
+        let record = &bytes[start..end];
+        if lines.contains(&line) {
+            out.extend(record.iter().filter(|&&b| b == b'\n' || b == b'\r'));
+        } else {
+            out.extend_from_slice(record);
+        }
+    }
+    Dataset::from_bytes(label, &out).ok()
 }
 
 /// A new row's metadata that differs from what the same X-ray's existing rows `old` (in
@@ -589,14 +736,25 @@ mod tests {
             "d.csv",
             "xray,finger,j1,j2,j3,unit\na,index,4,3,3,px\nb,index,4,3,3,mm\n",
         );
-        let e =
-            check_fits(&two, &ds("n.csv", "xray,finger,j1,j2,j3\nz,index,4,3,3\n")).unwrap_err();
+        let e = check_fits(
+            &two,
+            &ds("n.csv", "xray,finger,j1,j2,j3\nz,index,4,3,3\n"),
+            true,
+        )
+        .unwrap_err();
         assert!(
             e.to_string()
                 .contains("names no unit, but the rows of d.csv are in 2 units ('px', 'mm')"),
             "{e}"
         );
-        assert!(check_fits(&two, &ds("n.csv", "xray,finger,j1,j2,j3\na,ring,4,3,3\n")).is_ok());
+        assert!(
+            check_fits(
+                &two,
+                &ds("n.csv", "xray,finger,j1,j2,j3\na,ring,4,3,3\n"),
+                true
+            )
+            .is_ok()
+        );
         // The metacarpal and the tip are appended where the file has their columns.
         let old = "xray,finger,j1,j2,j3,mc,unit,tip\na,index,4,3,3,9,px,bone\n";
         let cur = ds("d.csv", old);

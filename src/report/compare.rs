@@ -147,6 +147,27 @@ fn finger_name(f: Finger) -> String {
     }
 }
 
+/// Whether a finger's soft-tissue sentence says anything: not when the fingertip
+/// offset that would explain the difference rounds to 0.0% of the finger, nor when it
+/// is under one pixel of per-image pixel data (pixels or image units: below what the
+/// measurements can tell).
+/// A shorter last segment (no offset explains it) is always worth saying.
+pub fn tip_worth_saying(last: &LastSegment, cohorts: &Cohorts) -> bool {
+    let o = &last.offset;
+    if o.share_of_a < 0.0 {
+        return true;
+    }
+    let skin = if last.skin == "a" {
+        &cohorts.a
+    } else {
+        &cohorts.b
+    };
+    // Pixels, or the paper's "image units" (pixels of X-ray images).
+    let pixels = |u: &str| is_pixel_unit(u) || u.trim() == "image units";
+    let sub_pixel = skin.unit.as_deref().is_some_and(pixels) && o.in_a_units < 1.0;
+    percent(o.share_of_a) != percent(0.0) && !sub_pixel
+}
+
 /// The soft-tissue sentence of a finger's last segment: how much longer one cohort's is,
 /// and the fingertip offset (as a share of the finger) that would explain it.
 pub fn tip_sentence(last: &LastSegment, cohorts: &Cohorts, names: Names<'_>) -> String {
@@ -270,7 +291,7 @@ pub fn text(c: &Cohorts, width: Width) -> String {
             "- {}",
             finger_sentence(f, Names::AB, c.settings.confidence)
         ));
-        if let Some(last) = &f.last_segment {
+        if let Some(last) = f.last_segment.as_ref().filter(|l| tip_worth_saying(l, c)) {
             out.push(' ');
             out.push_str(&tip_sentence(last, c, Names::AB));
         }
@@ -416,4 +437,58 @@ pub fn csv(c: &Cohorts) -> Result<Vec<u8>, Error> {
     }
     w.into_inner()
         .map_err(|e| Error::render("cannot write CSV", e.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::Settings;
+    use crate::analysis::compare::cohorts;
+    use crate::dataset::Dataset;
+
+    fn cohort(unit: &str, rows: &[[f64; 3]]) -> Dataset {
+        let mut text = String::from("xray,finger,j1,j2,j3,unit\n");
+        for (i, r) in rows.iter().enumerate() {
+            text.push_str(&format!("x{i},index,{},{},{},{unit}\n", r[0], r[1], r[2]));
+        }
+        Dataset::from_bytes("d.csv", text.as_bytes()).unwrap()
+    }
+
+    #[test]
+    fn no_fingertip_sentence_below_what_the_data_tell() {
+        let rows = [[40.0, 22.0, 19.0], [42.0, 23.0, 20.0], [41.0, 22.5, 19.0]];
+        let longer = [[40.0, 22.0, 21.0], [42.0, 23.0, 22.0], [41.0, 22.5, 21.5]];
+        let settings = Settings {
+            resamples: 200,
+            ..Settings::default()
+        };
+        let c = cohorts(&cohort("mm", &rows), &cohort("mm", &longer), &settings);
+        let last = c.fingers[0].last_segment.clone().expect("a last segment");
+        assert!(tip_worth_saying(&last, &c), "{last:?}");
+        assert!(text(&c, Width::Fit(400)).contains("a fingertip"));
+        // An offset that rounds to 0.0% of the finger says nothing.
+        let mut tiny = c.clone();
+        let l = tiny.fingers[0].last_segment.as_mut().unwrap();
+        l.offset.share_of_a = 0.0004;
+        assert!(!tip_worth_saying(l, &c));
+        tiny.fingers[0]
+            .last_segment
+            .as_mut()
+            .unwrap()
+            .offset
+            .share_of_a = 0.0004;
+        assert!(!text(&tiny, Width::Fit(400)).contains("a fingertip"));
+        // Nor under one pixel of pixel data.
+        let px = cohorts(
+            &cohort("image units", &rows),
+            &cohort("image units", &longer),
+            &settings,
+        );
+        let mut l = px.fingers[0].last_segment.clone().unwrap();
+        l.offset.in_a_units = 0.8;
+        l.offset.share_of_a = 0.002;
+        assert!(!tip_worth_saying(&l, &px));
+        l.offset.in_a_units = 1.5;
+        assert!(tip_worth_saying(&l, &px));
+    }
 }

@@ -192,25 +192,9 @@ fn tracking_plots(inputs: &ReportInputs<'_>) -> Result<Vec<plots::Plot>, Error> 
     if inputs.history.len() < 2 {
         return Ok(Vec::new());
     }
-    let histories = crate::analysis::tracking::histories(inputs.history);
     let mut out = Vec::new();
     for f in &inputs.analysis.fingers {
-        let series: Vec<plots::TrackSeries> = histories
-            .iter()
-            .filter(|h| h.finger == f.finger && h.quantity.is_relative())
-            .map(|h| plots::TrackSeries {
-                label: h.quantity.label().to_string(),
-                points: h
-                    .points
-                    .iter()
-                    .map(|&(xrays, mean, ci)| plots::TrackPoint {
-                        xrays,
-                        mean,
-                        ci: ci.map(|i| (i.low, i.high)),
-                    })
-                    .collect(),
-            })
-            .collect();
+        let series = plots::track_series(inputs.history, f.finger);
         if !series.is_empty() {
             out.push(plots::tracking_plot(
                 f.finger,

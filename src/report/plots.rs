@@ -59,6 +59,47 @@ pub fn forest_plot(a: &Analysis) -> Result<Plot, Error> {
     forest::plot(a)
 }
 
+/// The relative quantities of one finger through a history, snapshot by snapshot
+/// (numbered from 1), with the removals and the rows added though flagged.
+pub(crate) fn track_series(
+    history: &[crate::dataset::history::Snapshot],
+    finger: crate::dataset::Finger,
+) -> Vec<TrackSeries> {
+    use crate::dataset::history::Event;
+    let mut out: Vec<(crate::analysis::Quantity, TrackSeries)> = Vec::new();
+    for (i, s) in history.iter().enumerate() {
+        let flagged = s.change.as_ref().map_or(0, |c| {
+            c.flagged.iter().filter(|r| r.finger == finger).count()
+        });
+        let flagged = if s.event == Event::Add { flagged } else { 0 };
+        for q in s
+            .quantities
+            .iter()
+            .filter(|q| q.finger == finger && q.quantity.is_relative())
+        {
+            let point = TrackPoint {
+                snapshot: i + 1,
+                removal: s.event == Event::Remove,
+                flagged,
+                xrays: q.n,
+                mean: q.mean,
+                ci: q.intervals.ci_t.map(|c| (c.low, c.high)),
+            };
+            match out.iter_mut().find(|(k, _)| *k == q.quantity) {
+                Some((_, t)) => t.points.push(point),
+                None => out.push((
+                    q.quantity,
+                    TrackSeries {
+                        label: q.quantity.label().to_string(),
+                        points: vec![point],
+                    },
+                )),
+            }
+        }
+    }
+    out.into_iter().map(|(_, t)| t).collect()
+}
+
 /// Tracking plot of one finger (id `tracking-<finger>`): for each relative quantity,
 /// the mean against the number of X-rays with its t confidence band.
 pub(crate) fn tracking_plot(

@@ -45,15 +45,17 @@ fn stats_body(a: &Analysis, width: Width, hidden: &mut Hidden, head: bool) -> St
         let mut t = Grid::new()
             .col("quantity", Align::Left, Give::Keep)
             .col("mean", Align::Right, Give::Keep)
-            .col("min", Align::Right, Give::Drop(7))
-            .col("max", Align::Right, Give::Drop(6))
-            .col("range", Align::Right, Give::Drop(3))
-            .col("sd", Align::Right, Give::Keep)
-            .col("se", Align::Right, Give::Drop(4))
+            // The paper's four statistics (mean, min, max, range) always stay; the
+            // prediction interval gives way before the sd and the t interval.
+            .col("min", Align::Right, Give::Keep)
+            .col("max", Align::Right, Give::Keep)
+            .col("range", Align::Right, Give::Keep)
+            .col("sd", Align::Right, Give::Drop(6))
+            .col("se", Align::Right, Give::Drop(3))
             .col("t CI", Align::Right, Give::Drop(5))
             .col("percentile CI", Align::Right, Give::Drop(1))
             .col("BCa CI", Align::Right, Give::Drop(2))
-            .col("prediction", Align::Right, Give::Keep);
+            .col("prediction", Align::Right, Give::Drop(4));
         for q in &f.quantities {
             let d = decimals(q.name.is_unitless());
             let mut row = vec![

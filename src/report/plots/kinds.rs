@@ -49,9 +49,15 @@ pub struct Named {
     pub newest: Vec<String>,
 }
 
-/// One snapshot of one quantity: the number of X-rays, the mean, its t interval.
+/// One snapshot of one quantity: its number in the history (1-based), the number of
+/// X-rays, the mean, its t interval, and what the snapshot's change did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct TrackPoint {
+    pub snapshot: usize,
+    /// The snapshot records a removal of rows.
+    pub removal: bool,
+    /// Rows of this finger the snapshot's change added though flagged as likely errors.
+    pub flagged: usize,
     pub xrays: usize,
     pub mean: f64,
     pub ci: Option<(f64, f64)>,

@@ -6,7 +6,7 @@ use crate::analysis::placement::place_all;
 use crate::analysis::{
     DatasetInfo, Quantity, Segments, Settings, XrayValues, analyse, quantity_stats,
 };
-use crate::dataset::Dataset;
+use crate::dataset::{Dataset, Finger};
 use crate::stats::bootstrap::Plan;
 use crate::stats::describe;
 use std::path::Path;
@@ -453,7 +453,7 @@ fn escape_handles_every_special_character() {
 
 // ---- Tracking plot ----
 
-/// A snapshot as `(number of X-rays, mean, interval)`.
+/// A snapshot as `(number of X-rays, mean, interval)`; snapshots numbered from 1.
 type Snapshot = (usize, f64, Option<(f64, f64)>);
 
 /// A series from its snapshots.
@@ -462,7 +462,15 @@ fn track(label: &str, points: &[Snapshot]) -> TrackSeries {
         label: label.to_string(),
         points: points
             .iter()
-            .map(|&(xrays, mean, ci)| TrackPoint { xrays, mean, ci })
+            .enumerate()
+            .map(|(i, &(xrays, mean, ci))| TrackPoint {
+                snapshot: i + 1,
+                removal: false,
+                flagged: 0,
+                xrays,
+                mean,
+                ci,
+            })
             .collect(),
     }
 }
@@ -506,23 +514,25 @@ fn tracking_plot_draws_every_snapshot() {
     // band per run of two or more neighbouring intervals (J~1 at 3..5, J~2).
     assert_eq!(count(&p.svg, "<polygon"), 10 + 1 + 2);
     for label in [
-        "number of X-rays",
+        "snapshot (record of the history, in order)",
+        "removal (rows taken out)",
+        "flagged rows added",
         "fraction of total length J",
         "\nmean\n</text>",
         "95% t confidence interval",
         "J~1 = J1/J",
         "J~3 = J3/J",
-        "5 snapshots, 1 without an interval",
-        "\n10\n</text>",
+        "5 snapshots, 3 to 10 X-rays, 1 without an interval",
+        "\n5\n</text>",
     ] {
         assert!(p.svg.contains(label), "lacks {label:?}");
     }
     assert!(!p.svg.contains("no snapshots yet"));
     for text in [
-        "J~1 = J1/J: 5 snapshots; first at 3 X-rays: mean 0.4800, 95% t confidence interval \
-         from 0.4600 to 0.5000; last at 10 X-rays: mean 0.4846, 95% t confidence interval from \
-         0.4728 to 0.4964.",
-        "J~3 = J3/J: 1 snapshot at 10 X-rays: mean 0.2279",
+        "J~1 = J1/J: 5 snapshots; first at snapshot 1 (3 X-rays): mean 0.4800, 95% t confidence \
+         interval from 0.4600 to 0.5000; last at snapshot 5 (10 X-rays): mean 0.4846, 95% t \
+         confidence interval from 0.4728 to 0.4964.",
+        "J~3 = J3/J: 1 snapshot at snapshot 1 (10 X-rays): mean 0.2279",
         "the index finger (the paper's 'grooming' finger)",
     ] {
         assert!(p.description.contains(text), "{text}");
@@ -544,11 +554,10 @@ fn tracking_plot_draws_one_point_and_empty_series() {
     assert_accessible(&p);
     assert_eq!(count(&p.svg, "<polygon"), 1 + 1);
     assert_eq!(count(&p.svg, "\nno snapshots yet\n</text>"), 1);
-    assert!(p.svg.contains("1 snapshot, 1 without an interval"));
-    assert!(
-        p.description
-            .contains("J~1 = J1/J: 1 snapshot at 1 X-ray: mean 0.5500, no confidence interval.")
-    );
+    assert!(p.svg.contains("1 snapshot, 1 X-ray, 1 without an interval"));
+    assert!(p.description.contains(
+        "J~1 = J1/J: 1 snapshot at snapshot 1 (1 X-ray): mean 0.5500, no confidence interval."
+    ));
     assert!(p.description.contains("J~2 = J2/J: no snapshots yet."));
 
     for series in [Vec::new(), vec![track("J~1", &[]), track("J~2", &[])]] {
@@ -647,4 +656,64 @@ fn beyond_a_dozen_only_the_xrays_worth_naming_are_labelled() {
         labelled(&finger::plot(&f, 0.95, &other).unwrap().svg),
         outside
     );
+}
+
+#[test]
+fn tracking_runs_against_the_snapshot_number_with_removals_and_flags_marked() {
+    use crate::analysis::{analyse, tracking};
+    use crate::dataset::history::{ChangeRecord, Event, FlaggedRow};
+    let full = Dataset::load(Path::new("data/measurements.csv")).unwrap();
+    let mut less = full.clone();
+    let last = less.rows.last().unwrap().xray.clone();
+    less.rows.retain(|r| r.xray != last);
+    let s = Settings {
+        resamples: 200,
+        ..Settings::default()
+    };
+    let (a_full, a_less) = (analyse(&full, &s), analyse(&less, &s));
+    let mut added = tracking::snapshot(&a_full, "t1".into(), Event::Add);
+    added.change = Some(ChangeRecord {
+        file: None,
+        xrays: vec![last.to_string()],
+        rows: 5,
+        flagged: vec![FlaggedRow {
+            xray: last.to_string(),
+            finger: Finger::Index,
+            reason: "typo".into(),
+        }],
+    });
+    let history = vec![
+        tracking::snapshot(&a_less, "t0".into(), Event::Snapshot),
+        added.clone(),
+        tracking::snapshot(&a_less, "t2".into(), Event::Remove),
+        added,
+    ];
+    let series = track_series(&history, Finger::Index);
+    assert_eq!(series.len(), 3, "J~1, J~2, J~3");
+    let p = &series[0].points;
+    // x is the snapshot number: 1, 2, 3, 4, though the X-rays go 4, 5, 4, 5.
+    let xs: Vec<(usize, usize)> = p.iter().map(|p| (p.snapshot, p.xrays)).collect();
+    assert_eq!(xs, [(1, 4), (2, 5), (3, 4), (4, 5)]);
+    let marks: Vec<(bool, usize)> = p.iter().map(|p| (p.removal, p.flagged)).collect();
+    assert_eq!(marks, [(false, 0), (false, 1), (true, 0), (false, 1)]);
+    // The thumb had no flagged row.
+    assert!(
+        track_series(&history, Finger::Thumb)[0]
+            .points
+            .iter()
+            .all(|p| p.flagged == 0)
+    );
+    let plot = tracking_plot(Finger::Index, &series, 0.95).unwrap();
+    for label in [
+        "snapshot (record of the history, in order)",
+        "4 snapshots, 4 to 5 X-rays, 1 with a removal, 2 adding flagged rows",
+        "removal (rows taken out)",
+    ] {
+        assert!(plot.svg.contains(label), "lacks {label:?}");
+    }
+    assert!(
+        plot.description
+            .contains("at snapshot 4 (5 X-rays, adding flagged rows)")
+    );
+    assert!(!plot.svg.contains("number of X-rays"));
 }

@@ -3,16 +3,16 @@
 //!
 //! One panel per relative quantity (J~1, J~2[, J~3]), stacked, each with its own
 //! y range (J~1 is near 0.48, J~3 near 0.24) and all with the same x range (the
-//! number of X-rays, integer ticks). Snapshots are drawn in order of their
-//! number of X-rays, ties in snapshot order: the mean as a line with a diamond
-//! per snapshot, the interval as a vertical bar per snapshot over a shaded band
-//! joining neighbouring intervals. Snapshots with the same number of X-rays are
-//! all drawn, at the same x.
+//! snapshot's number in the history, integer ticks), so a removal and a re-addition
+//! stay in time order: the mean as a line with a diamond per snapshot, the interval
+//! as a vertical bar per snapshot over a shaded band joining neighbouring intervals.
+//! A snapshot that removed rows is marked with a ring, one that added rows flagged
+//! as likely errors with a square; the legend names both.
 
 use super::draw::{
     Axes, Categories, Chart, Dir, DrawResult, Font, Frame, INK, Kind, LegendItem, Linear, MARGIN,
-    MUTED, Pen, Px, Root, WIDTH, clip, draw_axes, extent, finish, padded, render, text_width,
-    tick_format, xrays,
+    MUTED, NAMED, Pen, Px, RANGE, Root, WIDTH, clip, draw_axes, extent, finish, padded, render,
+    text_width, tick_format, xrays,
 };
 use super::kinds::{Plot, PlotKind, TrackPoint, TrackSeries, finger_phrase};
 use crate::dataset::Finger;
@@ -47,7 +47,7 @@ const EMPTY_X: (f64, f64) = (0.0, 10.0);
 /// One series, ready to draw.
 struct Panel<'s> {
     label: &'s str,
-    /// The snapshots with a finite mean, by number of X-rays (ties in snapshot order).
+    /// The snapshots with a finite mean, in snapshot order.
     points: Vec<TrackPoint>,
 }
 
@@ -60,8 +60,7 @@ impl<'s> Panel<'s> {
             .filter(|p| p.mean.is_finite())
             .copied()
             .collect();
-        // A stable sort: snapshots with the same number of X-rays keep their order.
-        points.sort_by_key(|p| p.xrays);
+        points.sort_by_key(|p| p.snapshot);
         Panel {
             label: &s.label,
             points,
@@ -98,9 +97,10 @@ pub(super) fn plot(finger: Finger, series: &[TrackSeries], confidence: f64) -> R
     let keys = integer_ticks(x0, x1);
     let title = format!("Tracking the means of {}", finger_phrase(finger));
     let subtitle = format!(
-        "Each relative segment length's mean against the number of X-rays, one panel per \
-         segment with its own y range. Per snapshot: the mean (diamonds, joined by a line) and its \
-         {} Student t confidence interval (bars, with a band between neighbouring snapshots).",
+        "Each relative segment length's mean snapshot by snapshot (the history's records in \
+         order), one panel per segment with its own y range. Per snapshot: the mean (diamonds, \
+         joined by a line) and its {} Student t confidence interval (bars, with a band between \
+         neighbouring snapshots); rings mark removals, squares additions of flagged rows.",
         level(confidence)
     );
     // The legend is drawn here: its swatches (a line with a marker, a band) are this plot's own.
@@ -113,7 +113,7 @@ pub(super) fn plot(finger: Finger, series: &[TrackSeries], confidence: f64) -> R
     let svg = render((WIDTH, height), &context, |root| {
         let pen = Pen::new(root);
         let mut top = frame.draw(&pen)?;
-        draw_legend(&pen, top, confidence)?;
+        draw_legend(root, &pen, top, confidence)?;
         top += LEGEND_BLOCK_PX as i32;
         for panel in &panels {
             let area = root.clone().shrink((0, top), (WIDTH, panel_px));
@@ -131,12 +131,12 @@ pub(super) fn plot(finger: Finger, series: &[TrackSeries], confidence: f64) -> R
     )
 }
 
-/// The shared x range: every snapshot's number of X-rays, padded by at least one
-/// X-ray on each side so a single snapshot sits inside the axis.
+/// The shared x range: every snapshot's number, padded by at least one on each
+/// side so a single snapshot sits inside the axis.
 fn x_range(panels: &[Panel]) -> (f64, f64) {
     let all = panels
         .iter()
-        .flat_map(|p| p.points.iter().map(|q| q.xrays as f64));
+        .flat_map(|p| p.points.iter().map(|q| q.snapshot as f64));
     match extent(all) {
         Some((lo, hi)) => {
             let pad = ((hi - lo) * 0.04).max(1.0);
@@ -166,8 +166,9 @@ fn integer_ticks(lo: f64, hi: f64) -> Vec<f64> {
         .collect()
 }
 
-/// The legend at `top`: the mean (a line with a marker) and the interval (a band with a bar).
-fn draw_legend(pen: &Pen, top: i32, confidence: f64) -> DrawResult {
+/// The legend at `top`: the mean (a line with a marker), the interval (a band with a
+/// bar), and the marks of removals and of flagged rows added.
+fn draw_legend(root: &Root<'_>, pen: &Pen, top: i32, confidence: f64) -> DrawResult {
     let mid = top + LEGEND_BLOCK_PX as i32 / 2 - 4;
     let font = Font::new(LEGEND_FONT_PX);
     let mut x = MARGIN;
@@ -187,7 +188,31 @@ fn draw_legend(pen: &Pen, top: i32, confidence: f64) -> DrawResult {
     pen.interval((c, mid - 7), (c, mid + 7), Dir::Vertical, Kind::T)?;
     x += SWATCH_W + 6;
     let label = format!("{} t confidence interval", level(confidence));
-    pen.text((x, mid), &label, font)
+    pen.text((x, mid), &label, font)?;
+    x += text_width(&label, LEGEND_FONT_PX) + 18;
+    removal_mark(root, (x + SWATCH_W / 2, mid))?;
+    x += SWATCH_W + 6;
+    pen.text((x, mid), "removal (rows taken out)", font)?;
+    x += text_width("removal (rows taken out)", LEGEND_FONT_PX) + 18;
+    flagged_mark(root, (x + SWATCH_W / 2, mid))?;
+    x += SWATCH_W + 6;
+    pen.text((x, mid), "flagged rows added", font)
+}
+
+/// The ring around a snapshot that removed rows.
+fn removal_mark(root: &Root<'_>, c: Px) -> DrawResult {
+    root.draw(&Circle::new(c, MARKER + 4, NAMED.stroke_width(2)))?;
+    Ok(())
+}
+
+/// The square around a snapshot that added rows flagged as likely errors.
+fn flagged_mark(root: &Root<'_>, (x, y): Px) -> DrawResult {
+    let r = MARKER + 4;
+    root.draw(&Rectangle::new(
+        [(x - r, y - r), (x + r, y + r)],
+        RANGE.stroke_width(2),
+    ))?;
+    Ok(())
 }
 
 /// Draws one series' panel into `area` (a full-width slice of `root` starting at
@@ -213,7 +238,7 @@ fn draw_panel(
     let x_format = |x: &f64| format::num(*x, 0);
     let y_format = tick_format(y1 - y0);
     let axes = Axes {
-        x_desc: "number of X-rays".to_string(),
+        x_desc: "snapshot (record of the history, in order)".to_string(),
         y_desc: "fraction of total length J".to_string(),
         x_grid: true,
         x_format: &x_format,
@@ -244,23 +269,26 @@ fn draw_heading(pen: &Pen, top: i32, panel: &Panel) -> DrawResult {
     pen.text((MARGIN, y), &label, Font::new(13.0).bold())?;
     let n = panel.points.len();
     let missing = panel.points.iter().filter(|p| ci(p).is_none()).count();
-    // Records of the same data (a removal undoing an addition, say) draw on one point.
-    let mut distinct: Vec<(usize, u64)> = panel
-        .points
-        .iter()
-        .map(|p| (p.xrays, p.mean.to_bits()))
-        .collect();
-    distinct.sort_unstable();
-    distinct.dedup();
-    let mut info = match (n, distinct.len()) {
-        (0, _) => return Ok(()),
-        (1, _) => "1 snapshot".to_string(),
-        (n, d) if d == n => format!("{n} snapshots"),
-        (n, 1) => format!("{n} snapshots, all on one point (the same statistics)"),
-        (n, d) => {
-            format!("{n} snapshots on {d} points (snapshots with the same statistics coincide)")
-        }
+    let removals = panel.points.iter().filter(|p| p.removal).count();
+    let flagged = panel.points.iter().filter(|p| p.flagged > 0).count();
+    let mut info = match n {
+        0 => return Ok(()),
+        1 => "1 snapshot".to_string(),
+        n => format!("{n} snapshots"),
     };
+    if let Some((lo, hi)) = extent(panel.points.iter().map(|p| p.xrays as f64)) {
+        info.push_str(&if lo == hi {
+            format!(", {}", xrays(lo as usize))
+        } else {
+            format!(", {} to {} X-rays", format::num(lo, 0), format::num(hi, 0))
+        });
+    }
+    if removals > 0 {
+        info.push_str(&format!(", {removals} with a removal"));
+    }
+    if flagged > 0 {
+        info.push_str(&format!(", {flagged} adding flagged rows"));
+    }
     if missing > 0 {
         info.push_str(&format!(", {missing} without an interval"));
     }
@@ -283,7 +311,7 @@ fn draw_snapshots(
         }
         let ends: Vec<(f64, (f64, f64))> = run
             .iter()
-            .filter_map(|p| ci(p).map(|i| (p.xrays as f64, i)))
+            .filter_map(|p| ci(p).map(|i| (p.snapshot as f64, i)))
             .collect();
         let upper = ends.iter().map(|&(x, (_, hi))| at(x, hi));
         let lower = ends.iter().rev().map(|&(x, (lo, _))| at(x, lo));
@@ -291,17 +319,27 @@ fn draw_snapshots(
         root.draw(&Polygon::new(outline, t.mix(BAND_OPACITY).filled()))?;
     }
     if points.len() > 1 {
-        let line: Vec<Px> = points.iter().map(|p| at(p.xrays as f64, p.mean)).collect();
+        let line: Vec<Px> = points
+            .iter()
+            .map(|p| at(p.snapshot as f64, p.mean))
+            .collect();
         root.draw(&PathElement::new(line, INK.stroke_width(2)))?;
     }
     for p in points {
         if let Some((lo, hi)) = ci(p) {
-            let x = p.xrays as f64;
+            let x = p.snapshot as f64;
             pen.interval(at(x, lo), at(x, hi), Dir::Vertical, Kind::T)?;
         }
     }
     for p in points {
-        pen.diamond(at(p.xrays as f64, p.mean), MARKER)?;
+        let c = at(p.snapshot as f64, p.mean);
+        pen.diamond(c, MARKER)?;
+        if p.removal {
+            removal_mark(root, c)?;
+        }
+        if p.flagged > 0 {
+            flagged_mark(root, c)?;
+        }
     }
     Ok(())
 }
@@ -310,8 +348,9 @@ fn draw_snapshots(
 fn description(finger: Finger, series: &[TrackSeries], confidence: f64) -> String {
     let mut d = format!(
         "Tracking plot of {}: the mean of each relative segment length (fraction of the \
-         finger's total length J) against the number of X-rays it was computed from, one point \
-         per snapshot, with its {} Student t confidence interval.",
+         finger's total length J) snapshot by snapshot, in the history's order, one point \
+         per snapshot, with its {} Student t confidence interval; snapshots that removed rows \
+         and that added rows flagged as likely errors are marked.",
         finger_phrase(finger),
         level(confidence)
     );
@@ -341,7 +380,7 @@ fn series_sentence(s: &TrackSeries, confidence: f64) -> String {
     }
 }
 
-/// "at 3 X-rays: mean 0.4846, 95% t confidence interval from 0.4712 to 0.4980".
+/// "at snapshot 2 (3 X-rays): mean 0.4846, 95% t confidence interval from 0.4712 to 0.4980".
 fn point_words(p: &TrackPoint, confidence: f64) -> String {
     let interval = match p.ci {
         Some((lo, hi)) => format!(
@@ -352,8 +391,14 @@ fn point_words(p: &TrackPoint, confidence: f64) -> String {
         ),
         None => "no confidence interval".to_string(),
     };
+    let mark = match (p.removal, p.flagged) {
+        (true, _) => ", a removal",
+        (false, 0) => "",
+        (false, _) => ", adding flagged rows",
+    };
     format!(
-        "at {}: mean {}, {interval}",
+        "at snapshot {} ({}{mark}): mean {}, {interval}",
+        p.snapshot,
         xrays(p.xrays),
         format::num(p.mean, DECIMALS)
     )
@@ -379,6 +424,9 @@ mod tests {
         let s = TrackSeries {
             label: "J~1".to_string(),
             points: vec![TrackPoint {
+                snapshot: 1,
+                removal: false,
+                flagged: 0,
                 xrays: 1,
                 mean: 0.5,
                 ci: None,
