@@ -130,8 +130,10 @@ pub enum FindError {
     TwoHandsSide(String),
     /// A finger much wider than the others: two fused.
     #[error(
-        "the {} is {width:.0} mm wide, {ratio:.1} times the other fingers: two fingers fused in one (a mitten)?",
-        finger_words(*finger)
+        "the {} is {} mm wide, {} times the other fingers: two fingers fused in one, as in a mitten",
+        finger_words(*finger),
+        crate::format::num(*width, 0),
+        crate::format::num(*ratio, 1)
     )]
     Fused {
         finger: Finger,
@@ -148,12 +150,16 @@ pub enum FindError {
     NoWrist(String),
     /// The wrist given is far from the mesh.
     #[error(
-        "the wrist given lies {distance:.0} mm from the mesh, farther than a quarter of its length; give a point at the wrist"
+        "the wrist given lies {} mm from the mesh, farther than a quarter of its length; give a point at the wrist",
+        crate::format::num(*distance, 0)
     )]
     WristOff { distance: f64 },
     /// An extremity whose rings never close around an axis.
     #[error(
-        "could not trace a finger from the extremity at ({x:.1}, {y:.1}, {z:.1}) mm: its rings do not close around an axis"
+        "could not trace a finger from the extremity at ({}, {}, {}) mm: its rings do not close around an axis",
+        crate::format::num(*x, 1),
+        crate::format::num(*y, 1),
+        crate::format::num(*z, 1)
     )]
     NoAxis { x: f64, y: f64, z: f64 },
     /// The palm side, and so the side, cannot be told, and none was given.

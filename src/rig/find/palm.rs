@@ -58,11 +58,11 @@ pub(super) fn frame(
     let (palm_normal, side) = match (clear, opts.side) {
         (true, None) => {
             notes.push(format!(
-                "the palm faces where the thumb's tip ({:.0} mm off the palm's plane) and the \
-                 other fingertips ({:.0} mm on average) lie; the thumb lies {} distal x palm \
+                "the palm faces where the thumb's tip ({} mm off the palm's plane) and the \
+                 other fingertips ({} mm on average) lie; the thumb lies {} distal x palm \
                  normal: a {} hand",
-                mm(thumb_off.abs()),
-                mm(tips_off.abs()),
+                crate::format::num(mm(thumb_off.abs()), 0),
+                crate::format::num(mm(tips_off.abs()), 0),
                 if side_of(geometric) == Side::Right {
                     "on the side of"
                 } else {
@@ -230,9 +230,9 @@ pub(super) fn check_pose(
     };
     if let Some(&(f, i)) = named.iter().find(|&&(_, i)| measure(i).2 > 120.0) {
         return Err(FindError::Fist(format!(
-            "the {}'s axis turns {:.0} degrees from its base to its tip",
+            "the {}'s axis turns {} degrees from its base to its tip",
             finger_words(f),
-            measure(i).2
+            crate::format::num(measure(i).2, 0)
         )));
     }
     let curled: Vec<(Finger, usize)> = named
@@ -258,11 +258,11 @@ pub(super) fn check_pose(
             .unwrap_or(&curled[0]);
         let (straight, along, _) = measure(i);
         return Err(FindError::Fist(format!(
-            "the {}'s tip lies {:.0} mm from the wrist but {:.0} mm from it along the skin \
+            "the {}'s tip lies {} mm from the wrist but {} mm from it along the skin \
              ({} fingers curled back so)",
             finger_words(f),
-            mm(straight),
-            mm(along),
+            crate::format::num(mm(straight), 0),
+            crate::format::num(mm(along), 0),
             curled.len()
         )));
     }

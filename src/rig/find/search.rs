@@ -298,7 +298,7 @@ fn find_in(s: &Surface<'_>, obj: &Object, opts: &FindOptions) -> Result<FoundHan
     if candidates.len() > wanted {
         let left: Vec<String> = candidates[wanted..]
             .iter()
-            .map(|e| format!("{:.0} mm", mm(e.persistence(floor))))
+            .map(|e| format!("{} mm", crate::format::num(mm(e.persistence(floor)), 0)))
             .collect();
         notes.push(format!(
             "{} more extremit{} than the {wanted} fingers (persistence {}) {} left out",
@@ -340,11 +340,11 @@ fn find_in(s: &Surface<'_>, obj: &Object, opts: &FindOptions) -> Result<FoundHan
         if !t.trace.exits {
             let p = t.trace.tip;
             notes.push(format!(
-                "the axis of the finger ending near ({:.1}, {:.1}, {:.1}) mm does not cross \
-                 the skin (a hole at its tip?); its tip is the farthest skin along the axis",
-                mm(p.x),
-                mm(p.y),
-                mm(p.z)
+                "the axis of the finger ending near ({}, {}, {}) mm does not cross \
+                 the skin (its tip is open, or holed); its tip is the farthest skin along the axis",
+                crate::format::num(mm(p.x), 1),
+                crate::format::num(mm(p.y), 1),
+                crate::format::num(mm(p.z), 1)
             ));
         }
         traced.push(t);

@@ -99,10 +99,10 @@ pub(super) fn wrist_ring(
         at,
         normal,
         format!(
-            "the wrist is a cut across the hand's main axis {:.0} mm inside its end (no wrist \
+            "the wrist is a cut across the hand's main axis {} mm inside its end (no wrist \
              given, no open end; {} extremities lie beyond the middle from that end, {} from the \
              other); give --wrist X,Y,Z to place it",
-            mm(0.04 * length),
+            crate::format::num(mm(0.04 * length), 0),
             best,
             counts[0].min(counts[1])
         ),
@@ -143,9 +143,9 @@ pub(super) fn given_wrist(
                 format!("the wrist is {given}")
             } else {
                 format!(
-                    "the wrist is {given}; the geodesics start from the ring {:.0} mm \
+                    "the wrist is {given}; the geodesics start from the ring {} mm \
                      towards the fingers, where the plane across the hand first closes around it",
-                    mm(shift)
+                    crate::format::num(mm(shift), 0)
                 )
             };
             let mut wrist = ring_sources(s, ring, at, normal, how);
@@ -227,7 +227,10 @@ pub(super) fn ring_sources(
         centre: ring.centre,
         normal,
         sources,
-        how: format!("{how} (its ring {:.0} mm around)", mm(ring.perimeter)),
+        how: format!(
+            "{how} (its ring {} mm around)",
+            crate::format::num(mm(ring.perimeter), 0)
+        ),
     }
 }
 
@@ -290,8 +293,8 @@ pub(super) fn open_end(
         normal,
         sources: vertices.into_iter().map(|v| (v, 0.0)).collect(),
         how: format!(
-            "the wrist is the mesh's open end, a border {:.0} mm around",
-            mm(perimeter)
+            "the wrist is the mesh's open end, a border {} mm around",
+            crate::format::num(mm(perimeter), 0)
         ),
     })
 }

@@ -115,9 +115,10 @@ impl Edit<'_> {
         }
         (moved > 0).then(|| {
             format!(
-                "{at}: {moved} vertices rest up to {most:.6} (the file's units) from where they did: \
+                "{at}: {moved} vertices rest up to {} (the file's units) from where they did: \
                  skin {skin} binds its joints at different rest matrices (its bind pose is not its \
-                 rest pose), so new weights move them"
+                 rest pose), so new weights move them",
+                crate::format::num(most, 6)
             )
         })
     }
