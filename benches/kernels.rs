@@ -154,6 +154,7 @@ fn find_fingers(c: &mut Criterion) {
         fingers: 5,
         wrist: None,
         side: None,
+        ..FindOptions::default()
     };
     let mut g = c.benchmark_group("find_hand");
     g.sample_size(10);
