@@ -9,6 +9,18 @@ use crate::format::{decimals, level, percent};
 use crate::report::phrases::{counted, interval_advice_of};
 use serde::Serialize;
 
+/// One misprint as the key results list it.
+fn key_misprint(m: &super::claims::ClaimRow) -> KeyMisprint {
+    KeyMisprint {
+        id: m.id.clone(),
+        anchor: m.anchor.clone(),
+        text: format!(
+            "{}: stated {}, recomputed {}",
+            m.location, m.stated, m.computed
+        ),
+    }
+}
+
 /// The "Key results" box at the top of the report.
 #[derive(Debug, Clone, Serialize)]
 pub struct KeyResults {
@@ -40,6 +52,15 @@ pub struct KeyPlacement {
 pub struct KeyMisprints {
     /// "8 of the paper's 30 numbers disagree with its Table 1 (8 recorded errata, 0 new)."
     pub summary: String,
+    pub items: Vec<KeyMisprint>,
+    /// The same misprints grouped by their root cause.
+    pub groups: Vec<KeyMisprintGroup>,
+}
+
+/// One root cause and the misprints it explains.
+#[derive(Debug, Clone, Serialize)]
+pub struct KeyMisprintGroup {
+    pub cause: String,
     pub items: Vec<KeyMisprint>,
 }
 
@@ -97,16 +118,13 @@ pub(crate) fn key_results(inputs: &ReportInputs<'_>, claims: &ClaimsView) -> Key
                 s.mismatches
             )
         },
-        items: claims
-            .misprints
+        items: claims.misprints.iter().map(key_misprint).collect(),
+        groups: claims
+            .misprint_groups
             .iter()
-            .map(|m| KeyMisprint {
-                id: m.id.clone(),
-                anchor: m.anchor.clone(),
-                text: format!(
-                    "{}: stated {}, recomputed {}",
-                    m.location, m.stated, m.computed
-                ),
+            .map(|g| KeyMisprintGroup {
+                cause: g.cause.clone(),
+                items: g.claims.iter().map(key_misprint).collect(),
             })
             .collect(),
     };
