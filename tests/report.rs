@@ -792,17 +792,17 @@ fn the_contents_link_to_every_section_and_every_link_resolves() {
         .filter_map(|s| s.value().attr("id"))
         .collect();
     let linked: Vec<&str> = toc.iter().filter_map(|h| h.strip_prefix('#')).collect();
-    assert_eq!(linked, sections, "the contents list every section, in order");
+    assert_eq!(
+        linked, sections,
+        "the contents list every section, in order"
+    );
     for a in html.select(&sel("a[href^='#']")) {
         let href = a.value().attr("href").unwrap();
         assert!(ids.contains(&href[1..]), "{href} names no id");
     }
     // The Markdown's contents point at its headings' anchors.
     let md = std::fs::read_to_string("reports/report.md").unwrap();
-    let contents = md
-        .lines()
-        .find(|l| l.starts_with("**Contents:**"))
-        .unwrap();
+    let contents = md.lines().find(|l| l.starts_with("**Contents:**")).unwrap();
     let anchors: Vec<String> = md
         .lines()
         .filter_map(|l| l.strip_prefix("## "))
@@ -913,9 +913,6 @@ fn the_grooming_finger_is_named_once() {
     for page in ["reports/index.html", "reports/report.md"] {
         let text = std::fs::read_to_string(page).unwrap();
         let n = text.matches("grooming").count();
-        assert!(
-            (1..=2).contains(&n),
-            "{page} says 'grooming' {n} times"
-        );
+        assert!((1..=2).contains(&n), "{page} says 'grooming' {n} times");
     }
 }

@@ -70,9 +70,7 @@ pub(crate) fn literature_title(data: DataName) -> String {
 
 /// The section "The paper (or the X-rays) against published measurements".
 pub(crate) fn literature_view(l: &LiteratureInputs, data: DataName, toc: &Toc) -> LiteratureView {
-    use crate::report::compare_table::{
-        Profile, correlation_line, differs_in, table_finger_sentence,
-    };
+    use crate::report::compare_table::{correlation_line, table_finger_sentence};
     use crate::report::compare_words::Names;
     let p = &l.paper;
     let name = table_name(&p.b);
@@ -93,33 +91,7 @@ pub(crate) fn literature_view(l: &LiteratureInputs, data: DataName, toc: &Toc) -
             .clone()
             .unwrap_or_else(|| "not described".to_string()),
     );
-    let paper_profile = Profile::of_side(&p.a);
-    let table_profile = Profile::of_side(&crate::analysis::literature::SideInfo {
-        table_tip: None,
-        ..p.b.clone()
-    });
-    let mut cohorts = vec![format!(
-        "{name} differs from {} in {}.",
-        data.the,
-        differs_in(&paper_profile, &table_profile)
-    )];
-    if let Some(info) = &l.atlas_info {
-        cohorts.push(format!(
-            "{} differs from {} in {}.",
-            info.about
-                .as_ref()
-                .and_then(|a| a.name.clone())
-                .map(|n| {
-                    let mut c = n.chars();
-                    c.next().map_or(String::new(), |f| {
-                        f.to_uppercase().collect::<String>() + c.as_str()
-                    })
-                })
-                .unwrap_or_else(|| "The atlas".to_string()),
-            data.the,
-            differs_in(&paper_profile, &Profile::of_data(info))
-        ));
-    }
+    let cohorts = cohort_lines(l, &name, data);
     let conf = level(p.confidence);
     let (tips, tip_finding, tip_evidence) = tip_parts(p, names, data, &conf);
     let soft: Vec<String> = p
@@ -174,6 +146,40 @@ pub(crate) fn literature_view(l: &LiteratureInputs, data: DataName, toc: &Toc) -
             .collect(),
         notes: p.notes.clone(),
     }
+}
+
+/// How the published table and the atlas differ from the data, one line each.
+fn cohort_lines(l: &LiteratureInputs, name: &str, data: DataName) -> Vec<String> {
+    use crate::report::compare_table::{Profile, differs_in};
+    let p = &l.paper;
+    let paper_profile = Profile::of_side(&p.a);
+    let table_profile = Profile::of_side(&crate::analysis::literature::SideInfo {
+        table_tip: None,
+        ..p.b.clone()
+    });
+    let mut cohorts = vec![format!(
+        "{name} differs from {} in {}.",
+        data.the,
+        differs_in(&paper_profile, &table_profile)
+    )];
+    if let Some(info) = &l.atlas_info {
+        cohorts.push(format!(
+            "{} differs from {} in {}.",
+            info.about
+                .as_ref()
+                .and_then(|a| a.name.clone())
+                .map(|n| {
+                    let mut c = n.chars();
+                    c.next().map_or(String::new(), |f| {
+                        f.to_uppercase().collect::<String>() + c.as_str()
+                    })
+                })
+                .unwrap_or_else(|| "The atlas".to_string()),
+            data.the,
+            differs_in(&paper_profile, &Profile::of_data(info))
+        ));
+    }
+    cohorts
 }
 
 /// The fingertips' part: one row per finger's last segment, the overall finding, and the
