@@ -245,9 +245,9 @@ pub fn tip_finding_sentence(t: &TipFinding, names: Names<'_>, confidence: f64) -
     };
     let holds = t.sweep.iter().all(|(_, f)| *f == t.fit);
     format!(
-        "{}: {}'s {} is {} ({} t CI {}); {}'s bone only gives {}, {} that interval ({}), bone plus soft tissue {}, {} it ({}). {}{}.",
+        "{}: {} {} is {} ({} t CI {}); {}'s bone only gives {}, {} that interval ({}), bone plus soft tissue {}, {} it ({}). {}{}.",
         finger_name(t.finger),
-        names.a,
+        possessive(names.a),
         q.symbol(),
         num(t.data.mean, d(q)),
         level(confidence),
@@ -287,7 +287,8 @@ pub fn tip_overall(v: &TipVerdict, names: Names<'_>) -> String {
                 None => "its rows do not record where the tips are".to_string(),
             };
             return format!(
-                "Against {table}, the fingers do not reject one tip and leave the other at every correlation from 0 to 0.9, so where {data}'s fingertips are is not settled ({record})."
+                "Against {table}, the fingers do not reject one tip and leave the other at every correlation from 0 to 0.9, so where {} fingertips are is not settled ({record}).",
+                possessive(data)
             );
         }
     };
@@ -314,9 +315,19 @@ pub fn tip_overall(v: &TipVerdict, names: Names<'_>) -> String {
         ),
     };
     format!(
-        "Against {table}, {data}'s last segment rejects {rejected} on all {n} fingers at every correlation from 0 to 0.9 (each Welch interval of the difference excludes 0) and does not reject {kept} on any{nearest}. So {data}'s fingertips are taken {}: not rejected is not shown equal. {record}",
-        tip.phrase()
+        "Against {table}, {of} last segment rejects {rejected} on all {n} fingers at every correlation from 0 to 0.9 (each Welch interval of the difference excludes 0) and does not reject {kept} on any{nearest}. So {of} fingertips are taken {}: not rejected is not shown equal. {record}",
+        tip.phrase(),
+        of = possessive(data)
     )
+}
+
+/// "A's", "the paper's", "the X-rays'": a name's possessive.
+fn possessive(name: &str) -> String {
+    if name.ends_with('s') {
+        format!("{name}'")
+    } else {
+        format!("{name}'s")
+    }
 }
 
 /// The sentence of one finger: which quantities differ, on which equality is not rejected,

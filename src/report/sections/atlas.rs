@@ -222,14 +222,14 @@ fn atlas_sentences(
     let mut sentences: Vec<String> = c
         .fingers
         .iter()
-        .map(|f| finger_sentence(f, names, confidence))
+        .map(|f| data.possessive_in(finger_sentence(f, names, confidence)))
         .collect();
     for f in &c.fingers {
         if let Some(last) = &f.last_segment {
             sentences.push(format!(
                 "{}: {}",
                 f.finger.name(),
-                tip_sentence(last, c, names)
+                data.possessive_in(tip_sentence(last, c, names))
             ));
         }
     }

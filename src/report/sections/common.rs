@@ -77,6 +77,19 @@ impl DataName {
     }
 }
 
+impl DataName {
+    /// `text` with "the X-rays's", as the sentences shared with `compare` write a name's
+    /// possessive, made "the X-rays'".
+    pub(crate) fn possessive_in(&self, text: String) -> String {
+        let wrong = format!("{}'s", self.the);
+        if self.of == wrong {
+            text
+        } else {
+            text.replace(&wrong, self.of)
+        }
+    }
+}
+
 /// The anchor GitHub gives a Markdown heading: lower case, spaces to hyphens, other
 /// punctuation dropped.
 pub(crate) fn md_anchor(heading: &str) -> String {

@@ -142,7 +142,7 @@ pub(crate) fn literature_view(l: &LiteratureInputs, data: DataName, toc: &Toc) -
         sentences: p
             .fingers
             .iter()
-            .map(|f| table_finger_sentence(f, names))
+            .map(|f| data.possessive_in(table_finger_sentence(f, names)))
             .collect(),
         notes: p.notes.clone(),
     }
