@@ -1302,7 +1302,11 @@ fn every_file_the_list_of_architecture_md_names_exists() {
         .filter_map(|l| l.split('`').next())
         .filter(|f| f.ends_with(".rs"))
         .collect();
-    assert!(listed.len() > 150, "the map lists only {} files", listed.len());
+    assert!(
+        listed.len() > 150,
+        "the map lists only {} files",
+        listed.len()
+    );
     let gone: Vec<&str> = listed
         .into_iter()
         .filter(|f| !all.iter().any(|a| a == f))

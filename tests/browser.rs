@@ -4,7 +4,9 @@
 //! Chromium what a reader actually sees. The report has no JavaScript, so the
 //! test copies it into a temporary directory, injects a small probe script
 //! before `</body>`, loads the copy with `chromium --dump-dom` in a 1366 px wide
-//! window and reads the probe's JSON summary back out of the dumped DOM:
+//! window and reads the probe's JSON summary back out of the dumped DOM. The
+//! probe first opens every collapsed part (`<details>`), so what is checked is
+//! what a reader sees once they open it:
 //!
 //! * the committed report itself has no `<script>`;
 //! * at least 15 tables, each with a non-empty caption, a body row, non-zero
@@ -66,6 +68,8 @@ window.addEventListener('load', function () {
   try {
     var de = document.documentElement;
     var all = function (sel, root) { return Array.prototype.slice.call((root || document).querySelectorAll(sel)); };
+    out.details = all('details').length;
+    all('details').forEach(function (d) { d.open = true; });
     var box = function (el) {
       var r = el.getBoundingClientRect();
       var s = getComputedStyle(el);

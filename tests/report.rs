@@ -176,7 +176,8 @@ fn html_holds_every_table_and_a_plot_of_each_kind() {
         .map(|c| c.text().collect())
         .collect();
     assert_eq!(cells.len(), 14);
-    assert_eq!(&cells[..3], ["339.96", "188.83", "169.67"]);
+    // Thumb first, as in every other table (the paper prints it last).
+    assert_eq!(&cells[..3], ["270.83", "230.95", "339.96"]);
     // Popular rigs: the three data/rigs files, five fingers each.
     assert_eq!(html.select(&sel("table#rigs-table tbody tr")).count(), 15);
     // Claims: 30 rows.
@@ -228,7 +229,7 @@ fn paper_numbers_appear_in_the_report() {
     // assurance at the upper end of the SD's 95% interval (0.0113), not the plug-in's 5
     // (tests/independent/xrays_needed.py); the plug-in stays, labelled optimistic.
     assert!(
-        md.contains("| index (the paper's 'grooming' finger) | J\\~2 = J2/J | 5 | 0.0039 | 0.0113 | 0.0049 | 27 | 22 more | 5 |"),
+        md.contains("| index | J\\~2 = J2/J | 5 | 0.0039 | 0.0113 | 0.0049 | 27 | 22 more | 5 |"),
         "{md}"
     );
     assert!(md.contains("| X-rays needed | Still to measure | Plug-in (optimistic) |"));
@@ -545,7 +546,7 @@ fn the_report_compares_the_paper_with_the_atlas() {
     // the paper's (tests/independent/xrays_needed.txt: index J~2, atlas SD 0.0092, 21).
     assert!(md.contains("| X-rays needed | Still to measure | The atlas, where its SD is larger | Plug-in (optimistic) |"), "{md}");
     assert!(
-        md.contains("| index (the paper's 'grooming' finger) | J\\~2 = J2/J | 5 | 0.0039 | 0.0113 | 0.0049 | 27 | 22 more | SD 0.0092: 21 | 5 |"),
+        md.contains("| index | J\\~2 = J2/J | 5 | 0.0039 | 0.0113 | 0.0049 | 27 | 22 more | SD 0.0092: 21 | 5 |"),
         "{md}"
     );
     assert!(md.contains("Where the atlas (section 11: 910 X-rays of children's left hands, tips at the bone) gives a larger SD"));
@@ -619,7 +620,8 @@ fn the_report_holds_the_paper_against_published_measurements() {
         );
     }
     let md = file(&files, "report.md");
-    assert!(md.contains("## 12. The paper against published measurements"));
+    // Without the atlas it follows the methods: numbered 11, no gap.
+    assert!(md.contains("## 11. The paper against published measurements"));
     assert!(md.contains(
         "> **Where the paper's fingertips are.** The paper's fingertips are taken at the skin"
     ));
@@ -753,5 +755,164 @@ fn the_report_rigs_the_webxr_hand_from_its_skin() {
                 .filter(|c| *c != "n/a")
                 .all(|c| c.parse::<f64>().unwrap() < 30.0)
         );
+    }
+}
+
+/// The committed report's HTML, parsed.
+fn committed_html() -> Html {
+    Html::parse_document(&std::fs::read_to_string("reports/index.html").unwrap())
+}
+
+/// The numbers of the numbered `<h2>` headings ("3. Statistics" gives 3), in order.
+fn section_numbers(html: &Html) -> Vec<usize> {
+    let h2 = Selector::parse("h2").unwrap();
+    html.select(&h2)
+        .filter_map(|h| {
+            let t = h.text().collect::<String>();
+            t.trim().split_once(". ")?.0.parse().ok()
+        })
+        .collect()
+}
+
+#[test]
+fn the_contents_link_to_every_section_and_every_link_resolves() {
+    let html = committed_html();
+    let sel = |s: &str| Selector::parse(s).unwrap();
+    let ids: std::collections::HashSet<String> = html
+        .select(&sel("[id]"))
+        .filter_map(|e| e.value().attr("id").map(str::to_string))
+        .collect();
+    let toc: Vec<&str> = html
+        .select(&sel("nav a"))
+        .filter_map(|a| a.value().attr("href"))
+        .collect();
+    let sections: Vec<&str> = html
+        .select(&sel("section[id]"))
+        .filter(|s| s.value().attr("id") != Some("key-results"))
+        .filter_map(|s| s.value().attr("id"))
+        .collect();
+    let linked: Vec<&str> = toc.iter().filter_map(|h| h.strip_prefix('#')).collect();
+    assert_eq!(
+        linked, sections,
+        "the contents list every section, in order"
+    );
+    for a in html.select(&sel("a[href^='#']")) {
+        let href = a.value().attr("href").unwrap();
+        assert!(ids.contains(&href[1..]), "{href} names no id");
+    }
+    // The Markdown's contents point at its headings' anchors.
+    let md = std::fs::read_to_string("reports/report.md").unwrap();
+    let contents = md.lines().find(|l| l.starts_with("**Contents:**")).unwrap();
+    let anchors: Vec<String> = md
+        .lines()
+        .filter_map(|l| l.strip_prefix("## "))
+        .map(|h| {
+            h.chars()
+                .filter_map(|c| match c {
+                    ' ' | '-' => Some('-'),
+                    c if c.is_alphanumeric() => Some(c.to_ascii_lowercase()),
+                    _ => None,
+                })
+                .collect()
+        })
+        .collect();
+    for link in contents.split("](#").skip(1) {
+        let anchor = link.split(')').next().unwrap();
+        assert!(
+            anchors.iter().any(|a| a == anchor),
+            "#{anchor} is no heading"
+        );
+    }
+}
+
+#[test]
+fn sections_are_numbered_without_gaps() {
+    let committed = section_numbers(&committed_html());
+    assert_eq!(committed, (1..=committed.len()).collect::<Vec<_>>());
+    assert_eq!(committed.len(), 13, "the paper's report has every section");
+    // Without the atlas and the published table the rigs follow the methods directly.
+    let (files, _) = render_bytes(&paper_bytes());
+    let html = Html::parse_document(file(&files, "index.html"));
+    let numbers = section_numbers(&html);
+    assert_eq!(numbers, (1..=11).collect::<Vec<_>>());
+    let md = file(&files, "report.md");
+    assert!(md.contains("## 11. Popular rigs against the X-rays"));
+    assert!(!md.contains("## 13."));
+}
+
+#[test]
+fn the_deformation_is_compared_only_when_the_fix_moves_a_joint() {
+    use phalanx::report::sections::deform::DeformView;
+    let (_, mut v) = render_bytes(&paper_bytes());
+    let sentence = "The fix moves no joint, so A and B would be the same rig: their deformation is not compared.";
+    v.deform = Some(DeformView {
+        rig: "hand.glb".into(),
+        pose: String::new(),
+        moved: "The fix moves no joint: A and B are the same rig.".into(),
+        compared: false,
+        not_compared: sentence.into(),
+        tolerance: String::new(),
+        audit: Vec::new(),
+        audit_notes: Vec::new(),
+        hands: Vec::new(),
+        can_tell: String::new(),
+        caveats: vec!["a caveat of the comparison".into()],
+    });
+    let t = Templates::builtin().unwrap();
+    let html = String::from_utf8(t.html(&v).unwrap()).unwrap();
+    let md = String::from_utf8(t.markdown(&v).unwrap()).unwrap();
+    for page in [&html, &md] {
+        assert!(page.contains(sentence));
+        assert!(!page.contains("a caveat of the comparison"));
+        assert!(!page.contains("Does the fix deform better?"));
+    }
+    // The committed report's rig moves a joint: its comparison is there.
+    let committed = std::fs::read_to_string("reports/index.html").unwrap();
+    assert!(committed.contains("id=\"deform-right\""));
+    assert!(!committed.contains(sentence));
+}
+
+#[test]
+fn every_finger_table_starts_with_the_thumb() {
+    const ORDER: [&str; 5] = ["thumb", "index", "middle", "ring", "little"];
+    let html = committed_html();
+    let sel = |s: &str| Selector::parse(s).unwrap();
+    let mut checked = 0;
+    for table in html.select(&sel("table")) {
+        let fingers: Vec<usize> = table
+            .select(&sel("th, td"))
+            .filter_map(|c| {
+                let t = c.text().collect::<String>();
+                ORDER.iter().position(|f| *f == t.trim())
+            })
+            .collect();
+        let Some(&first) = fingers.first() else {
+            continue;
+        };
+        let id = table.value().attr("id").unwrap_or("?");
+        // A table of the fingers with two positions has no thumb; any other starts with it.
+        if fingers.contains(&0) {
+            assert_eq!(first, 0, "table {id} starts with {}", ORDER[first]);
+        }
+        // Each run of fingers (one per rig or group) goes thumb to little.
+        for w in fingers.windows(2) {
+            assert!(
+                w[1] >= w[0] || w[1] == 0,
+                "table {id}: {} after {}",
+                ORDER[w[1]],
+                ORDER[w[0]]
+            );
+        }
+        checked += 1;
+    }
+    assert!(checked >= 8, "only {checked} finger tables");
+}
+
+#[test]
+fn the_grooming_finger_is_named_once() {
+    for page in ["reports/index.html", "reports/report.md"] {
+        let text = std::fs::read_to_string(page).unwrap();
+        let n = text.matches("grooming").count();
+        assert!((1..=2).contains(&n), "{page} says 'grooming' {n} times");
     }
 }

@@ -245,9 +245,9 @@ pub fn tip_finding_sentence(t: &TipFinding, names: Names<'_>, confidence: f64) -
     };
     let holds = t.sweep.iter().all(|(_, f)| *f == t.fit);
     format!(
-        "{}: {}'s {} is {} ({} t CI {}); {}'s bone only gives {}, {} that interval ({}), bone plus soft tissue {}, {} it ({}). {}{}.",
+        "{}: {} {} is {} ({} t CI {}); {}'s bone only gives {}, {} that interval ({}), bone plus soft tissue {}, {} it ({}). {}{}.",
         finger_name(t.finger),
-        names.a,
+        possessive(names.a),
         q.symbol(),
         num(t.data.mean, d(q)),
         level(confidence),
@@ -287,7 +287,8 @@ pub fn tip_overall(v: &TipVerdict, names: Names<'_>) -> String {
                 None => "its rows do not record where the tips are".to_string(),
             };
             return format!(
-                "Against {table}, the fingers do not reject one tip and leave the other at every correlation from 0 to 0.9, so where {data}'s fingertips are is not settled ({record})."
+                "Against {table}, the fingers do not reject one tip and leave the other at every correlation from 0 to 0.9, so where {} fingertips are is not settled ({record}).",
+                possessive(data)
             );
         }
     };
@@ -314,9 +315,19 @@ pub fn tip_overall(v: &TipVerdict, names: Names<'_>) -> String {
         ),
     };
     format!(
-        "Against {table}, {data}'s last segment rejects {rejected} on all {n} fingers at every correlation from 0 to 0.9 (each Welch interval of the difference excludes 0) and does not reject {kept} on any{nearest}. So {data}'s fingertips are taken {}: not rejected is not shown equal. {record}",
-        tip.phrase()
+        "Against {table}, {of} last segment rejects {rejected} on all {n} fingers at every correlation from 0 to 0.9 (each Welch interval of the difference excludes 0) and does not reject {kept} on any{nearest}. So {of} fingertips are taken {}: not rejected is not shown equal. {record}",
+        tip.phrase(),
+        of = possessive(data)
     )
+}
+
+/// "A's", "the paper's", "the X-rays'": a name's possessive.
+fn possessive(name: &str) -> String {
+    if name.ends_with('s') {
+        format!("{name}'")
+    } else {
+        format!("{name}'s")
+    }
 }
 
 /// The sentence of one finger: which quantities differ, on which equality is not rejected,
@@ -545,51 +556,75 @@ pub fn text(c: &TableCohorts, width: Width) -> String {
     }
     out.push_str(&format!("\n{}\n", correlation_line(&c.correlation)));
     if let Some(v) = &c.tips {
-        let (dn, tn) = if v.data == "a" {
-            ("A", "B")
-        } else {
-            ("B", "A")
-        };
-        out.push_str(&format!(
-            "\nWhere {dn}'s fingertips are: its last segment against {tn}'s, bone only and bone plus soft tissue ({conf} intervals; differences {tn} - {dn}; kept: the tip not rejected where the other is)\n"
-        ));
-        let mut g = Grid::new()
-            .col("finger", Align::Left, Give::Keep)
-            .col(format!("{dn}, mean [t CI]"), Align::Right, Give::Keep)
-            .col(format!("{tn} bone only"), Align::Right, Give::Keep)
-            .col(format!("{tn} bone + soft tissue"), Align::Right, Give::Keep)
-            .col("kept", Align::Left, Give::Keep);
-        for t in &v.fingers {
-            g.row(vec![
-                format!("{} {}", t.finger.name(), t.quantity.symbol()),
-                estimate_cell(&t.data, t.quantity),
-                estimate_cell(&t.bone, t.quantity),
-                estimate_cell(&t.skin, t.quantity),
-                match t.fit {
-                    Some(Fit::Skin) => "skin".into(),
-                    Some(Fit::Bone) => "bone".into(),
-                    Some(Fit::Both) => "both".into(),
-                    Some(Fit::Neither) => "neither".into(),
-                    None => "n/a".into(),
-                },
-            ]);
-        }
-        out.push_str(&g.render(width, 0, &mut hidden));
-        let tip_names = if v.data == "a" {
-            names
-        } else {
-            Names { a: "B", b: "A" }
-        };
-        for t in &v.fingers {
-            out.push_str(&format!(
-                "- {}\n",
-                tip_finding_sentence(t, tip_names, c.confidence)
-            ));
-        }
+        out.push_str(&tips_text(c, v, width, &mut hidden));
     }
     out.push_str(&format!(
         "\nThe tables: A's and B's estimates with {conf} t intervals (a dataset: its mean over X-rays; a table: its ratio of means, delta-method SE at the assumed correlation), B - A with a Welch-type {conf} interval, and the verdict at the assumed correlation: differs when that interval excludes 0, not rejected when it holds 0 (no difference shown, which is not equality shown). A verdict marked * changes between correlations 0 and 0.9 (--format csv gives each).\n"
     ));
+    out.push_str(&finger_tables(c, width, &mut hidden));
+    out.push_str(&unanswered(c));
+    hidden.append_to(&mut out, width);
+    fit_text(&out, width)
+}
+
+/// The fingertips' part of [`text`]: the data side's last segment against the table's,
+/// bone only and with soft tissue, then one sentence per finger.
+fn tips_text(
+    c: &TableCohorts,
+    v: &crate::analysis::literature::TipVerdict,
+    width: Width,
+    hidden: &mut Hidden,
+) -> String {
+    let names = Names::AB;
+    let conf = level(c.confidence);
+    let mut out = String::new();
+    let (dn, tn) = if v.data == "a" {
+        ("A", "B")
+    } else {
+        ("B", "A")
+    };
+    out.push_str(&format!(
+    "\nWhere {dn}'s fingertips are: its last segment against {tn}'s, bone only and bone plus soft tissue ({conf} intervals; differences {tn} - {dn}; kept: the tip not rejected where the other is)\n"
+));
+    let mut g = Grid::new()
+        .col("finger", Align::Left, Give::Keep)
+        .col(format!("{dn}, mean [t CI]"), Align::Right, Give::Keep)
+        .col(format!("{tn} bone only"), Align::Right, Give::Keep)
+        .col(format!("{tn} bone + soft tissue"), Align::Right, Give::Keep)
+        .col("kept", Align::Left, Give::Keep);
+    for t in &v.fingers {
+        g.row(vec![
+            format!("{} {}", t.finger.name(), t.quantity.symbol()),
+            estimate_cell(&t.data, t.quantity),
+            estimate_cell(&t.bone, t.quantity),
+            estimate_cell(&t.skin, t.quantity),
+            match t.fit {
+                Some(Fit::Skin) => "skin".into(),
+                Some(Fit::Bone) => "bone".into(),
+                Some(Fit::Both) => "both".into(),
+                Some(Fit::Neither) => "neither".into(),
+                None => "n/a".into(),
+            },
+        ]);
+    }
+    out.push_str(&g.render(width, 0, hidden));
+    let tip_names = if v.data == "a" {
+        names
+    } else {
+        Names { a: "B", b: "A" }
+    };
+    for t in &v.fingers {
+        out.push_str(&format!(
+            "- {}\n",
+            tip_finding_sentence(t, tip_names, c.confidence)
+        ));
+    }
+    out
+}
+
+/// One table per finger: A's and B's estimates, B - A and the verdict.
+fn finger_tables(c: &TableCohorts, width: Width, hidden: &mut Hidden) -> String {
+    let mut out = String::new();
     for f in &c.fingers {
         let mut g = Grid::new()
             .col("", Align::Left, Give::Keep)
@@ -620,8 +655,14 @@ pub fn text(c: &TableCohorts, width: Width) -> String {
             f.finger.display_name(),
             trim_rho(f.rho)
         ));
-        out.push_str(&g.render(width, 0, &mut hidden));
+        out.push_str(&g.render(width, 0, hidden));
     }
+    out
+}
+
+/// The values without an interval and the quantities not compared, with why.
+fn unanswered(c: &TableCohorts) -> String {
+    let mut out = String::new();
     let whys: Vec<String> = c
         .fingers
         .iter()
@@ -643,8 +684,7 @@ pub fn text(c: &TableCohorts, width: Width) -> String {
             out.push_str(&format!("not compared: {n}\n"));
         }
     }
-    hidden.append_to(&mut out, width);
-    fit_text(&out, width)
+    out
 }
 
 /// Header of the CSV of a comparison with a table.

@@ -133,9 +133,8 @@ pub(crate) fn gather(
     let (results, claims_note) = check_claims(&claims, &dataset);
     let paper_xrays = claims.named_in(&dataset);
     let references = reference::load_dir(req.rigs)?;
-    // The section compares the paper's X-rays with the atlas: over other data it is left out.
-    let is_paper = paper_xrays.0 > 0 && paper_xrays.0 == paper_xrays.1;
-    let atlas_data = if is_paper && req.atlas.exists() {
+    // The section compares the data's X-rays, the paper's or a lab's, with the atlas.
+    let atlas_data = if req.atlas.exists() {
         Some(Dataset::load(req.atlas)?)
     } else {
         None

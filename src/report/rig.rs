@@ -271,40 +271,7 @@ pub(crate) fn made_section(s: MadeInputs<'_>, font: Option<&[u8]>) -> Result<Mad
             side.name()
         )));
     };
-    // The joints on the skin at rest, from above and from the side.
-    let focus = ha.hand_vertices();
-    let still = vec![0.0; ha.mesh.positions.len()];
-    let skin = MeshView {
-        positions: &ha.mesh.positions,
-        triangles: &ha.mesh.triangles,
-        strain: &still,
-        focus: &focus,
-    };
-    let views = [View::above(&ha.posed.frame), View::side(&ha.posed.frame)];
-    let layout = Marked::layout(&skin, &views, JOINTS_PANEL.0, JOINTS_PANEL.1);
-    let chains = marked_chains(made, s.artist);
-    let key: Vec<(String, [u8; 3])> = made
-        .hand
-        .fingers
-        .iter()
-        .map(|f| (f.finger.name().to_string(), colour(f.finger)))
-        .collect();
-    let joints_png = layout
-        .render(
-            &skin,
-            &chains,
-            &[
-                "from above (the back of the hand)",
-                "from the little finger's side",
-            ],
-            &key,
-            [
-                "made by phalanx rig (labelled)",
-                "the artist's joint (in the file)",
-            ],
-            font,
-        )
-        .map_err(|e| Error::render("cannot draw the joints made on the skin", e))?;
+    let (joints_png, joints_size) = joints_figure(&s, ha, font)?;
     let file_name = std::path::Path::new(s.rig)
         .file_name()
         .map_or_else(|| s.rig.to_string(), |n| n.to_string_lossy().into_owned());
@@ -322,7 +289,7 @@ pub(crate) fn made_section(s: MadeInputs<'_>, font: Option<&[u8]>) -> Result<Mad
         &mut files,
         &format!("{}-joints", s.stem),
         joints_png,
-        (layout.width, layout.height),
+        joints_size,
         format!(
             "The {} hand's skin seen through, with the joints phalanx rig made (dots, labelled) and \
              the artist's (rings), from above and from the side",
@@ -370,6 +337,51 @@ pub(crate) fn made_section(s: MadeInputs<'_>, font: Option<&[u8]>) -> Result<Mad
         },
         figures: files,
     })
+}
+
+/// The figure of the joints made on the skin at rest beside the artist's, from above and
+/// from the side: its PNG and size in pixels.
+fn joints_figure(
+    s: &MadeInputs<'_>,
+    ha: &crate::rig::deform::file::HandDeformation,
+    font: Option<&[u8]>,
+) -> Result<(Vec<u8>, (u32, u32)), Error> {
+    let made = &s.rigged.made;
+    // The joints on the skin at rest, from above and from the side.
+    let focus = ha.hand_vertices();
+    let still = vec![0.0; ha.mesh.positions.len()];
+    let skin = MeshView {
+        positions: &ha.mesh.positions,
+        triangles: &ha.mesh.triangles,
+        strain: &still,
+        focus: &focus,
+    };
+    let views = [View::above(&ha.posed.frame), View::side(&ha.posed.frame)];
+    let layout = Marked::layout(&skin, &views, JOINTS_PANEL.0, JOINTS_PANEL.1);
+    let chains = marked_chains(made, s.artist);
+    let key: Vec<(String, [u8; 3])> = made
+        .hand
+        .fingers
+        .iter()
+        .map(|f| (f.finger.name().to_string(), colour(f.finger)))
+        .collect();
+    let joints_png = layout
+        .render(
+            &skin,
+            &chains,
+            &[
+                "from above (the back of the hand)",
+                "from the little finger's side",
+            ],
+            &key,
+            [
+                "made by phalanx rig (labelled)",
+                "the artist's joint (in the file)",
+            ],
+            font,
+        )
+        .map_err(|e| Error::render("cannot draw the joints made on the skin", e))?;
+    Ok((joints_png, (layout.width, layout.height)))
 }
 
 /// A finger's colour in the joints' figure.
@@ -548,7 +560,6 @@ fn in_words(d: DVec3, along: DVec3, palm: DVec3) -> String {
 /// MCPs and the depth come from, and where the made joints differ from
 /// the artist's.
 fn made_sentences(r: &RiggedInMemory, artist: &[FingerChain]) -> Vec<String> {
-    let fingers = &r.made.hand.fingers;
     let audited = &r.audit.fingers;
     let inside = audited.iter().filter(|f| f.audit.is_consistent()).count();
     let largest = audited
@@ -571,8 +582,21 @@ fn made_sentences(r: &RiggedInMemory, artist: &[FingerChain]) -> Vec<String> {
          back, the thumb's on its axis.",
         trimmed(DEPTH, 2)
     ));
+    let offsets = made_offsets(r, artist);
+    out.extend(against_artist(&offsets));
+    out.extend(differs_most(r, &offsets));
+    out
+}
+
+/// A made point against the artist's: (finger, joint (`None`: the CMC), made less theirs,
+/// the artist's finger direction).
+type Offset = (Finger, Option<Joint>, DVec3, DVec3);
+
+/// Each made point against the artist's, finger by finger.
+fn made_offsets(r: &RiggedInMemory, artist: &[FingerChain]) -> Vec<Offset> {
+    let fingers = &r.made.hand.fingers;
     // Each made point against the artist's: (finger, joint, made less theirs, along).
-    let mut offsets: Vec<(Finger, Option<Joint>, DVec3, DVec3)> = Vec::new();
+    let mut offsets: Vec<Offset> = Vec::new();
     for f in fingers {
         let Some(c) = artist.iter().find(|c| c.finger == f.finger) else {
             continue;
@@ -587,6 +611,11 @@ fn made_sentences(r: &RiggedInMemory, artist: &[FingerChain]) -> Vec<String> {
             }
         }
     }
+    offsets
+}
+
+/// How far the made joints and tips lie from the artist's, in one sentence.
+fn against_artist(offsets: &[Offset]) -> Option<String> {
     let span = |pick: &dyn Fn(Finger, Option<Joint>) -> bool| -> Option<(f64, f64)> {
         let d: Vec<f64> = offsets
             .iter()
@@ -627,39 +656,39 @@ fn made_sentences(r: &RiggedInMemory, artist: &[FingerChain]) -> Vec<String> {
             )
         });
     }
-    if !differs.is_empty() {
-        out.push(format!("Against the artist: {}.", differs.join("; ")));
-    }
+    (!differs.is_empty()).then(|| format!("Against the artist: {}.", differs.join("; ")))
+}
+
+/// The point that differs most from the artist's, the tips aside, with the rest of its finger.
+fn differs_most(r: &RiggedInMemory, offsets: &[Offset]) -> Option<String> {
     // The point that differs most, the tips aside, and the rest of its finger.
     let worst = offsets
         .iter()
         .filter(|o| o.1 != Some(Joint::Tip))
         .max_by(|a, b| a.2.length().total_cmp(&b.2.length()));
-    if let Some(&(finger, joint, d, along)) = worst {
-        let name = |j: Option<Joint>| j.map_or("CMC", Joint::name);
-        let rest: Vec<String> = offsets
-            .iter()
-            .filter(|o| o.0 == finger && o.1 != joint && o.1 != Some(Joint::Tip))
-            .map(|o| format!("its {} {} mm", name(o.1), mm1(o.2.length())))
-            .collect();
-        out.push(format!(
-            "The tips aside, it differs most at the {finger}'s {}: {} mm from the artist's, {}{}{}.",
-            name(joint),
-            mm1(d.length()),
-            in_words(d, along, r.made.hand.palm_normal),
-            if rest.is_empty() {
-                String::new()
-            } else {
-                format!("; {}", and_words(&rest))
-            },
-            if finger == Finger::Thumb {
-                " (the thumb's ray is placed from the atlas, not from the artist's thumb)"
-            } else {
-                ""
-            }
-        ));
-    }
-    out
+    let &(finger, joint, d, along) = worst?;
+    let name = |j: Option<Joint>| j.map_or("CMC", Joint::name);
+    let rest: Vec<String> = offsets
+        .iter()
+        .filter(|o| o.0 == finger && o.1 != joint && o.1 != Some(Joint::Tip))
+        .map(|o| format!("its {} {} mm", name(o.1), mm1(o.2.length())))
+        .collect();
+    Some(format!(
+        "The tips aside, it differs most at the {finger}'s {}: {} mm from the artist's, {}{}{}.",
+        name(joint),
+        mm1(d.length()),
+        in_words(d, along, r.made.hand.palm_normal),
+        if rest.is_empty() {
+            String::new()
+        } else {
+            format!("; {}", and_words(&rest))
+        },
+        if finger == Finger::Thumb {
+            " (the thumb's ray is placed from the atlas, not from the artist's thumb)"
+        } else {
+            ""
+        }
+    ))
 }
 
 /// "a", "a and b", "a, b and c".

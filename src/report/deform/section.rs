@@ -100,6 +100,9 @@ pub(crate) fn section(s: SectionInputs<'_>) -> DeformSection {
             rig: s.a.label.clone(),
             pose: pose_line(s.pose, s.method).trim_end().to_string(),
             moved: moved_words(s.moved),
+            compared: s.moved.iter().any(|(_, d)| *d > 0.0),
+            not_compared: not_compared(s.moved),
+            tolerance: tolerance_words(s.audit, s.confidence),
             audit: audit_rows(s.audit, s.atlas, s.confidence),
             audit_notes: s
                 .audit
@@ -159,6 +162,29 @@ pub(super) fn moved_words(moved: &[(String, f64)]) -> String {
         if moved.len() == 1 { "joint" } else { "joints" },
         if moved.len() == 1 { "it" } else { "them" },
         parts.join(", ")
+    )
+}
+
+/// Why the deformation is not compared when the fix moves nothing, in one sentence (empty
+/// when it moves a joint).
+fn not_compared(moved: &[(String, f64)]) -> String {
+    if moved.iter().any(|(_, d)| *d > 0.0) {
+        return String::new();
+    }
+    "The fix moves no joint, so A and B would be the same rig: their deformation is not compared."
+        .to_string()
+}
+
+/// Where "outside the joint region" meets "the fix moves no joint": the two tests
+/// differ, said when a finger is outside (empty otherwise).
+fn tolerance_words(audit: &AuditedRig, confidence: f64) -> String {
+    if audit.outside() == 0 {
+        return String::new();
+    }
+    format!(
+        "Outside and moved are two tests: audit calls a finger outside when it lies beyond the {} joint region (or a value beyond its prediction interval), while --fix moves a joint only where moving the fewest joints puts the finger inside the {} region, as typical as half of all hands; a finger outside with no such move is left as it is.",
+        crate::format::level(confidence),
+        crate::format::level(crate::analysis::region::FIX_LEVEL),
     )
 }
 

@@ -70,7 +70,7 @@ pub(super) fn plot(
     ];
     let title = format!(
         "{}: the paper's X-rays against {} {atlas_name} radiographs",
-        paper.finger.display_name(),
+        paper.finger.name(),
         atlas.n
     );
     let subtitle = format!(

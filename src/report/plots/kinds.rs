@@ -71,11 +71,12 @@ pub(crate) struct TrackSeries {
     pub points: Vec<TrackPoint>,
 }
 
-/// "the thumb", "the index finger (the paper's 'grooming' finger)", "the ring finger".
+/// "the thumb", "the index finger", "the ring finger" (the report names the paper's
+/// "grooming" finger once, in its key results).
 pub(super) fn finger_phrase(f: Finger) -> String {
     match f {
         Finger::Thumb => "the thumb".to_string(),
-        Finger::Index => "the index finger (the paper's 'grooming' finger)".to_string(),
+        Finger::Index => "the index finger".to_string(),
         other => format!("the {} finger", other.name()),
     }
 }

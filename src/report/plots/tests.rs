@@ -163,10 +163,7 @@ fn finger_plot_describes_every_value_and_interval() {
     let a = paper();
     let p = finger_plot(a.finger(Finger::Index).unwrap(), 0.95).unwrap();
     assert_eq!(p.id, "finger-index");
-    assert!(
-        p.title
-            .contains("index finger (the paper's 'grooming' finger)")
-    );
+    assert!(p.title.contains("the index finger"));
     for text in [
         "J~1 = J1/J: mean 0.4846",
         "1d: J~1 0.5047",
@@ -176,10 +173,6 @@ fn finger_plot_describes_every_value_and_interval() {
         assert!(p.description.contains(text), "{text}");
     }
     // The plain-text description is escaped once inside the SVG.
-    assert!(
-        p.svg
-            .contains("the paper&apos;s &apos;grooming&apos; finger")
-    );
     assert!(!p.svg.contains("&amp;apos;"));
 }
 
@@ -532,7 +525,7 @@ fn tracking_plot_draws_every_snapshot() {
          interval from 0.4600 to 0.5000; last at snapshot 5 (10 X-rays): mean 0.4846, 95% t \
          confidence interval from 0.4728 to 0.4964.",
         "J~3 = J3/J: 1 snapshot at snapshot 1 (10 X-rays): mean 0.2279",
-        "the index finger (the paper's 'grooming' finger)",
+        "the index finger",
     ] {
         assert!(p.description.contains(text), "{text}");
     }

@@ -1,7 +1,9 @@
-//! Section 11, the paper against the atlas's radiographs: the cohorts compared, the
+//! The paper (or a lab's X-rays) against the atlas's radiographs: the cohorts compared, the
 //! external coverage, the coverage on real hands and the whole-hand proportions.
 
+use super::common::DataName;
 use super::inputs::AtlasInputs;
+use super::toc::Toc;
 use crate::analysis::population::PopulationStudy;
 use crate::analysis::{Analysis, Quantity};
 use crate::format::{decimals, level, percent};
@@ -77,8 +79,23 @@ pub struct AtlasProportionRow {
     pub j1_mc_pi: String,
 }
 
-/// The section "The paper against N atlas radiographs" from the paper's analysis and the atlas's.
-pub(crate) fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
+/// The section's title: "The paper against N atlas radiographs", or "The X-rays against ..."
+/// over other data.
+pub(crate) fn atlas_title(data: DataName, atlas: &AtlasInputs) -> String {
+    format!(
+        "{} against {} atlas radiographs",
+        data.title, atlas.cohorts.b.xrays
+    )
+}
+
+/// The section "The paper against N atlas radiographs" (or "The X-rays against ...") from
+/// the data's analysis and the atlas's.
+pub(crate) fn atlas_view(
+    paper: &Analysis,
+    atlas: &AtlasInputs,
+    data: DataName,
+    toc: &Toc,
+) -> AtlasView {
     use crate::report::compare::cohort_line;
     let c = &atlas.cohorts;
     let p = &atlas.population;
@@ -86,31 +103,35 @@ pub(crate) fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
     let (comparison, external) = atlas_comparison(c);
     let (inside, tested) = c.b_inside_a();
     let external_summary = format!(
-        "Over every finger and relative value, {} of the atlas's values ({inside} of {tested}) lie inside the paper's {} prediction interval for one new hand, which promises {}.",
+        "Over every finger and relative value, {} of the atlas's values ({inside} of {tested}) lie inside {} {} prediction interval for one new hand, which promises {}.",
         percent(inside as f64 / tested.max(1) as f64),
+        data.of,
         level(confidence),
         level(confidence),
     );
     let proportions_intro = format!(
-        "Where the MCP sits: the paper measures the fingers only, the atlas also the metacarpal (CMC to MCP). mc/J is the metacarpal's length over the finger's (J1 + J2 + J3), J1/mc the first phalanx over the metacarpal: for a rig, the MCP lies (mc/J) L from the CMC for a finger of length L. Mean (SD) and the {} prediction interval for one new hand, over the atlas's X-rays.",
+        "Where the MCP sits: {} the fingers only, the atlas also the metacarpal (CMC to MCP). mc/J is the metacarpal's length over the finger's (J1 + J2 + J3), J1/mc the first phalanx over the metacarpal: for a rig, the MCP lies (mc/J) L from the CMC for a finger of length L. Mean (SD) and the {} prediction interval for one new hand, over the atlas's X-rays.",
+        if data.paper {
+            "the paper measures"
+        } else {
+            "the X-rays measure"
+        },
         level(confidence)
     );
-    let title = format!("The paper against {} atlas radiographs", c.b.xrays);
+    let title = atlas_title(data, atlas);
     AtlasView {
-        anchor: format!("11-{}", title.to_ascii_lowercase().replace(' ', "-")),
+        anchor: toc
+            .by_id
+            .get("atlas")
+            .map_or_else(String::new, |e| e.anchor.clone()),
         title,
         cohorts: vec![
-            format!("The paper: {}", cohort_line(&c.a)),
+            format!("{}: {}", data.title, cohort_line(&c.a)),
             format!("The atlas: {}", cohort_line(&c.b)),
         ],
-        differs: format!(
-            "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with {}; its lengths are pixels of images of different scale, so only relative values compare. The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin, and its data record them at the skin because a test against published adult measurements rejects bone tips and does not reject skin tips (section 12). A difference below may come from growth, from the side or the person, or from where the tip was clicked.",
-            c.b.xrays,
-            crate::dataset::landmarks::ATLAS_LANDMARKS,
-            c.a.xrays
-        ),
+        differs: atlas_differs(c, data, toc),
         comparison,
-        sentences: atlas_sentences(c, confidence),
+        sentences: atlas_sentences(c, data, confidence),
         external,
         external_summary,
         population_intro: atlas_population_intro(p, confidence),
@@ -119,6 +140,31 @@ pub(crate) fn atlas_view(paper: &Analysis, atlas: &AtlasInputs) -> AtlasView {
         proportions: atlas_proportions(&atlas.analysis),
         notes: c.notes.iter().chain(&p.notes).cloned().collect(),
     }
+}
+
+/// What differs between the cohorts besides their size, in plain words.
+fn atlas_differs(c: &crate::analysis::compare::Cohorts, data: DataName, toc: &Toc) -> String {
+    let atlas = format!(
+        "The cohorts differ in more than their size. The atlas (the Digital Hand Atlas, {} radiographs) holds children and adolescents aged 0 to 18, all left hands, with {}; its lengths are pixels of images of different scale, so only relative values compare.",
+        c.b.xrays,
+        crate::dataset::landmarks::ATLAS_LANDMARKS,
+    );
+    let ours = if data.paper {
+        format!(
+            "The paper's {} X-rays are right hands, measured in Matlab, of people whose sex and age it does not give; it does not say whether its fingertips are at the bone or the skin, and its data record them at the skin because a test against published adult measurements rejects bone tips and does not reject skin tips ({}).",
+            c.a.xrays,
+            toc.section("literature")
+        )
+    } else {
+        format!(
+            "The data's {} X-rays are whatever hands the lab measured (the paper's among them where their rows are); their side, sex and age are what the data's notes say, and their fingertips are where the data's tip column puts them ({} tests them against published adults).",
+            c.a.xrays,
+            toc.section("literature")
+        )
+    };
+    format!(
+        "{atlas} {ours} A difference below may come from growth, from the side or the person, or from where the tip was clicked."
+    )
 }
 
 /// The comparison rows of every finger and quantity, and the external-validity rows of the
@@ -162,24 +208,28 @@ fn atlas_comparison(
 }
 
 /// One sentence per finger, then one per finger's last segment (the tip).
-fn atlas_sentences(c: &crate::analysis::compare::Cohorts, confidence: f64) -> Vec<String> {
+fn atlas_sentences(
+    c: &crate::analysis::compare::Cohorts,
+    data: DataName,
+    confidence: f64,
+) -> Vec<String> {
     use crate::report::compare::{finger_sentence, tip_sentence};
     use crate::report::compare_words::Names;
     let names = Names {
-        a: "the paper",
+        a: data.the,
         b: "the atlas",
     };
     let mut sentences: Vec<String> = c
         .fingers
         .iter()
-        .map(|f| finger_sentence(f, names, confidence))
+        .map(|f| data.possessive_in(finger_sentence(f, names, confidence)))
         .collect();
     for f in &c.fingers {
         if let Some(last) = &f.last_segment {
             sentences.push(format!(
                 "{}: {}",
                 f.finger.name(),
-                tip_sentence(last, c, names)
+                data.possessive_in(tip_sentence(last, c, names))
             ));
         }
     }

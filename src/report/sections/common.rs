@@ -42,3 +42,64 @@ impl IntervalCells {
         }
     }
 }
+
+/// How the report names its data: the paper's X-rays, or whatever X-rays a lab holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct DataName {
+    /// True for exactly the paper's X-rays.
+    pub paper: bool,
+    /// "the paper" or "the X-rays".
+    pub the: &'static str,
+    /// "The paper" or "The X-rays".
+    pub title: &'static str,
+    /// "the paper's" or "the X-rays'".
+    pub of: &'static str,
+}
+
+impl DataName {
+    /// The paper's name when the data are exactly its X-rays, "the X-rays" otherwise.
+    pub(crate) fn of(paper_xrays: (usize, usize)) -> DataName {
+        if is_paper(paper_xrays) {
+            DataName {
+                paper: true,
+                the: "the paper",
+                title: "The paper",
+                of: "the paper's",
+            }
+        } else {
+            DataName {
+                paper: false,
+                the: "the X-rays",
+                title: "The X-rays",
+                of: "the X-rays'",
+            }
+        }
+    }
+}
+
+impl DataName {
+    /// `text` with "the X-rays's", as the sentences shared with `compare` write a name's
+    /// possessive, made "the X-rays'".
+    pub(crate) fn possessive_in(&self, text: String) -> String {
+        let wrong = format!("{}'s", self.the);
+        if self.of == wrong {
+            text
+        } else {
+            text.replace(&wrong, self.of)
+        }
+    }
+}
+
+/// The anchor GitHub gives a Markdown heading: lower case, spaces to hyphens, other
+/// punctuation dropped.
+pub(crate) fn md_anchor(heading: &str) -> String {
+    heading
+        .chars()
+        .filter_map(|c| match c {
+            ' ' | '-' => Some('-'),
+            '_' => Some('_'),
+            c if c.is_alphanumeric() => Some(c.to_ascii_lowercase()),
+            _ => None,
+        })
+        .collect()
+}

@@ -21,6 +21,13 @@ pub struct DeformView {
     pub pose: String,
     /// What the fix moves, in one sentence.
     pub moved: String,
+    /// True when the fix moves a joint: only then are A and B compared.
+    pub compared: bool,
+    /// Why they are not compared, when the fix moves nothing (else empty).
+    pub not_compared: String,
+    /// How "outside the region" and "the fix moves no joint" fit together (empty when
+    /// every finger is inside).
+    pub tolerance: String,
     /// The audit, one row per finger.
     pub audit: Vec<DeformAuditRow>,
     /// Remarks of the audit (how the chains were found, fingers left out).

@@ -24,7 +24,7 @@ pub struct DerivedRow {
 
 pub(crate) fn derived(f: &crate::analysis::FingerAnalysis) -> DerivedFinger {
     DerivedFinger {
-        finger: f.finger.display_name().to_string(),
+        finger: f.finger.name().to_string(),
         id: f.finger.name().to_string(),
         relative_headers: (1..=f.finger.segments())
             .map(|k| format!("J~{k}"))

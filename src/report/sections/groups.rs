@@ -110,7 +110,7 @@ fn group_difference(d: &GroupDifference, i: usize) -> GroupDifferenceView {
             .fingers
             .iter()
             .map(|f| GroupDifferenceFinger {
-                finger: f.finger.display_name().to_string(),
+                finger: f.finger.name().to_string(),
                 sentence: cmp::finger_sentence(f, names, c.settings.confidence),
                 counts: format!("{}: {}, {}: {}", d.a, xrays(f.n_a), d.b, xrays(f.n_b)),
                 rows: f

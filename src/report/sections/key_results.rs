@@ -2,12 +2,25 @@
 //! the misprints, which interval to use, where the fingertips are.
 
 use super::claims::ClaimsView;
+use super::common::DataName;
 use super::inputs::{LiteratureInputs, ReportInputs};
 use super::literature::table_name;
 use crate::analysis::claims::CheckSummary;
 use crate::format::{decimals, level, percent};
 use crate::report::phrases::{counted, interval_advice_of};
 use serde::Serialize;
+
+/// One misprint as the key results list it.
+fn key_misprint(m: &super::claims::ClaimRow) -> KeyMisprint {
+    KeyMisprint {
+        id: m.id.clone(),
+        anchor: m.anchor.clone(),
+        text: format!(
+            "{}: stated {}, recomputed {}",
+            m.location, m.stated, m.computed
+        ),
+    }
+}
 
 /// The "Key results" box at the top of the report.
 #[derive(Debug, Clone, Serialize)]
@@ -25,6 +38,8 @@ pub struct KeyResults {
     pub intervals: String,
     /// Where the paper's fingertips are, from a published table (when one was compared).
     pub fingertips: Option<String>,
+    /// "Where the paper's fingertips are" (or "the X-rays'").
+    pub fingertips_heading: String,
 }
 
 /// One finger's joints as shares of its length, root joint (MCP) to tip.
@@ -40,6 +55,15 @@ pub struct KeyPlacement {
 pub struct KeyMisprints {
     /// "8 of the paper's 30 numbers disagree with its Table 1 (8 recorded errata, 0 new)."
     pub summary: String,
+    pub items: Vec<KeyMisprint>,
+    /// The same misprints grouped by their root cause.
+    pub groups: Vec<KeyMisprintGroup>,
+}
+
+/// One root cause and the misprints it explains.
+#[derive(Debug, Clone, Serialize)]
+pub struct KeyMisprintGroup {
+    pub cause: String,
     pub items: Vec<KeyMisprint>,
 }
 
@@ -97,16 +121,13 @@ pub(crate) fn key_results(inputs: &ReportInputs<'_>, claims: &ClaimsView) -> Key
                 s.mismatches
             )
         },
-        items: claims
-            .misprints
+        items: claims.misprints.iter().map(key_misprint).collect(),
+        groups: claims
+            .misprint_groups
             .iter()
-            .map(|m| KeyMisprint {
-                id: m.id.clone(),
-                anchor: m.anchor.clone(),
-                text: format!(
-                    "{}: stated {}, recomputed {}",
-                    m.location, m.stated, m.computed
-                ),
+            .map(|g| KeyMisprintGroup {
+                cause: g.cause.clone(),
+                items: g.claims.iter().map(key_misprint).collect(),
             })
             .collect(),
     };
@@ -140,13 +161,19 @@ pub(crate) fn key_results(inputs: &ReportInputs<'_>, claims: &ClaimsView) -> Key
         intervals: interval_advice_of(inputs.coverage, Some(a)).unwrap_or_else(|| {
             "The coverage of the intervals could not be simulated at this data's size.".to_string()
         }),
-        fingertips: inputs.literature.and_then(key_fingertips),
+        fingertips: inputs
+            .literature
+            .and_then(|l| key_fingertips(l, DataName::of(inputs.paper_xrays))),
+        fingertips_heading: format!(
+            "Where {} fingertips are",
+            DataName::of(inputs.paper_xrays).of
+        ),
     }
 }
 
 /// The key result on the fingertips: where the paper's are taken, and what the test does
 /// and does not show, in one paragraph.
-fn key_fingertips(l: &LiteratureInputs) -> Option<String> {
+fn key_fingertips(l: &LiteratureInputs, data: DataName) -> Option<String> {
     let v = l.paper.tips.as_ref()?;
     let name = table_name(&l.paper.b);
     let ranges = |pick: fn(&crate::analysis::literature::TipFinding) -> f64| {
@@ -165,17 +192,34 @@ fn key_fingertips(l: &LiteratureInputs) -> Option<String> {
     });
     Some(match v.overall {
         Some(crate::analysis::literature::Fit::Skin) => format!(
-            "The paper's fingertips are taken at the skin, not at the end of the bone. Against {name}, a Welch test of each finger's last segment rejects bone alone on all {} fingers at every assumed correlation from 0 to 0.9, and does not reject bone plus the fingertip's soft tissue (not rejected is not shown equal{nearest}). The paper does not say where its tips are; its rows record the skin because of this test. The soft tissue is {} to {} of a finger measured to the skin, so a rig's tip at the skin compares with the paper as it is, and a tip at the bone needs that share added.",
+            "{} fingertips are taken at the skin, not at the end of the bone. Against {name}, a Welch test of each finger's last segment rejects bone alone on all {} fingers at every assumed correlation from 0 to 0.9, and does not reject bone plus the fingertip's soft tissue (not rejected is not shown equal{nearest}). {} The soft tissue is {} to {} of a finger measured to the skin, so a rig's tip at the skin compares with {} as it is, and a tip at the bone needs that share added.",
+            capital(data.of),
             v.fingers.len(),
+            if data.paper {
+                "The paper does not say where its tips are; its rows record the skin because of this test."
+            } else {
+                "The data's tip column says where each row's tip is; the paper's rows record the skin because of this test."
+            },
             percent(slo),
             percent(shi),
+            data.the,
         ),
         Some(crate::analysis::literature::Fit::Bone) => format!(
-            "The paper's fingertips are taken at the end of the bone: against {name}, its last segment rejects bone plus soft tissue on all {} fingers and does not reject bone alone (not rejected is not shown equal).",
+            "{} fingertips are taken at the end of the bone: against {name}, its last segment rejects bone plus soft tissue on all {} fingers and does not reject bone alone (not rejected is not shown equal).",
+            capital(data.of),
             v.fingers.len()
         ),
         _ => format!(
-            "Where the paper's fingertips are is not settled by {name}: the fingers do not reject one tip and leave the other at every assumed correlation from 0 to 0.9."
+            "Where {} fingertips are is not settled by {name}: the fingers do not reject one tip and leave the other at every assumed correlation from 0 to 0.9.",
+            data.of
         ),
+    })
+}
+
+/// "The paper's" from "the paper's".
+fn capital(s: &str) -> String {
+    let mut c = s.chars();
+    c.next().map_or(String::new(), |f| {
+        f.to_uppercase().collect::<String>() + c.as_str()
     })
 }

@@ -1,7 +1,9 @@
-//! Section 12, the paper against published measurements: where its fingertips are,
+//! The paper (or a lab's X-rays) against published measurements: where its fingertips are,
 //! and every quantity beside the published table.
 
+use super::common::DataName;
 use super::inputs::LiteratureInputs;
+use super::toc::Toc;
 use crate::format::{level, percent, xrays};
 use serde::Serialize;
 
@@ -60,16 +62,20 @@ pub struct LiteratureSideRow {
     pub atlas_verdict: String,
 }
 
-/// The section "The paper against published measurements".
-pub(crate) fn literature_view(l: &LiteratureInputs) -> LiteratureView {
-    use crate::report::compare_table::{
-        Profile, correlation_line, differs_in, table_finger_sentence,
-    };
+/// The section's title: "The paper against published measurements", or "The X-rays
+/// against ..." over other data.
+pub(crate) fn literature_title(data: DataName) -> String {
+    format!("{} against published measurements", data.title)
+}
+
+/// The section "The paper (or the X-rays) against published measurements".
+pub(crate) fn literature_view(l: &LiteratureInputs, data: DataName, toc: &Toc) -> LiteratureView {
+    use crate::report::compare_table::{correlation_line, table_finger_sentence};
     use crate::report::compare_words::Names;
     let p = &l.paper;
     let name = table_name(&p.b);
     let names = Names {
-        a: "the paper",
+        a: data.the,
         b: &name,
     };
     let about = p.b.about.clone().unwrap_or_default();
@@ -85,33 +91,9 @@ pub(crate) fn literature_view(l: &LiteratureInputs) -> LiteratureView {
             .clone()
             .unwrap_or_else(|| "not described".to_string()),
     );
-    let paper_profile = Profile::of_side(&p.a);
-    let table_profile = Profile::of_side(&crate::analysis::literature::SideInfo {
-        table_tip: None,
-        ..p.b.clone()
-    });
-    let mut cohorts = vec![format!(
-        "{name} differs from the paper in {}.",
-        differs_in(&paper_profile, &table_profile)
-    )];
-    if let Some(info) = &l.atlas_info {
-        cohorts.push(format!(
-            "{} differs from the paper in {}.",
-            info.about
-                .as_ref()
-                .and_then(|a| a.name.clone())
-                .map(|n| {
-                    let mut c = n.chars();
-                    c.next().map_or(String::new(), |f| {
-                        f.to_uppercase().collect::<String>() + c.as_str()
-                    })
-                })
-                .unwrap_or_else(|| "The atlas".to_string()),
-            differs_in(&paper_profile, &Profile::of_data(info))
-        ));
-    }
+    let cohorts = cohort_lines(l, &name, data);
     let conf = level(p.confidence);
-    let (tips, tip_finding, tip_evidence) = tip_parts(p, names, &conf);
+    let (tips, tip_finding, tip_evidence) = tip_parts(p, names, data, &conf);
     let soft: Vec<String> = p
         .tips
         .iter()
@@ -119,22 +101,35 @@ pub(crate) fn literature_view(l: &LiteratureInputs) -> LiteratureView {
         .map(|t| format!("{} {}", t.finger.name(), percent(t.soft_share)))
         .collect();
     let audit = format!(
-        "What it changes for a rig audit: the paper's last segment is taken to end at the skin, so a rig's last segment is compared with it as it is when the rig's tips are at the skin (the end of the finger's mesh), and no soft tissue is to be trimmed off. A rig whose tips sit at the end of the bone needs the fingertip's soft tissue added before it is compared: {name} measures it at {} of a finger measured to the skin, a share that scales with the rig's finger in any unit. A fixed offset in millimetres does not: a rig in the wrong unit would lose most of a segment to it. The audits of section 13 follow this: they read each dataset's tips from its tip column, compare skin tips with skin tips as they are, and where one side's tips are at the bone (the atlas's, for the MCP judged from its CMC or the wrist) correct the last segment by that finger's share.",
-        soft.join(", ")
+        "What it changes for a rig audit: {} last segment is taken to end at the skin, so a rig's last segment is compared with it as it is when the rig's tips are at the skin (the end of the finger's mesh), and no soft tissue is to be trimmed off. A rig whose tips sit at the end of the bone needs the fingertip's soft tissue added before it is compared: {name} measures it at {} of a finger measured to the skin, a share that scales with the rig's finger in any unit. A fixed offset in millimetres does not: a rig in the wrong unit would lose most of a segment to it. The audits of {} follow this: they read each dataset's tips from its tip column, compare skin tips with skin tips as they are, and where one side's tips are at the bone (the atlas's, for the MCP judged from its CMC or the wrist) correct the last segment by that finger's share.",
+        data.of,
+        soft.join(", "),
+        toc.section("rigs")
     );
     let side = side_rows(l);
     let tip_word = match p.b.table_tip {
         Some(crate::dataset::TipKind::Skin) => {
-            "to the skin (its soft tissue added), as the paper's rows record skin tips"
+            format!(
+                "to the skin (its soft tissue added), as {} rows record skin tips",
+                data.of
+            )
         }
-        _ => "to the end of the bone",
+        _ => "to the end of the bone".to_string(),
+    };
+    let data_xrays = if data.paper {
+        "the paper's X-rays"
+    } else {
+        "the X-rays"
     };
     let side_intro = format!(
-        "Each cohort beside {name} measured to the same fingertip: the paper's X-rays (mean and {conf} t interval) against {name}'s ratios of means {tip_word}; the atlas (bone tips) against {name} to the bone. A verdict says whether the {conf} interval of the difference excludes 0 (differs) or holds it (not rejected: no difference shown, which is not equality shown), the same at correlations 0, the assumed one and 0.9 unless each is named."
+        "Each cohort beside {name} measured to the same fingertip: {data_xrays} (mean and {conf} t interval) against {name}'s ratios of means {tip_word}; the atlas (bone tips) against {name} to the bone. A verdict says whether the {conf} interval of the difference excludes 0 (differs) or holds it (not rejected: no difference shown, which is not equality shown), the same at correlations 0, the assumed one and 0.9 unless each is named."
     );
     LiteratureView {
-        title: "The paper against published measurements".to_string(),
-        anchor: "12-the-paper-against-published-measurements".to_string(),
+        title: literature_title(data),
+        anchor: toc
+            .by_id
+            .get("literature")
+            .map_or_else(String::new, |e| e.anchor.clone()),
         source,
         cohorts,
         tips,
@@ -147,10 +142,44 @@ pub(crate) fn literature_view(l: &LiteratureInputs) -> LiteratureView {
         sentences: p
             .fingers
             .iter()
-            .map(|f| table_finger_sentence(f, names))
+            .map(|f| data.possessive_in(table_finger_sentence(f, names)))
             .collect(),
         notes: p.notes.clone(),
     }
+}
+
+/// How the published table and the atlas differ from the data, one line each.
+fn cohort_lines(l: &LiteratureInputs, name: &str, data: DataName) -> Vec<String> {
+    use crate::report::compare_table::{Profile, differs_in};
+    let p = &l.paper;
+    let paper_profile = Profile::of_side(&p.a);
+    let table_profile = Profile::of_side(&crate::analysis::literature::SideInfo {
+        table_tip: None,
+        ..p.b.clone()
+    });
+    let mut cohorts = vec![format!(
+        "{name} differs from {} in {}.",
+        data.the,
+        differs_in(&paper_profile, &table_profile)
+    )];
+    if let Some(info) = &l.atlas_info {
+        cohorts.push(format!(
+            "{} differs from {} in {}.",
+            info.about
+                .as_ref()
+                .and_then(|a| a.name.clone())
+                .map(|n| {
+                    let mut c = n.chars();
+                    c.next().map_or(String::new(), |f| {
+                        f.to_uppercase().collect::<String>() + c.as_str()
+                    })
+                })
+                .unwrap_or_else(|| "The atlas".to_string()),
+            data.the,
+            differs_in(&paper_profile, &Profile::of_data(info))
+        ));
+    }
+    cohorts
 }
 
 /// The fingertips' part: one row per finger's last segment, the overall finding, and the
@@ -158,6 +187,7 @@ pub(crate) fn literature_view(l: &LiteratureInputs) -> LiteratureView {
 fn tip_parts(
     p: &crate::analysis::literature::TableCohorts,
     names: crate::report::compare_words::Names<'_>,
+    data: DataName,
     conf: &str,
 ) -> (Vec<LiteratureTipRow>, String, Vec<String>) {
     use crate::report::compare_table::{
@@ -193,14 +223,18 @@ fn tip_parts(
                 .iter()
                 .map(|t| tip_finding_sentence(t, names, p.confidence))
                 .chain(std::iter::once(format!(
-                    "Each difference is {name}'s ratio minus the paper's mean, with its {conf} Welch-type interval (both uncertainties): a tip is rejected when that interval excludes 0, and not rejected when it holds 0, which at {} is not a finding that the two are equal.",
+                    "Each difference is {name}'s ratio minus {} mean, with its {conf} Welch-type interval (both uncertainties): a tip is rejected when that interval excludes 0, and not rejected when it holds 0, which at {} is not a finding that the two are equal.",
+                    data.of,
                     xrays(p.a.n.unwrap_or(0))
                 )))
                 .collect(),
         ),
         None => (
             Vec::new(),
-            format!("{name} gives no fingertip soft tissue, so the paper's tips cannot be placed."),
+            format!(
+                "{name} gives no fingertip soft tissue, so {} tips cannot be placed.",
+                data.of
+            ),
             Vec::new(),
         ),
     }

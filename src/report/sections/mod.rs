@@ -24,4 +24,5 @@ pub mod region;
 pub mod rigs;
 pub mod statistics;
 pub mod table1;
+pub mod toc;
 pub mod tracking;

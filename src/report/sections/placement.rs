@@ -37,10 +37,10 @@ pub(crate) fn placement(
 ) -> PlacementView {
     let d = length_decimals(length);
     let origin = if is_paper(paper_xrays) {
-        "This is the paper's worked example, with the corrected mean. (The index is the paper's 'grooming' finger.)".to_string()
+        "This is the paper's worked example, with the corrected mean.".to_string()
     } else {
         format!(
-            "The paper works this example with its own X-rays; here the means are over the dataset's {counts}. (The index is the paper's 'grooming' finger.)"
+            "The paper works this example with its own X-rays; here the means are over the dataset's {counts}."
         )
     };
     let row = |finger: Finger, what: &str, p: &crate::analysis::placement::Placed| PlacementRow {

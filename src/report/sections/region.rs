@@ -52,11 +52,13 @@ pub struct CalibrationRow {
     pub cells: Vec<String>,
 }
 
-/// The region's view, `None` without a calibration table.
+/// The region's view, `None` without a calibration table (`rigs`: where the rigs'
+/// section is, "section 13").
 pub fn region_view(
     a: &Analysis,
     shape: Option<&ShapePriors>,
     calibration: Option<(&Setup, &[Cell])>,
+    rigs: &str,
 ) -> Option<RegionView> {
     let (setup, cells) = calibration?;
     if cells.is_empty() {
@@ -64,10 +66,40 @@ pub fn region_view(
     }
     let c = a.settings.confidence;
     let shapes = shape_rows(a, shape);
+    let sizes: Vec<usize> = {
+        let mut v: Vec<usize> = cells.iter().map(|c| c.n).collect();
+        v.dedup();
+        v
+    };
+    Some(RegionView {
+        text: region_text(a, shape, rigs),
+        caption: format!(
+            "False alarms: the share of normal index fingers outside the {} joint region, by the \
+             number of X-rays (rows) and the true correlation of u (columns).",
+            level(c)
+        ),
+        correlations: CORRELATIONS.iter().map(|r| num(*r, 3)).collect(),
+        false_alarms: false_alarm_rows(&sizes, cells),
+        power_caption: format!(
+            "Power: the share of index fingers with one joint moved towards the tip on a {} mm \
+             finger (the MCP with the tip held) found outside the region, lowest to highest over \
+             the true correlations above; in parentheses, on the X-rays' own S.",
+            num(FINGER_MM, 0)
+        ),
+        sizes: sizes.iter().map(|&n| crate::format::xrays(n)).collect(),
+        power: power_rows(&sizes, cells),
+        notes: region_notes(a, setup, cells, &shapes),
+        shapes,
+    })
+}
+
+/// How a rig's finger is judged, in a paragraph: with the atlas's shape prior when there is one.
+fn region_text(a: &Analysis, shape: Option<&ShapePriors>, rigs: &str) -> String {
+    let c = a.settings.confidence;
     let m = shape.map_or(0.0, |s| s.hands);
-    let text = match shape {
+    match shape {
         Some(s) if m > 0.0 => format!(
-            "A rig's finger (section 13, phalanx audit) is judged on its relative joint \
+            "A rig's finger ({rigs}, phalanx audit) is judged on its relative joint \
              positions u = (J~1, J~1 + J~2) as one vector, T² = (u − ū)′ [S* (1 + 1/n)]⁻¹ (u − ū) \
              at most p (n − 1) / (n − p) F({c}; p, n − p). The region's shape is the correlation \
              of the two positions, which {n} X-rays hardly fix, so S* keeps the X-rays' variances \
@@ -90,20 +122,19 @@ pub fn region_view(
             inner = level(FIX_LEVEL),
         ),
         _ => format!(
-            "A rig's finger (section 13, phalanx audit) is judged on its relative joint \
+            "A rig's finger ({rigs}, phalanx audit) is judged on its relative joint \
              positions u = (J~1, J~1 + J~2) as one vector, T² = (u − ū)′ [S (1 + 1/n)]⁻¹ (u − ū) \
              at most p (n − 1) / (n − p) F({}; p, n − p), S the X-rays' own covariance (no atlas \
              to borrow the shape from).",
             level(c)
         ),
-    };
-    let sizes: Vec<usize> = {
-        let mut v: Vec<usize> = cells.iter().map(|c| c.n).collect();
-        v.dedup();
-        v
-    };
+    }
+}
+
+/// The false alarms' rows: one per number of X-rays, one cell per true correlation.
+fn false_alarm_rows(sizes: &[usize], cells: &[Cell]) -> Vec<CalibrationRow> {
     let at = |n: usize, r: f64| cells.iter().find(|c| c.n == n && c.correlation == r);
-    let false_alarms = sizes
+    sizes
         .iter()
         .map(|&n| CalibrationRow {
             label: format!("{n}"),
@@ -112,7 +143,12 @@ pub fn region_view(
                 .map(|&r| at(n, r).map_or("n/a".into(), |c| percent(c.false_alarms.model)))
                 .collect(),
         })
-        .collect();
+        .collect()
+}
+
+/// The power rows: one per joint and move, each cell the range over the true correlations
+/// (on the X-rays' own S in parentheses).
+fn power_rows(sizes: &[usize], cells: &[Cell]) -> Vec<CalibrationRow> {
     // A range of rates in whole percentage points: "9–10%", or "100%".
     let range = |values: &[f64]| -> String {
         let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
@@ -154,6 +190,12 @@ pub fn region_view(
             });
         }
     }
+    power
+}
+
+/// What the calibration tables show, in sentences.
+fn region_notes(a: &Analysis, setup: &Setup, cells: &[Cell], shapes: &[ShapeRow]) -> Vec<String> {
+    let c = a.settings.confidence;
     let own_alarms: Vec<f64> = cells.iter().map(|c| c.false_alarms.own).collect();
     let max_model = cells
         .iter()
@@ -179,7 +221,7 @@ pub fn region_view(
     } else {
         format!("{goal}, is not met")
     };
-    let notes = vec![
+    vec![
         format!(
             "Each cell is {} simulations (seed {}, one ChaCha8 stream per cell): n reference hands \
              drawn from a normal population of u with the paper's index SDs ({} and {}) and the \
@@ -218,27 +260,7 @@ pub fn region_view(
                 String::new()
             },
         ),
-    ];
-    Some(RegionView {
-        text,
-        shapes,
-        caption: format!(
-            "False alarms: the share of normal index fingers outside the {} joint region, by the \
-             number of X-rays (rows) and the true correlation of u (columns).",
-            level(c)
-        ),
-        correlations: CORRELATIONS.iter().map(|r| num(*r, 3)).collect(),
-        false_alarms,
-        power_caption: format!(
-            "Power: the share of index fingers with one joint moved towards the tip on a {} mm \
-             finger (the MCP with the tip held) found outside the region, lowest to highest over \
-             the true correlations above; in parentheses, on the X-rays' own S.",
-            num(FINGER_MM, 0)
-        ),
-        sizes: sizes.iter().map(|&n| crate::format::xrays(n)).collect(),
-        power,
-        notes,
-    })
+    ]
 }
 
 /// Each finger with two positions: the X-rays' correlation of u with its
@@ -284,7 +306,7 @@ mod tests {
         let shape = atlas.shape_priors(10.0);
         let setup = Setup::of(&paper, Finger::Index, shape.of(Finger::Index), 200).unwrap();
         let cells = calibration::simulate(&setup);
-        let v = region_view(&paper, Some(&shape), Some((&setup, &cells))).unwrap();
+        let v = region_view(&paper, Some(&shape), Some((&setup, &cells)), "section 13").unwrap();
         // The index: r_S 0.969 [0.60, 0.998], the atlas's 0.643, r* 0.736
         // (tests/independent/region_calibration.py prints the same).
         let index = v.shapes.iter().find(|s| s.finger == "index").unwrap();
@@ -306,6 +328,6 @@ mod tests {
         assert_eq!(v.power.len(), 9);
         assert!(v.text.contains("weighted as 10 hands"), "{}", v.text);
         // Without a calibration, no part.
-        assert!(region_view(&paper, Some(&shape), None).is_none());
+        assert!(region_view(&paper, Some(&shape), None, "section 13").is_none());
     }
 }

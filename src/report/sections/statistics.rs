@@ -60,7 +60,7 @@ pub(crate) fn stats(f: &crate::analysis::FingerAnalysis) -> StatsFinger {
         }))
         .collect();
     StatsFinger {
-        finger: f.finger.display_name().to_string(),
+        finger: f.finger.name().to_string(),
         id: f.finger.name().to_string(),
         n: xrays(f.n),
         bootstrap: crate::format::plan(f.bootstrap),

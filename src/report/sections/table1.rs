@@ -40,13 +40,14 @@ pub struct Table1Row {
     pub cells: Vec<String>,
 }
 
-/// The paper's finger order in Table 1: grooming (index), middle, ring, little, thumb.
+/// The report's finger order, thumb first as in every other table (the paper's Table 1
+/// prints the thumb last).
 const TABLE1_ORDER: [Finger; 5] = [
+    Finger::Thumb,
     Finger::Index,
     Finger::Middle,
     Finger::Ring,
     Finger::Little,
-    Finger::Thumb,
 ];
 
 pub(crate) fn table1(a: &Analysis, paper_xrays: (usize, usize)) -> Table1View {
@@ -74,7 +75,7 @@ pub(crate) fn table1(a: &Analysis, paper_xrays: (usize, usize)) -> Table1View {
     let groups = fingers
         .iter()
         .map(|f| Table1Group {
-            finger: f.finger.display_name().to_string(),
+            finger: f.finger.name().to_string(),
             segments: (1..=f.finger.segments()).map(|k| format!("J{k}")).collect(),
         })
         .collect();

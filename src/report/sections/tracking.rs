@@ -157,7 +157,7 @@ fn change_rows(before: &Snapshot, after: &Snapshot) -> Vec<ChangeRow> {
         .map(|ch| {
             let d = decimals(ch.quantity.is_unitless());
             ChangeRow {
-                finger: ch.finger.display_name().to_string(),
+                finger: ch.finger.name().to_string(),
                 quantity: ch.quantity.label().to_string(),
                 n: format!("{} -> {}", ch.n_before, ch.n_after),
                 mean_before: num(ch.mean_before, d),
@@ -208,7 +208,7 @@ fn needed_rows(a: &Analysis, other: Option<&Analysis>, target: f64) -> Vec<Neede
         .map(|r| {
             let q = r.quantity;
             NeededRow {
-                finger: r.finger.display_name().to_string(),
+                finger: r.finger.name().to_string(),
                 quantity: q.name.label().to_string(),
                 n: q.n.to_string(),
                 sd: opt(q.sd, 4),
