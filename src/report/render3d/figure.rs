@@ -135,17 +135,7 @@ impl Figure {
         labels: &[&str],
         font: Option<&[u8]>,
     ) -> Result<Vec<u8>, String> {
-        let mut big = Pixmap::new(self.width * SS, self.height * SS).ok_or_else(|| {
-            format!(
-                "an image of {} x {} pixels cannot be made",
-                self.width, self.height
-            )
-        })?;
-        big.fill(tiny_skia::Color::WHITE);
-        let mut paint = Paint {
-            anti_alias: false,
-            ..Paint::default()
-        };
+        let (mut big, mut paint) = canvas(self.width, self.height)?;
         self.draw_panels(&mut big, &mut paint, meshes)?;
         let ramp_y = self.draw_scale(&mut big, &mut paint, meshes.len());
         let mut img = downsample(&big, self.width, self.height)?;

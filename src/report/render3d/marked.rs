@@ -111,17 +111,7 @@ impl Marked {
         kinds: [&str; 2],
         font: Option<&[u8]>,
     ) -> Result<Vec<u8>, String> {
-        let mut big = Pixmap::new(self.width * SS, self.height * SS).ok_or_else(|| {
-            format!(
-                "an image of {} x {} pixels cannot be made",
-                self.width, self.height
-            )
-        })?;
-        big.fill(tiny_skia::Color::WHITE);
-        let mut paint = Paint {
-            anti_alias: false,
-            ..Paint::default()
-        };
+        let (mut big, mut paint) = canvas(self.width, self.height)?;
         let (panel_w, panel_h) = self.panel;
         for (col, camera) in self.cameras.iter().enumerate() {
             let x = col as u32 * panel_w;

@@ -183,6 +183,19 @@ pub(super) fn draw_mesh(
     }
 }
 
+/// A white canvas `SS` times the figure's size, and the paint every figure draws with
+/// (no anti-aliasing: the supersampling smooths it when downsampled).
+pub(super) fn canvas(width: u32, height: u32) -> Result<(Pixmap, Paint<'static>), String> {
+    let mut big = Pixmap::new(width * SS, height * SS)
+        .ok_or_else(|| format!("an image of {width} x {height} pixels cannot be made"))?;
+    big.fill(tiny_skia::Color::WHITE);
+    let paint = Paint {
+        anti_alias: false,
+        ..Paint::default()
+    };
+    Ok((big, paint))
+}
+
 /// Averages `SS` x `SS` blocks of an opaque pixmap into one pixel each.
 pub(super) fn downsample(big: &Pixmap, width: u32, height: u32) -> Result<Pixmap, String> {
     let mut out = Pixmap::new(width, height).ok_or("an empty image cannot be made")?;
