@@ -157,27 +157,14 @@ pub(crate) fn gather(
     // metacarpals' dataset: the joint regions' shape borrows its
     // correlations, and its means place the MCPs of "A hand rigged from its
     // skin".
-    let atlas_means = match &atlas_data {
-        Some(atlas) => Some(crate::analysis::analyse_without_bootstrap(atlas, &settings)),
-        None if req.atlas.is_file() => Some(crate::analysis::analyse_without_bootstrap(
-            &Dataset::load(req.atlas)?,
-            &settings,
-        )),
-        None => None,
-    };
+    let atlas_means = atlas_data
+        .as_ref()
+        .map(|atlas| crate::analysis::analyse_without_bootstrap(atlas, &settings));
     let shape = atlas_means
         .as_ref()
         .map(|atlas| atlas.shape_priors(crate::analysis::region::PRIOR_HANDS));
     let rigs = audit_references(references, &a, &soft_tissue, shape.as_ref());
-    // The region's calibration, simulated for the index finger (the paper's
-    // worked example) with its prior, as the report's methods show it.
-    let calibration = Setup::of(
-        &a,
-        Finger::Index,
-        shape.as_ref().and_then(|s| s.of(Finger::Index)),
-        calibration::SIMULATIONS,
-    )
-    .map(|setup| (setup, calibration::simulate(&setup)));
+    let calibration = calibration_of(&a, shape.as_ref());
     // The coverage curve and the atlas section are independent (their random streams are
     // keyed by seed, size and simulation, not by thread), so they run side by side: the
     // same numbers, with the serial parts of one overlapping the other.
@@ -189,18 +176,7 @@ pub(crate) fn gather(
                 Vec::new()
             }
         },
-        || {
-            atlas_data.map(|atlas| AtlasInputs {
-                analysis: crate::analysis::analyse(&atlas, &settings),
-                cohorts: crate::analysis::compare::cohorts(&paper_data, &atlas, &settings),
-                population: crate::analysis::population::of_dataset(
-                    &atlas,
-                    &ATLAS_SIZES,
-                    &atlas_coverage(&settings),
-                    crate::analysis::Quantity::is_relative,
-                ),
-            })
-        },
+        || atlas_data.map(|atlas| atlas_inputs(&paper_data, atlas, &settings)),
     );
     let placements = placement::place_all(&a, req.model_length);
     let literature = literature_inputs(
@@ -255,6 +231,36 @@ pub(crate) fn gather(
         shape,
         calibration,
     })
+}
+
+/// The region's calibration, simulated for the index finger (the paper's worked
+/// example) with its prior, as the report's methods show it.
+fn calibration_of(
+    a: &Analysis,
+    shape: Option<&crate::analysis::region::ShapePriors>,
+) -> Option<(Setup, Vec<calibration::Cell>)> {
+    Setup::of(
+        a,
+        Finger::Index,
+        shape.and_then(|s| s.of(Finger::Index)),
+        calibration::SIMULATIONS,
+    )
+    .map(|setup| (setup, calibration::simulate(&setup)))
+}
+
+/// The atlas section's inputs: the atlas analysed, compared with the data's X-rays,
+/// and its coverage measured on its own hands.
+fn atlas_inputs(data: &Dataset, atlas: Dataset, settings: &Settings) -> AtlasInputs {
+    AtlasInputs {
+        analysis: crate::analysis::analyse(&atlas, settings),
+        cohorts: crate::analysis::compare::cohorts(data, &atlas, settings),
+        population: crate::analysis::population::of_dataset(
+            &atlas,
+            &ATLAS_SIZES,
+            &atlas_coverage(settings),
+            crate::analysis::Quantity::is_relative,
+        ),
+    }
 }
 
 /// The settings of the coverage measured on the atlas's hands.
