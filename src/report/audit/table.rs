@@ -132,7 +132,7 @@ pub(crate) fn summary(rig: &AuditedRig, confidence: f64) -> String {
     }
     if rig.fingers.iter().any(|f| !f.bends.is_empty()) {
         summary.push_str(&format!(
-            " {} more than {} mm from where their skin bends.",
+            " {} over {} mm from where the skin bends.",
             crate::format::count(rig.bends_flagged(), "inner joint lies", "inner joints lie"),
             num(rig.bend_tolerance * MM, 1)
         ));

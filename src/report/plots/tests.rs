@@ -1,11 +1,11 @@
 //! Tests of the plots on the paper's data and on synthetic extremes.
 
 use super::*;
-use crate::dataset::Finger;
 use crate::analysis::placement::place_all;
 use crate::analysis::{
     DatasetInfo, Quantity, Segments, Settings, XrayValues, analyse, quantity_stats,
 };
+use crate::dataset::Finger;
 use crate::dataset::{Dataset, Finger};
 use crate::stats::bootstrap::Plan;
 use crate::stats::describe;
