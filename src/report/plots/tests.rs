@@ -5,7 +5,6 @@ use crate::analysis::placement::place_all;
 use crate::analysis::{
     DatasetInfo, Quantity, Segments, Settings, XrayValues, analyse, quantity_stats,
 };
-use crate::dataset::Finger;
 use crate::dataset::{Dataset, Finger};
 use crate::stats::bootstrap::Plan;
 use crate::stats::describe;
