@@ -4,9 +4,9 @@
 //! gives the full text ([`super::text`]).
 
 use super::MM;
-use super::explanation::{explanation_words, opening, shown_zero};
+use super::explanation::{explanation_words, opening};
 use super::table::summary;
-use super::words::{and_list, joint_standing, para, value_standing};
+use super::words::{and_list, joint_standing, para, shown_zero, value_standing};
 use crate::analysis::Interval;
 use crate::format::{level, num};
 use crate::report::layout::{Width, fit_text};

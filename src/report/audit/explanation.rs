@@ -234,11 +234,6 @@ pub(super) fn step(j: &JointCheck, only_outside: bool) -> Option<Step> {
     ))
 }
 
-/// True when a length prints as 0.0 mm (to 0.1 mm).
-pub(super) fn shown_zero(x: f64) -> bool {
-    (x * MM * 10.0).round() == 0.0
-}
-
 /// A finger's verdict and its move in a few words: "keep", "move the PIP
 /// 3.1 mm towards the tip", "held: the IP 2.7 mm (it would leave its skin
 /// bend)", or both, root first; read off each joint's move ([`step`]) and the

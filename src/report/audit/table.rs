@@ -1,4 +1,4 @@
-//! The audit as the terminal shows it: the finger table, the summary and the brief form.
+//! The audit's full text (`--explain`): the finger tables, the summary and the brief form.
 
 use super::MM;
 use super::explanation::*;

@@ -126,6 +126,11 @@ pub(crate) fn suggestion(j: &crate::rig::judge::JointCheck) -> String {
     )
 }
 
+/// True when a length prints as 0.0 mm (to 0.1 mm).
+pub(super) fn shown_zero(x: f64) -> bool {
+    (x * MM * 10.0).round() == 0.0
+}
+
 /// "A, B and C".
 pub(super) fn and_list(items: &[String]) -> String {
     match items {
@@ -309,13 +314,13 @@ pub(super) fn joint_given(a: &FingerAudit, j: &JointCheck) -> String {
         // A joint an earlier explanation would have moved, held (off its
         // bend, pinned), the explanation then sought without it.
         return match &j.held {
-            Some(h) if !super::explanation::shown_zero(h.shift) => format!("{g}; {}", h.words),
+            Some(h) if !shown_zero(h.shift) => format!("{g}; {}", h.words),
             _ => g,
         };
     }
     let mm = num(j.shift * MM, 1);
     match &j.held {
-        Some(h) if super::explanation::shown_zero(h.shift) => as_is,
+        Some(h) if shown_zero(h.shift) => as_is,
         Some(h) => format!("{} (as the rig is: {as_is})", h.words),
         None => format!(
             "moves {mm} mm towards the {} (as the rig is: {as_is})",
