@@ -69,7 +69,7 @@ fn json_summary_and_verdicts() {
     let wd = Workdir::new();
     wd.copy_paper_data();
     let doc = wd.run(&["check", "--format", "json"]).ok().json();
-    assert_eq!(doc["schema_version"], 5);
+    assert_eq!(doc["schema_version"], 6);
     assert_eq!(doc["claims_file"], "data/paper_claims.csv");
     assert_eq!(
         doc["dataset"]["sha256"].as_str().unwrap(),

@@ -126,6 +126,7 @@ fn a_level_of_0_9999_reads_99_99_percent_everywhere() {
     let glb = manifest_dir().join("docs/examples/hand.glb");
     let audit = wd.run(&[
         "audit",
+        "--explain",
         glb.to_str().unwrap(),
         "--confidence",
         LEVEL,

@@ -28,7 +28,7 @@ fn t_intervals_cover_and_percentile_intervals_undercover_at_n_5() {
     let wd = Workdir::new();
     wd.copy_paper_data();
     let doc = coverage_json(&wd, &["--sims", "2000"]);
-    assert_eq!(doc["schema_version"], 5);
+    assert_eq!(doc["schema_version"], 6);
     assert_eq!(doc["settings"]["sims"], 2000);
     assert_eq!(doc["settings"]["confidence"], 0.95);
     let qs = doc["quantities"].as_array().unwrap();

@@ -77,7 +77,7 @@ fn the_table_fits_and_the_closed_forms_hold_for_lbs_and_dqs() {
         ])
         .ok()
         .json();
-    assert_eq!(lbs["schema_version"], 5);
+    assert_eq!(lbs["schema_version"], 6);
     assert_eq!(lbs["rig"]["hands"][0]["side"], "right");
     for finger in ["index", "middle", "ring", "little"] {
         let l = num(&joint(&lbs, "rig", finger, "PIP")["volume_loss"]);
@@ -397,7 +397,7 @@ fn fix_compares_with_what_audit_fix_writes_without_writing_it() {
     let mut held = 0;
     for f in audit["rig"]["fingers"].as_array().unwrap() {
         for j in f["audit"]["joints"].as_array().unwrap() {
-            if j["moves"] == true {
+            if j["explains"] == true {
                 assert!(j["held"]["words"].is_string(), "{j}");
                 held += 1;
             }
@@ -420,8 +420,14 @@ fn fix_compares_with_what_audit_fix_writes_without_writing_it() {
         fix["moved"]
     );
     // The same as deforming the file audit --fix writes.
-    wd.run(&["audit", "right.glb", "--fix", "fixed-right.glb"])
-        .ok();
+    wd.run(&[
+        "audit",
+        "--explain",
+        "right.glb",
+        "--fix",
+        "fixed-right.glb",
+    ])
+    .ok();
     let against = wd
         .run(&[
             "deform",
@@ -751,7 +757,7 @@ fn audit_and_deform_agree_on_the_side_of_a_sideless_copy() {
     wd.write("right.glb", std::fs::read(dir.join("right.glb")).unwrap());
     // No side known: the audit judges (proportions do not depend on it) and says
     // deform needs --side; deform refuses, saying the same.
-    let audit = wd.run(&["audit", "copy.glb"]);
+    let audit = wd.run(&["audit", "--explain", "copy.glb"]);
     audit
         .ok()
         .stdout_has("neither the joint names nor the file name say which hand this is");
@@ -763,7 +769,7 @@ fn audit_and_deform_agree_on_the_side_of_a_sideless_copy() {
     wd.run(&["deform", "copy.glb", "-q", "--side", "right"])
         .ok()
         .stdout_has("right hand");
-    wd.run(&["audit", "right.glb"])
+    wd.run(&["audit", "--explain", "right.glb"])
         .ok()
         .stdout_has("the file name says right");
     wd.run(&["deform", "right.glb", "-q"])

@@ -32,6 +32,10 @@ const RESAMPLES: &str = "1000";
 fn audit(wd: &Workdir, args: &[&str]) -> Run {
     let mut all = vec!["audit", "--resamples", RESAMPLES];
     all.extend_from_slice(args);
+    // The full text, where the text is asked for (node names, units).
+    if !args.iter().any(|a| ["--format", "--brief"].contains(a)) {
+        all.push("--explain");
+    }
     wd.run(&all)
 }
 
@@ -419,7 +423,7 @@ fn moves_applied_to_the_fbx_with_the_loader_land_where_the_fix_puts_them() {
                 .iter()
                 .zip(f["audit"]["joints"].as_array().unwrap())
             {
-                if j["moves"] == true
+                if j["explains"] == true
                     && let Some((_, v)) = rows.iter().find(|(n, _)| rj["name"] == n.as_str())
                 {
                     assert!(point(&j["suggested"]).distance(DVec3::new(v[3], v[4], v[5])) < 1e-6);

@@ -134,7 +134,7 @@ fn bootstrap_options_of_every_command() {
         &["coverage", "--sims", "5"],
         &["report", "--sims", "5", "--out", out, "--format", "json"],
         &["place", "--finger", "index", "--length", "1000"],
-        &["audit", "hand.glb"],
+        &["audit", "--explain", "hand.glb"],
         &["snapshot"],
         // add: every accepted run adds a row, so each run gets its own X-ray id.
         &["add", "--finger", "index", "--lengths", "352.1,201.4,178.0"],

@@ -42,8 +42,8 @@ const COMMANDS: &[&[&str]] = &[
         "thumb=5.1,index=7.9,middle=8.6,ring=8.1,little=6.4",
     ],
     &["history"],
-    &["audit", "hand.glb"],
-    &["audit", "avatar.vrm"],
+    &["audit", "--explain", "hand.glb"],
+    &["audit", "--explain", "avatar.vrm"],
 ];
 
 #[test]
@@ -126,10 +126,10 @@ fn stats_keeps_what_matters_names_what_it_hid_and_wide_shows_everything() {
     assert!(widest(&wide.stdout) > 140, "{}", wide.stdout);
     assert!(!wide.stdout.contains("Not shown"), "{}", wide.stdout);
     // A global option: also after the command's own, and for audit.
-    let audit = wd.run(&["audit", "hand.glb", "--wide"]);
+    let audit = wd.run(&["audit", "--explain", "hand.glb", "--wide"]);
     audit.ok().stdout_has("X-ray range");
     assert!(widest(&audit.stdout) > 100);
-    let fitted = wd.run(&["audit", "hand.glb"]);
+    let fitted = wd.run(&["audit", "--explain", "hand.glb"]);
     assert!(widest(&fitted.stdout) <= 100, "{}", fitted.stdout);
 }
 
@@ -380,7 +380,7 @@ fn a_semicolon_or_tab_separated_or_headerless_file_gets_one_message() {
             "add the header line node,side,finger,joint above it",
         ),
     ] {
-        let run = wd.run(&["audit", "bones.glb", "--map", file]);
+        let run = wd.run(&["audit", "--explain", "bones.glb", "--map", file]);
         run.data_error().stderr_has(what).stderr_has(todo);
         assert_eq!(run.problem_lines().len(), 1, "{}", run.stderr);
     }

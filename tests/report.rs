@@ -242,7 +242,7 @@ fn paper_numbers_appear_in_the_report() {
     ));
     let json = file(&files, "stats.json");
     let v: serde_json::Value = serde_json::from_str(json).unwrap();
-    assert_eq!(v["schema_version"], 5);
+    assert_eq!(v["schema_version"], 6);
     assert_eq!(v["fingers"].as_array().unwrap().len(), 5);
 }
 

@@ -63,8 +63,8 @@ fn assert_refused(
 /// The breakage every document with a `schema_version` must be refused for.
 #[track_caller]
 fn assert_version_pinned(v: &Validator, name: &str, doc: &Value) {
-    assert_refused(v, name, doc, "schema_version 6", |d| {
-        d["schema_version"] = json!(6)
+    assert_refused(v, name, doc, "schema_version 7", |d| {
+        d["schema_version"] = json!(7)
     });
     assert_refused(v, name, doc, "no schema_version", |d| {
         d.as_object_mut().unwrap().remove("schema_version");

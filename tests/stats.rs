@@ -53,7 +53,7 @@ fn json_has_the_documented_schema() {
         &["schema_version", "dataset", "settings", "fingers"],
         "document",
     );
-    assert_eq!(doc["schema_version"], 5);
+    assert_eq!(doc["schema_version"], 6);
 
     has_keys(
         &doc["dataset"],

@@ -60,12 +60,16 @@ pub enum FixMcp {
                   weighed together: an MCP that the CMC or the wrist puts inside the atlas's prediction interval, or \
                   outside the other way, is held (\"in range from its base\", \"its base puts it the other way\") \
                   and the explanation sought among the inner joints; each table row states its standing given the \
-                  explanation, with the rig's own standing beside it (\"as the rig is\"). ARCHITECTURE.md, \
+                  explanation, with the rig's own standing beside it (\"as the rig is\"). docs/internals.md, \
                   \"How a ray is judged\", gives the steps and their assumptions.\n\n\
                   The text opens with one line per finger, its verdict and its move (\"index   keep\", \
                   \"index   move the PIP 3.1 mm towards the tip\", or \"held: ...\" for a move the fix \
-                  does not make), read off the same fields as the table and the JSON; --brief prints only \
-                  those lines and the summary (with --fix, the fix's line on standard error). --hold \
+                  does not make), read off the same fields as the table and the JSON; then one table per \
+                  finger (its joints, the rig against the X-rays, one verdict column), the explanation of a \
+                  finger that does not fit as it is, and the summary. --explain (--verbose) prints every \
+                  value, the method, the notes and the caveats; --brief prints only the opening lines and \
+                  the summary (with --fix, the fix's line on standard error). A fix that moves no joint \
+                  writes no file and says so. --hold \
                   pip,dip pins the artist's joints: the explanation moves only the others, and --fix, \
                   --moves and --fix-mcp atlas leave them (\"held: pinned by --hold\").\n\n\
                   --fix OUT.glb writes a copy with the explanation's joints moved along each finger, translation keys offset, and the inverse bind matrices updated so the mesh's rest \
@@ -155,6 +159,10 @@ pub(crate) struct Args {
     /// fix's line on standard error)
     #[arg(long, conflicts_with = "format")]
     brief: bool,
+    /// Print the full text: every value of each finger against its interval, the method, each
+    /// joint's new position, the skin's bends, the metacarpals, the notes and the caveats
+    #[arg(long, visible_alias = "verbose", conflicts_with_all = ["format", "brief"])]
+    explain: bool,
     /// Output format
     #[arg(long, value_enum, default_value_t = TextFormat::Table)]
     format: TextFormat,
@@ -206,7 +214,19 @@ pub(crate) fn run(args: &Args, quiet: bool, width: Width) -> Result<i32, Error> 
             width,
         )
         .into_bytes(),
-        TextFormat::Table => table(&audit, only_outside, width).into_bytes(),
+        TextFormat::Table if args.explain => table(&audit, only_outside, width).into_bytes(),
+        TextFormat::Table => {
+            let a = &audit.analysis;
+            report::audit::compact(
+                &audit.rig,
+                &a.dataset.path,
+                &crate::format::xrays(a.dataset.xrays),
+                a.settings.confidence,
+                only_outside,
+                width,
+            )
+            .into_bytes()
+        }
         TextFormat::Json => report::json::audit(&audit)?,
     };
     if let (Some(path), Some(outcome)) = (&args.moves, &audit.moves) {
@@ -431,6 +451,12 @@ fn moves_summary(audit: &Audit, path: &std::path::Path, n: usize) -> String {
 
 /// The line on standard error saying what the fix wrote.
 fn fix_summary(fix: &FixOutcome, confidence: f64) -> String {
+    if !fix.written {
+        return format!(
+            "nothing to fix: no joint moves, so {} was not written (the rig as given stands)",
+            fix.output.display()
+        );
+    }
     let mut line = format!(
         "wrote {}: {} moved; re-audited, {} of {} outside {}",
         fix.output.display(),

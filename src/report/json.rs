@@ -1,4 +1,4 @@
-//! JSON documents: the documented machine interface (`schema_version` 5).
+//! JSON documents: the documented machine interface (`schema_version` 6).
 
 use crate::analysis::claims::{CheckSummary, ClaimResult};
 use crate::analysis::coverage::{CoverageSettings, QuantityCoverage};
@@ -22,7 +22,10 @@ use serde::Serialize;
 /// against that region, and the joints' and values' own standings stay as the
 /// rig is, each alone. 5: the fix carries the skin's weights with its joints
 /// (a moved bend's `reweighted`, `held.reason` `carry`), and `rig`'s document.
-pub const SCHEMA_VERSION: u32 = 5;
+/// 6: a joint's `moves` is `explains` (the explanation moves it), and `fix`
+/// says whether the fix moves it; the fix's `written` is false when it moves
+/// no joint and writes no file.
+pub const SCHEMA_VERSION: u32 = 6;
 
 /// The settings block of every JSON document.
 #[derive(Serialize, JsonSchema)]
@@ -349,6 +352,8 @@ pub fn table_placement(
 #[derive(Serialize, JsonSchema)]
 pub struct FixView<'a> {
     pub output: &'a str,
+    /// False when the fix moves no joint: no file is written.
+    pub written: bool,
     /// Moved joints: node name and distance moved, in rig units.
     pub moved: Vec<MovedView<'a>>,
     pub warnings: &'a [String],
@@ -435,6 +440,7 @@ pub(crate) struct FbxView<'a> {
 pub fn audit(audit: &crate::rig::session::Audit) -> Result<Vec<u8>, Error> {
     let fix = audit.fix.as_ref().map(|fix| FixView {
         output: fix.output.to_str().unwrap_or("(non-UTF-8 path)"),
+        written: fix.written,
         moved: fix
             .moved
             .iter()

@@ -83,8 +83,11 @@ pub struct MovesOutcome {
 
 /// What the fix wrote.
 pub struct FixOutcome {
-    /// The file written.
+    /// The file asked for (written only when `written`).
     pub output: PathBuf,
+    /// False when the fix moves no joint: the copy would be the rig as
+    /// given, so nothing is written and the output path is left untouched.
+    pub written: bool,
     /// (node name, distance moved in rig units), in chain order.
     pub moved: Vec<(String, f64)>,
     /// Remarks for the user (animations that drive moved joints, external images).
@@ -216,6 +219,7 @@ pub fn audit(req: &AuditRequest<'_>) -> Result<Audit, Error> {
         (Some(out), Some(fixed)) => Some(fix_outcome(&judged, &audited, fixed, out)?),
         _ => None,
     };
+    audited.settle_fix(req.only_outside && (req.fix.is_some() || req.moves));
     Ok(Audit {
         analysis,
         rig: audited,
@@ -305,11 +309,12 @@ fn fix_outcome(
     out: &Path,
 ) -> Result<FixOutcome, Error> {
     let label = out.display().to_string();
+    let written = fixed.moved.iter().any(|(_, d)| *d > 0.0);
     let reaudit = reaudit(
         j.rig,
         &fixed,
         &label,
-        Some(out),
+        written.then_some(out),
         j.map,
         j.analysis,
         j.options,
@@ -326,6 +331,7 @@ fn fix_outcome(
     let fingers = moved_fingers(&reaudit, &fixed.moved);
     Ok(FixOutcome {
         output: out.to_path_buf(),
+        written,
         moved: fixed.moved,
         warnings: fixed.warnings,
         reaudit,

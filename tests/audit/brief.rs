@@ -11,7 +11,10 @@ use std::path::PathBuf;
 /// each finger's wrapped continuation joined back onto it with one space.
 fn opening(text: &str) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
-    for line in text.lines().take_while(|l| !l.trim().is_empty()) {
+    for line in text
+        .lines()
+        .take_while(|l| !l.trim().is_empty() && !l.starts_with("Against"))
+    {
         match lines.last_mut() {
             Some(last) if line.starts_with(' ') => {
                 last.push(' ');
@@ -51,7 +54,10 @@ fn expected_line(finger: &Value) -> String {
         return "not judged (a thumb without a tip has no proportion)".into();
     }
     let mm = |v: &Value| format!("{:.1}", num(v) * 1000.0);
-    let (mut moves, mut held) = (Vec::new(), Vec::new());
+    // Moves the same way, one after the other, are said once: "the PIP 9.2 mm
+    // and the DIP 4.1 mm towards the tip".
+    let mut moves: Vec<(Vec<String>, &str)> = Vec::new();
+    let mut held = Vec::new();
     for j in audit["joints"].as_array().unwrap() {
         let name = j["joint"].as_str().unwrap();
         if let Some(h) = j.get("held") {
@@ -62,23 +68,38 @@ fn expected_line(finger: &Value) -> String {
                 "pinned" => "pinned by --hold",
                 "base" => "in range from its base",
                 "base_opposes" => "its base puts it the other way",
-                "short" => "would leave the finger outside the X-rays' 50% region",
+                "short" => "the finger would stay outside the 50% region",
                 "carry" => "its skin cannot follow it",
                 other => panic!("unknown hold reason {other}"),
             };
-            held.push(format!("the {name} {} mm ({why})", mm(&h["shift"])));
-        } else if j["moves"] == true && num(&j["shift"]) > 0.0 {
+            // A move that prints as 0.0 mm is no move; an MCP's is told by
+            // its reason alone (the line's MCP distance is its base's).
+            if mm(&h["shift"]) == "0.0" {
+                continue;
+            }
+            if name == "MCP" {
+                held.push(format!("the MCP ({why})"));
+            } else {
+                held.push(format!("the {name} {} mm ({why})", mm(&h["shift"])));
+            }
+        } else if j["fix"] == true {
+            assert_eq!(j["explains"], true, "{j}");
             let towards = if num(&j["shift_along"]) >= 0.0 {
                 "tip"
             } else {
                 "root"
             };
-            moves.push(format!(
-                "the {name} {} mm towards the {towards}",
-                mm(&j["shift"])
-            ));
+            let w = format!("the {name} {} mm", mm(&j["shift"]));
+            match moves.last_mut() {
+                Some((ws, to)) if *to == towards => ws.push(w),
+                _ => moves.push((vec![w], towards)),
+            }
         }
     }
+    let moves: Vec<String> = moves
+        .iter()
+        .map(|(ws, to)| format!("{} towards the {to}", and_list(ws)))
+        .collect();
     let fits = audit["explanation"]["consistent"] == true;
     let mut parts = Vec::new();
     if !moves.is_empty() {
@@ -97,15 +118,11 @@ fn expected_line(finger: &Value) -> String {
         (true, true) => "keep".into(),
         (true, false) => "keep: no move of up to two joints fits the X-rays".into(),
     };
-    // The MCP from the ray's base, when the base puts it outside and the line
-    // does not name the MCP already (it neither moves nor is held).
+    // The MCP from the ray's base, whenever the base puts it outside (the
+    // summary counts each such MCP).
     let check = &finger["metacarpal_check"];
-    let named = audit["joints"].as_array().unwrap().iter().any(|j| {
-        j["joint"] == "MCP"
-            && (j.get("held").is_some() || (j["moves"] == true && num(&j["shift"]) > 0.0))
-    });
     let outside = matches!(check["standing"].as_str(), Some("above" | "below"));
-    if !outside || named {
+    if !outside {
         return line;
     }
     let base = match check["base"].as_str().unwrap() {
@@ -118,7 +135,7 @@ fn expected_line(finger: &Value) -> String {
         "proximal"
     };
     let clause = format!(
-        "the MCP from {base}: OUT, {} mm too {way} (--fix-mcp atlas places it)",
+        "the MCP from {base}: OUT, {} mm too {way}",
         mm(&check["by"])
     );
     if line == "keep" {
@@ -214,7 +231,11 @@ fn the_opening_of_a_built_rig_names_its_move() {
     let wd = Workdir::with_paper_data();
     index_pip_off(&wd);
     assert_opening_agrees(&wd, "hand.glb", &[]);
-    let text = wd.run(&["audit", "hand.glb"]).ok().stdout.clone();
+    let text = wd
+        .run(&["audit", "--explain", "hand.glb"])
+        .ok()
+        .stdout
+        .clone();
     let lines = opening(&text);
     // Built with the index PIP 5.0 mm distal of X-ray 1b's (hand.rs): the
     // line names that joint and direction; the other fingers are X-ray 1b's own.
@@ -248,7 +269,11 @@ fn brief_prints_the_opening_and_the_result_line_only() {
     let wd = Workdir::with_paper_data();
     index_pip_off(&wd);
     // The expected lines are cut from the full output: its opening and its summary.
-    let full = wd.run(&["audit", "hand.glb"]).ok().stdout.clone();
+    let full = wd
+        .run(&["audit", "--explain", "hand.glb"])
+        .ok()
+        .stdout
+        .clone();
     let head: Vec<&str> = full.lines().take_while(|l| !l.is_empty()).collect();
     let summary = paragraph(&full, "Summary: ");
     assert!(!head.is_empty() && !summary.is_empty(), "{full}");
@@ -264,7 +289,7 @@ fn brief_prints_the_opening_and_the_result_line_only() {
 
     // With --fix: the opening on standard output, the fix's line on standard
     // error, as the full run writes it, and nothing else.
-    let run = wd.run(&["audit", "hand.glb", "--fix", "a.glb"]);
+    let run = wd.run(&["audit", "--explain", "hand.glb", "--fix", "a.glb"]);
     let full_fix = run.ok().stderr.clone();
     let result = paragraph(&full_fix, "wrote a.glb: ");
     assert!(result[0].contains("1 joint moved"), "{full_fix}");
@@ -320,7 +345,7 @@ fn hold_pip_keeps_the_pip_in_the_json_and_the_fixed_file() {
         .json();
     let index = finger_of(&doc, "index");
     let j = joint_of(index, "PIP");
-    assert_eq!(j["moves"], false, "{j}");
+    assert_eq!(j["explains"], false, "{j}");
     assert_eq!(j["shift"], 0.0, "{j}");
     assert_held(j, "pinned", "held: pinned by --hold");
     // What it gives up is the move the unheld audit makes.
@@ -338,8 +363,15 @@ fn hold_pip_keeps_the_pip_in_the_json_and_the_fixed_file() {
         .iter()
         .map(|m| m["node"].as_str().unwrap())
         .collect();
-    // No PIP of any finger moves in the fixed file.
-    let fixed = wd.read("held.glb");
+    // No PIP of any finger moves in the fixed file (none is written when
+    // nothing moves).
+    let fixed = if doc["fix"]["written"] == true {
+        wd.read("held.glb")
+    } else {
+        assert!(moved.is_empty(), "{moved:?}");
+        assert!(!wd.path().join("held.glb").exists());
+        input.clone()
+    };
     for finger in ["Index", "Middle", "Ring", "Pinky"] {
         let node = format!("mixamorig:RightHand{finger}2");
         assert!(!moved.contains(&node.as_str()), "{moved:?}");
@@ -350,7 +382,7 @@ fn hold_pip_keeps_the_pip_in_the_json_and_the_fixed_file() {
     }
     // The text says so, in the opening and in the table.
     let text = wd
-        .run(&["audit", "hand.glb", "--hold", "pip"])
+        .run(&["audit", "--explain", "hand.glb", "--hold", "pip"])
         .ok()
         .stdout
         .clone();
@@ -374,13 +406,21 @@ fn hold_pip_keeps_the_pip_in_the_json_and_the_fixed_file() {
 fn a_bad_hold_exits_2_naming_the_value() {
     let wd = Workdir::with_paper_data();
     index_pip_off(&wd);
-    wd.run(&["audit", "hand.glb", "--hold", "pip,knuckle"])
+    wd.run(&["audit", "--explain", "hand.glb", "--hold", "pip,knuckle"])
         .expect_code(2)
         .stderr_has("'knuckle'")
         .stderr_has("mcp, pip, dip, ip or tip");
     // Any case, with the fix too.
-    wd.run(&["audit", "hand.glb", "--hold", "PIP,Dip", "--fix", "x.glb"])
-        .ok();
+    wd.run(&[
+        "audit",
+        "--explain",
+        "hand.glb",
+        "--hold",
+        "PIP,Dip",
+        "--fix",
+        "x.glb",
+    ])
+    .ok();
 }
 
 #[test]
@@ -397,16 +437,26 @@ fn with_only_outside_the_opening_holds_a_joint_inside_its_interval() {
             .find(|l| l.starts_with("right index"))
             .unwrap()
     };
-    let free = index(&["audit", "index.glb", "--fix", "a.glb"]);
+    let free = index(&["audit", "--explain", "index.glb", "--fix", "a.glb"]);
     assert!(free.contains("move the DIP "), "{free}");
-    let held = index(&["audit", "index.glb", "--fix", "b.glb", "--only-outside"]);
+    let held = index(&[
+        "audit",
+        "--explain",
+        "index.glb",
+        "--fix",
+        "b.glb",
+        "--only-outside",
+    ]);
     assert!(
         held.contains("held: the DIP ")
             && held.ends_with("mm (inside its own prediction interval; --only-outside)"),
         "{held}"
     );
     // Without a fix --only-outside decides nothing, and the line is the plain one.
-    assert_eq!(index(&["audit", "index.glb", "--only-outside"]), free);
+    assert_eq!(
+        index(&["audit", "--explain", "index.glb", "--only-outside"]),
+        free
+    );
 }
 
 #[test]
@@ -440,7 +490,7 @@ fn hold_mcp_keeps_the_mcps_that_fix_mcp_atlas_moves() {
     let fixed = wd.read("held.glb");
     for f in fingers(&held) {
         let j = joint_of(f, "MCP");
-        assert_eq!(j["moves"], false, "{j}");
+        assert_eq!(j["explains"], false, "{j}");
         let node = f["joints"][0]["name"].as_str().unwrap();
         assert!(!moved(&held).iter().any(|n| n == node), "{node}");
         let (a, b) = (position(&input, node), position(&fixed, node));

@@ -23,6 +23,8 @@ fn audit(wd: &Workdir, data: &str, json: bool) -> Run {
     ];
     if json {
         args.extend(["--format", "json"]);
+    } else {
+        args.push("--explain");
     }
     let run = wd.run_env(&args, WIDE);
     run.ok();

@@ -273,7 +273,7 @@ fn constant_translation_keys_follow_the_moved_joints() {
     spec.smooth = Some(vec![("index", 1, -10.0)]);
     let input = build(&spec);
     wd.write("anim.glb", &input);
-    wd.run(&["audit", "anim.glb", "--fix", "fixed.glb"])
+    wd.run(&["audit", "--explain", "anim.glb", "--fix", "fixed.glb"])
         .ok()
         .stderr_has("constant translation channels of moved joints now key the new rest");
     let fixed = wd.read("fixed.glb");
@@ -313,7 +313,7 @@ fn varying_translation_keys_move_the_joints_as_before() {
     spec.smooth = Some(Vec::new());
     let input = build(&spec);
     wd.write("anim.glb", &input);
-    wd.run(&["audit", "anim.glb", "--fix", "fixed.glb"])
+    wd.run(&["audit", "--explain", "anim.glb", "--fix", "fixed.glb"])
         .ok()
         .stderr_has(
             "the translation keys of 'mixamorig:RightHandIndex2', 'mixamorig:RightHandIndex3' vary",
@@ -363,7 +363,9 @@ fn edit(bytes: &[u8], f: impl FnOnce(&mut Value)) -> Vec<u8> {
 #[test]
 fn channels_with_unknown_paths_are_reported_and_left_alone() {
     let wd = Workdir::with_paper_data();
-    let mut spec = HandSpec::new(Naming::Mixamo).moved("index", 1, 1.0);
+    // A PIP 5 mm off, so that the fix moves it and writes its copy.
+    let mut spec = HandSpec::new(Naming::Mixamo).moved("index", 1, 5.0);
+    spec.smooth = Some(Vec::new());
     spec.animate = true;
     let input = edit(&build(&spec), |j| {
         let chs = j["animations"][0]["channels"].as_array_mut().unwrap();
@@ -375,7 +377,7 @@ fn channels_with_unknown_paths_are_reported_and_left_alone() {
         j["extensionsUsed"] = serde_json::json!(["KHR_animation_pointer"]);
     });
     wd.write("odd.glb", &input);
-    wd.run(&["audit", "odd.glb", "--fix", "fixed.glb"])
+    wd.run(&["audit", "--explain", "odd.glb", "--fix", "fixed.glb"])
         .ok()
         .stderr_has("channel 1 (path 'rottaion')")
         .stderr_has("(KHR_animation_pointer)")
@@ -414,6 +416,7 @@ fn only_outside_moves_only_joints_outside_their_interval() {
     assert!(moved_nodes(&wd, "index.glb", "outside.glb", &["--only-outside"]).is_empty());
     wd.run(&[
         "audit",
+        "--explain",
         "index.glb",
         "--fix",
         "outside.glb",
@@ -421,5 +424,5 @@ fn only_outside_moves_only_joints_outside_their_interval() {
         "--force",
     ])
     .ok()
-    .stderr_has("0 joints moved; re-audited, 1 of 5 fingers outside");
+    .stderr_has("nothing to fix: no joint moves, so outside.glb was not written");
 }

@@ -76,7 +76,11 @@ fn a_tipless_hand_is_judged_with_its_tips_from_the_mesh() {
             "reach {reach} against the tube's {segment}"
         );
     }
-    let text = wd.run(&["audit", "tipless.glb"]).ok().stdout.clone();
+    let text = wd
+        .run(&["audit", "--explain", "tipless.glb"])
+        .ok()
+        .stdout
+        .clone();
     assert!(
         text.contains("judged on relative values (tip from the mesh)"),
         "{text}"

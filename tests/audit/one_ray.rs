@@ -62,7 +62,7 @@ fn the_daz_like_middle_finger_moves_its_pip_and_dip_not_the_mcp_the_wrist_puts_i
         "{}",
         middle["audit"]["explanation"]
     );
-    assert_eq!(joint_of(middle, "MCP")["moves"], false);
+    assert_eq!(joint_of(middle, "MCP")["explains"], false);
     assert!(joint_of(middle, "MCP").get("held").is_none());
     // On the X-rays' own shape (--prior-hands 0) the finger alone names the
     // MCP, and the wrist's evidence holds it: the weighing this test is about.
@@ -79,7 +79,7 @@ fn the_daz_like_middle_finger_moves_its_pip_and_dip_not_the_mcp_the_wrist_puts_i
     );
     let mcp = joint_of(middle, "MCP");
     assert_eq!(mcp["held"]["reason"], "base", "{mcp}");
-    assert_eq!(mcp["moves"], false, "{mcp}");
+    assert_eq!(mcp["explains"], false, "{mcp}");
     let moved: Vec<&str> = middle["audit"]["explanation"]["moved"]
         .as_array()
         .unwrap()
@@ -96,7 +96,7 @@ fn the_daz_like_middle_finger_moves_its_pip_and_dip_not_the_mcp_the_wrist_puts_i
     // The text: the opening holds the MCP for its base and moves the PIP, and
     // adds no base clause (the base agrees with the line).
     let text = wd
-        .run(&["audit", "daz.glb", "--prior-hands", "0"])
+        .run(&["audit", "--explain", "daz.glb", "--prior-hands", "0"])
         .ok()
         .stdout
         .clone();
@@ -105,7 +105,8 @@ fn the_daz_like_middle_finger_moves_its_pip_and_dip_not_the_mcp_the_wrist_puts_i
         .find(|l| l.starts_with("right middle") || l.starts_with("middle"))
         .unwrap_or_else(|| panic!("{text}"));
     assert!(line.contains("the MCP"), "{line}");
-    assert!(text.contains("(in range from its base)"), "{text}");
+    let flat = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(flat.contains("(in range from its base)"), "{text}");
     assert!(!line.contains("--fix-mcp atlas places it"), "{line}");
     let words = mcp["held"]["words"].as_str().unwrap();
     assert!(
@@ -176,6 +177,16 @@ fn assert_rows_agree_with_explanations(text: &str, doc: &Value, what: &str) -> u
         if e["consistent"] != true {
             continue;
         }
+        // A row waits for no move the fix does not make: with one of the
+        // explanation's joints held, each row gives the rig as it is.
+        let held = f["audit"]["joints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|j| j["explains"] == true && j["fix"] != true);
+        if held {
+            continue;
+        }
         let label = match f["side"].as_str() {
             Some(side) => format!("{side} {}:", f["finger"].as_str().unwrap()),
             None => format!("{}:", f["finger"].as_str().unwrap()),
@@ -229,7 +240,11 @@ fn no_row_says_out_above_an_explanation_that_fits() {
     );
     let mut checked = 0;
     for rig in &rigs {
-        let text = wd.run(&["audit", rig, "--wide"]).ok().stdout.clone();
+        let text = wd
+            .run(&["audit", "--explain", rig, "--wide"])
+            .ok()
+            .stdout
+            .clone();
         let doc = wd.run(&["audit", rig, "--format", "json"]).ok().json();
         checked += assert_rows_agree_with_explanations(&text, &doc, rig);
     }
@@ -271,7 +286,7 @@ fn an_mcp_the_finger_and_its_base_would_move_opposite_ways_is_held() {
     let moved = middle["audit"]["explanation"]["moved"].as_array().unwrap();
     assert!(!moved.contains(&Value::from("MCP")), "{moved:?}");
     let text = wd
-        .run(&["audit", "short.glb", "--prior-hands", "0"])
+        .run(&["audit", "--explain", "short.glb", "--prior-hands", "0"])
         .ok()
         .stdout
         .clone();

@@ -99,7 +99,7 @@ fn both_hands_have_every_finger_found_and_judged_by_name() {
         let middle = &finger_of(&doc, "middle")["audit"]["explanation"];
         assert_eq!(middle["moved"], serde_json::json!([]), "{side}");
         // The text fits 100 columns.
-        let text = wd.run(&["audit", &file]).ok().stdout.clone();
+        let text = wd.run(&["audit", "--explain", &file]).ok().stdout.clone();
         for line in text.lines() {
             assert!(
                 line.chars().count() <= 100,
@@ -120,13 +120,22 @@ fn a_fix_moves_sibling_joints_alone_and_keeps_the_mesh() {
     // its PIP and DIP (the thumb's IP) 4-9 mm nearer the root. With the
     // weights carried, the fix moves all nine (not the MCPs: without
     // --fix-mcp atlas it holds every MCP), and every finger is inside after.
-    wd.run(&["audit", "right.glb", "--tip", "skin", "--fix", "fixed.glb"])
-        .ok()
-        .stderr_has("wrote fixed.glb: 9 joints moved; re-audited, 0 of 5 fingers outside");
+    wd.run(&[
+        "audit",
+        "--explain",
+        "right.glb",
+        "--tip",
+        "skin",
+        "--fix",
+        "fixed.glb",
+    ])
+    .ok()
+    .stderr_has("wrote fixed.glb: 9 joints moved; re-audited, 0 of 5 fingers outside");
     // With the weights as painted (--keep-weights) every inner joint sits
     // within 1.3 mm of its skin bend, so the fix holds them and moves none.
     wd.run(&[
         "audit",
+        "--explain",
         "right.glb",
         "--tip",
         "skin",
@@ -135,9 +144,16 @@ fn a_fix_moves_sibling_joints_alone_and_keeps_the_mesh() {
         "kept.glb",
     ])
     .ok()
-    .stderr_has("wrote kept.glb: 0 joints moved; re-audited, 5 of 5 fingers outside");
+    .stderr_has("nothing to fix: no joint moves, so kept.glb was not written");
     let text = wd
-        .run(&["audit", "right.glb", "--tip", "skin", "--keep-weights"])
+        .run(&[
+            "audit",
+            "--explain",
+            "right.glb",
+            "--tip",
+            "skin",
+            "--keep-weights",
+        ])
         .ok()
         .stdout
         .split_whitespace()
@@ -187,7 +203,11 @@ fn a_fix_moves_sibling_joints_alone_and_keeps_the_mesh() {
 fn every_webxr_finger_gets_a_metacarpal_judgement_from_the_atlas() {
     let wd = Workdir::with_paper_data();
     let Some(_) = hand(&wd, "right") else { return };
-    let no_atlas = wd.run(&["audit", "right.glb"]).ok().stdout.clone();
+    let no_atlas = wd
+        .run(&["audit", "--explain", "right.glb"])
+        .ok()
+        .stdout
+        .clone();
     assert!(!no_atlas.contains("Metacarpal ("), "{no_atlas}");
     let doc = audit_json(&wd, "right.glb");
     assert!(
@@ -236,11 +256,17 @@ fn every_webxr_finger_gets_a_metacarpal_judgement_from_the_atlas() {
         assert_close(num(&ratio["measured"]), mc / num(&m["length"]), 1e-9, name);
         assert!(m["standing"].is_string(), "{name}: {m}");
     }
-    wd.run(&["audit", "right.glb"])
+    wd.run(&["audit", "--explain", "right.glb"])
         .ok()
         .stdout_has("Metacarpal (index-finger-metacarpal): mc ")
         .stdout_has("children's left hands");
     // A named dataset that is missing is an error, not a silent skip.
-    wd.run(&["audit", "right.glb", "--metacarpals", "nowhere.csv"])
-        .data_error();
+    wd.run(&[
+        "audit",
+        "--explain",
+        "right.glb",
+        "--metacarpals",
+        "nowhere.csv",
+    ])
+    .data_error();
 }

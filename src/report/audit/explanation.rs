@@ -66,15 +66,16 @@ pub(crate) fn heading(f: &AuditedFinger) -> String {
     out
 }
 
-/// The explanation of a finger's misfit, in words.
+/// The explanation of a finger's misfit, in words: the fit as it is, or
+/// the joints that move and what the rest then is ([`moved_words`],
+/// [`misfit_words`]), the joints held, and the other sets that would fit.
 pub(crate) fn explanation_words(a: &FingerAudit) -> String {
     let e = &a.explanation;
-    let soft = a.tip_correction != 0.0;
     if a.basis == Basis::None {
         return String::new();
     }
     if e.moved.is_empty() && e.consistent {
-        let soft = if soft {
+        let soft = if a.tip_correction != 0.0 {
             ", the tip's soft tissue accounted for"
         } else {
             ""
@@ -88,81 +89,7 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
         });
         return format!("Fits the X-rays as it is{soft}{region}.{}", held_words(a));
     }
-    let moved: Vec<String> = a
-        .joints
-        .iter()
-        .filter(|j| j.moves)
-        .map(|j| {
-            let side = if j.shift_along < 0.0 {
-                "distal"
-            } else {
-                "proximal"
-            };
-            let web = if j.joint == Joint::Mcp && j.shift_along < 0.0 {
-                " (at the finger web, not the knuckle?)"
-            } else {
-                ""
-            };
-            format!(
-                "the {} sits {} mm {side} of where the X-rays put it given the other joints{web}",
-                j.joint.name(),
-                num(j.shift_along.abs() * MM, 1)
-            )
-        })
-        .collect();
-    let names = |moving: bool, article: bool| -> Vec<String> {
-        a.joints
-            .iter()
-            .filter(|j| j.moves == moving)
-            .map(|j| match (j.joint, article) {
-                (Joint::Tip, _) => "the tip".to_string(),
-                (k, true) => format!("the {}", k.name()),
-                (k, false) => k.name().to_string(),
-            })
-            .collect()
-    };
-    let mut accounted = names(true, true);
-    if soft {
-        accounted.push("the soft tissue".into());
-    }
-    let others = names(false, false);
-    let mut out = if e.consistent {
-        let verb = |l: &[String]| if l.len() == 1 { "is" } else { "are" };
-        format!(
-            "Explanation: {}; {} {} consistent with the X-rays once {} {} accounted for.",
-            and_list(&moved),
-            and_list(&others),
-            verb(&others),
-            and_list(&accounted),
-            verb(&accounted)
-        )
-    } else if moved.is_empty() {
-        let at_bends = a.joints.iter().any(|j| {
-            j.held
-                .as_ref()
-                .is_some_and(|h| h.reason != crate::rig::judge::HoldReason::Small)
-        });
-        if at_bends {
-            "No move of the joints that are not held fits the X-rays, so the fix moves none."
-                .to_string()
-        } else {
-            "No move of up to two joints fits the X-rays.".to_string()
-        }
-    } else {
-        format!(
-            "No move of up to two of the joints free to move lands the finger inside the X-rays' \
-             {} joint region, where the fix puts a finger, so the fix moves none; the closest: {}{}.",
-            level(FIX_LEVEL),
-            and_list(&moved),
-            e.score.map_or(String::new(), |x| format!(
-                " (then {} of the way to the {} region's edge)",
-                num(x, 2),
-                a.region
-                    .as_ref()
-                    .map_or(String::new(), |r| level(r.confidence))
-            ))
-        )
-    };
+    let mut out = misfit_words(a, &moved_words(a));
     out.push_str(&held_words(a));
     if !e.also.is_empty() {
         let alt: Vec<String> = e
@@ -178,10 +105,97 @@ pub(crate) fn explanation_words(a: &FingerAudit) -> String {
     out
 }
 
+/// Each joint the explanation moves, where it sits against where the X-rays
+/// put it given the other joints; an MCP distal of that place is said to lie
+/// where one placed at the finger web would.
+fn moved_words(a: &FingerAudit) -> Vec<String> {
+    a.joints
+        .iter()
+        .filter(|j| j.moves)
+        .map(|j| {
+            let side = if j.shift_along < 0.0 {
+                "distal"
+            } else {
+                "proximal"
+            };
+            let web = if j.joint == Joint::Mcp && j.shift_along < 0.0 {
+                " (distal of the knuckle, where an MCP placed at the finger web lies)"
+            } else {
+                ""
+            };
+            format!(
+                "the {} sits {} mm {side} of where the X-rays put it given the other joints{web}",
+                j.joint.name(),
+                num(j.shift_along.abs() * MM, 1)
+            )
+        })
+        .collect()
+}
+
+/// The explanation's sentence for a finger that does not fit as it is:
+/// `moved` ([`moved_words`]) and the joints then consistent, or why no move
+/// is made.
+fn misfit_words(a: &FingerAudit, moved: &[String]) -> String {
+    let e = &a.explanation;
+    let names = |moving: bool, article: bool| -> Vec<String> {
+        a.joints
+            .iter()
+            .filter(|j| j.moves == moving)
+            .map(|j| match (j.joint, article) {
+                (Joint::Tip, _) => "the tip".to_string(),
+                (k, true) => format!("the {}", k.name()),
+                (k, false) => k.name().to_string(),
+            })
+            .collect()
+    };
+    if e.consistent {
+        let mut accounted = names(true, true);
+        if a.tip_correction != 0.0 {
+            accounted.push("the soft tissue".into());
+        }
+        let others = names(false, false);
+        let verb = |l: &[String]| if l.len() == 1 { "is" } else { "are" };
+        return format!(
+            "Explanation: {}; {} {} consistent with the X-rays once {} {} accounted for.",
+            and_list(moved),
+            and_list(&others),
+            verb(&others),
+            and_list(&accounted),
+            verb(&accounted)
+        );
+    }
+    if moved.is_empty() {
+        let at_bends = a.joints.iter().any(|j| {
+            j.held
+                .as_ref()
+                .is_some_and(|h| h.reason != crate::rig::judge::HoldReason::Small)
+        });
+        return if at_bends {
+            "No move of the joints that are not held fits the X-rays, so the fix moves none."
+                .to_string()
+        } else {
+            "No move of up to two joints fits the X-rays.".to_string()
+        };
+    }
+    format!(
+        "No move of up to two of the joints free to move lands the finger inside the X-rays' \
+         {} joint region, where the fix puts a finger, so the fix moves none; the closest: {}{}.",
+        level(FIX_LEVEL),
+        and_list(moved),
+        e.score.map_or(String::new(), |x| format!(
+            " (then {} of the way to the {} region's edge)",
+            num(x, 2),
+            a.region
+                .as_ref()
+                .map_or(String::new(), |r| level(r.confidence))
+        ))
+    )
+}
+
 /// What the fix does with one joint, for the line per finger.
 pub(super) enum Step {
-    /// "the PIP 3.1 mm towards the tip": the fix makes this move.
-    Move(String),
+    /// "the PIP 3.1 mm", towards the "tip" (or "root"): the fix makes this move.
+    Move(String, &'static str),
     /// "the IP 2.7 mm (it would leave its skin bend)": a move the fix does not make.
     Held(String),
 }
@@ -193,6 +207,10 @@ pub(super) enum Step {
 pub(super) fn step(j: &JointCheck, only_outside: bool) -> Option<Step> {
     let mm = |x: f64| num(x * MM, 1);
     if let Some(h) = &j.held {
+        if shown_zero(h.shift) {
+            // A move that prints as 0.0 mm is no move: nothing to say.
+            return None;
+        }
         return Some(Step::Held(format!(
             "the {} {} mm ({})",
             j.joint.name(),
@@ -210,12 +228,10 @@ pub(super) fn step(j: &JointCheck, only_outside: bool) -> Option<Step> {
             mm(j.shift)
         )));
     }
-    Some(Step::Move(format!(
-        "the {} {} mm towards the {}",
-        j.joint.name(),
-        mm(j.shift),
-        if j.shift_along >= 0.0 { "tip" } else { "root" }
-    )))
+    Some(Step::Move(
+        format!("the {} {} mm", j.joint.name(), mm(j.shift)),
+        if j.shift_along >= 0.0 { "tip" } else { "root" },
+    ))
 }
 
 /// A finger's verdict and its move in a few words: "keep", "move the PIP
@@ -223,14 +239,28 @@ pub(super) fn step(j: &JointCheck, only_outside: bool) -> Option<Step> {
 /// bend)", or both, root first; read off each joint's move ([`step`]) and the
 /// explanation, so it says what the table's rows, the explanation's words
 /// and the JSON say.
+///
+/// A held MCP is named with its reason only: the line gives no MCP distance
+/// but its base's ([`base_clause`]).
 pub(crate) fn finger_line(a: &FingerAudit, only_outside: bool) -> String {
     if a.basis == Basis::None {
         return "not judged (a thumb without a tip has no proportion)".into();
     }
-    let (mut moves, mut held) = (Vec::new(), Vec::new());
+    let mut moves: Vec<(Vec<String>, &str)> = Vec::new();
+    let mut held = Vec::new();
     for j in &a.joints {
         match step(j, only_outside) {
-            Some(Step::Move(w)) => moves.push(w),
+            Some(Step::Move(w, to)) => match moves.last_mut() {
+                // Moves the same way are said once: "the PIP 9.2 mm and the
+                // DIP 4.1 mm towards the tip".
+                Some((ws, last)) if *last == to => ws.push(w),
+                _ => moves.push((vec![w], to)),
+            },
+            Some(Step::Held(_)) if j.joint == Joint::Mcp => {
+                if let Some(h) = &j.held {
+                    held.push(format!("the MCP ({})", h.reason.short()));
+                }
+            }
             Some(Step::Held(w)) => held.push(w),
             None => {}
         }
@@ -243,6 +273,10 @@ pub(crate) fn finger_line(a: &FingerAudit, only_outside: bool) -> String {
         } else {
             " (the closest: no move of up to two joints fits the X-rays)"
         };
+        let moves: Vec<String> = moves
+            .iter()
+            .map(|(ws, to)| format!("{} towards the {to}", and_list(ws)))
+            .collect();
         parts.push(format!("move {}{closest}", and_list(&moves)));
     }
     if !held.is_empty() {
@@ -256,21 +290,13 @@ pub(crate) fn finger_line(a: &FingerAudit, only_outside: bool) -> String {
 }
 
 /// What the finger's ray base says of its MCP, for the opening line, when it
-/// puts the MCP outside the atlas's prediction interval and the finger's own
-/// line does not name the MCP (it neither moves nor holds it): "the MCP from
-/// its CMC: OUT, 4.4 mm too proximal (--fix-mcp atlas places it)", the words
-/// of the table's row. An MCP the base puts in range and the finger would move
-/// is held instead ([`crate::rig::AuditedRig::judge_rays`]), so the line and the row agree.
+/// puts the MCP outside the atlas's prediction interval: "the MCP from its
+/// CMC: OUT, 4.4 mm too proximal", the words of the table's row. Every MCP
+/// the summary counts outside from its base is named so, whether or not the
+/// finger's own line names the MCP.
 pub(crate) fn base_clause(f: &AuditedFinger) -> Option<String> {
     let m = f.metacarpal_check.as_ref()?;
     if m.standing.is_consistent() {
-        return None;
-    }
-    let named = f
-        .audit
-        .joint(Joint::Mcp)
-        .is_some_and(|j| j.held.is_some() || j.fix_moves());
-    if named {
         return None;
     }
     let base = match m.base {
@@ -278,7 +304,7 @@ pub(crate) fn base_clause(f: &AuditedFinger) -> Option<String> {
         RayBase::Wrist => "the wrist",
     };
     Some(format!(
-        "the MCP from {base}: {} (--fix-mcp atlas places it)",
+        "the MCP from {base}: {}",
         joint_standing(m.standing, MM)
     ))
 }

@@ -2,11 +2,13 @@
 //!
 //! Rig coordinates are taken as metres (the glTF unit) and shown in millimetres.
 
+mod compact;
 mod explanation;
 mod fix;
 mod table;
 mod words;
 
+pub(crate) use compact::compact;
 pub(crate) use fix::{fix_after_words, moved_fingers_words};
 pub(crate) use table::{brief, outside_of, text};
 pub(crate) use words::{

@@ -1,4 +1,4 @@
-//! The audit as the terminal shows it: the finger table, the summary and the brief form.
+//! The audit's full text (`--explain`): the finger tables, the summary and the brief form.
 
 use super::MM;
 use super::explanation::*;
@@ -132,7 +132,7 @@ pub(crate) fn summary(rig: &AuditedRig, confidence: f64) -> String {
     }
     if rig.fingers.iter().any(|f| !f.bends.is_empty()) {
         summary.push_str(&format!(
-            " {} more than {} mm from where their skin bends.",
+            " {} over {} mm from where the skin bends.",
             crate::format::count(rig.bends_flagged(), "inner joint lies", "inner joints lie"),
             num(rig.bend_tolerance * MM, 1)
         ));

@@ -126,6 +126,11 @@ pub(crate) fn suggestion(j: &crate::rig::judge::JointCheck) -> String {
     )
 }
 
+/// True when a length prints as 0.0 mm (to 0.1 mm).
+pub(super) fn shown_zero(x: f64) -> bool {
+    (x * MM * 10.0).round() == 0.0
+}
+
 /// "A, B and C".
 pub(super) fn and_list(items: &[String]) -> String {
     match items {
@@ -255,6 +260,14 @@ pub(super) fn given(a: &FingerAudit, as_is: String, consistent: bool) -> String 
         // the whole vector, not alone.
         return format!("fits: the finger is inside the joint region (alone: {as_is})");
     }
+    // A move the fix does not make is not one the row can wait for.
+    let made = e
+        .moved
+        .iter()
+        .all(|k| a.joint(*k).is_some_and(|j| j.fix_moves()));
+    if !made {
+        return as_is;
+    }
     let names: Vec<String> = e
         .moved
         .iter()
@@ -301,12 +314,13 @@ pub(super) fn joint_given(a: &FingerAudit, j: &JointCheck) -> String {
         // A joint an earlier explanation would have moved, held (off its
         // bend, pinned), the explanation then sought without it.
         return match &j.held {
-            Some(h) => format!("{g}; {}", h.words),
-            None => g,
+            Some(h) if !shown_zero(h.shift) => format!("{g}; {}", h.words),
+            _ => g,
         };
     }
     let mm = num(j.shift * MM, 1);
     match &j.held {
+        Some(h) if shown_zero(h.shift) => as_is,
         Some(h) => format!("{} (as the rig is: {as_is})", h.words),
         None => format!(
             "moves {mm} mm towards the {} (as the rig is: {as_is})",
@@ -357,7 +371,7 @@ pub(crate) fn shape_words(rig: &AuditedRig) -> String {
              with {}'s ({} hands, weighted as {}): r* = (m r0 + (n - 1) r_S) / (m + n - 1), \
              since 5 X-rays hardly fix the correlation (the prior borrows no variance, so the \
              bound stays the X-rays'; simulated, at most 5% of normal fingers fall outside \
-             whatever the true correlation, ARCHITECTURE.md). Each verdict also gives T^2 on \
+             whatever the true correlation, docs/internals.md). Each verdict also gives T^2 on \
              the X-rays' own S (--prior-hands 0 judges on it).",
             shape.source,
             crate::format::xrays(shape.n).replace(" X-rays", ""),

@@ -570,6 +570,19 @@ impl AuditedRig {
         }
     }
 
+    /// Sets each joint's `fix` from its move and its hold, once the audit is
+    /// finished; with `only_outside` (`--only-outside` with a fix), a joint
+    /// inside its own prediction interval is not moved, as the fix decides.
+    pub fn settle_fix(&mut self, only_outside: bool) {
+        for j in self
+            .fingers
+            .iter_mut()
+            .flat_map(|f| f.audit.joints.iter_mut())
+        {
+            j.fix = j.fix_moves() && !(only_outside && j.standing.is_consistent());
+        }
+    }
+
     /// Fingers whose MCP lies outside the prediction interval from its ray's
     /// base (the CMC or the wrist).
     pub fn metacarpals_outside(&self) -> usize {

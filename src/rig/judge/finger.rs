@@ -326,6 +326,7 @@ fn joint_checks(
             pi,
             standing: Standing::of(measured, range, pi),
             moves,
+            fix: false,
             suggested,
             shift,
             shift_along,

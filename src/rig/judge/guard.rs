@@ -5,8 +5,8 @@
 use super::bend;
 use super::finger;
 use super::standing::{
-    BEND_GUARD, ChainInput, FingerAudit, Held, HoldReason, JudgeOptions, MOVE_TOLERANCE,
-    chain_kinds,
+    BEND_GUARD, ChainInput, FingerAudit, Held, HoldReason, JudgeOptions, chain_kinds,
+    under_tolerance,
 };
 use crate::analysis::Analysis;
 use crate::analysis::placement::Joint;
@@ -45,7 +45,7 @@ pub(super) fn hold_reason(
     {
         return Some(Held::new(HoldReason::Bend, shift, bend));
     }
-    (shift > 0.0 && shift < MOVE_TOLERANCE).then(|| Held::new(HoldReason::Small, shift, bend))
+    (shift > 0.0 && under_tolerance(shift)).then(|| Held::new(HoldReason::Small, shift, bend))
 }
 
 /// Why a move of `joint` from `from` to `to` is not made, by the skin's
@@ -71,7 +71,7 @@ pub(super) fn hold_for(
     {
         return Some(Held::carry(shift, why));
     }
-    (shift > 0.0 && shift < MOVE_TOLERANCE).then(|| Held::new(HoldReason::Small, shift, None))
+    (shift > 0.0 && under_tolerance(shift)).then(|| Held::new(HoldReason::Small, shift, None))
 }
 
 /// `audit` (of `input`, judged with `judge` against `a`) with the fix's

@@ -34,5 +34,5 @@ pub use ray_base::{
 pub use standing::{
     BEND_GUARD, Basis, ChainInput, Explanation, FingerAudit, FingerSoftTissue, Held, HoldReason,
     JointCheck, JudgeOptions, MOVE_TOLERANCE, OwnRegion, RegionCheck, RegionShape,
-    SOFT_TISSUE_TABLE, SoftTissue, Standing, TipKind, ValueCheck, data_tip_of,
+    SOFT_TISSUE_TABLE, SoftTissue, Standing, TipKind, ValueCheck, data_tip_of, under_tolerance,
 };

@@ -353,8 +353,14 @@ pub struct JointCheck {
     /// `Above` means the joint sits too far towards the tip.
     #[serde(flatten)]
     pub standing: Standing,
-    /// True when the explanation moves this joint.
+    /// True when the explanation moves this joint (JSON `explains`; whether
+    /// the fix moves it is `fix`).
+    #[serde(rename = "explains")]
     pub moves: bool,
+    /// True when the fix moves this joint: the explanation moves it, it is not
+    /// held, and (with `--only-outside`) it lies outside its own interval. Set
+    /// when the audit is finished ([`super::AuditedRig::settle_fix`]).
+    pub fix: bool,
     /// Where the explanation puts the joint (the rig's joint when it does not move it).
     #[schemars(with = "[f64; 3]")]
     pub suggested: DVec3,
@@ -431,7 +437,7 @@ impl HoldReason {
             HoldReason::BaseOpposes => "its base puts it the other way".into(),
             HoldReason::Carry => "its skin cannot follow it".into(),
             HoldReason::Short => format!(
-                "would leave the finger outside the X-rays' {} region",
+                "the finger would stay outside the {} region",
                 crate::format::level(crate::analysis::region::FIX_LEVEL)
             ),
         }
@@ -587,6 +593,13 @@ pub const BEND_GUARD: f64 = 0.001;
 /// is below what the data can tell apart. For the same reason the audit
 /// prints millimetres to 0.1 mm.
 pub const MOVE_TOLERANCE: f64 = 0.001;
+
+/// True when a move of `shift` (metres) is under [`MOVE_TOLERANCE`] as the
+/// audit prints it, to 0.1 mm: mirror-image joints whose moves print alike are
+/// decided alike (0.95 mm prints as 1.0 mm and is made).
+pub fn under_tolerance(shift: f64) -> bool {
+    (shift * 1e4).round() < (MOVE_TOLERANCE * 1e4).round()
+}
 
 impl JointCheck {
     /// True when a fix moves this joint: the explanation moves it and it is not held.
