@@ -21,6 +21,7 @@ mod guard;
 pub mod ray;
 pub mod ray_base;
 pub(crate) mod sanity;
+pub mod soft_tissue;
 pub mod standing;
 #[cfg(test)]
 mod tests;
