@@ -178,8 +178,8 @@ fn html_holds_every_table_and_a_plot_of_each_kind() {
     assert_eq!(cells.len(), 14);
     // Thumb first, as in every other table (the paper prints it last).
     assert_eq!(&cells[..3], ["270.83", "230.95", "339.96"]);
-    // Popular rigs: the three data/rigs files, five fingers each.
-    assert_eq!(html.select(&sel("table#rigs-table tbody tr")).count(), 15);
+    // Popular rigs: the two data/rigs files, five fingers each.
+    assert_eq!(html.select(&sel("table#rigs-table tbody tr")).count(), 10);
     // Claims: 30 rows.
     assert_eq!(html.select(&sel("table#claims-table tbody tr")).count(), 30);
     for id in [

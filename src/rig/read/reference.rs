@@ -284,18 +284,6 @@ mod values {
                 Quantity::RatioJ2J1,
                 0.333333,
             ),
-            (
-                "iwer-webxr-hand-relaxed",
-                Finger::Little,
-                Quantity::RelJ3,
-                0.300831,
-            ),
-            (
-                "iwer-webxr-hand-relaxed",
-                Finger::Thumb,
-                Quantity::RatioJ2J1,
-                0.728591,
-            ),
         ];
         for (id, f, q, want) in cases {
             let got = value(id, f, q).unwrap_or_else(|| panic!("{id} {f} {q:?}"));
