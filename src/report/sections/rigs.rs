@@ -9,8 +9,6 @@ use serde::Serialize;
 #[derive(Debug, Clone, Serialize)]
 pub struct RigsView {
     pub rigs: Vec<RigView>,
-    /// Names the rigs use that need saying, where the rigs first appear (IWER, say).
-    pub glossary: Vec<String>,
     pub caveats: Vec<String>,
 }
 
@@ -98,23 +96,6 @@ pub(crate) fn rigs_view(rigs: &[ReferenceAudit], data: &str, confidence: f64) ->
         .collect();
     Some(RigsView {
         rigs: views,
-        glossary: glossary(rigs),
         caveats: crate::report::audit::caveats(&first.audit.tips, data),
     })
-}
-
-/// What a rig's name leaves unsaid: IWER, and that its hand is not the WebXR hand deformed
-/// further down.
-fn glossary(rigs: &[ReferenceAudit]) -> Vec<String> {
-    let mut out = Vec::new();
-    if rigs.iter().any(|r| r.rig.name.contains("IWER")) {
-        out.push(
-            "IWER is the Immersive Web Emulation Runtime, Meta's WebXR emulator: its hand is \
-             joint positions only, with no skin. The WebXR hand audited and deformed below is \
-             another one, the skinned generic hand of the WebXR input profiles, so its thumb's \
-             values differ from IWER's."
-                .to_string(),
-        );
-    }
-    out
 }
